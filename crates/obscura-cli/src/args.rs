@@ -1,0 +1,153 @@
+//! Parsers and shared option groups for the subcommands.
+
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+use glam::Vec3;
+use obscura::scene::{self, Camera, Scene};
+use obscura::settings::{AoSettings, Normalization};
+use obscura::Technique;
+
+/// `WxH`, both positive.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 1280x720)"))?;
+    let parse = |v: &str, what: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("{what} '{v}' in '{s}' is not a whole number (e.g. 1280x720)"))
+    };
+    let (w, h) = (parse(w, "width")?, parse(h, "height")?);
+    if w == 0 || h == 0 {
+        return Err(format!(
+            "size '{s}' is empty: width and height must be at least 1"
+        ));
+    }
+    if w > 16384 || h > 16384 {
+        return Err(format!("size '{s}' is over 16384 px on a side"));
+    }
+    Ok((w, h))
+}
+
+/// `x,y,z` of finite numbers.
+pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("'{s}' is not x,y,z (e.g. 0,1.5,4)"));
+    }
+    let mut v = [0.0f32; 3];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = p
+            .trim()
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("'{p}' in '{s}' is not a finite number"))?;
+    }
+    Ok(Vec3::from_array(v))
+}
+
+pub fn parse_technique(s: &str) -> Result<Technique, String> {
+    s.parse().map_err(|e: obscura::SettingsError| e.to_string())
+}
+
+/// Which scene and from where.
+#[derive(Args, Clone, Debug)]
+pub struct SceneArgs {
+    /// Built-in scene name (see `obscura scenes`) or a .gltf/.glb/.obj file.
+    #[arg(long, default_value = "stairs")]
+    pub scene: String,
+    /// A named camera of the scene (default: its first, the close-up).
+    #[arg(long, conflicts_with_all = ["eye", "target"])]
+    pub camera: Option<String>,
+    /// Camera position x,y,z (with --target).
+    #[arg(long, value_parser = parse_vec3, requires = "target", allow_hyphen_values = true)]
+    pub eye: Option<Vec3>,
+    /// Point looked at x,y,z (with --eye).
+    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
+    pub target: Option<Vec3>,
+    /// Vertical field of view of the visible image in degrees (default: the camera's, or 60).
+    #[arg(long, allow_hyphen_values = true)]
+    pub fov: Option<f32>,
+}
+
+impl SceneArgs {
+    pub fn load(&self) -> Result<Scene> {
+        Ok(scene::load(&self.scene)?)
+    }
+
+    /// The camera these options describe, validated.
+    pub fn camera(&self, scene: &Scene, aspect: f32) -> Result<Camera> {
+        let mut camera = match (&self.camera, self.eye, self.target) {
+            (Some(name), _, _) => scene.camera(name)?,
+            (None, Some(eye), Some(target)) => Camera::new(eye, target, self.fov.unwrap_or(60.0))?,
+            _ => scene.default_camera(aspect),
+        };
+        if let Some(fov) = self.fov {
+            camera.fov_y_deg = fov;
+        }
+        camera.validate()?;
+        Ok(camera)
+    }
+}
+
+/// Technique parameters.
+#[derive(Args, Clone, Debug)]
+pub struct AoArgs {
+    /// VAO sphere radius R in world units.
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub radius: f32,
+    /// VAO thickness τ (constant occluded area above the column, in units of R).
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub thickness: f32,
+    /// Power applied to the final AO.
+    #[arg(long, default_value_t = 1.3, allow_hyphen_values = true)]
+    pub exponent: f32,
+    /// Samples per pixel: 8, 16 or 32.
+    #[arg(long, default_value_t = 8)]
+    pub samples: u32,
+    /// VAO normalisation: clipped (exact 1 on planes) or hemisphere (the paper's 2/N).
+    #[arg(long, default_value = "clipped")]
+    pub normalization: String,
+    /// Skip the bilateral blur.
+    #[arg(long)]
+    pub no_blur: bool,
+    /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
+    #[arg(long)]
+    pub guard_band: Option<u32>,
+}
+
+impl AoArgs {
+    pub fn settings(&self, technique: Technique) -> Result<AoSettings> {
+        let mut settings = AoSettings {
+            technique,
+            ..Default::default()
+        };
+        settings.vao.radius = self.radius;
+        settings.vao.thickness = self.thickness;
+        settings.vao.exponent = self.exponent;
+        settings.vao.samples = self.samples;
+        settings.vao.normalization = self.normalization.parse::<Normalization>()?;
+        settings.blur.enabled = !self.no_blur;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    pub fn guard_band(&self, height: u32) -> u32 {
+        self.guard_band
+            .unwrap_or_else(|| obscura::default_guard_band(height))
+    }
+}
+
+/// Comma-separated technique names, at least one.
+pub fn parse_techniques(list: &str) -> Result<Vec<Technique>> {
+    let techniques = list
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| parse_technique(s).map_err(|e| anyhow!(e)))
+        .collect::<Result<Vec<_>>>()?;
+    if techniques.is_empty() {
+        bail!("--techniques is empty: name at least one (e.g. --techniques vao)");
+    }
+    Ok(techniques)
+}

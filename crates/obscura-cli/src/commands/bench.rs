@@ -1,0 +1,176 @@
+//! GPU timings per pass: warm-up frames, then timestamp queries around every pass for each
+//! frame, medians reported. No CPU clocks are involved.
+
+use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
+use crate::progress::bar;
+use anyhow::{bail, Result};
+use clap::Args;
+use obscura::{output, PassProfiler, Renderer};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+#[derive(Args)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Visible image size WIDTHxHEIGHT (the guard band is extra).
+    #[arg(long, value_parser = parse_size, default_value = "1920x1080")]
+    size: (u32, u32),
+    /// Comma-separated techniques.
+    #[arg(long, default_value = "vao")]
+    techniques: String,
+    #[command(flatten)]
+    ao: AoArgs,
+    /// Timed frames.
+    #[arg(long, default_value_t = 200)]
+    frames: u32,
+    /// Untimed frames first.
+    #[arg(long, default_value_t = 20)]
+    warmup: u32,
+    /// Also write the results as JSON.
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+#[derive(serde::Serialize)]
+struct BenchResult {
+    technique: String,
+    scene: String,
+    camera: String,
+    width: u32,
+    height: u32,
+    guard_band: u32,
+    frames: u32,
+    passes: BTreeMap<String, f64>,
+    total_ms: f64,
+}
+
+#[derive(serde::Serialize)]
+struct BenchReport {
+    adapter: String,
+    backend: String,
+    driver: String,
+    results: Vec<BenchResult>,
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    if let Some(path) = &args.json {
+        if !path
+            .parent()
+            .map_or(true, |p| p.as_os_str().is_empty() || p.is_dir())
+        {
+            bail!(
+                "directory of --json '{}' does not exist: create it first",
+                path.display()
+            );
+        }
+    }
+    let techniques = parse_techniques(&args.techniques)?;
+    let (width, height) = args.size;
+    let guard_band = args.ao.guard_band(height);
+    let scene = args.scene.load()?;
+    let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
+    let camera_name = args.scene.camera.clone().unwrap_or_else(|| {
+        if args.scene.eye.is_some() {
+            "custom".into()
+        } else {
+            scene
+                .cameras
+                .first()
+                .map_or("auto".into(), |c| c.name.clone())
+        }
+    });
+    let gpu = obscura::Gpu::new(options)?;
+    let mut results = Vec::new();
+    for technique in techniques {
+        let settings = args.ao.settings(technique)?;
+        let mut renderer = Renderer::new(&gpu, &scene, &settings, width, height, guard_band)?;
+        let mut profiler = PassProfiler::new(&gpu, args.frames)?;
+        let progress = bar(u64::from(args.warmup + args.frames), technique.name());
+        for _ in 0..args.warmup {
+            renderer.render(&camera, None)?;
+            gpu.finish()?;
+            progress.inc(1);
+        }
+        for _ in 0..args.frames {
+            renderer.render(&camera, Some(&mut profiler))?;
+            // One frame in flight at a time, as a renderer presenting every frame would run.
+            gpu.finish()?;
+            progress.inc(1);
+        }
+        progress.finish_and_clear();
+        let frames = profiler.read(&gpu)?;
+        let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        let mut totals = Vec::new();
+        for frame in &frames {
+            for (pass, ms) in frame {
+                per_pass.entry(pass.clone()).or_default().push(*ms);
+            }
+            let blur: f64 = frame
+                .iter()
+                .filter(|(p, _)| p.starts_with("blur_"))
+                .map(|(_, ms)| ms)
+                .sum();
+            if blur > 0.0 {
+                per_pass.entry("blur".into()).or_default().push(blur);
+            }
+            totals.push(frame.values().sum());
+        }
+        results.push(BenchResult {
+            technique: technique.name().into(),
+            scene: scene.name.clone(),
+            camera: camera_name.clone(),
+            width,
+            height,
+            guard_band,
+            frames: args.frames,
+            passes: per_pass.into_iter().map(|(k, v)| (k, median(v))).collect(),
+            total_ms: median(totals),
+        });
+    }
+    let s = &gpu.summary;
+    let report = BenchReport {
+        adapter: s.name.clone(),
+        backend: s.backend.clone(),
+        driver: format!("{} {}", s.driver, s.driver_info).trim().to_string(),
+        results,
+    };
+    println!(
+        "adapter: {} ({}), driver: {}",
+        report.adapter, report.backend, report.driver
+    );
+    for r in &report.results {
+        println!(
+            "{} on {} ({}) {}x{} +{} guard band, median of {} frames:",
+            r.technique, r.scene, r.camera, r.width, r.height, r.guard_band, r.frames
+        );
+        for (pass, ms) in &r.passes {
+            println!("  {pass:<10} {ms:>9.4} ms");
+        }
+        println!("  {:<10} {:>9.4} ms", "total", r.total_ms);
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&report)?;
+        output::write_atomically(path, |tmp| {
+            std::fs::write(tmp, &text).map_err(|e| e.to_string())
+        })?;
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}

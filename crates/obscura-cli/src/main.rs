@@ -1,0 +1,62 @@
+//! `obscura`: render, inspect and time screen-space ambient occlusion.
+
+mod args;
+mod commands;
+mod progress;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "obscura",
+    version,
+    about = "Ambient occlusion that keeps the geometry a depth buffer hides"
+)]
+struct Cli {
+    /// Use the first adapter whose name contains this (see `obscura info`).
+    #[arg(long, global = true)]
+    adapter: Option<String>,
+    /// Force a backend: vulkan, metal, dx12 or gl (also OBSCURA_BACKEND).
+    #[arg(long, global = true)]
+    backend: Option<String>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the GPU adapter, backend, driver and the limits obscura cares about.
+    Info(commands::info::InfoArgs),
+    /// List the built-in scenes and their cameras.
+    Scenes(commands::scenes::ScenesArgs),
+    /// Render one AO image.
+    Render(commands::render::RenderArgs),
+    /// Render every built-in scene's close-up with every technique into a folder with an index.html.
+    Demo(commands::demo::DemoArgs),
+    /// Time every pass with GPU timestamp queries (medians over frames).
+    Bench(commands::bench::BenchArgs),
+}
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    let cli = Cli::parse();
+    let gpu_options = obscura::GpuOptions {
+        adapter: cli.adapter,
+        backend: cli.backend,
+    };
+    let result = match cli.command {
+        Command::Info(a) => commands::info::run(&gpu_options, &a),
+        Command::Scenes(a) => commands::scenes::run(&a),
+        Command::Render(a) => commands::render::run(&gpu_options, &a),
+        Command::Demo(a) => commands::demo::run(&gpu_options, &a),
+        Command::Bench(a) => commands::bench::run(&gpu_options, &a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

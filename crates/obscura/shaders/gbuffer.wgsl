@@ -1,0 +1,89 @@
+// G-buffer (raster): linear view depth, camera-facing geometric face normals in view space and
+// base colour, for the guard-banded framebuffer. Vertices are pulled from storage buffers so the
+// face normal comes from the triangle itself (the authors' AO uses face normals, seed-code-notes
+// §1.1) and the same buffers can serve ray tracing later. Alpha test: nearest texel, LOD 0,
+// exactly the lookup of `Texture::alpha_at` on the CPU.
+
+struct Camera {
+    view: mat4x4<f32>,
+    projection: mat4x4<f32>,
+}
+
+struct Material {
+    base_color: vec4<f32>,
+    texture_layer: i32,
+    alpha_cutoff: f32,
+    texture_size: vec2<u32>,
+}
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+@group(0) @binding(1) var<storage, read> positions: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> uvs: array<vec2<f32>>;
+@group(0) @binding(3) var<storage, read> triangles: array<vec4<u32>>;
+@group(0) @binding(4) var<storage, read> materials: array<Material>;
+@group(0) @binding(5) var textures: texture_2d_array<f32>;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) view_pos: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) @interpolate(flat) normal: vec3<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
+    let tri = triangles[vertex / 3u];
+    let corner = vertex % 3u;
+    let index = select(select(tri.z, tri.y, corner == 1u), tri.x, corner == 0u);
+    let p0 = positions[tri.x].xyz;
+    let p1 = positions[tri.y].xyz;
+    let p2 = positions[tri.z].xyz;
+    let world = positions[index].xyz;
+    let view_pos = (camera.view * vec4<f32>(world, 1.0)).xyz;
+    var out: VertexOut;
+    out.clip = camera.projection * vec4<f32>(view_pos, 1.0);
+    out.view_pos = view_pos;
+    out.uv = uvs[index];
+    out.normal = (camera.view * vec4<f32>(cross(p1 - p0, p2 - p0), 0.0)).xyz;
+    out.material = tri.w;
+    return out;
+}
+
+struct GBufferOut {
+    @location(0) depth: f32,
+    @location(1) normal: vec4<f32>,
+    @location(2) albedo: vec4<f32>,
+}
+
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> GBufferOut {
+    let material = materials[in.material];
+    var color = material.base_color;
+    if (material.texture_layer >= 0) {
+        let size = material.texture_size;
+        let f = in.uv - floor(in.uv);
+        let texel = min(vec2<u32>(f * vec2<f32>(size)), size - 1u);
+        let t = textureLoad(textures, texel, material.texture_layer, 0);
+        color *= vec4<f32>(srgb_to_linear(t.rgb), t.a);
+    }
+    if (material.alpha_cutoff >= 0.0 && color.a < material.alpha_cutoff) {
+        discard;
+    }
+    var n = in.normal;
+    let len = length(n);
+    n = select(-normalize(in.view_pos), n / len, len > 0.0);
+    // Face the camera (seed-code-notes §1.1: flipped when dot(posV, n) > 0).
+    if (dot(in.view_pos, n) > 0.0) {
+        n = -n;
+    }
+    var out: GBufferOut;
+    out.depth = -in.view_pos.z;
+    out.normal = vec4<f32>(n, 0.0);
+    out.albedo = vec4<f32>(color.rgb, 1.0);
+    return out;
+}

@@ -1,0 +1,120 @@
+// Volumetric Ambient Occlusion (VAO), seed 000 (Brüll, Kern, Grosch 2022) §3.1–3.5, following the
+// authors' 2022 shader as recorded in seed-code-notes §1.2. Mirrored on the CPU by
+// src/reference/cpu_vao.rs (the tests hold the two within 1/255).
+//
+// Per pixel: a disc of radius R perpendicular to the view ray, N line samples on it (radii
+// sqrt(1 - psi^(2/3)), psi = van der Corput N..2N-1, angles 2*pi*i/N plus a 4x4 per-pixel rotation).
+// Each sample is a column of half-height h = sqrt(R^2 - |d|^2) along the view axis, clipped
+// analytically by the surface's hemisphere. Its depth sample gives the free part of the column
+// (sphere_vis) or, above the column, the thickness/halo model of §3.3 (halo_vis).
+// AO = saturate(2/N * sum(free_i / 2h_i)) ^ exponent (the paper's hemisphere normalisation), or
+// with `normalization == 1u` (our default) the ratio sum(free_i / 2h_i) / sum(clipped_i / 2h_i):
+// the same integral in the limit, but exactly 1 for any unoccluded plane, where the paper's
+// estimator is 1 only on average over the rotation pattern (so it darkens tilted planes in a
+// 4x4 pattern after the saturate).
+//
+// Pixel snapping: the depth sample is read at the centre of the pixel the sample falls in, which
+// lies beside the sample's column. Its height is corrected for that lateral offset along the
+// surface's tangent plane, so a planar neighbourhood reads exactly its own plane (no
+// self-occlusion from snapping); with no offset the height is the paper's dot(D - P, e).
+
+struct VaoParams {
+    radius: f32,
+    thickness: f32,
+    exponent: f32,
+    sample_count: u32,
+    // Samples whose clipped column is shorter than this (world units) contribute nothing.
+    min_column: f32,
+    // 0: the paper's 2/N normalisation, 1: normalise by the clipped columns' own length.
+    normalization: u32,
+    _pad1: u32,
+    _pad2: u32,
+    // xy: unit direction of sample i before rotation, z: radius (fraction of R).
+    kernel: array<vec4<f32>, 32>,
+    // xy: (cos, sin) of the rotation of pixel (x % 4, y % 4), index x % 4 + 4 * (y % 4).
+    rotations: array<vec4<f32>, 16>,
+}
+
+@group(0) @binding(0) var<uniform> view: View;
+@group(0) @binding(1) var<uniform> params: VaoParams;
+@group(0) @binding(2) var depth_tex: texture_2d<f32>;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+@group(0) @binding(4) var ao_out: texture_storage_2d<r32float, write>;
+
+// Free length of the column [column_end, column_start] for an occluder at object-space height z
+// (positive towards the camera), seed 000 Fig. 4 / Eq. 8: inside the column the part above z is
+// free; above the column up to (1 + thickness) R the column is fully occluded (constant area);
+// above that it becomes visible again linearly over one column length (falloff area).
+fn column_visibility(z: f32, column_start: f32, column_end: f32) -> f32 {
+    let length = column_start - column_end;
+    let sphere_vis = max(column_start - max(column_end, z), 0.0);
+    let halo_start = (1.0 + params.thickness) * params.radius;
+    let halo_vis = saturate((z - halo_start) / length) * length;
+    return sphere_vis + halo_vis;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (any(id.xy >= view.visible_size)) {
+        return;
+    }
+    let pixel = id.xy + vec2<u32>(view.guard_band);
+    let z = textureLoad(depth_tex, pixel, 0).r;
+    if (is_background(z)) {
+        textureStore(ao_out, id.xy, vec4<f32>(1.0));
+        return;
+    }
+    let pos = pixel_to_view(view, vec2<f32>(pixel) + 0.5, z);
+    let n = normalize(textureLoad(normal_tex, pixel, 0).xyz);
+
+    // Sample frame perpendicular to the view ray: `axis` points to the camera.
+    let axis = -normalize(pos);
+    let basis = orthonormal_basis(axis);
+    let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
+    // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).
+    let n_z = select(min(n_local.z, -1e-4), max(n_local.z, 1e-4), n_local.z >= 0.0);
+    let rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
+    let r = params.radius;
+
+    var sum = 0.0;
+    var clipped_sum = 0.0;
+    for (var i = 0u; i < params.sample_count; i++) {
+        let k = params.kernel[i];
+        let dir = vec2<f32>(k.x * rotation.x - k.y * rotation.y, k.x * rotation.y + k.y * rotation.x);
+        let d = dir * (k.z * r);
+        let h = sqrt(max(r * r - dot(d, d), 0.0));
+        // Hemisphere clipping: the tangent plane crosses the column at height z_i.
+        let z_i = clamp(-dot(d, n_local.xy) / n_z, -h, h);
+        var column_start = h;
+        var column_end = -h;
+        if (n_local.z >= 0.0) {
+            column_end = z_i;
+        } else {
+            column_start = z_i;
+        }
+        if (column_start - column_end < params.min_column) {
+            continue; // the column lies below the hemisphere (seed 000 §3.2: a_i = 0)
+        }
+        let sample_pos = pos + basis[0] * d.x + basis[1] * d.y;
+        let sample_px = clamp(view_to_pixel(view, sample_pos), vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5);
+        let sample_pixel = vec2<u32>(sample_px);
+        var free = column_start - column_end;
+        if (any(sample_pixel != pixel)) {
+            let sample_z = textureLoad(depth_tex, sample_pixel, 0).r;
+            if (!is_background(sample_z)) {
+                let offset = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, sample_z) - pos;
+                let lateral = vec2<f32>(dot(offset, basis[0]), dot(offset, basis[1])) - d;
+                let height = dot(offset, axis) + dot(lateral, n_local.xy) / n_z;
+                free = column_visibility(height, column_start, column_end);
+            }
+        }
+        sum += free / (2.0 * h);
+        clipped_sum += (column_start - column_end) / (2.0 * h);
+    }
+    var ao = 2.0 * sum / f32(params.sample_count);
+    if (params.normalization == 1u) {
+        ao = select(1.0, sum / clipped_sum, clipped_sum > 0.0);
+    }
+    ao = saturate(ao);
+    textureStore(ao_out, id.xy, vec4<f32>(pow(ao, params.exponent)));
+}

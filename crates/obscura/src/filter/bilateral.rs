@@ -1,0 +1,115 @@
+//! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/bilateral_blur.wgsl`).
+
+use crate::gpu::PassProfiler;
+use crate::kernels::{workgroups_8x8, FrameInputs};
+use crate::settings::BlurSettings;
+use crate::shaders;
+use wgpu::util::DeviceExt;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct BlurParams {
+    direction: [i32; 2],
+    radius: i32,
+    sharpness: f32,
+}
+
+/// Two compute passes (x then y) through an intermediate image of the visible size.
+pub struct BilateralBlur {
+    pipeline: wgpu::ComputePipeline,
+    params: [wgpu::Buffer; 2],
+    view: wgpu::Buffer,
+    intermediate: wgpu::TextureView,
+}
+
+impl BilateralBlur {
+    pub fn new(
+        device: &wgpu::Device,
+        settings: &BlurSettings,
+        view: &wgpu::Buffer,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        let source = shaders::with_common(&[shaders::VIEW], shaders::BILATERAL_BLUR);
+        let pipeline = crate::gpu::compute_pipeline(device, "bilateral blur", &source);
+        let params = [[1, 0], [0, 1]].map(|direction| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("blur params"),
+                contents: bytemuck::bytes_of(&BlurParams {
+                    direction,
+                    radius: settings.radius as i32,
+                    sharpness: settings.sharpness,
+                }),
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+        });
+        let intermediate = crate::gpu::texture_2d(
+            device,
+            "blur intermediate",
+            width,
+            height,
+            wgpu::TextureFormat::R32Float,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        )
+        .create_view(&Default::default());
+        Self {
+            pipeline,
+            params,
+            view: view.clone(),
+            intermediate,
+        }
+    }
+
+    /// Blur `input` into `output` (both R32Float, visible size). Timings: `blur_x`, `blur_y`.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs,
+        input: &wgpu::TextureView,
+        output: &wgpu::TextureView,
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        let steps = [
+            ("blur_x", input, &self.intermediate, &self.params[0]),
+            ("blur_y", &self.intermediate, output, &self.params[1]),
+        ];
+        for (name, src, dst, params) in steps {
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(name),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.view.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: params.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(inputs.depth),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(src),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(dst),
+                    },
+                ],
+            });
+            let timestamp_writes = profiler.as_deref_mut().map(|p| p.compute_pass(name));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(name),
+                timestamp_writes,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            let (x, y, z) = workgroups_8x8(inputs.screen.width, inputs.screen.height);
+            pass.dispatch_workgroups(x, y, z);
+        }
+    }
+}

@@ -1,0 +1,3 @@
+//! Filters applied to raw AO.
+
+pub mod bilateral;

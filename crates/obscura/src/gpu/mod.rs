@@ -1,0 +1,269 @@
+//! Headless GPU context: adapter selection, device creation with the features obscura uses when
+//! the adapter has them, and validation errors turned into `Result`s instead of panics.
+
+mod profiler;
+mod readback;
+
+pub use profiler::{FrameTimings, PassProfiler};
+pub use readback::{read_texture_bytes, read_texture_f32, read_texture_rgba8};
+
+use std::sync::{Arc, Mutex};
+
+/// Where the GPU context comes from.
+#[derive(Clone, Debug, Default)]
+pub struct GpuOptions {
+    /// Pick the first adapter whose name contains this (case-insensitive).
+    pub adapter: Option<String>,
+    /// Restrict to one backend (`vulkan`, `metal`, `dx12`, `gl`). Falls back to the
+    /// `OBSCURA_BACKEND` environment variable.
+    pub backend: Option<String>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter found{filter}. obscura needs Vulkan, Metal or DX12; on a machine without a GPU \
+         install Mesa's software Vulkan driver (Debian/Ubuntu: `sudo apt-get install mesa-vulkan-drivers`)"
+    )]
+    NoAdapter { filter: String },
+    #[error("unknown backend '{0}': use vulkan, metal, dx12 or gl")]
+    UnknownBackend(String),
+    #[error("could not create a device on '{adapter}': {source}")]
+    Device {
+        adapter: String,
+        source: wgpu::RequestDeviceError,
+    },
+    #[error("GPU validation error: {0}")]
+    Validation(String),
+    #[error("GPU error: {0}")]
+    Other(String),
+}
+
+/// Adapter facts worth printing (`obscura info`) and recording next to benchmark numbers.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub driver_info: String,
+    pub vendor: u32,
+    pub device: u32,
+    pub timestamp_queries: bool,
+    pub max_texture_dimension_2d: u32,
+    pub max_texture_array_layers: u32,
+    pub max_storage_buffer_binding_size: u64,
+    pub max_compute_workgroup_size: [u32; 3],
+    pub max_compute_invocations_per_workgroup: u32,
+    /// MSAA sample counts a depth texture (`Depth32Float`) supports on this adapter.
+    pub depth_msaa_sample_counts: Vec<u32>,
+}
+
+/// The device, its queue and what we know about the adapter.
+pub struct Gpu {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub summary: AdapterSummary,
+    errors: Arc<Mutex<Vec<String>>>,
+}
+
+/// Backends from a name (`OBSCURA_BACKEND` / `--backend`).
+fn parse_backend(name: &str) -> Result<wgpu::Backends, GpuError> {
+    match name.to_ascii_lowercase().as_str() {
+        "vulkan" | "vk" => Ok(wgpu::Backends::VULKAN),
+        "metal" => Ok(wgpu::Backends::METAL),
+        "dx12" | "d3d12" => Ok(wgpu::Backends::DX12),
+        "gl" | "gles" | "opengl" => Ok(wgpu::Backends::GL),
+        _ => Err(GpuError::UnknownBackend(name.to_string())),
+    }
+}
+
+/// Discrete GPUs first, then integrated, virtual, and software (lavapipe) last; GL after others
+/// because its timestamp and compute support is weaker.
+fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
+    let device = match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    };
+    let backend = u32::from(info.backend == wgpu::Backend::Gl);
+    backend * 10 + device
+}
+
+impl Gpu {
+    /// Pick an adapter (see [`GpuOptions`]) and create a device.
+    pub fn new(options: &GpuOptions) -> Result<Self, GpuError> {
+        let backend_name = options.backend.clone().or_else(|| {
+            std::env::var("OBSCURA_BACKEND")
+                .ok()
+                .filter(|s| !s.is_empty())
+        });
+        let forced = backend_name.as_deref().map(parse_backend).transpose()?;
+        // GL only when asked for or when nothing else exists: its compute and timestamp support is
+        // weaker, and probing EGL on a headless machine prints noise.
+        let mut adapters = Vec::new();
+        for backends in forced.map_or(vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL], |b| {
+            vec![b]
+        }) {
+            let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+                backends,
+                flags: wgpu::InstanceFlags::from_env_or_default(),
+                ..wgpu::InstanceDescriptor::new_without_display_handle()
+            });
+            adapters = pollster::block_on(instance.enumerate_adapters(backends));
+            if !adapters.is_empty() {
+                break;
+            }
+        }
+        if let Some(filter) = &options.adapter {
+            let needle = filter.to_ascii_lowercase();
+            adapters.retain(|a| a.get_info().name.to_ascii_lowercase().contains(&needle));
+        }
+        adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
+        let Some(adapter) = adapters.into_iter().next() else {
+            let mut filter = String::new();
+            if let Some(a) = &options.adapter {
+                filter += &format!(" matching '{a}'");
+            }
+            if let Some(b) = &backend_name {
+                filter += &format!(" on backend '{b}'");
+            }
+            return Err(GpuError::NoAdapter { filter });
+        };
+        Self::from_adapter(adapter)
+    }
+
+    fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
+        let info = adapter.get_info();
+        let wanted = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+        let features = adapter.features() & wanted;
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("obscura"),
+            required_features: features,
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|source| GpuError::Device {
+            adapter: info.name.clone(),
+            source,
+        })?;
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let sink = errors.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            sink.lock().unwrap().push(e.to_string());
+        }));
+        let depth_msaa_sample_counts = {
+            let f = adapter.get_texture_format_features(wgpu::TextureFormat::Depth32Float);
+            [1, 2, 4, 8, 16]
+                .into_iter()
+                .filter(|&n| f.flags.sample_count_supported(n))
+                .collect()
+        };
+        let summary = AdapterSummary {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: info.driver.clone(),
+            driver_info: info.driver_info.clone(),
+            vendor: info.vendor,
+            device: info.device,
+            timestamp_queries: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+            max_texture_dimension_2d: limits.max_texture_dimension_2d,
+            max_texture_array_layers: limits.max_texture_array_layers,
+            max_storage_buffer_binding_size: u64::from(limits.max_storage_buffer_binding_size),
+            max_compute_workgroup_size: [
+                limits.max_compute_workgroup_size_x,
+                limits.max_compute_workgroup_size_y,
+                limits.max_compute_workgroup_size_z,
+            ],
+            max_compute_invocations_per_workgroup: limits.max_compute_invocations_per_workgroup,
+            depth_msaa_sample_counts,
+        };
+        Ok(Self {
+            adapter,
+            device,
+            queue,
+            summary,
+            errors,
+        })
+    }
+
+    /// Wait for all submitted work, then report any validation error raised since the last check.
+    pub fn finish(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Other(e.to_string()))?;
+        self.check_errors()
+    }
+
+    /// Report (and clear) validation errors raised so far.
+    pub fn check_errors(&self) -> Result<(), GpuError> {
+        let mut errors = self.errors.lock().unwrap();
+        if errors.is_empty() {
+            Ok(())
+        } else {
+            let message = errors.join("\n");
+            errors.clear();
+            Err(GpuError::Validation(message))
+        }
+    }
+
+    /// Checks that a framebuffer of `width`×`height` fits this adapter.
+    pub fn check_size(&self, what: &str, width: u32, height: u32) -> Result<(), GpuError> {
+        let max = self.summary.max_texture_dimension_2d;
+        if width > max || height > max {
+            return Err(GpuError::Other(format!(
+                "{what} of {width}x{height} exceeds this adapter's maximum texture size {max}x{max} \
+                 ('{}'): choose a smaller --size or --guard-band",
+                self.summary.name
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// A compute pipeline from WGSL source with entry point `main` and an automatic layout.
+pub fn compute_pipeline(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// A 2D texture of the given size, format and usage.
+pub fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}

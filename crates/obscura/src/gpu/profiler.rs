@@ -1,0 +1,145 @@
+//! Per-pass GPU timings with timestamp queries.
+//!
+//! Every pass that wants timing asks for its timestamp writes by name; each frame's queries are
+//! resolved into their own slot of one buffer, read back once at the end. Benchmarks take medians
+//! over frames; nothing here is ever used for timed asserts in tests.
+
+use super::{Gpu, GpuError};
+use std::collections::BTreeMap;
+
+/// Timestamps per frame are resolved into slots this far apart (the resolve-offset alignment).
+const SLOT_BYTES: u64 = wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT;
+const MAX_PASSES: u32 = (SLOT_BYTES / 16) as u32;
+
+/// Milliseconds per named pass for one frame.
+pub type FrameTimings = BTreeMap<String, f64>;
+
+pub struct PassProfiler {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    pass_names: Vec<String>,
+    frame_passes: Vec<Vec<String>>,
+    frame: u32,
+    max_frames: u32,
+    period_ns: f64,
+}
+
+impl PassProfiler {
+    /// A profiler for up to `max_frames` frames. Errors when the adapter has no timestamp queries.
+    pub fn new(gpu: &Gpu, max_frames: u32) -> Result<Self, GpuError> {
+        if !gpu.summary.timestamp_queries {
+            return Err(GpuError::Other(format!(
+                "adapter '{}' does not support timestamp queries, so per-pass GPU times cannot be measured",
+                gpu.summary.name
+            )));
+        }
+        let queries = gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("pass timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2 * MAX_PASSES,
+        });
+        let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamp resolve"),
+            size: SLOT_BYTES * u64::from(max_frames.max(1)),
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        Ok(Self {
+            queries,
+            resolve,
+            pass_names: Vec::new(),
+            frame_passes: Vec::new(),
+            frame: 0,
+            max_frames: max_frames.max(1),
+            period_ns: f64::from(gpu.queue.get_timestamp_period()),
+        })
+    }
+
+    /// Index of the next pass's begin query; panics (a programming error) past `MAX_PASSES`.
+    fn next_pass(&mut self, name: &str) -> u32 {
+        assert!(
+            self.frame < self.max_frames,
+            "profiler frame budget exhausted"
+        );
+        let index = self.pass_names.len() as u32;
+        assert!(index < MAX_PASSES, "too many profiled passes in one frame");
+        self.pass_names.push(name.to_string());
+        2 * index
+    }
+
+    pub fn compute_pass(&mut self, name: &str) -> wgpu::ComputePassTimestampWrites<'_> {
+        let begin = self.next_pass(name);
+        wgpu::ComputePassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(begin),
+            end_of_pass_write_index: Some(begin + 1),
+        }
+    }
+
+    pub fn render_pass(&mut self, name: &str) -> wgpu::RenderPassTimestampWrites<'_> {
+        let begin = self.next_pass(name);
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(begin),
+            end_of_pass_write_index: Some(begin + 1),
+        }
+    }
+
+    /// Resolve this frame's queries into its slot. Call once per frame after its passes.
+    pub fn end_frame(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        let count = 2 * self.pass_names.len() as u32;
+        if count > 0 {
+            encoder.resolve_query_set(
+                &self.queries,
+                0..count,
+                &self.resolve,
+                u64::from(self.frame) * SLOT_BYTES,
+            );
+        }
+        self.frame_passes.push(std::mem::take(&mut self.pass_names));
+        self.frame += 1;
+    }
+
+    /// Read every recorded frame's pass times (milliseconds).
+    pub fn read(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
+        let size = SLOT_BYTES * u64::from(self.frame);
+        if size == 0 {
+            return Ok(Vec::new());
+        }
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamp readback"),
+            size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &staging, 0, size);
+        gpu.queue.submit([encoder.finish()]);
+        let slice = staging.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        gpu.finish()?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?;
+        let ticks: &[u64] = bytemuck::cast_slice(&data);
+        let stride = (SLOT_BYTES / 8) as usize;
+        let frames = self
+            .frame_passes
+            .iter()
+            .enumerate()
+            .map(|(f, names)| {
+                let mut timings = FrameTimings::new();
+                for (p, name) in names.iter().enumerate() {
+                    let begin = ticks[f * stride + 2 * p];
+                    let end = ticks[f * stride + 2 * p + 1];
+                    let ms = end.saturating_sub(begin) as f64 * self.period_ns / 1e6;
+                    *timings.entry(name.clone()).or_insert(0.0) += ms;
+                }
+                timings
+            })
+            .collect();
+        drop(data);
+        staging.unmap();
+        Ok(frames)
+    }
+}

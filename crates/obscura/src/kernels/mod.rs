@@ -1,0 +1,38 @@
+//! AO kernels: one module per technique, each a compute pass from the frame inputs (linear depth,
+//! view-space normals, screen geometry) to a raw AO image of the visible size (R32Float,
+//! 1 = unoccluded). Filtering happens after, in [`crate::filter`].
+
+pub mod vao;
+
+use crate::gpu::PassProfiler;
+use crate::view::ScreenGeometry;
+
+/// What every kernel reads. Textures cover the whole guard-banded framebuffer.
+pub struct FrameInputs<'a> {
+    /// Linear view depth (`R32Float`, world units, 0 = background).
+    pub depth: &'a wgpu::TextureView,
+    /// View-space unit normals facing the camera (any float format; xyz used).
+    pub normals: &'a wgpu::TextureView,
+    pub screen: ScreenGeometry,
+}
+
+/// A compute kernel that turns [`FrameInputs`] into raw AO.
+pub trait AoKernel {
+    /// The name its timings are reported under.
+    fn pass_name(&self) -> &'static str;
+
+    /// Record the kernel. `output` is `R32Float` storage of the visible size.
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs,
+        output: &wgpu::TextureView,
+        profiler: Option<&mut PassProfiler>,
+    );
+}
+
+/// Workgroups covering `width`×`height` with 8×8 threads.
+pub(crate) fn workgroups_8x8(width: u32, height: u32) -> (u32, u32, u32) {
+    (width.div_ceil(8), height.div_ceil(8), 1)
+}

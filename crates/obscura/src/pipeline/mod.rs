@@ -1,0 +1,110 @@
+//! How passes chain. [`AmbientOcclusion`] is the part an engine embeds: its depth and normals in,
+//! an AO texture out. [`renderer::Renderer`] adds our own G-buffer for scenes we load ourselves.
+
+pub mod renderer;
+
+use crate::filter::bilateral::BilateralBlur;
+use crate::gpu::PassProfiler;
+use crate::kernels::{vao::VaoKernel, AoKernel, FrameInputs};
+use crate::settings::{AoSettings, SettingsError, Technique};
+use crate::view::ScreenGeometry;
+use wgpu::util::DeviceExt;
+
+/// AO for one screen configuration: the technique's kernel, then (optionally) the blur.
+///
+/// The output is an `R32Float` texture of the *visible* size (no guard band), 1 = unoccluded.
+pub struct AmbientOcclusion {
+    settings: AoSettings,
+    screen: ScreenGeometry,
+    kernel: Box<dyn AoKernel>,
+    blur: Option<BilateralBlur>,
+    raw: wgpu::Texture,
+    blurred: wgpu::Texture,
+}
+
+impl AmbientOcclusion {
+    /// Build pipelines and images for `screen`. `settings` are validated first.
+    pub fn new(
+        device: &wgpu::Device,
+        settings: &AoSettings,
+        screen: ScreenGeometry,
+    ) -> Result<Self, SettingsError> {
+        settings.validate()?;
+        let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("view"),
+            contents: bytemuck::bytes_of(&screen.uniform()),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let kernel: Box<dyn AoKernel> = match settings.technique {
+            Technique::Vao => Box::new(VaoKernel::new(device, &settings.vao, &view)),
+        };
+        let blur = settings.blur.enabled.then(|| {
+            BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)
+        });
+        let ao_texture = |label| {
+            crate::gpu::texture_2d(
+                device,
+                label,
+                screen.width,
+                screen.height,
+                wgpu::TextureFormat::R32Float,
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+            )
+        };
+        Ok(Self {
+            settings: *settings,
+            screen,
+            kernel,
+            raw: ao_texture("ao raw"),
+            blurred: ao_texture("ao blurred"),
+            blur,
+        })
+    }
+
+    pub fn settings(&self) -> &AoSettings {
+        &self.settings
+    }
+
+    pub fn screen(&self) -> ScreenGeometry {
+        self.screen
+    }
+
+    /// Record the kernel and the blur. `depth` and `normals` cover the guard-banded framebuffer.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        depth: &wgpu::TextureView,
+        normals: &wgpu::TextureView,
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        let inputs = FrameInputs {
+            depth,
+            normals,
+            screen: self.screen,
+        };
+        let raw = self.raw.create_view(&Default::default());
+        self.kernel
+            .encode(device, encoder, &inputs, &raw, profiler.as_deref_mut());
+        if let Some(blur) = &self.blur {
+            let blurred = self.blurred.create_view(&Default::default());
+            blur.encode(device, encoder, &inputs, &raw, &blurred, profiler);
+        }
+    }
+
+    /// The final AO (blurred if the blur is enabled).
+    pub fn output(&self) -> &wgpu::Texture {
+        if self.blur.is_some() {
+            &self.blurred
+        } else {
+            &self.raw
+        }
+    }
+
+    /// The kernel's AO before the blur.
+    pub fn raw_output(&self) -> &wgpu::Texture {
+        &self.raw
+    }
+}

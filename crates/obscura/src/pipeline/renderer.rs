@@ -1,0 +1,180 @@
+//! Our own frame: a loaded scene rasterised into a G-buffer, then [`AmbientOcclusion`].
+
+use super::AmbientOcclusion;
+use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
+use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
+use crate::reference::cpu_vao::GBufferImage;
+use crate::scene::{Camera, Scene};
+use crate::settings::AoSettings;
+use crate::view::FrameView;
+use crate::Error;
+use glam::Vec3;
+
+/// Renders AO images of one scene at one size.
+pub struct Renderer<'g> {
+    gpu: &'g Gpu,
+    scene: GpuScene,
+    near: f32,
+    width: u32,
+    height: u32,
+    guard_band: u32,
+    settings: AoSettings,
+    gbuffer: GBuffer,
+    ao: Option<AmbientOcclusion>,
+    view: Option<FrameView>,
+}
+
+impl<'g> Renderer<'g> {
+    /// Upload `scene` and allocate targets for a visible `width`×`height` plus `guard_band`.
+    pub fn new(
+        gpu: &'g Gpu,
+        scene: &Scene,
+        settings: &AoSettings,
+        width: u32,
+        height: u32,
+        guard_band: u32,
+    ) -> Result<Self, Error> {
+        settings.validate()?;
+        if width == 0 || height == 0 {
+            return Err(Error::Input(format!(
+                "image size {width}x{height} is empty: use e.g. --size 1280x720"
+            )));
+        }
+        let (fw, fh) = (
+            u64::from(width) + 2 * u64::from(guard_band),
+            u64::from(height) + 2 * u64::from(guard_band),
+        );
+        let max = u64::from(gpu.summary.max_texture_dimension_2d);
+        if fw > max || fh > max {
+            return Err(Error::Input(format!(
+                "image size {width}x{height} with a {guard_band} px guard band needs a {fw}x{fh} \
+                 framebuffer, over this adapter's limit of {max}x{max} ('{}'): use a smaller --size or --guard-band",
+                gpu.summary.name
+            )));
+        }
+        let limits = gpu.device.limits();
+        let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &limits)?;
+        // Linear depth does not depend on the near plane; keep it small relative to the scene.
+        let near = (scene_diagonal(scene) * 1e-5).max(1e-5);
+        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32);
+        gpu.check_errors()?;
+        Ok(Self {
+            gpu,
+            scene: gpu_scene,
+            near,
+            width,
+            height,
+            guard_band,
+            settings: *settings,
+            gbuffer,
+            ao: None,
+            view: None,
+        })
+    }
+
+    /// Record and submit one frame seen from `camera`.
+    pub fn render(
+        &mut self,
+        camera: &Camera,
+        mut profiler: Option<&mut PassProfiler>,
+    ) -> Result<(), Error> {
+        let view = FrameView::new(*camera, self.width, self.height, self.guard_band, self.near);
+        if self.ao.as_ref().map(|ao| ao.screen()) != Some(view.screen()) {
+            self.ao = Some(AmbientOcclusion::new(
+                &self.gpu.device,
+                &self.settings,
+                view.screen(),
+            )?);
+        }
+        let ao = self.ao.as_ref().expect("created above");
+        let device = &self.gpu.device;
+        let mut encoder = device.create_command_encoder(&Default::default());
+        self.gbuffer.render(
+            device,
+            &self.gpu.queue,
+            &mut encoder,
+            &self.scene,
+            &view,
+            profiler.as_deref_mut(),
+        );
+        let depth = self.gbuffer.depth.create_view(&Default::default());
+        let normals = self.gbuffer.normals.create_view(&Default::default());
+        ao.encode(
+            device,
+            &mut encoder,
+            &depth,
+            &normals,
+            profiler.as_deref_mut(),
+        );
+        if let Some(p) = profiler {
+            p.end_frame(&mut encoder);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        self.view = Some(view);
+        self.gpu.check_errors()?;
+        Ok(())
+    }
+
+    fn last_ao(&self) -> Result<&AmbientOcclusion, Error> {
+        self.ao
+            .as_ref()
+            .ok_or_else(|| Error::Input("nothing rendered yet: call render() first".into()))
+    }
+
+    /// The last frame's view (camera, sizes, projection).
+    pub fn view(&self) -> Option<&FrameView> {
+        self.view.as_ref()
+    }
+
+    /// Final AO of the visible image, row-major.
+    pub fn read_ao(&self) -> Result<Vec<f32>, Error> {
+        Ok(read_texture_f32(self.gpu, self.last_ao()?.output(), 1)?)
+    }
+
+    /// The kernel's AO before the blur.
+    pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
+        Ok(read_texture_f32(self.gpu, self.last_ao()?.raw_output(), 1)?)
+    }
+
+    /// Depth and normals of the whole framebuffer.
+    pub fn read_gbuffer(&self) -> Result<GBufferImage, Error> {
+        let depth = read_texture_f32(self.gpu, &self.gbuffer.depth, 1)?;
+        let bytes = crate::gpu::read_texture_bytes(self.gpu, &self.gbuffer.normals, 8)?;
+        let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+        let normals = halves
+            .chunks_exact(4)
+            .map(|c| Vec3::new(c[0].to_f32(), c[1].to_f32(), c[2].to_f32()))
+            .collect();
+        Ok(GBufferImage {
+            width: self.gbuffer.depth.width(),
+            height: self.gbuffer.depth.height(),
+            depth,
+            normals,
+        })
+    }
+
+    /// Base colour (sRGB-encoded RGBA8) of the visible image.
+    pub fn read_albedo(&self) -> Result<Vec<[u8; 4]>, Error> {
+        let full = read_texture_rgba8(self.gpu, &self.gbuffer.albedo)?;
+        let fw = self.gbuffer.albedo.width() as usize;
+        let g = self.guard_band as usize;
+        let mut out = Vec::with_capacity((self.width * self.height) as usize);
+        for y in 0..self.height as usize {
+            let row = (y + g) * fw + g;
+            out.extend(
+                full[row * 4..(row + self.width as usize) * 4]
+                    .chunks_exact(4)
+                    .map(|c| [c[0], c[1], c[2], c[3]]),
+            );
+        }
+        Ok(out)
+    }
+}
+
+fn scene_diagonal(scene: &Scene) -> f32 {
+    let (min, max) = scene.positions.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(a, b), p| (a.min(*p), b.max(*p)),
+    );
+    (max - min).length()
+}

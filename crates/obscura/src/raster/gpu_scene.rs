@@ -1,0 +1,161 @@
+//! A [`Scene`] uploaded for the GPU: storage buffers the G-buffer pulls vertices from (and that
+//! later GPU ray tracing can share), materials, and one texture array holding every base-colour
+//! texture (alpha test + colour).
+
+use crate::gpu::GpuError;
+use crate::scene::{AlphaMode, Scene};
+use wgpu::util::DeviceExt;
+
+/// GPU mirror of `Material` in `shaders/gbuffer.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuMaterial {
+    base_color: [f32; 4],
+    /// Texture array layer, or -1 for none.
+    texture_layer: i32,
+    /// Alpha-test cutoff, or -1 when the material is not alpha-tested.
+    alpha_cutoff: f32,
+    texture_size: [u32; 2],
+}
+
+pub struct GpuScene {
+    pub positions: wgpu::Buffer,
+    pub uvs: wgpu::Buffer,
+    /// `(i0, i1, i2, material)` per triangle; back-face-culled triangles come first.
+    pub triangles: wgpu::Buffer,
+    pub materials: wgpu::Buffer,
+    pub textures: wgpu::TextureView,
+    /// Triangles `0..culled_count` are drawn with back-face culling, the rest without.
+    pub culled_count: u32,
+    pub triangle_count: u32,
+}
+
+impl GpuScene {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        limits: &wgpu::Limits,
+    ) -> Result<Self, GpuError> {
+        let positions: Vec<[f32; 4]> = scene
+            .positions
+            .iter()
+            .map(|p| p.extend(1.0).to_array())
+            .collect();
+        let uvs: Vec<[f32; 2]> = scene.uvs.iter().map(|u| u.to_array()).collect();
+        // Stable partition: culled triangles first, so each group is one contiguous draw.
+        let keeps_back =
+            |t: usize| scene.materials[scene.triangle_materials[t] as usize].keeps_back_faces();
+        let order: Vec<usize> = (0..scene.triangles.len())
+            .filter(|&t| !keeps_back(t))
+            .chain((0..scene.triangles.len()).filter(|&t| keeps_back(t)))
+            .collect();
+        let culled_count = order.iter().take_while(|&&t| !keeps_back(t)).count() as u32;
+        let triangles: Vec<[u32; 4]> = order
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = scene.triangles[t];
+                [a, b, c, scene.triangle_materials[t]]
+            })
+            .collect();
+
+        let max_binding = u64::from(limits.max_storage_buffer_binding_size);
+        let largest = (positions.len() * 16).max(triangles.len() * 16) as u64;
+        if largest > max_binding {
+            return Err(GpuError::Other(format!(
+                "scene '{}' needs a {largest}-byte storage buffer, over this adapter's limit of {max_binding} bytes",
+                scene.name
+            )));
+        }
+
+        // Textures share one array; smaller ones occupy the top-left corner of their layer.
+        let (width, height) = scene
+            .textures
+            .iter()
+            .fold((1, 1), |(w, h), t| (w.max(t.width), h.max(t.height)));
+        let layers = scene.textures.len().max(1) as u32;
+        if layers > limits.max_texture_array_layers {
+            return Err(GpuError::Other(format!(
+                "scene '{}' has {layers} textures, over this adapter's {} texture array layers",
+                scene.name, limits.max_texture_array_layers
+            )));
+        }
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("base colour textures"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        for (layer, t) in scene.textures.iter().enumerate() {
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: layer as u32,
+                    },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                &t.rgba8,
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * t.width),
+                    rows_per_image: Some(t.height),
+                },
+                wgpu::Extent3d {
+                    width: t.width,
+                    height: t.height,
+                    depth_or_array_layers: 1,
+                },
+            );
+        }
+        let textures = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+
+        let materials: Vec<GpuMaterial> = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let texture = m.base_color_texture.map(|t| &scene.textures[t as usize]);
+                GpuMaterial {
+                    base_color: m.base_color,
+                    texture_layer: m.base_color_texture.map_or(-1, |t| t as i32),
+                    alpha_cutoff: match m.alpha_mode {
+                        AlphaMode::Mask { cutoff } => cutoff,
+                        AlphaMode::Opaque | AlphaMode::Blend => -1.0,
+                    },
+                    texture_size: texture.map_or([1, 1], |t| [t.width, t.height]),
+                }
+            })
+            .collect();
+
+        let storage = |label, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        Ok(Self {
+            positions: storage("positions", bytemuck::cast_slice(&positions)),
+            uvs: storage("uvs", bytemuck::cast_slice(&uvs)),
+            triangles: storage("triangles", bytemuck::cast_slice(&triangles)),
+            materials: storage("materials", bytemuck::cast_slice(&materials)),
+            textures,
+            culled_count,
+            triangle_count: triangles.len() as u32,
+        })
+    }
+}

@@ -1,0 +1,134 @@
+//! Scene data shared by every loader, the G-buffer rasteriser and the CPU BVH.
+//!
+//! One flat triangle soup in world space: loaders apply node transforms, so nothing downstream
+//! needs a scene graph. Conventions (DESIGN.md): right-handed, +Y up, metres for built-in scenes.
+
+use glam::{Vec2, Vec3};
+
+/// How a material's alpha is used (glTF 2.0 `alphaMode`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AlphaMode {
+    /// Fully opaque; alpha ignored.
+    Opaque,
+    /// Alpha-tested: a fragment/hit is kept when `base_color.a * texture.a >= cutoff`.
+    Mask { cutoff: f32 },
+    /// Blended in glTF; AO treats it as opaque (no order-independent transparency here).
+    Blend,
+}
+
+/// A material as far as AO and the colour composite need it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Base colour factor, linear RGBA.
+    pub base_color: [f32; 4],
+    /// Index into [`Scene::textures`] of the base-colour texture (its alpha drives `Mask`).
+    pub base_color_texture: Option<u32>,
+    pub alpha_mode: AlphaMode,
+    /// Back faces are kept (rasteriser: no culling; rays: back-face hits count).
+    pub double_sided: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            name: "default".into(),
+            base_color: [0.8, 0.8, 0.8, 1.0],
+            base_color_texture: None,
+            alpha_mode: AlphaMode::Opaque,
+            double_sided: false,
+        }
+    }
+}
+
+/// An RGBA8 texture (sRGB-encoded colour, linear alpha), row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub rgba8: Vec<u8>,
+}
+
+/// A pinhole camera. `fov_y_deg` is the vertical field of view of the *visible* image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    pub fov_y_deg: f32,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedCamera {
+    pub name: String,
+    pub camera: Camera,
+}
+
+/// Axis-aligned bounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+/// A triangle soup in world space with materials and named cameras.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    pub name: String,
+    /// World-space vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Texture coordinates, one per position (zero where the source has none).
+    pub uvs: Vec<Vec2>,
+    /// Counter-clockwise front faces (glTF/OBJ convention), indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+    /// Material index (into `materials`) of each triangle.
+    pub triangle_materials: Vec<u32>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    /// Named cameras; the first one is the default (for built-ins: the close-up).
+    pub cameras: Vec<NamedCamera>,
+}
+
+impl Texture {
+    /// Alpha (0..1) of the texel under `uv`, nearest texel, repeat wrapping, LOD 0.
+    ///
+    /// This is *the* alpha-test lookup: the G-buffer shader (`textureLoad` of the same texel) and
+    /// the CPU BVH both use it, so rasterised and ray-traced alpha masks agree texel for texel.
+    /// `uv` follows glTF: (0,0) is the top-left corner of the image.
+    pub fn alpha_at(&self, uv: Vec2) -> f32 {
+        let (x, y) = self.texel_at(uv);
+        f32::from(self.rgba8[((y * self.width + x) * 4 + 3) as usize]) / 255.0
+    }
+
+    /// Integer texel coordinates under `uv` (nearest, repeat wrapping).
+    pub fn texel_at(&self, uv: Vec2) -> (u32, u32) {
+        let f = uv - uv.floor();
+        let x = ((f.x * self.width as f32) as u32).min(self.width - 1);
+        let y = ((f.y * self.height as f32) as u32).min(self.height - 1);
+        (x, y)
+    }
+}
+
+impl Material {
+    /// Whether a surface point with texture coordinate `uv` is kept by the alpha test.
+    /// Always true for `Opaque`/`Blend` materials.
+    pub fn passes_alpha_test(&self, textures: &[Texture], uv: Vec2) -> bool {
+        match self.alpha_mode {
+            AlphaMode::Mask { cutoff } => {
+                let texel = self
+                    .base_color_texture
+                    .and_then(|t| textures.get(t as usize))
+                    .map_or(1.0, |t| t.alpha_at(uv));
+                self.base_color[3] * texel >= cutoff
+            }
+            AlphaMode::Opaque | AlphaMode::Blend => true,
+        }
+    }
+
+    /// Back faces count (rasteriser does not cull them, rays hit them): double-sided or
+    /// alpha-tested materials, as in the authors' code (seed-code-notes §1.6).
+    pub fn keeps_back_faces(&self) -> bool {
+        self.double_sided || matches!(self.alpha_mode, AlphaMode::Mask { .. })
+    }
+}

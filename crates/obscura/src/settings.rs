@@ -1,0 +1,190 @@
+//! What a user chooses: the technique and its parameters. Defaults are the papers' / authors'.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// An AO technique (DESIGN.md technique catalogue). More arrive with later work; every name the
+/// CLI accepts is listed in [`Technique::ALL`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Technique {
+    /// Volumetric AO, seed 000 §3.1–3.5.
+    #[default]
+    Vao,
+}
+
+impl Technique {
+    pub const ALL: &'static [Technique] = &[Technique::Vao];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Technique::Vao => "vao",
+        }
+    }
+}
+
+impl fmt::Display for Technique {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Technique {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Technique::ALL
+            .iter()
+            .copied()
+            .find(|t| t.name() == s.trim().to_ascii_lowercase())
+            .ok_or_else(|| SettingsError::UnknownTechnique(s.to_string()))
+    }
+}
+
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SettingsError {
+    #[error("unknown technique '{0}': available: {list}", list = technique_list())]
+    UnknownTechnique(String),
+    #[error("invalid {name} {value}: {rule}")]
+    Invalid {
+        name: &'static str,
+        value: String,
+        rule: &'static str,
+    },
+}
+
+fn technique_list() -> String {
+    Technique::ALL
+        .iter()
+        .map(|t| t.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, seed-code-notes §1.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VaoSettings {
+    /// Sphere radius R in world units.
+    pub radius: f32,
+    /// Thickness τ of the constant (fully occluding) area above the sample column, in units of R.
+    pub thickness: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Line samples per pixel: 8, 16 or 32.
+    pub samples: u32,
+    pub normalization: Normalization,
+}
+
+/// How VAO turns the free column lengths into AO (see `shaders/vao.wgsl`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Normalization {
+    /// Seed 000 Eq. 7 with the hemisphere factor 2: `2/N Σ free/2h`. Exactly 1 on an unoccluded
+    /// plane only on average over the 4×4 rotation pattern.
+    Hemisphere,
+    /// `Σ free/2h / Σ clipped/2h`: the same limit, exactly 1 on every unoccluded plane.
+    #[default]
+    Clipped,
+}
+
+impl FromStr for Normalization {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "hemisphere" | "paper" => Ok(Normalization::Hemisphere),
+            "clipped" => Ok(Normalization::Clipped),
+            _ => Err(invalid(
+                "normalization",
+                s,
+                "must be 'clipped' (default) or 'hemisphere' (the paper's 2/N)",
+            )),
+        }
+    }
+}
+
+impl Default for VaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            thickness: 0.5,
+            exponent: 1.3,
+            samples: 8,
+            normalization: Normalization::Clipped,
+        }
+    }
+}
+
+/// Depth-aware separable blur (seed 000 §3.4, HBAO+ weights).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlurSettings {
+    pub enabled: bool,
+    /// Taps on each side.
+    pub radius: u32,
+    /// Depth weight sharpness per world unit of depth difference.
+    pub sharpness: f32,
+}
+
+impl Default for BlurSettings {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            radius: 4,
+            sharpness: 16.0,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AoSettings {
+    pub technique: Technique,
+    pub vao: VaoSettings,
+    pub blur: BlurSettings,
+}
+
+fn invalid(name: &'static str, value: impl fmt::Display, rule: &'static str) -> SettingsError {
+    SettingsError::Invalid {
+        name,
+        value: value.to_string(),
+        rule,
+    }
+}
+
+impl AoSettings {
+    /// Reject values no kernel can use; every message names the setting and the valid range.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let v = &self.vao;
+        if !(v.radius.is_finite() && v.radius > 0.0) {
+            return Err(invalid(
+                "radius",
+                v.radius,
+                "must be a positive number of world units (e.g. --radius 0.5)",
+            ));
+        }
+        if !(v.thickness.is_finite() && v.thickness >= 0.0) {
+            return Err(invalid(
+                "thickness",
+                v.thickness,
+                "must be zero or positive (e.g. --thickness 0.5)",
+            ));
+        }
+        if !(v.exponent.is_finite() && v.exponent > 0.0) {
+            return Err(invalid(
+                "exponent",
+                v.exponent,
+                "must be positive (e.g. --exponent 1.3)",
+            ));
+        }
+        if ![8, 16, 32].contains(&v.samples) {
+            return Err(invalid("sample count", v.samples, "must be 8, 16 or 32"));
+        }
+        let b = &self.blur;
+        if b.radius == 0 || b.radius > 16 {
+            return Err(invalid("blur radius", b.radius, "must be between 1 and 16"));
+        }
+        if !(b.sharpness.is_finite() && b.sharpness >= 0.0) {
+            return Err(invalid(
+                "blur sharpness",
+                b.sharpness,
+                "must be zero or positive",
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,17 @@
+//! WGSL sources. Shared helpers live once in `shaders/common/` and are prepended to the passes
+//! that use them (WGSL has no `#include`; a prefix keeps line numbers of the pass readable).
+
+pub const VIEW: &str = include_str!("../shaders/common/view.wgsl");
+pub const BASIS: &str = include_str!("../shaders/common/basis.wgsl");
+
+pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
+pub const VAO: &str = include_str!("../shaders/vao.wgsl");
+pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
+
+/// A pass's source with the shared helpers it names in front.
+pub fn with_common(common: &[&str], pass: &str) -> String {
+    let mut source = common.join("\n");
+    source.push('\n');
+    source.push_str(pass);
+    source
+}

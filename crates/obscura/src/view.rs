@@ -1,0 +1,192 @@
+//! The frame's geometry: visible image, guard band and the widened projection.
+//!
+//! A guard band of `g` pixels is rendered around the visible `W×H` image so that AO samples that
+//! leave the visible frame still find depth. The framebuffer is `(W+2g)×(H+2g)` and the vertical
+//! field of view is widened so the visible part keeps the requested framing (seed 002 §3.5,
+//! seed-code-notes §2.1: `fov' = 2·atan(tan(fov/2)·(H/2+g)/(H/2))`). Pixels keep a square
+//! footprint, so the horizontal widening follows from the aspect ratio.
+
+use crate::scene::Camera;
+use glam::{Mat4, Vec2, Vec3};
+
+/// Default guard band for a visible height: 64 px at 1080p scaled with the height and rounded up
+/// to a multiple of 16 (64 at 1080p, 96 at 1440p, 128 at 4K; DESIGN.md conventions).
+pub fn default_guard_band(height: u32) -> u32 {
+    let scaled = 64.0 * f64::from(height) / 1080.0;
+    ((scaled / 16.0).ceil() as u32).max(1) * 16
+}
+
+/// Everything a pass needs to go between pixels and view space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameView {
+    pub camera: Camera,
+    /// Visible image size.
+    pub width: u32,
+    pub height: u32,
+    pub guard_band: u32,
+    /// `tan` of half the field of view of the whole framebuffer (x, y).
+    pub tan_half_fov: Vec2,
+    /// Near plane of the (reversed, infinite) projection; linear depth does not depend on it.
+    pub near: f32,
+}
+
+impl FrameView {
+    pub fn new(camera: Camera, width: u32, height: u32, guard_band: u32, near: f32) -> Self {
+        let tan_y_visible = (camera.fov_y_deg.to_radians() * 0.5).tan();
+        // One visible pixel spans 2·tan(fov/2)/H; the guard band adds g such pixels per side.
+        let pixel = 2.0 * tan_y_visible / height as f32;
+        let (fw, fh) = (width + 2 * guard_band, height + 2 * guard_band);
+        Self {
+            camera,
+            width,
+            height,
+            guard_band,
+            tan_half_fov: Vec2::new(0.5 * pixel * fw as f32, 0.5 * pixel * fh as f32),
+            near,
+        }
+    }
+
+    pub fn full_width(&self) -> u32 {
+        self.width + 2 * self.guard_band
+    }
+
+    pub fn full_height(&self) -> u32 {
+        self.height + 2 * self.guard_band
+    }
+
+    /// Vertical field of view of the whole framebuffer, radians.
+    pub fn full_fov_y(&self) -> f32 {
+        2.0 * self.tan_half_fov.y.atan()
+    }
+
+    pub fn view_matrix(&self) -> Mat4 {
+        self.camera.view_matrix()
+    }
+
+    /// Reversed-Z infinite projection of the whole framebuffer (depth 1 at near, 0 at infinity).
+    pub fn projection(&self) -> Mat4 {
+        glam::camera::rh::proj::directx::perspective_infinite_reverse(
+            self.full_fov_y(),
+            self.tan_half_fov.x / self.tan_half_fov.y,
+            self.near,
+        )
+    }
+
+    /// Framebuffer pixel coordinates of a world-space point.
+    pub fn view_to_pixel_world(&self, p: Vec3) -> Vec2 {
+        self.screen()
+            .view_to_pixel(self.view_matrix().transform_point3(p))
+    }
+
+    /// What screen-space passes need of this view.
+    pub fn screen(&self) -> ScreenGeometry {
+        ScreenGeometry {
+            width: self.width,
+            height: self.height,
+            guard_band: self.guard_band,
+            tan_half_fov: self.tan_half_fov,
+        }
+    }
+}
+
+/// The projection as screen-space passes see it: the visible size, the guard band and the field
+/// of view of the whole framebuffer. This (not a camera) is what an engine hands to
+/// [`crate::AmbientOcclusion`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScreenGeometry {
+    pub width: u32,
+    pub height: u32,
+    pub guard_band: u32,
+    /// `tan` of half the field of view of the whole framebuffer, guard band included (x, y).
+    pub tan_half_fov: Vec2,
+}
+
+impl ScreenGeometry {
+    pub fn full_width(&self) -> u32 {
+        self.width + 2 * self.guard_band
+    }
+
+    pub fn full_height(&self) -> u32 {
+        self.height + 2 * self.guard_band
+    }
+
+    /// View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at linear
+    /// depth `z`. Mirrors `pixel_to_view` in `shaders/common/view.wgsl`.
+    pub fn pixel_to_view(&self, px: Vec2, z: f32) -> Vec3 {
+        let size = Vec2::new(self.full_width() as f32, self.full_height() as f32);
+        let ndc = Vec2::new(px.x / size.x * 2.0 - 1.0, 1.0 - px.y / size.y * 2.0);
+        Vec3::new(
+            ndc.x * self.tan_half_fov.x * z,
+            ndc.y * self.tan_half_fov.y * z,
+            -z,
+        )
+    }
+
+    /// Framebuffer pixel coordinates of a view-space point. Mirrors `view_to_pixel` in WGSL.
+    pub fn view_to_pixel(&self, p: Vec3) -> Vec2 {
+        let size = Vec2::new(self.full_width() as f32, self.full_height() as f32);
+        let ndc = Vec2::new(
+            p.x / (-p.z * self.tan_half_fov.x),
+            p.y / (-p.z * self.tan_half_fov.y),
+        );
+        Vec2::new((ndc.x + 1.0) * 0.5 * size.x, (1.0 - ndc.y) * 0.5 * size.y)
+    }
+
+    /// The uniform block of `shaders/common/view.wgsl`.
+    pub fn uniform(&self) -> ViewUniform {
+        ViewUniform {
+            full_size: [self.full_width(), self.full_height()],
+            visible_size: [self.width, self.height],
+            tan_half_fov: self.tan_half_fov.to_array(),
+            guard_band: self.guard_band,
+            _pad: 0,
+        }
+    }
+}
+
+/// GPU mirror of `struct View` in `shaders/common/view.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ViewUniform {
+    pub full_size: [u32; 2],
+    pub visible_size: [u32; 2],
+    pub tan_half_fov: [f32; 2],
+    pub guard_band: u32,
+    pub _pad: u32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn guard_band_defaults_follow_design() {
+        assert_eq!(default_guard_band(1080), 64);
+        assert_eq!(default_guard_band(1440), 96);
+        assert_eq!(default_guard_band(2160), 128);
+    }
+
+    #[test]
+    fn widened_fov_keeps_visible_framing() {
+        let camera = Camera {
+            eye: Vec3::ZERO,
+            target: Vec3::NEG_Z,
+            up: Vec3::Y,
+            fov_y_deg: 60.0,
+        };
+        let plain = FrameView::new(camera, 320, 180, 0, 0.01);
+        let banded = FrameView::new(camera, 320, 180, 32, 0.01);
+        // The seed's formula for the widened fov.
+        let h = 180.0 + 64.0;
+        let expected = 2.0 * ((h / 2.0) * (30f32.to_radians()).tan() / (h / 2.0 - 32.0)).atan();
+        assert!((banded.full_fov_y() - expected).abs() < 1e-6);
+        // A point projects to the same visible pixel with and without the band.
+        let p = Vec3::new(0.3, -0.2, -2.0);
+        let (plain, banded) = (plain.screen(), banded.screen());
+        let a = plain.view_to_pixel(p);
+        let b = banded.view_to_pixel(p) - Vec2::splat(32.0);
+        assert!((a - b).length() < 1e-3, "{a} vs {b}");
+        let back = banded.pixel_to_view(banded.view_to_pixel(p), 2.0);
+        assert!((back - p).length() < 1e-5);
+    }
+}

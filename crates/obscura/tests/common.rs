@@ -1,0 +1,53 @@
+//! Shared helpers for the GPU integration tests (lavapipe in CI).
+#![allow(dead_code)]
+
+use glam::{Vec2, Vec3};
+use obscura::scene::{Camera, Material, Scene};
+use obscura::{Gpu, GpuOptions};
+
+/// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI).
+pub fn gpu() -> Gpu {
+    Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)")
+}
+
+/// Appends the quad `a, b, c, d` (counter-clockwise seen from the front) to `scene`.
+pub fn push_quad(scene: &mut Scene, [a, b, c, d]: [Vec3; 4], material: u32) {
+    let base = scene.positions.len() as u32;
+    scene.positions.extend([a, b, c, d]);
+    scene.uvs.extend([Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]);
+    scene.triangles.push([base, base + 1, base + 2]);
+    scene.triangles.push([base, base + 2, base + 3]);
+    scene.triangle_materials.extend([material, material]);
+}
+
+/// A scene with one default material and the given quads.
+pub fn quads(name: &str, quads: &[[Vec3; 4]]) -> Scene {
+    let mut scene = Scene {
+        name: name.into(),
+        materials: vec![Material::default()],
+        ..Default::default()
+    };
+    for q in quads {
+        push_quad(&mut scene, *q, 0);
+    }
+    scene
+}
+
+/// A large floor at y = 0 facing +y.
+pub fn floor(half: f32) -> [Vec3; 4] {
+    [
+        Vec3::new(-half, 0.0, half),
+        Vec3::new(half, 0.0, half),
+        Vec3::new(half, 0.0, -half),
+        Vec3::new(-half, 0.0, -half),
+    ]
+}
+
+pub fn camera(eye: Vec3, target: Vec3, fov_y_deg: f32) -> Camera {
+    Camera {
+        eye,
+        target,
+        up: Vec3::Y,
+        fov_y_deg,
+    }
+}
