@@ -45,7 +45,10 @@ fn guard_band_keeps_the_visible_framing() {
         for x in 0..w {
             let za = a.depth[(y * w + x) as usize];
             let zb = b.depth[((y + 24) * b.width + x + 24) as usize];
-            assert!((za - zb).abs() <= 1e-4 * za.max(1.0), "pixel ({x},{y}): {za} vs {zb}");
+            assert!(
+                (za - zb).abs() <= 1e-4 * za.max(1.0),
+                "pixel ({x},{y}): {za} vs {zb}"
+            );
         }
     }
     // And a world point lands on the same visible pixel in both projections.
@@ -94,7 +97,10 @@ fn two_renders_are_bit_identical() {
     };
     let (raw_a, ao_a) = render();
     let (raw_b, ao_b) = render();
-    assert!(raw_a.iter().any(|&v| v < 0.9), "the test scene must have occlusion");
+    assert!(
+        raw_a.iter().any(|&v| v < 0.9),
+        "the test scene must have occlusion"
+    );
     let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&raw_a), bits(&raw_b));
     assert_eq!(bits(&ao_a), bits(&ao_b));

@@ -73,7 +73,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
     if let Some(path) = &args.json {
         if !path
             .parent()
-            .map_or(true, |p| p.as_os_str().is_empty() || p.is_dir())
+            .is_none_or(|p| p.as_os_str().is_empty() || p.is_dir())
         {
             bail!(
                 "directory of --json '{}' does not exist: create it first",

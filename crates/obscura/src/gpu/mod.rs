@@ -175,7 +175,7 @@ impl Gpu {
             timestamp_queries: features.contains(wgpu::Features::TIMESTAMP_QUERY),
             max_texture_dimension_2d: limits.max_texture_dimension_2d,
             max_texture_array_layers: limits.max_texture_array_layers,
-            max_storage_buffer_binding_size: u64::from(limits.max_storage_buffer_binding_size),
+            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
             max_compute_workgroup_size: [
                 limits.max_compute_workgroup_size_x,
                 limits.max_compute_workgroup_size_y,

@@ -59,7 +59,7 @@ impl GpuScene {
             })
             .collect();
 
-        let max_binding = u64::from(limits.max_storage_buffer_binding_size);
+        let max_binding = limits.max_storage_buffer_binding_size;
         let largest = (positions.len() * 16).max(triangles.len() * 16) as u64;
         if largest > max_binding {
             return Err(GpuError::Other(format!(

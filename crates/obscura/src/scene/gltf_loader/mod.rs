@@ -1,0 +1,292 @@
+//! glTF 2.0 loader (`.gltf` with external or embedded buffers, `.glb`), through the `gltf` crate.
+//!
+//! The node hierarchy of the default scene (else the first scene, else all root nodes) is
+//! flattened into one world-space triangle soup; perspective cameras on nodes become named
+//! cameras. `gltf::import` is used in its three steps (parse, buffers, images) so that the checks
+//! in [`checks`] can run between them: some malformed files otherwise panic inside the crate.
+
+mod checks;
+mod materials;
+#[cfg(test)]
+mod tests;
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+
+use glam::{Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::{Mode, Semantic};
+use gltf::{buffer, Document, Node};
+
+use super::{Camera, Material, NamedCamera, Scene, SceneError};
+
+/// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
+pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = super::read_file(path)?;
+    let error = |message: String| SceneError::Gltf {
+        path: path.to_path_buf(),
+        message,
+    };
+    // Backstop only: the checks are meant to keep the `gltf` crate from panicking, but a panic in
+    // a dependency on some input nobody thought of must still end as an error, not a crash.
+    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes))) {
+        Ok(result) => result.map_err(error),
+        Err(_) => Err(error(
+            "internal error in the glTF reader (it panicked on this input)".into(),
+        )),
+    }
+}
+
+fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
+    checks::glb_header(bytes)?;
+    // Parse, check what gltf-json's validation itself would index blindly, then validate.
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
+    let json = gltf.document.into_json();
+    checks::before_validation(&json)?;
+    let doc = Document::from_json(json).map_err(|e| e.to_string())?;
+    checks::document(&doc)?;
+    let base = path.parent().unwrap_or_else(|| Path::new("."));
+    let buffers = gltf::import_buffers(&doc, Some(base), gltf.blob)
+        .map_err(|e| format!("loading buffers: {e}"))?;
+    checks::views(&doc, &buffers)?;
+    let images = gltf::import_images(&doc, Some(base), &buffers)
+        .map_err(|e| format!("loading images: {e}"))?;
+
+    let mut scene = Scene {
+        name: path.display().to_string(),
+        ..Scene::default()
+    };
+    let tex_coord_sets = materials::convert(&doc, &images, &mut scene)?;
+    let mut loader = Loader {
+        path,
+        buffers: &buffers,
+        doc: &doc,
+        tex_coord_sets,
+        default_material: None,
+        scene,
+    };
+    loader.traverse()?;
+    Ok(loader.scene)
+}
+
+struct Loader<'a> {
+    path: &'a Path,
+    buffers: &'a [buffer::Data],
+    doc: &'a Document,
+    /// TEXCOORD set of each material's base-colour texture.
+    tex_coord_sets: Vec<u32>,
+    /// Index of the appended default material, once a primitive without material needs it.
+    default_material: Option<u32>,
+    scene: Scene,
+}
+
+impl Loader<'_> {
+    /// Depth-first walk from the root nodes, accumulating world transforms.
+    fn traverse(&mut self) -> Result<(), String> {
+        let doc = self.doc;
+        let roots: Vec<Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+            Some(s) => s.nodes().collect(),
+            None => {
+                let mut is_child = vec![false; doc.nodes().len()];
+                for child in doc.nodes().flat_map(|n| n.children()) {
+                    is_child[child.index()] = true;
+                }
+                doc.nodes().filter(|n| !is_child[n.index()]).collect()
+            }
+        };
+        let mut visited = vec![false; doc.nodes().len()];
+        let mut stack: Vec<(Node, Mat4)> = roots
+            .into_iter()
+            .rev()
+            .map(|n| (n, Mat4::IDENTITY))
+            .collect();
+        while let Some((node, parent)) = stack.pop() {
+            // glTF requires a tree; a node reached twice (shared child or cycle) is skipped so a
+            // cyclic file cannot loop forever.
+            if std::mem::replace(&mut visited[node.index()], true) {
+                log::warn!(
+                    "{}: node {} is reached twice (the node hierarchy must be a tree); skipped",
+                    self.path.display(),
+                    node.index()
+                );
+                continue;
+            }
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if let Some(mesh) = node.mesh() {
+                for prim in mesh.primitives() {
+                    let context = format!(
+                        "mesh {} ('{}') primitive {}",
+                        mesh.index(),
+                        mesh.name().unwrap_or(""),
+                        prim.index()
+                    );
+                    self.add_primitive(&prim, world)
+                        .map_err(|e| format!("{context}: {e}"))?;
+                }
+            }
+            if node.camera().is_some() {
+                self.add_camera(&node, world);
+            }
+            let children: Vec<Node> = node.children().collect();
+            stack.extend(children.into_iter().rev().map(|c| (c, world)));
+        }
+        Ok(())
+    }
+
+    fn add_primitive(&mut self, prim: &gltf::Primitive, world: Mat4) -> Result<(), String> {
+        let mode = prim.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            log::warn!(
+                "{}: a primitive with mode {mode:?} is skipped (only triangles occlude)",
+                self.path.display()
+            );
+            return Ok(());
+        }
+        let buffers = self.buffers;
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| d.0.as_slice()));
+
+        let pos_acc = prim
+            .get(&Semantic::Positions)
+            .ok_or("it has no POSITION attribute")?;
+        checks::accessor(&pos_acc, Dimensions::Vec3, &[DataType::F32], "POSITION")?;
+        let positions: Vec<[f32; 3]> = reader
+            .read_positions()
+            .ok_or("its POSITION data cannot be read")?
+            .collect();
+        let n = positions.len();
+        if n != pos_acc.count() {
+            return Err(format!("read {n} of {} positions", pos_acc.count()));
+        }
+
+        let material = match prim.material().index() {
+            Some(i) if i < self.scene.materials.len() => i as u32,
+            Some(i) => return Err(format!("it uses material {i}, which does not exist")),
+            None => self.default_material(),
+        };
+        let set = self
+            .tex_coord_sets
+            .get(material as usize)
+            .copied()
+            .unwrap_or(0);
+        let uvs: Vec<Vec2> = match prim.get(&Semantic::TexCoords(set)) {
+            Some(acc) => {
+                let types = [DataType::F32, DataType::U8, DataType::U16];
+                checks::accessor(&acc, Dimensions::Vec2, &types, "TEXCOORD")?;
+                let uvs: Vec<Vec2> = reader
+                    .read_tex_coords(set)
+                    .ok_or("its TEXCOORD data cannot be read")?
+                    .into_f32()
+                    .map(Vec2::from)
+                    .collect();
+                if uvs.len() != n {
+                    return Err(format!(
+                        "it has {} TEXCOORD_{set} values for {n} positions",
+                        uvs.len()
+                    ));
+                }
+                uvs
+            }
+            None => vec![Vec2::ZERO; n],
+        };
+
+        let indices: Vec<u32> = match prim.indices() {
+            Some(acc) => {
+                let types = [DataType::U8, DataType::U16, DataType::U32];
+                checks::accessor(&acc, Dimensions::Scalar, &types, "index")?;
+                reader
+                    .read_indices()
+                    .ok_or("its index data cannot be read")?
+                    .into_u32()
+                    .collect()
+            }
+            None => (0..n as u32).collect(),
+        };
+        if let Some(&bad) = indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!(
+                "index {bad} is out of range (the primitive has {n} vertices)"
+            ));
+        }
+
+        let base = self.scene.positions.len();
+        if base + n > u32::MAX as usize {
+            return Err("the scene has more than 2^32 vertices".into());
+        }
+        let base = base as u32;
+        // A mirroring transform turns counter-clockwise into clockwise: swap two corners back.
+        let flip = world.determinant() < 0.0;
+        for tri in assemble(mode, &indices) {
+            let [a, b, c] = tri.map(|i| i + base);
+            self.scene
+                .triangles
+                .push(if flip { [a, c, b] } else { [a, b, c] });
+            self.scene.triangle_materials.push(material);
+        }
+        self.scene.positions.extend(
+            positions
+                .iter()
+                .map(|&p| world.transform_point3(Vec3::from(p))),
+        );
+        self.scene.uvs.extend(uvs);
+        Ok(())
+    }
+
+    fn default_material(&mut self) -> u32 {
+        *self.default_material.get_or_insert_with(|| {
+            self.scene.materials.push(Material::default());
+            self.tex_coord_sets.push(0);
+            (self.scene.materials.len() - 1) as u32
+        })
+    }
+
+    /// A perspective camera on a node: eye at the node's origin, looking down its -Z, up its +Y.
+    fn add_camera(&mut self, node: &Node, world: Mat4) {
+        let index = self.scene.cameras.len();
+        let name = node
+            .name()
+            .map_or_else(|| format!("camera{index}"), str::to_string);
+        let camera_index = node.camera().map(|c| c.index());
+        let json = camera_index.and_then(|i| self.doc.as_json().cameras.get(i));
+        let Some(perspective) = json.and_then(|c| c.perspective.as_ref()) else {
+            log::warn!(
+                "{}: camera '{name}' is not perspective; skipped",
+                self.path.display()
+            );
+            return;
+        };
+        let eye = world.transform_point3(Vec3::ZERO);
+        let camera = Camera {
+            eye,
+            target: eye + world.transform_vector3(Vec3::NEG_Z).normalize_or_zero(),
+            up: world.transform_vector3(Vec3::Y).normalize_or_zero(),
+            fov_y_deg: perspective.yfov.to_degrees(),
+        };
+        match camera.validate() {
+            Ok(()) => self.scene.cameras.push(NamedCamera { name, camera }),
+            Err(e) => log::warn!("{}: camera '{name}' skipped: {e}", self.path.display()),
+        }
+    }
+}
+
+/// Triangle corner indices for a triangle list, strip or fan (glTF 2.0 §3.7.2.1), keeping the
+/// counter-clockwise winding of the first triangle. Trailing indices that form no triangle are
+/// ignored.
+fn assemble(mode: Mode, idx: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (0..idx.len().saturating_sub(2))
+            .map(|i| {
+                if i % 2 == 0 {
+                    [idx[i], idx[i + 1], idx[i + 2]]
+                } else {
+                    [idx[i + 1], idx[i], idx[i + 2]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (1..idx.len().saturating_sub(1))
+            .map(|i| [idx[i], idx[i + 1], idx[0]])
+            .collect(),
+        _ => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}

@@ -1,0 +1,241 @@
+//! Wavefront OBJ loader, through `tobj` (triangulated, one index per vertex), read as +Y up.
+//!
+//! A missing or broken `.mtl` only costs the colours: every triangle then gets the default
+//! material, with a warning. Texture `v` is flipped (v' = 1 − v) so that all uvs follow glTF,
+//! where (0,0) is the top-left of the image.
+//!
+//! Face indices are pre-scanned before `tobj` sees them: `tobj` 4.0.5 computes
+//! `count + index` and `2 * index` without overflow checks, which panics in debug builds for
+//! an index 0 or a relative index reaching before the first vertex.
+
+#[cfg(test)]
+mod tests;
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+
+use glam::{Vec2, Vec3};
+
+use super::texture::texture_from_rgba;
+use super::{AlphaMode, Material, Scene, SceneError};
+
+/// Largest absolute face index accepted (2^31): keeps `tobj`'s index arithmetic far from overflow.
+const MAX_INDEX: i64 = 1 << 31;
+
+/// Loads an `.obj` file. The result is not yet validated (the caller does that).
+pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = super::read_file(path)?;
+    let error = |message: String| SceneError::Obj {
+        path: path.to_path_buf(),
+        message,
+    };
+    // Backstop only (see the module comment): a panic in `tobj` must still end as an error.
+    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes))) {
+        Ok(result) => result.map_err(error),
+        Err(_) => Err(error(
+            "internal error in the OBJ reader (it panicked on this input)".into(),
+        )),
+    }
+}
+
+fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| format!("it is not text (invalid UTF-8 at byte {})", e.valid_up_to()))?;
+    prescan_faces(text)?;
+    let dir = path
+        .parent()
+        .unwrap_or_else(|| Path::new("."))
+        .to_path_buf();
+    // `..Default::default()` looks needless with tobj's default features, but another crate in
+    // the build may enable `merging`/`reordering`, which add fields.
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let mtl_failed = RefCell::new(false);
+    let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |mtl| {
+        let mtl_path = dir.join(mtl);
+        let result = tobj::load_mtl(&mtl_path);
+        if let Err(e) = &result {
+            log::warn!(
+                "{}: material library '{}' cannot be loaded ({e}); its materials get the default \
+                 grey",
+                path.display(),
+                mtl_path.display()
+            );
+            *mtl_failed.borrow_mut() = true;
+        }
+        result
+    })
+    .map_err(|e| e.to_string())?;
+    let materials = materials.unwrap_or_else(|e| {
+        if !*mtl_failed.borrow() {
+            log::warn!(
+                "{}: materials cannot be loaded ({e}); using defaults",
+                path.display()
+            );
+        }
+        Vec::new()
+    });
+
+    let mut scene = Scene {
+        name: path.display().to_string(),
+        ..Scene::default()
+    };
+    let mut textures = HashMap::new();
+    for m in &materials {
+        let texture = m
+            .diffuse_texture
+            .as_ref()
+            .and_then(|t| load_texture(path, &dir.join(t), &mut textures, &mut scene));
+        let alpha = m.dissolve.unwrap_or(1.0);
+        let [r, g, b] = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
+        scene.materials.push(Material {
+            name: m.name.clone(),
+            base_color: [r, g, b, alpha],
+            base_color_texture: texture,
+            // glTF's nearest equivalent of a dissolve below 1; AO treats it as opaque anyway.
+            alpha_mode: if alpha < 1.0 {
+                AlphaMode::Blend
+            } else {
+                AlphaMode::Opaque
+            },
+            double_sided: false,
+        });
+    }
+    let default_material = scene.materials.len() as u32;
+    let mut used_default = false;
+
+    for model in &models {
+        let mesh = &model.mesh;
+        let n = mesh.positions.len() / 3;
+        let base = scene.positions.len();
+        if base + n > u32::MAX as usize {
+            return Err("more than 2^32 vertices".into());
+        }
+        if let Some(&bad) = mesh.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!(
+                "object '{}' has face index {bad} but only {n} vertices",
+                model.name
+            ));
+        }
+        let material = match mesh.material_id {
+            Some(id) if id < materials.len() => id as u32,
+            _ => {
+                used_default = true;
+                default_material
+            }
+        };
+        scene.positions.extend(
+            mesh.positions
+                .chunks_exact(3)
+                .map(|p| Vec3::new(p[0], p[1], p[2])),
+        );
+        // Vertices without `vt` leave `texcoords` shorter than `positions`; then no vertex can be
+        // matched to its uv and all get zero.
+        if mesh.texcoords.len() == 2 * n {
+            scene.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], 1.0 - t[1])),
+            );
+        } else {
+            if !mesh.texcoords.is_empty() {
+                log::warn!(
+                    "{}: object '{}' has texture coordinates on only some vertices; all set to 0",
+                    path.display(),
+                    model.name
+                );
+            }
+            scene.uvs.extend(std::iter::repeat_n(Vec2::ZERO, n));
+        }
+        for c in mesh.indices.chunks_exact(3) {
+            let base = base as u32;
+            scene
+                .triangles
+                .push([c[0] + base, c[1] + base, c[2] + base]);
+            scene.triangle_materials.push(material);
+        }
+    }
+    if used_default {
+        scene.materials.push(Material::default());
+    }
+    Ok(scene)
+}
+
+/// Loads `map_Kd` once per file; a failure is a warning and leaves the material untextured.
+fn load_texture(
+    obj: &Path,
+    file: &Path,
+    cache: &mut HashMap<PathBuf, Option<u32>>,
+    scene: &mut Scene,
+) -> Option<u32> {
+    if let Some(&index) = cache.get(file) {
+        return index;
+    }
+    let index = match image::open(file) {
+        Ok(img) => {
+            let name = file.display().to_string();
+            scene.textures.push(texture_from_rgba(name, img.to_rgba8()));
+            Some((scene.textures.len() - 1) as u32)
+        }
+        Err(e) => {
+            log::warn!(
+                "{}: texture '{}' cannot be loaded ({e}); the material stays untextured",
+                obj.display(),
+                file.display()
+            );
+            None
+        }
+    };
+    cache.insert(file.to_path_buf(), index);
+    index
+}
+
+/// Rejects face indices that `tobj` cannot handle safely: 0 (OBJ counts from 1), absolute indices
+/// beyond 2^31, and relative (negative) indices reaching before the first element.
+fn prescan_faces(text: &str) -> Result<(), String> {
+    // Elements defined so far: v, vt, vn (relative indices count back from these).
+    let mut counts = [0i64; 3];
+    for (line_no, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => counts[0] += 1,
+            Some("vt") => counts[1] += 1,
+            Some("vn") => counts[2] += 1,
+            Some("f") | Some("l") => {
+                for word in words {
+                    check_face_vertex(word, &counts)
+                        .map_err(|e| format!("line {}: {e}", line_no + 1))?;
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// One face vertex `v`, `v/vt`, `v//vn` or `v/vt/vn` against the element counts so far.
+fn check_face_vertex(word: &str, counts: &[i64; 3]) -> Result<(), String> {
+    for (kind, part) in word.split('/').take(3).enumerate() {
+        let Ok(x) = part.parse::<i64>() else {
+            continue; // empty (v//vn) or junk: tobj reports junk itself
+        };
+        if x == 0 || x > MAX_INDEX || x < -counts[kind] {
+            let what = ["vertex", "texture coordinate", "normal"][kind];
+            return Err(format!(
+                "face {what} index {x} is out of range ({} defined before it; OBJ indices \
+                 count from 1, negative ones back from the last)",
+                counts[kind]
+            ));
+        }
+    }
+    Ok(())
+}

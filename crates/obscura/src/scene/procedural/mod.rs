@@ -1,0 +1,50 @@
+//! Built-in procedural scenes (DESIGN.md "Procedural scenes"), the embedded default.
+//!
+//! Each is deterministic, in metres with +Y up, small enough to rasterise on a CPU Vulkan driver,
+//! and built to provoke one artifact the AO papers fix. Each has at least two named cameras: first
+//! a close-up where a thin foreground object stands in front of a farther surface (where a
+//! screen-space AO draws a bright or dark halo around the silhouette), then a wider overview.
+
+mod builder;
+mod colonnade;
+mod cornell;
+mod grass;
+mod layers;
+pub(super) mod rng;
+mod stairs;
+#[cfg(test)]
+mod tests;
+mod tower;
+
+use super::{Scene, SceneError};
+use builder::Solid;
+
+/// Names of the built-in scenes, in presentation order.
+pub fn builtin_names() -> &'static [&'static str] {
+    &["stairs", "colonnade", "layers", "grass", "tower", "cornell"]
+}
+
+/// Builds the built-in scene `name` (validated).
+pub fn builtin(name: &str) -> Result<Scene, SceneError> {
+    let scene = build(name)
+        .ok_or_else(|| SceneError::UnknownScene {
+            spec: name.to_string(),
+        })?
+        .0;
+    scene.validate()?;
+    Ok(scene)
+}
+
+/// The scene and the closed solids it is made of (tests check cameras against them).
+fn build(name: &str) -> Option<(Scene, Vec<Solid>)> {
+    let builder = match name {
+        "stairs" => stairs::build(),
+        "colonnade" => colonnade::build(),
+        "layers" => layers::build(),
+        "grass" => grass::build(),
+        "tower" => tower::build(),
+        "cornell" => cornell::build(),
+        _ => return None,
+    };
+    Some(builder.finish())
+}

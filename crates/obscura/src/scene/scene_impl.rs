@@ -1,0 +1,277 @@
+//! `Scene` methods: validation, bounds and camera lookup.
+//!
+//! `validate` is the single gate between loaders (or hand-built scenes) and the GPU: everything
+//! downstream indexes `positions`, `uvs`, `materials` and `textures` without further checks.
+
+use glam::Vec3;
+
+use super::{Bounds, Camera, Scene, SceneError};
+
+impl Scene {
+    /// Checks everything downstream code relies on when it indexes the scene's arrays.
+    ///
+    /// Rejects: no triangles; non-finite positions or uvs; vertex indices out of range; one uv per
+    /// position violated; one material per triangle violated; material or texture indices out of
+    /// range; texture data not `width * height * 4` bytes; invalid named cameras. Degenerate
+    /// (zero-area) triangles are allowed: real scenes contain them and they are harmless.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        let fail = |problem: String| {
+            Err(SceneError::Invalid {
+                scene: self.name.clone(),
+                problem,
+            })
+        };
+        if self.triangles.is_empty() {
+            return fail("it has no triangles: give a file with triangle meshes".into());
+        }
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return fail(format!(
+                "vertex {i} has a non-finite position {}: fix or re-export the model",
+                self.positions[i]
+            ));
+        }
+        if self.uvs.len() != self.positions.len() {
+            return fail(format!(
+                "it has {} texture coordinates for {} vertices (must be one per vertex)",
+                self.uvs.len(),
+                self.positions.len()
+            ));
+        }
+        if let Some(i) = self.uvs.iter().position(|uv| !uv.is_finite()) {
+            return fail(format!(
+                "vertex {i} has a non-finite texture coordinate {}: fix or re-export the model",
+                self.uvs[i]
+            ));
+        }
+        let n = self.positions.len();
+        for (t, tri) in self.triangles.iter().enumerate() {
+            if let Some(&v) = tri.iter().find(|&&v| v as usize >= n) {
+                return fail(format!(
+                    "triangle {t} uses vertex index {v} but there are only {n} vertices: the index \
+                     data is corrupt; re-export the model"
+                ));
+            }
+        }
+        if self.triangle_materials.len() != self.triangles.len() {
+            return fail(format!(
+                "it has {} triangle material indices for {} triangles (must be one per triangle)",
+                self.triangle_materials.len(),
+                self.triangles.len()
+            ));
+        }
+        let m = self.materials.len();
+        if let Some(t) = self
+            .triangle_materials
+            .iter()
+            .position(|&i| i as usize >= m)
+        {
+            return fail(format!(
+                "triangle {t} uses material {} but there are only {m} materials",
+                self.triangle_materials[t]
+            ));
+        }
+        for mat in &self.materials {
+            if let Some(tex) = mat.base_color_texture {
+                if tex as usize >= self.textures.len() {
+                    return fail(format!(
+                        "material '{}' uses texture {tex} but there are only {} textures",
+                        mat.name,
+                        self.textures.len()
+                    ));
+                }
+            }
+        }
+        for tex in &self.textures {
+            let expected = u64::from(tex.width) * u64::from(tex.height) * 4;
+            if tex.width == 0 || tex.height == 0 || tex.rgba8.len() as u64 != expected {
+                return fail(format!(
+                    "texture '{}' is {}x{} but holds {} bytes (expected {expected} RGBA8 bytes, \
+                     and a non-empty image)",
+                    tex.name,
+                    tex.width,
+                    tex.height,
+                    tex.rgba8.len()
+                ));
+            }
+        }
+        for cam in &self.cameras {
+            if let Err(e) = cam.camera.validate() {
+                return fail(format!("named camera '{}': {e}", cam.name));
+            }
+        }
+        Ok(())
+    }
+
+    /// Axis-aligned bounds of all vertex positions (a zero box at the origin when there are none).
+    pub fn bounds(&self) -> Bounds {
+        if self.positions.is_empty() {
+            return Bounds {
+                min: Vec3::ZERO,
+                max: Vec3::ZERO,
+            };
+        }
+        let (min, max) = self.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        Bounds { min, max }
+    }
+
+    /// The named camera `name`; an unknown name gives an error listing the available names.
+    pub fn camera(&self, name: &str) -> Result<Camera, SceneError> {
+        self.cameras
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| c.camera)
+            .ok_or_else(|| SceneError::UnknownCamera {
+                scene: self.name.clone(),
+                name: name.to_string(),
+                available: self.cameras.iter().map(|c| c.name.clone()).collect(),
+            })
+    }
+
+    /// The first named camera (for built-ins: the close-up), else a camera framing the bounds.
+    pub fn default_camera(&self, aspect: f32) -> Camera {
+        self.cameras
+            .first()
+            .map_or_else(|| Camera::framing(&self.bounds(), aspect), |c| c.camera)
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec2;
+
+    use super::super::{Material, NamedCamera, Texture};
+    use super::*;
+
+    fn tiny() -> Scene {
+        Scene {
+            name: "tiny".into(),
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            uvs: vec![Vec2::ZERO; 3],
+            triangles: vec![[0, 1, 2]],
+            triangle_materials: vec![0],
+            materials: vec![Material::default()],
+            textures: vec![],
+            cameras: vec![],
+        }
+    }
+
+    fn problem(s: &Scene) -> String {
+        let e = s.validate().unwrap_err();
+        assert!(matches!(e, SceneError::Invalid { .. }));
+        let msg = e.to_string();
+        assert!(msg.contains("'tiny'"), "{msg}");
+        msg
+    }
+
+    #[test]
+    fn accepts_a_minimal_scene_and_degenerate_triangles() {
+        let mut s = tiny();
+        s.validate().unwrap();
+        s.triangles.push([0, 0, 0]);
+        s.triangle_materials.push(0);
+        s.validate().unwrap();
+        assert_eq!(s.triangle_count(), 2);
+    }
+
+    #[test]
+    fn rejects_each_broken_invariant() {
+        let mut s = tiny();
+        s.triangles.clear();
+        s.triangle_materials.clear();
+        assert!(problem(&s).contains("no triangles"));
+
+        let mut s = tiny();
+        s.positions[1].y = f32::NAN;
+        assert!(problem(&s).contains("vertex 1"));
+
+        let mut s = tiny();
+        s.uvs[2].x = f32::INFINITY;
+        assert!(problem(&s).contains("texture coordinate"));
+
+        let mut s = tiny();
+        s.uvs.pop();
+        assert!(problem(&s).contains("2 texture coordinates for 3 vertices"));
+
+        let mut s = tiny();
+        s.triangles[0] = [0, 1, 3];
+        assert!(problem(&s).contains("vertex index 3"));
+
+        let mut s = tiny();
+        s.triangles[0] = [0, 1, u32::MAX];
+        assert!(problem(&s).contains(&u32::MAX.to_string()));
+
+        let mut s = tiny();
+        s.triangle_materials.push(0);
+        assert!(problem(&s).contains("material indices"));
+
+        let mut s = tiny();
+        s.triangle_materials[0] = 1;
+        assert!(problem(&s).contains("material 1"));
+
+        let mut s = tiny();
+        s.materials[0].base_color_texture = Some(0);
+        assert!(problem(&s).contains("texture 0"));
+
+        let mut s = tiny();
+        s.materials[0].base_color_texture = Some(0);
+        s.textures.push(Texture {
+            name: "t".into(),
+            width: 2,
+            height: 2,
+            rgba8: vec![0; 15],
+        });
+        assert!(problem(&s).contains("15 bytes"));
+
+        let mut s = tiny();
+        s.cameras.push(NamedCamera {
+            name: "bad".into(),
+            camera: Camera {
+                eye: Vec3::ZERO,
+                target: Vec3::ZERO,
+                up: Vec3::Y,
+                fov_y_deg: 60.0,
+            },
+        });
+        assert!(problem(&s).contains("'bad'"));
+    }
+
+    #[test]
+    fn camera_lookup_lists_available_names() {
+        let mut s = tiny();
+        let err = s.camera("x").unwrap_err().to_string();
+        assert!(err.contains("'x'") && err.contains("none"), "{err}");
+        let cam = Camera::new(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 50.0).unwrap();
+        for name in ["front", "side"] {
+            s.cameras.push(NamedCamera {
+                name: name.into(),
+                camera: cam,
+            });
+        }
+        assert_eq!(s.camera("side").unwrap(), cam);
+        let err = s.camera("top").unwrap_err().to_string();
+        assert!(
+            err.contains("'top'") && err.contains("front, side"),
+            "{err}"
+        );
+        assert_eq!(s.default_camera(1.0), cam);
+    }
+
+    #[test]
+    fn bounds_and_default_framing() {
+        let s = tiny();
+        let b = s.bounds();
+        assert_eq!(b.min, Vec3::ZERO);
+        assert_eq!(b.max, Vec3::new(1.0, 1.0, 0.0));
+        let c = s.default_camera(1.5);
+        assert_eq!(c, Camera::framing(&b, 1.5));
+        assert_eq!(Scene::default().bounds().diagonal(), 0.0);
+    }
+}
