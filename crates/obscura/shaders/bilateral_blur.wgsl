@@ -3,6 +3,11 @@
 // and a depth weight exp2(-(dz * sharpness)^2) on the linear depth difference in world units,
 // after removing the local depth slope so that tilted planes blur like flat ones.
 // Only visible pixels are read: the AO image has no guard band, so taps outside it are skipped.
+// Mirrored on the CPU by src/reference/cpu_blur.rs.
+//
+// Each workgroup blurs a run of 64 pixels along the blur direction in 4 neighbouring lines; the run
+// plus `radius` pixels on each side is loaded once into workgroup memory, so each texel is read
+// from memory about once instead of 2 * radius + 1 times.
 
 struct BlurParams {
     // (1, 0) for the horizontal pass, (0, 1) for the vertical one.
@@ -17,45 +22,67 @@ struct BlurParams {
 @group(0) @binding(3) var ao_in: texture_2d<f32>;
 @group(0) @binding(4) var ao_out: texture_storage_2d<r32float, write>;
 
-fn depth_at(p: vec2<i32>) -> f32 {
-    return textureLoad(depth_tex, p + i32(view.guard_band), 0).r;
+const RUN: i32 = 64;
+const LINES: u32 = 4u;
+const MAX_RADIUS: i32 = 16;
+const TILE: i32 = 96; // RUN + 2 * MAX_RADIUS
+
+var<workgroup> tile_ao: array<f32, 384>; // LINES * TILE
+var<workgroup> tile_depth: array<f32, 384>;
+
+// Image position of (distance along the blur direction, line index across it).
+fn pixel_at(along: i32, across: i32) -> vec2<i32> {
+    return select(vec2<i32>(along, across), vec2<i32>(across, along), params.direction.y != 0);
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+@compute @workgroup_size(64, 4)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
     let size = vec2<i32>(view.visible_size);
-    let p = vec2<i32>(id.xy);
+    let full = vec2<i32>(view.full_size);
+    let r = params.radius;
+    let start = i32(group.x) * RUN - r;
+    let across = i32(group.y * LINES + local.y);
+    let row = i32(local.y) * TILE;
+    for (var k = i32(local.x); k < RUN + 2 * r; k += RUN) {
+        let q = pixel_at(start + k, across);
+        // Depth exists in the guard band too; AO only inside the visible image (-1 = none).
+        let zq = clamp(q + i32(view.guard_band), vec2<i32>(0), full - 1);
+        tile_depth[row + k] = textureLoad(depth_tex, zq, 0).r;
+        let inside = all(q >= vec2<i32>(0)) && all(q < size);
+        tile_ao[row + k] = select(-1.0, textureLoad(ao_in, clamp(q, vec2<i32>(0), size - 1), 0).r, inside);
+    }
+    workgroupBarrier();
+
+    let p = pixel_at(start + r + i32(local.x), across);
     if (any(p >= size)) {
         return;
     }
-    let center_ao = textureLoad(ao_in, p, 0).r;
-    let z = depth_at(p);
+    let c = row + r + i32(local.x);
+    let center_ao = tile_ao[c];
+    let z = tile_depth[c];
     if (is_background(z)) {
         textureStore(ao_out, p, vec4<f32>(center_ao));
         return;
     }
     // Depth slope along the blur direction: the smaller of the one-sided differences, so a depth
     // edge on one side does not masquerade as slope.
-    let forward = depth_at(p + params.direction) - z;
-    let backward = z - depth_at(p - params.direction);
+    let forward = tile_depth[c + 1] - z;
+    let backward = z - tile_depth[c - 1];
     let slope = select(backward, forward, abs(forward) < abs(backward));
 
-    let sigma = (f32(params.radius) + 1.0) * 0.5;
+    let sigma = (f32(r) + 1.0) * 0.5;
     let falloff = 1.0 / (2.0 * sigma * sigma);
     var sum = center_ao;
     var weight_sum = 1.0;
-    for (var d = -params.radius; d <= params.radius; d++) {
-        let q = p + params.direction * d;
-        if (d == 0 || any(q < vec2<i32>(0)) || any(q >= size)) {
-            continue;
-        }
-        let zq = depth_at(q);
-        if (is_background(zq)) {
+    for (var d = -r; d <= r; d++) {
+        let ao = tile_ao[c + d];
+        let zq = tile_depth[c + d];
+        if (d == 0 || ao < 0.0 || is_background(zq)) {
             continue;
         }
         let dz = (zq - z - slope * f32(d)) * params.sharpness;
         let w = exp2(-f32(d * d) * falloff - dz * dz);
-        sum += w * textureLoad(ao_in, q, 0).r;
+        sum += w * ao;
         weight_sum += w;
     }
     textureStore(ao_out, p, vec4<f32>(sum / weight_sum));

@@ -53,15 +53,28 @@ fn column_visibility(z: f32, column_start: f32, column_end: f32) -> f32 {
     return sphere_vis + halo_vis;
 }
 
+// Thread-to-pixel layout. 0: plain 8x8 tiles. 1: each 8x8 workgroup takes one 2x2-parity class of
+// a 16x16 tile (the authors' 2024 remap, seed-code-notes §2.2), so neighbouring threads share more
+// of the 4x4 rotation pattern and their samples hit nearby texels together.
+override LAYOUT: u32 = 1u;
+
+fn pixel_of(group: vec2<u32>, local: vec2<u32>) -> vec2<u32> {
+    if (LAYOUT == 0u) {
+        return group * 8u + local;
+    }
+    return (group / 2u) * 16u + 2u * local + group % 2u;
+}
+
 @compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (any(id.xy >= view.visible_size)) {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+    let id = pixel_of(group.xy, local.xy);
+    if (any(id >= view.visible_size)) {
         return;
     }
-    let pixel = id.xy + vec2<u32>(view.guard_band);
+    let pixel = id + vec2<u32>(view.guard_band);
     let z = textureLoad(depth_tex, pixel, 0).r;
     if (is_background(z)) {
-        textureStore(ao_out, id.xy, vec4<f32>(1.0));
+        textureStore(ao_out, id, vec4<f32>(1.0));
         return;
     }
     let pos = pixel_to_view(view, vec2<f32>(pixel) + 0.5, z);
@@ -116,5 +129,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         ao = select(1.0, sum / clipped_sum, clipped_sum > 0.0);
     }
     ao = saturate(ao);
-    textureStore(ao_out, id.xy, vec4<f32>(pow(ao, params.exponent)));
+    textureStore(ao_out, id, vec4<f32>(pow(ao, params.exponent)));
 }

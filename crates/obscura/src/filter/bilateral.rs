@@ -1,7 +1,7 @@
 //! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/bilateral_blur.wgsl`).
 
 use crate::gpu::PassProfiler;
-use crate::kernels::{workgroups_8x8, FrameInputs};
+use crate::kernels::FrameInputs;
 use crate::settings::BlurSettings;
 use crate::shaders;
 use wgpu::util::DeviceExt;
@@ -70,11 +70,25 @@ impl BilateralBlur {
         output: &wgpu::TextureView,
         mut profiler: Option<&mut PassProfiler>,
     ) {
+        let (w, h) = (inputs.screen.width, inputs.screen.height);
+        // Workgroups: runs of 64 pixels along the direction × 4 lines across (bilateral_blur.wgsl).
         let steps = [
-            ("blur_x", input, &self.intermediate, &self.params[0]),
-            ("blur_y", &self.intermediate, output, &self.params[1]),
+            (
+                "blur_x",
+                input,
+                &self.intermediate,
+                &self.params[0],
+                (w.div_ceil(64), h.div_ceil(4)),
+            ),
+            (
+                "blur_y",
+                &self.intermediate,
+                output,
+                &self.params[1],
+                (h.div_ceil(64), w.div_ceil(4)),
+            ),
         ];
-        for (name, src, dst, params) in steps {
+        for (name, src, dst, params, (groups_along, groups_across)) in steps {
             let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(name),
                 layout: &self.pipeline.get_bind_group_layout(0),
@@ -108,8 +122,7 @@ impl BilateralBlur {
             });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
-            let (x, y, z) = workgroups_8x8(inputs.screen.width, inputs.screen.height);
-            pass.dispatch_workgroups(x, y, z);
+            pass.dispatch_workgroups(groups_along, groups_across, 1);
         }
     }
 }

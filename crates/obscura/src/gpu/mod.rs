@@ -229,6 +229,16 @@ impl Gpu {
 
 /// A compute pipeline from WGSL source with entry point `main` and an automatic layout.
 pub fn compute_pipeline(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ComputePipeline {
+    compute_pipeline_with(device, label, source, &[])
+}
+
+/// [`compute_pipeline`] with values for the shader's `override` constants.
+pub fn compute_pipeline_with(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -238,7 +248,11 @@ pub fn compute_pipeline(device: &wgpu::Device, label: &str, source: &str) -> wgp
         layout: None,
         module: &module,
         entry_point: Some("main"),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            // Shaders that use workgroup memory write it before reading it.
+            zero_initialize_workgroup_memory: false,
+        },
         cache: None,
     })
 }
