@@ -112,6 +112,12 @@ pub struct AoArgs {
     /// Skip the bilateral blur.
     #[arg(long)]
     pub no_blur: bool,
+    /// Bilateral blur taps on each side (1..16).
+    #[arg(long, default_value_t = 4)]
+    pub blur_radius: u32,
+    /// Bilateral blur depth sharpness (per world unit of depth difference).
+    #[arg(long, default_value_t = 16.0, allow_hyphen_values = true)]
+    pub blur_sharpness: f32,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -129,6 +135,8 @@ impl AoArgs {
         settings.vao.samples = self.samples;
         settings.vao.normalization = self.normalization.parse::<Normalization>()?;
         settings.blur.enabled = !self.no_blur;
+        settings.blur.radius = self.blur_radius;
+        settings.blur.sharpness = self.blur_sharpness;
         settings.validate()?;
         Ok(settings)
     }

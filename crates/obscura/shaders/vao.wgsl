@@ -53,21 +53,13 @@ fn column_visibility(z: f32, column_start: f32, column_end: f32) -> f32 {
     return sphere_vis + halo_vis;
 }
 
-// Thread-to-pixel layout. 0: plain 8x8 tiles. 1: each 8x8 workgroup takes one 2x2-parity class of
-// a 16x16 tile (the authors' 2024 remap, seed-code-notes §2.2), so neighbouring threads share more
-// of the 4x4 rotation pattern and their samples hit nearby texels together.
-override LAYOUT: u32 = 1u;
+// The sample count is a pipeline constant so the sample loop unrolls and the depth reads of all
+// samples can be in flight together (measured: the loop, not memory, bounds this pass).
+override SAMPLE_COUNT: u32 = 8u;
 
-fn pixel_of(group: vec2<u32>, local: vec2<u32>) -> vec2<u32> {
-    if (LAYOUT == 0u) {
-        return group * 8u + local;
-    }
-    return (group / 2u) * 16u + 2u * local + group % 2u;
-}
-
-@compute @workgroup_size(8, 8)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
-    let id = pixel_of(group.xy, local.xy);
+@compute @workgroup_size(32, 8)
+fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
+    let id = global_id.xy;
     if (any(id >= view.visible_size)) {
         return;
     }
@@ -86,18 +78,19 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
     let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
     // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).
     let n_z = select(min(n_local.z, -1e-4), max(n_local.z, 1e-4), n_local.z >= 0.0);
+    let inv_n_z = 1.0 / n_z;
     let rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
     let r = params.radius;
 
     var sum = 0.0;
     var clipped_sum = 0.0;
-    for (var i = 0u; i < params.sample_count; i++) {
+    for (var i = 0u; i < SAMPLE_COUNT; i++) {
         let k = params.kernel[i];
         let dir = vec2<f32>(k.x * rotation.x - k.y * rotation.y, k.x * rotation.y + k.y * rotation.x);
         let d = dir * (k.z * r);
         let h = sqrt(max(r * r - dot(d, d), 0.0));
         // Hemisphere clipping: the tangent plane crosses the column at height z_i.
-        let z_i = clamp(-dot(d, n_local.xy) / n_z, -h, h);
+        let z_i = clamp(-dot(d, n_local.xy) * inv_n_z, -h, h);
         var column_start = h;
         var column_end = -h;
         if (n_local.z >= 0.0) {
@@ -117,14 +110,15 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
             if (!is_background(sample_z)) {
                 let offset = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, sample_z) - pos;
                 let lateral = vec2<f32>(dot(offset, basis[0]), dot(offset, basis[1])) - d;
-                let height = dot(offset, axis) + dot(lateral, n_local.xy) / n_z;
+                let height = dot(offset, axis) + dot(lateral, n_local.xy) * inv_n_z;
                 free = column_visibility(height, column_start, column_end);
             }
         }
-        sum += free / (2.0 * h);
-        clipped_sum += (column_start - column_end) / (2.0 * h);
+        let inv_2h = 0.5 / h;
+        sum += free * inv_2h;
+        clipped_sum += (column_start - column_end) * inv_2h;
     }
-    var ao = 2.0 * sum / f32(params.sample_count);
+    var ao = 2.0 * sum / f32(SAMPLE_COUNT);
     if (params.normalization == 1u) {
         ao = select(1.0, sum / clipped_sum, clipped_sum > 0.0);
     }

@@ -113,33 +113,33 @@ impl ScreenGeometry {
     /// View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at linear
     /// depth `z`. Mirrors `pixel_to_view` in `shaders/common/view.wgsl`.
     pub fn pixel_to_view(&self, px: Vec2, z: f32) -> Vec3 {
-        let size = Vec2::new(self.full_width() as f32, self.full_height() as f32);
-        let ndc = Vec2::new(px.x / size.x * 2.0 - 1.0, 1.0 - px.y / size.y * 2.0);
-        Vec3::new(
-            ndc.x * self.tan_half_fov.x * z,
-            ndc.y * self.tan_half_fov.y * z,
-            -z,
-        )
+        let u = self.uniform();
+        let ndc = Vec2::new(
+            px.x * u.ndc_per_pixel[0] - 1.0,
+            1.0 - px.y * u.ndc_per_pixel[1],
+        );
+        (ndc * self.tan_half_fov * z).extend(-z)
     }
 
     /// Framebuffer pixel coordinates of a view-space point. Mirrors `view_to_pixel` in WGSL.
     pub fn view_to_pixel(&self, p: Vec3) -> Vec2 {
-        let size = Vec2::new(self.full_width() as f32, self.full_height() as f32);
-        let ndc = Vec2::new(
-            p.x / (-p.z * self.tan_half_fov.x),
-            p.y / (-p.z * self.tan_half_fov.y),
-        );
-        Vec2::new((ndc.x + 1.0) * 0.5 * size.x, (1.0 - ndc.y) * 0.5 * size.y)
+        let u = self.uniform();
+        let s = p.truncate() * (Vec2::from(u.projection_scale) / -p.z);
+        let half = 0.5 * Vec2::new(self.full_width() as f32, self.full_height() as f32);
+        Vec2::new(half.x + s.x, half.y - s.y)
     }
 
     /// The uniform block of `shaders/common/view.wgsl`.
     pub fn uniform(&self) -> ViewUniform {
+        let size = Vec2::new(self.full_width() as f32, self.full_height() as f32);
         ViewUniform {
             full_size: [self.full_width(), self.full_height()],
             visible_size: [self.width, self.height],
             tan_half_fov: self.tan_half_fov.to_array(),
             guard_band: self.guard_band,
             _pad: 0,
+            ndc_per_pixel: (2.0 / size).to_array(),
+            projection_scale: (0.5 * size / self.tan_half_fov).to_array(),
         }
     }
 }
@@ -153,6 +153,8 @@ pub struct ViewUniform {
     pub tan_half_fov: [f32; 2],
     pub guard_band: u32,
     pub _pad: u32,
+    pub ndc_per_pixel: [f32; 2],
+    pub projection_scale: [f32; 2],
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
 // Pixel <-> view-space conversion for the guard-banded framebuffer (mirrors src/view.rs).
 // View space is right-handed, the camera looks down -Z, linear depth = -z (DESIGN.md).
+// The reciprocals are precomputed on the CPU: these run per AO sample, where divisions dominated.
 
 struct View {
     full_size: vec2<u32>,
@@ -7,20 +8,23 @@ struct View {
     tan_half_fov: vec2<f32>,
     guard_band: u32,
     _pad: u32,
+    // 2 / full_size: normalised device coordinates per pixel.
+    ndc_per_pixel: vec2<f32>,
+    // 0.5 * full_size / tan_half_fov: pixels per unit of x/z (y/z) from the image centre.
+    projection_scale: vec2<f32>,
 }
 
 // View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at depth `z`.
 fn pixel_to_view(v: View, px: vec2<f32>, z: f32) -> vec3<f32> {
-    let size = vec2<f32>(v.full_size);
-    let ndc = vec2<f32>(px.x / size.x * 2.0 - 1.0, 1.0 - px.y / size.y * 2.0);
-    return vec3<f32>(ndc.x * v.tan_half_fov.x * z, ndc.y * v.tan_half_fov.y * z, -z);
+    let ndc = vec2<f32>(px.x * v.ndc_per_pixel.x - 1.0, 1.0 - px.y * v.ndc_per_pixel.y);
+    return vec3<f32>(ndc * v.tan_half_fov * z, -z);
 }
 
 // Framebuffer pixel coordinates of a view-space point.
 fn view_to_pixel(v: View, p: vec3<f32>) -> vec2<f32> {
-    let size = vec2<f32>(v.full_size);
-    let ndc = vec2<f32>(p.x / (-p.z * v.tan_half_fov.x), p.y / (-p.z * v.tan_half_fov.y));
-    return vec2<f32>((ndc.x + 1.0) * 0.5 * size.x, (1.0 - ndc.y) * 0.5 * size.y);
+    let s = p.xy * (v.projection_scale / -p.z);
+    let half_size = 0.5 * vec2<f32>(v.full_size);
+    return vec2<f32>(half_size.x + s.x, half_size.y - s.y);
 }
 
 // Background (no geometry) is stored as linear depth 0 in the G-buffer.

@@ -243,10 +243,41 @@ pub fn compute_pipeline_with(
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     });
+    pipeline_from_module(device, label, &module, constants)
+}
+
+/// [`compute_pipeline_with`] without the bounds checks wgpu adds to every array and texture access.
+///
+/// # Safety
+/// Every index and texel coordinate the shader uses must be in range by construction, for every
+/// input the caller can bind (the caller validates texture sizes before binding).
+pub unsafe fn compute_pipeline_unchecked(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
+    let desc = wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    };
+    // SAFETY: forwarded to the caller (see above).
+    let module = unsafe {
+        device.create_shader_module_trusted(desc, wgpu::ShaderRuntimeChecks::unchecked())
+    };
+    pipeline_from_module(device, label, &module, constants)
+}
+
+fn pipeline_from_module(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    constants: &[(&str, f64)],
+) -> wgpu::ComputePipeline {
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: None,
-        module: &module,
+        module,
         entry_point: Some("main"),
         compilation_options: wgpu::PipelineCompilationOptions {
             constants,

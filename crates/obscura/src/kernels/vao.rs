@@ -2,7 +2,7 @@
 //! pattern and the compute pass (`shaders/vao.wgsl`). The same tables feed the CPU mirror in
 //! [`crate::reference::cpu_vao`].
 
-use super::{workgroups_8x8, AoKernel, FrameInputs};
+use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
 use crate::settings::{Normalization, VaoSettings};
 use crate::shaders;
@@ -102,23 +102,13 @@ pub struct VaoKernel {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
-    layout: u32,
 }
 
 impl VaoKernel {
     pub fn new(device: &wgpu::Device, settings: &VaoSettings, view: &wgpu::Buffer) -> Self {
         let source = shaders::with_common(&[shaders::VIEW, shaders::BASIS], shaders::VAO);
-        // Experiment switch for the thread layout (see `LAYOUT` in vao.wgsl); removed once measured.
-        let layout: u32 = std::env::var("OBSCURA_VAO_LAYOUT")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(1);
-        let pipeline = crate::gpu::compute_pipeline_with(
-            device,
-            "vao",
-            &source,
-            &[("LAYOUT", f64::from(layout))],
-        );
+        let constants = [("SAMPLE_COUNT", f64::from(settings.samples))];
+        let pipeline = crate::gpu::compute_pipeline_with(device, "vao", &source, &constants);
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("vao params"),
             contents: bytemuck::bytes_of(&VaoParams::new(settings)),
@@ -128,7 +118,6 @@ impl VaoKernel {
             pipeline,
             params,
             view: view.clone(),
-            layout,
         }
     }
 }
@@ -179,16 +168,7 @@ impl AoKernel for VaoKernel {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
-        let (x, y, z) = if self.layout == 0 {
-            workgroups_8x8(inputs.screen.width, inputs.screen.height)
-        } else {
-            // 16x16 tiles, four 8x8 workgroups (one per 2x2 parity class) each.
-            (
-                inputs.screen.width.div_ceil(16) * 2,
-                inputs.screen.height.div_ceil(16) * 2,
-                1,
-            )
-        };
+        let (x, y, z) = workgroups_32x8(inputs.screen.width, inputs.screen.height);
         pass.dispatch_workgroups(x, y, z);
     }
 }

@@ -8,6 +8,7 @@ use crate::gpu::PassProfiler;
 use crate::kernels::{vao::VaoKernel, AoKernel, FrameInputs};
 use crate::settings::{AoSettings, SettingsError, Technique};
 use crate::view::ScreenGeometry;
+use crate::Error;
 use wgpu::util::DeviceExt;
 
 /// AO for one screen configuration: the technique's kernel, then (optionally) the blur.
@@ -71,18 +72,40 @@ impl AmbientOcclusion {
         self.screen
     }
 
-    /// Record the kernel and the blur. `depth` and `normals` cover the guard-banded framebuffer.
+    /// Record the kernel and the blur. `depth` (`R32Float`, linear) and `normals` (a float format,
+    /// view space) must cover the guard-banded framebuffer: `(width + 2g) × (height + 2g)`.
     pub fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        depth: &wgpu::TextureView,
-        normals: &wgpu::TextureView,
+        depth: &wgpu::Texture,
+        normals: &wgpu::Texture,
         mut profiler: Option<&mut PassProfiler>,
-    ) {
+    ) -> Result<(), Error> {
+        let (fw, fh) = (self.screen.full_width(), self.screen.full_height());
+        for (what, texture) in [("depth", depth), ("normals", normals)] {
+            if (texture.width(), texture.height()) != (fw, fh) {
+                return Err(Error::Input(format!(
+                    "AO {what} texture is {}x{}, but the screen geometry ({}x{} visible + {} px guard band) needs {fw}x{fh}",
+                    texture.width(),
+                    texture.height(),
+                    self.screen.width,
+                    self.screen.height,
+                    self.screen.guard_band
+                )));
+            }
+        }
+        if depth.format() != wgpu::TextureFormat::R32Float {
+            return Err(Error::Input(format!(
+                "AO depth texture is {:?}: it must be R32Float linear view depth",
+                depth.format()
+            )));
+        }
+        let depth = depth.create_view(&Default::default());
+        let normals = normals.create_view(&Default::default());
         let inputs = FrameInputs {
-            depth,
-            normals,
+            depth: &depth,
+            normals: &normals,
             screen: self.screen,
         };
         let raw = self.raw.create_view(&Default::default());
@@ -92,6 +115,7 @@ impl AmbientOcclusion {
             let blurred = self.blurred.create_view(&Default::default());
             blur.encode(device, encoder, &inputs, &raw, &blurred, profiler);
         }
+        Ok(())
     }
 
     /// The final AO (blurred if the blur is enabled).

@@ -97,15 +97,13 @@ impl<'g> Renderer<'g> {
             &view,
             profiler.as_deref_mut(),
         );
-        let depth = self.gbuffer.depth.create_view(&Default::default());
-        let normals = self.gbuffer.normals.create_view(&Default::default());
         ao.encode(
             device,
             &mut encoder,
-            &depth,
-            &normals,
+            &self.gbuffer.depth,
+            &self.gbuffer.normals,
             profiler.as_deref_mut(),
-        );
+        )?;
         if let Some(p) = profiler {
             p.end_frame(&mut encoder);
         }
