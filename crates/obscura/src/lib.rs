@@ -8,6 +8,7 @@
 //! Conventions: right-handed view space looking down −Z, linear depth = −z in world units,
 //! AO = 1 unoccluded / 0 fully occluded, exponent applied last.
 
+pub mod bvh;
 pub mod filter;
 pub mod gpu;
 pub mod hidden;

@@ -3,3 +3,5 @@
 
 pub mod cpu_blur;
 pub mod cpu_vao;
+pub mod ground_truth;
+pub mod vao_model;

@@ -1,0 +1,352 @@
+//! Ground-truth AO computed from the triangles (never from a depth buffer), on the CPU with the
+//! SAH BVH of [`crate::bvh`], one rayon task per image row.
+//!
+//! Two models:
+//! - [`ReferenceModel::Vao`]: the quantity VAO estimates with nothing hidden (seed 000 §3.6,
+//!   Fig. 6; seed-code-notes §1.6). The same kernel, rotation pattern, R/τ/exponent as the `vao`
+//!   technique, but each sample's occluder is every surface the camera ray through the sample's
+//!   pixel crosses, not only the first: the sample's visibility is the minimum of the per-hit
+//!   visibilities. Heights are measured exactly as the kernel measures them, so on a scene with a
+//!   single depth layer the technique and this reference agree.
+//! - [`ReferenceModel::Hemisphere`]: classic AO, the fraction of cosine-weighted rays from the
+//!   surface point (geometric normal, small offset) that hit nothing within R (optionally with the
+//!   linear falloff W(t) = max(0, 1 − t/R)), `spp` rays per pixel (1024 by default, as Pyramid
+//!   HBAO's Blender reference, seed 004 §4), stratified by a Hammersley set with a seeded
+//!   per-pixel Cranley–Patterson rotation.
+
+use super::vao_model::{column_visibility, kernel, Accumulator, Column, PixelFrame};
+use crate::bvh::{Bvh, HitAction, Ray};
+use crate::scene::Scene;
+use crate::settings::VaoSettings;
+use crate::view::FrameView;
+use glam::{Mat4, UVec2, Vec2, Vec3};
+use rayon::prelude::*;
+use std::f32::consts::TAU;
+use std::fmt;
+use std::str::FromStr;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ReferenceModel {
+    Vao,
+    Hemisphere,
+}
+
+impl ReferenceModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            ReferenceModel::Vao => "vao",
+            ReferenceModel::Hemisphere => "hemisphere",
+        }
+    }
+}
+
+impl fmt::Display for ReferenceModel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ReferenceModel {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "vao" => Ok(ReferenceModel::Vao),
+            "hemisphere" => Ok(ReferenceModel::Hemisphere),
+            _ => Err(format!(
+                "unknown reference model '{s}': use vao or hemisphere"
+            )),
+        }
+    }
+}
+
+/// Everything a reference image depends on (also the cache key's content).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceSettings {
+    pub model: ReferenceModel,
+    /// The VAO parameters: the `vao` model's kernel; `radius` is also the hemisphere's R.
+    pub vao: VaoSettings,
+    /// Hemisphere rays per pixel.
+    pub spp: u32,
+    /// Hemisphere: weight hits by W(t) = max(0, 1 − t/R) instead of counting them fully.
+    pub falloff: bool,
+    /// Seed of the hemisphere's per-pixel rotations.
+    pub seed: u64,
+}
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        Self {
+            model: ReferenceModel::Vao,
+            vao: VaoSettings::default(),
+            spp: 1024,
+            falloff: false,
+            seed: 0,
+        }
+    }
+}
+
+impl ReferenceSettings {
+    pub fn validate(&self) -> Result<(), String> {
+        if self.spp == 0 {
+            return Err(
+                "--spp 0: the hemisphere reference needs at least 1 ray per pixel (default 1024)"
+                    .into(),
+            );
+        }
+        let s = crate::settings::AoSettings {
+            vao: self.vao,
+            ..Default::default()
+        };
+        s.validate().map_err(|e| e.to_string())
+    }
+
+    /// Rays traced per visible pixel with geometry (for rays/s figures).
+    pub fn rays_per_pixel(&self) -> u64 {
+        match self.model {
+            ReferenceModel::Vao => 1 + u64::from(self.vao.samples),
+            ReferenceModel::Hemisphere => 1 + u64::from(self.spp),
+        }
+    }
+}
+
+/// The camera and the BVH, everything a ray needs.
+pub struct Tracer<'a> {
+    pub scene: &'a Scene,
+    pub bvh: &'a Bvh,
+    pub view: FrameView,
+    camera_to_world: Mat4,
+}
+
+/// The first surface along a camera ray.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    /// Linear view depth (= the ray parameter for camera rays built by [`Tracer::camera_ray`]).
+    pub depth: f32,
+    pub world: Vec3,
+    /// Geometric face normal facing the ray origin, world space.
+    pub normal: Vec3,
+}
+
+impl<'a> Tracer<'a> {
+    pub fn new(scene: &'a Scene, bvh: &'a Bvh, view: FrameView) -> Self {
+        Self {
+            scene,
+            bvh,
+            view,
+            camera_to_world: view.view_matrix().inverse(),
+        }
+    }
+
+    /// The camera ray through framebuffer pixel coordinates `px`, with `dir` scaled so that the
+    /// ray parameter equals linear view depth.
+    pub fn camera_ray(&self, px: Vec2) -> Ray {
+        let dir = self.view.screen().pixel_to_view(px, 1.0);
+        Ray::new(
+            self.view.camera.eye,
+            self.camera_to_world.transform_vector3(dir),
+        )
+    }
+
+    /// Closest surface along `ray` beyond the near plane.
+    pub fn first_surface(&self, ray: &Ray) -> Option<Surface> {
+        let hit = self
+            .bvh
+            .closest_hit(self.scene, ray, self.view.near, f32::INFINITY)?;
+        let [a, b, c] =
+            self.scene.triangles[hit.triangle as usize].map(|i| self.scene.positions[i as usize]);
+        let mut normal = (b - a).cross(c - a).normalize_or_zero();
+        if normal.dot(ray.dir) > 0.0 {
+            normal = -normal;
+        }
+        Some(Surface {
+            depth: hit.t,
+            world: ray.at(hit.t),
+            normal,
+        })
+    }
+
+    fn to_view(&self, p: Vec3) -> Vec3 {
+        self.view.view_matrix().transform_point3(p)
+    }
+
+    fn to_view_dir(&self, d: Vec3) -> Vec3 {
+        self.view.view_matrix().transform_vector3(d)
+    }
+}
+
+/// `vao` model AO of one visible pixel (`x`, `y`) whose first surface is `surface`.
+pub fn vao_ao_at(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings) -> f32 {
+    let screen = t.view.screen();
+    let pixel = UVec2::new(x, y) + screen.guard_band;
+    let pos = t.to_view(surface.world);
+    let frame = PixelFrame::new(pos, t.to_view_dir(surface.normal), x, y);
+    let mut acc = Accumulator::default();
+    for k in kernel(s) {
+        let Some(column) = frame.column(k, s, &screen) else {
+            continue;
+        };
+        // Unlike the depth-buffer kernel, samples beyond the framebuffer are traced too.
+        let sample_pixel = column.px.floor();
+        let free = if sample_pixel == pixel.as_vec2() {
+            column.start - column.end
+        } else {
+            min_visibility_along(t, &frame, &column, sample_pixel + 0.5, s)
+        };
+        acc.add(&column, free);
+    }
+    acc.finish(s)
+}
+
+/// Minimum per-hit visibility of `column` over every surface along the camera ray through `px`.
+fn min_visibility_along(
+    t: &Tracer,
+    frame: &PixelFrame,
+    column: &Column,
+    px: Vec2,
+    s: &VaoSettings,
+) -> f32 {
+    let full = column.start - column.end;
+    let ray = t.camera_ray(px);
+    // Along this ray the view-space point is `t · dir_view`, so the kernel's height is affine in
+    // the ray parameter: height(t) = a + b·t. Only heights in (end, halo end) can lower the
+    // visibility; elsewhere it is full. That bounds the interval to trace.
+    let dir_view = t.view.screen().pixel_to_view(px, 1.0);
+    let a = frame.height(column, Vec3::ZERO);
+    let b = frame.height(column, dir_view) - a;
+    let halo_end = (1.0 + s.thickness) * s.radius + full;
+    let (mut t_min, mut t_max) = (t.view.near, f32::INFINITY);
+    if b.abs() > 1e-12 {
+        let (t0, t1) = ((column.end - a) / b, (halo_end - a) / b);
+        t_min = t_min.max(t0.min(t1));
+        t_max = t0.max(t1);
+    }
+    if t_min.partial_cmp(&t_max) != Some(std::cmp::Ordering::Less) {
+        return full;
+    }
+    let mut visibility = full;
+    t.bvh.for_each_hit(t.scene, &ray, t_min, t_max, |hit| {
+        let height = a + b * hit.t;
+        visibility = visibility.min(column_visibility(s, height, column.start, column.end));
+        if visibility <= 0.0 {
+            HitAction::Stop
+        } else {
+            HitAction::Continue
+        }
+    });
+    visibility
+}
+
+/// Hammersley point `i` of `n` (stratified in both dimensions).
+fn hammersley(i: u32, n: u32) -> Vec2 {
+    Vec2::new(
+        (i as f32 + 0.5) / n as f32,
+        crate::kernels::vao::van_der_corput(i),
+    )
+}
+
+/// SplitMix64 finaliser: a documented, dependency-free hash for the seeded per-pixel rotation
+/// (we only need a well-mixed 64-bit value per pixel, not a random-number generator).
+fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Per-pixel Cranley–Patterson rotation in [0,1)² from the seed and the pixel.
+pub fn pixel_rotation_2d(seed: u64, x: u32, y: u32) -> Vec2 {
+    let h = splitmix64(seed ^ (u64::from(x) << 32 | u64::from(y)));
+    Vec2::new(
+        (h >> 40) as f32 / (1u64 << 24) as f32,
+        ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32,
+    )
+}
+
+/// How the hemisphere model samples one point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HemisphereRays {
+    /// Rays longer than this do not occlude.
+    pub radius: f32,
+    pub spp: u32,
+    /// Weight hits by W(t) = max(0, 1 − t/R).
+    pub falloff: bool,
+    /// Cranley–Patterson rotation of the Hammersley set, in [0,1)².
+    pub rotation: Vec2,
+}
+
+/// Hemisphere AO at world point `p` with geometric normal `n`: the fraction of `rays.spp`
+/// cosine-weighted rays unoccluded within `rays.radius` (with falloff: 1 − mean W(t)).
+pub fn hemisphere_ao_at(scene: &Scene, bvh: &Bvh, p: Vec3, n: Vec3, rays: &HemisphereRays) -> f32 {
+    let HemisphereRays {
+        radius,
+        spp,
+        falloff,
+        rotation,
+    } = *rays;
+    let n = n.normalize();
+    let (tangent, bitangent) = crate::kernels::vao::orthonormal_basis(n);
+    // Offset along the normal against self-intersection, relative to R (and to the magnitude of
+    // the position, where f32 spacing grows).
+    let origin = p + n * (1e-4 * radius).max(1e-6 * p.abs().max_element());
+    let mut occlusion = 0.0f64;
+    for i in 0..spp {
+        let u = (hammersley(i, spp) + rotation).fract();
+        // Cosine-weighted: a uniform point on the unit disc lifted to the hemisphere (Malley).
+        let (r, phi) = (u.x.sqrt(), TAU * u.y);
+        let local = Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u.x).max(0.0).sqrt());
+        let dir = tangent * local.x + bitangent * local.y + n * local.z;
+        let ray = Ray::new(origin, dir);
+        if falloff {
+            if let Some(hit) = bvh.closest_hit(scene, &ray, 0.0, radius) {
+                occlusion += f64::from((1.0 - hit.t / radius).max(0.0));
+            }
+        } else if bvh.any_hit(scene, &ray, 0.0, radius) {
+            occlusion += 1.0;
+        }
+    }
+    (1.0 - occlusion / f64::from(spp)) as f32
+}
+
+/// The reference image of the visible `view.width × view.height` (row-major, 1 = unoccluded,
+/// background 1). `progress(rows_done)` is called from worker threads as rows finish.
+pub fn render_reference(
+    scene: &Scene,
+    bvh: &Bvh,
+    view: FrameView,
+    settings: &ReferenceSettings,
+    progress: &(dyn Fn(u32) + Sync),
+) -> Vec<f32> {
+    let tracer = Tracer::new(scene, bvh, view);
+    let done = std::sync::atomic::AtomicU32::new(0);
+    let (w, h) = (view.width, view.height);
+    (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let row: Vec<f32> = (0..w)
+                .map(|x| {
+                    let px = (UVec2::new(x, y) + view.guard_band).as_vec2() + 0.5;
+                    let Some(surface) = tracer.first_surface(&tracer.camera_ray(px)) else {
+                        return 1.0;
+                    };
+                    match settings.model {
+                        ReferenceModel::Vao => vao_ao_at(&tracer, &surface, x, y, &settings.vao),
+                        ReferenceModel::Hemisphere => hemisphere_ao_at(
+                            scene,
+                            bvh,
+                            surface.world,
+                            surface.normal,
+                            &HemisphereRays {
+                                radius: settings.vao.radius,
+                                spp: settings.spp,
+                                falloff: settings.falloff,
+                                rotation: pixel_rotation_2d(settings.seed, x, y),
+                            },
+                        ),
+                    }
+                })
+                .collect();
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            row
+        })
+        .collect()
+}
