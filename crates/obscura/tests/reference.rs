@@ -156,10 +156,7 @@ fn hemisphere_model_matches_closed_forms() {
         &bvh,
         Vec3::ZERO,
         Vec3::Y,
-        1.0,
-        256,
-        false,
-        Vec2::ZERO,
+        &rays(1.0, 256, Vec2::ZERO),
     );
     assert_eq!(ao, 1.0);
 
@@ -171,10 +168,7 @@ fn hemisphere_model_matches_closed_forms() {
         &bvh,
         Vec3::ZERO,
         Vec3::Y,
-        1000.0,
-        4096,
-        false,
-        Vec2::new(0.3, 0.7),
+        &rays(1000.0, 4096, Vec2::new(0.3, 0.7)),
     );
     assert!((far - 0.5).abs() < 3e-3, "R → ∞: {far}");
     assert!((wall_ao(0.1, 1000.0) - 0.5).abs() < 1e-4);
@@ -187,10 +181,7 @@ fn hemisphere_model_matches_closed_forms() {
             &bvh,
             Vec3::ZERO,
             Vec3::Y,
-            radius,
-            4096,
-            false,
-            Vec2::new(0.5, 0.25),
+            &rays(radius, 4096, Vec2::new(0.5, 0.25)),
         );
         let expected = wall_ao(d, radius);
         assert!(
@@ -216,10 +207,7 @@ fn hemisphere_error_falls_at_least_like_one_over_sqrt_spp() {
                     &bvh,
                     Vec3::ZERO,
                     Vec3::Y,
-                    radius,
-                    spp,
-                    false,
-                    rotation,
+                    &rays(radius, spp, rotation),
                 ) - expected;
                 f64::from(e * e)
             })
