@@ -76,6 +76,18 @@ impl SceneArgs {
         Ok(scene::load(&self.scene)?)
     }
 
+    /// The name reports use for the camera these options describe.
+    pub fn camera_name(&self, scene: &Scene) -> String {
+        match (&self.camera, self.eye) {
+            (Some(name), _) => name.clone(),
+            (None, Some(_)) => "custom".into(),
+            _ => scene
+                .cameras
+                .first()
+                .map_or("auto".into(), |c| c.name.clone()),
+        }
+    }
+
     /// The camera these options describe, validated.
     pub fn camera(&self, scene: &Scene, aspect: f32) -> Result<Camera> {
         let mut camera = match (&self.camera, self.eye, self.target) {

@@ -32,6 +32,10 @@ enum Command {
     Scenes(commands::scenes::ScenesArgs),
     /// Render one AO image.
     Render(commands::render::RenderArgs),
+    /// Ray-trace the ground-truth AO of one view on the CPU.
+    Reference(commands::reference::ReferenceCmdArgs),
+    /// Compare techniques with the ground truth: report.json, report.md and index.html.
+    Compare(commands::compare::CompareArgs),
     /// Render every built-in scene's close-up with every technique into a folder with an index.html.
     Demo(commands::demo::DemoArgs),
     /// Time every pass with GPU timestamp queries (medians over frames).
@@ -40,6 +44,12 @@ enum Command {
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    // Ctrl-C: remove any output still being written, so nothing half-written is left behind.
+    let _ = ctrlc::set_handler(|| {
+        obscura::output::remove_partial_files();
+        eprintln!("\ninterrupted");
+        std::process::exit(130);
+    });
     let cli = Cli::parse();
     let gpu_options = obscura::GpuOptions {
         adapter: cli.adapter,
@@ -49,6 +59,8 @@ fn main() -> ExitCode {
         Command::Info(a) => commands::info::run(&gpu_options, &a),
         Command::Scenes(a) => commands::scenes::run(&a),
         Command::Render(a) => commands::render::run(&gpu_options, &a),
+        Command::Reference(a) => commands::reference::run(&a),
+        Command::Compare(a) => commands::compare::run(&gpu_options, &a),
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
     };

@@ -18,6 +18,7 @@ pub mod output;
 pub mod pipeline;
 pub mod raster;
 pub mod reference;
+pub mod report;
 pub mod scene;
 pub mod settings;
 mod shaders;
@@ -28,7 +29,7 @@ pub use pipeline::{renderer::Renderer, AmbientOcclusion};
 pub use settings::{
     AoSettings, BlurSettings, Normalization, SettingsError, Technique, VaoSettings,
 };
-pub use view::{default_guard_band, FrameView, ScreenGeometry};
+pub use view::{default_guard_band, near_plane, FrameView, ScreenGeometry};
 
 use std::path::PathBuf;
 

@@ -57,6 +57,20 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
+/// Temporary files being written right now, so an interrupt handler can remove them
+/// ([`remove_partial_files`]).
+static IN_FLIGHT: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Remove every temporary file still being written (call from a Ctrl-C handler before exiting):
+/// an interrupted run leaves neither a half-written output nor a stray temporary file.
+pub fn remove_partial_files() {
+    if let Ok(files) = IN_FLIGHT.lock() {
+        for f in files.iter() {
+            let _ = std::fs::remove_file(f);
+        }
+    }
+}
+
 /// Write through `write` into a temporary file beside `path`, then rename it over `path`.
 pub fn write_atomically(
     path: &Path,
@@ -70,7 +84,13 @@ pub fn write_atomically(
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("tmp");
     // Keep the real extension last: encoders pick the format from it.
     let tmp = dir.join(format!(".{name}.{}.partial.{ext}", std::process::id()));
+    if let Ok(mut files) = IN_FLIGHT.lock() {
+        files.push(tmp.clone());
+    }
     let result = write(&tmp).and_then(|()| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
+    if let Ok(mut files) = IN_FLIGHT.lock() {
+        files.retain(|f| f != &tmp);
+    }
     if let Err(message) = result {
         let _ = std::fs::remove_file(&tmp);
         return Err(Error::Output {

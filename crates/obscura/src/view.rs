@@ -16,6 +16,12 @@ pub fn default_guard_band(height: u32) -> u32 {
     ((scaled / 16.0).ceil() as u32).max(1) * 16
 }
 
+/// The near plane used for a scene: linear depth does not depend on it, so it only has to be
+/// small against the scene (1e-5 of its diagonal).
+pub fn near_plane(scene: &crate::scene::Scene) -> f32 {
+    (scene.bounds().diagonal() * 1e-5).max(1e-5)
+}
+
 /// Everything a pass needs to go between pixels and view space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameView {

@@ -1,5 +1,7 @@
 pub mod bench;
+pub mod compare;
 pub mod demo;
 pub mod info;
+pub mod reference;
 pub mod render;
 pub mod scenes;

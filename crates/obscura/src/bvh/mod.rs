@@ -2,47 +2,55 @@
 //! held to (DESIGN.md, "Reference, metrics, evidence"), and the flat BVH2 that is uploaded to it.
 //!
 //! # What is where
-//! - `build.rs`: SAH-quality build with obvhs (PLOC + reinsertion + SAH leaf collapse), then our own
-//!   flattening into [`BvhNode`]s (sibling pairs adjacent, depth-first order) with the triangles copied
-//!   into leaf order so a leaf's vertices are contiguous in memory.
+//! - `build.rs`: SAH-quality build with obvhs (PLOC + reinsertion + SAH leaf collapse), then our
+//!   own flattening into [`BvhNode`]s (sibling pairs adjacent, depth-first order) with the
+//!   triangles copied into leaf order so a leaf's vertices are contiguous in memory.
 //! - `triangle.rs`: the ray/triangle test — the *watertight* test of Woop, Benthin and Wald
-//!   ("Watertight Ray/Triangle Intersection", JCGT 2013), not Möller–Trumbore. Why: this is the oracle;
-//!   AO rays start on surfaces and graze edges of closed meshes, and Möller–Trumbore in f32 lets a few
-//!   rays in a million slip through the shared edge of two triangles. The watertight test computes the
-//!   three edge functions from per-vertex values that do not depend on which triangle a vertex belongs
-//!   to, so a shared edge yields exactly opposite values on both sides and no ray leaks. Edges are
-//!   inclusive: a ray exactly through a shared edge (or vertex) reports every triangle touching it.
-//! - `traverse.rs`: the stack-based, nearest-child-first traversal. We do not use obvhs's own traversal
-//!   because (a) its `Ray::new` debug-asserts finite input (we must return "no hit" for NaN/inf rays),
-//!   (b) its ray/box test clamps tiny direction components to ±1/ε, which is not conservative and can
-//!   cull boxes the ray does pass through — unacceptable in an oracle — and it mishandles origins lying
-//!   exactly on a box face of a zero direction component, and (c) the GPU traversal will walk *this*
-//!   node layout with the same algorithm, so the CPU version is its line-by-line reference.
+//!   ("Watertight Ray/Triangle Intersection", JCGT 2013), not Möller–Trumbore. Why: this is the
+//!   oracle; AO rays start on surfaces and graze edges of closed meshes, and Möller–Trumbore in f32
+//!   rounds the two sides of a shared edge differently, so rays can slip through between them. The
+//!   watertight test computes the three edge functions from per-vertex values that do not depend on
+//!   which triangle a vertex belongs to, so a shared edge yields exactly opposite values on both
+//!   sides and no ray leaks. Edges are inclusive: a ray exactly through a shared edge (or vertex)
+//!   reports every triangle touching it.
+//! - `traverse.rs`: the stack-based, nearest-child-first traversal, over a CPU copy of the nodes in
+//!   which each sibling pair is transposed for one 4-wide box test (`NodePair`, one cache line);
+//!   the tree and its order are those of [`Bvh::nodes`]. We do not use obvhs's own traversal
+//!   because (a) its `Ray::new` debug-asserts finite input (we must return "no hit" for NaN/inf
+//!   rays), (b) its ray/box test clamps tiny direction components to ±1/ε, which is not
+//!   conservative and can cull boxes the ray does pass through — unacceptable in an oracle — and it
+//!   mishandles origins lying exactly on a box face of a zero direction component, and (c) the GPU
+//!   traversal will walk *this* node layout with the same algorithm, so the CPU version is its
+//!   line-by-line reference.
 //!
 //! # Rules a hit must pass (the scene contract, `scene/types.rs`)
-//! A candidate triangle hit with parameter `t` in `[t_min, t_max]` (inclusive, in units of `ray.dir`)
-//! counts when
-//! - it is a front face (counter-clockwise seen from the ray origin, `dot(dir, cross(p1-p0, p2-p0)) < 0`),
-//!   or the material [keeps back faces](crate::scene::Material::keeps_back_faces), and
+//! A candidate triangle hit with parameter `t` in `[t_min, t_max]` (inclusive, in units of
+//! `ray.dir`) counts when
+//! - it is a front face (counter-clockwise seen from the ray origin, `dot(dir, cross(p1-p0, p2-p0))
+//!   < 0`), or the material [keeps back faces](crate::scene::Material::keeps_back_faces), and
 //! - the material [passes the alpha test](crate::scene::Material::passes_alpha_test) at the uv
 //!   interpolated from `scene.uvs` with the hit's barycentrics.
 //!
-//! Triangles with zero area (as computed in f32), out-of-range vertex indices or non-finite vertices
-//! are left out of the BVH and never hit. A triangle whose material index is out of range is treated
-//! as opaque and single-sided. Rays with a non-finite or zero direction, a non-finite origin, or an
-//! empty/NaN interval hit nothing. Nothing here panics on scene data.
+//! Triangles with zero area (as computed in f32), out-of-range vertex indices or non-finite
+//! vertices are left out of the BVH and never hit. A triangle whose material index is out of range
+//! is treated as opaque and single-sided. Rays with a non-finite or zero direction, a non-finite
+//! origin, or an empty/NaN interval hit nothing. Nothing here panics on scene data.
 //!
 //! Every query takes the `&Scene` the BVH was built from: vertex positions are copied into the BVH
 //! (leaf order), but materials, uvs and textures are read from the scene at hit time.
 //!
 //! # GPU layout
-//! [`Bvh::nodes`] is a flat array of 32-byte [`BvhNode`]s, root at index 0; an inner node's two
-//! children are adjacent (`first`, `first + 1`); a leaf's triangles are `primitive_indices[first ..
-//! first + count]` (original triangle indices into `scene.triangles`). It maps onto WGSL as
-//! `struct BvhNode { min: vec3<f32>, first: u32, max: vec3<f32>, count: u32 }` (size 32, align 16).
+//! [`Bvh::nodes`] is a flat array of 32-byte [`BvhNode`]s (upload with `bytemuck::cast_slice`):
+//! the root at index 0, an unused pad at index 1 (an empty box, `min > max`), so that every sibling
+//! pair starts at an even index and a GPU can fetch both children as one 64-byte block; an inner
+//! node's two children are adjacent (`first`, `first + 1`); a leaf's triangles are
+//! `primitive_indices[first .. first + count]` (original indices into `scene.triangles`). It maps
+//! onto WGSL as `struct BvhNode { min: vec3<f32>, first: u32, max: vec3<f32>, count: u32 }` (size
+//! 32, align 16). [`Bvh::max_depth`] bounds the traversal stack. Upload the triangles in leaf order
+//! (`scene.triangles[primitive_indices[i]]` at slot `i`) and the GPU loop needs no indirection.
 //!
 //! Build threading: obvhs parallelises its build only with its `parallel` feature, which our
-//! dependency line does not enable, so the build runs on one thread (about a second for 250k
+//! dependency line does not enable, so the build runs on one thread (about 2 s for 250k
 //! triangles in release); queries are `&self` and meant to be spread over rays with rayon.
 
 mod build;
@@ -231,8 +239,8 @@ impl Bvh {
         hits
     }
 
-    /// Calls `f` for every hit with `t` in `[t_min, t_max]`, in traversal order (roughly near to far,
-    /// not sorted); `f` decides whether to continue, shrink the interval's far end, or stop.
+    /// Calls `f` for every hit with `t` in `[t_min, t_max]`, in traversal order (roughly near to
+    /// far, not sorted); `f` decides whether to continue, shrink the interval's far end, or stop.
     pub fn for_each_hit(
         &self,
         scene: &Scene,

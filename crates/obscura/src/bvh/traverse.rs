@@ -1,9 +1,9 @@
 //! Stack-based BVH2 traversal with the scene's hit rules; every public query is a thin wrapper.
 //!
 //! Nearest child first: at an inner node both children's boxes are tested (one 4-wide test of the
-//! sibling pair), the ray goes on with the child it enters first and pushes the other with its entry
-//! distance, which is checked again on pop (the interval may have shrunk meanwhile). This is the loop
-//! the GPU traversal copies.
+//! sibling pair), the ray goes on with the child it enters first and pushes the other with its
+//! entry distance, which is checked again on pop (the interval may have shrunk meanwhile). This is
+//! the loop the GPU traversal copies.
 
 use glam::Vec2;
 
@@ -17,8 +17,8 @@ use crate::scene::{AlphaMode, Scene};
 const INLINE_STACK: usize = 64;
 
 impl Bvh {
-    /// Walks the BVH, calling `on_hit` for every hit in the current `[t_min, t_max]` that passes the
-    /// scene's back-face and alpha rules.
+    /// Walks the BVH, calling `on_hit` for every hit in the current `[t_min, t_max]` that passes
+    /// the scene's back-face and alpha rules.
     #[inline(always)]
     pub(super) fn traverse(
         &self,
@@ -28,15 +28,14 @@ impl Bvh {
         t_max: f32,
         mut on_hit: impl FnMut(&Hit) -> HitAction,
     ) {
+        if t_min.is_nan() || t_max.is_nan() || t_min > t_max || self.pairs.is_empty() {
+            return;
+        }
         debug_assert_eq!(
             scene.triangles.len(),
             self.scene_triangle_count,
             "BVH queried with a scene it was not built from"
         );
-        // Also rejects NaN bounds.
-        if !(t_min <= t_max) || self.pairs.is_empty() {
-            return;
-        }
         let Some(pre) = RayPre::new(ray) else {
             return;
         };
@@ -66,18 +65,7 @@ impl Bvh {
         let mut pair_index = 0usize;
         loop {
             // Test both children; descend into the nearer one that was hit and push the farther.
-            let pair = &self.pairs[pair_index];
-            // Start fetching what either child leads to while its box is being tested: the
-            // traversal is bound by memory latency more than by arithmetic.
-            for lane in 0..2 {
-                let (first, count) = (pair.link[2 * lane] as usize, pair.link[2 * lane + 1]);
-                if count == 0 {
-                    prefetch(self.pairs.as_ptr().wrapping_add(first / 2));
-                } else {
-                    prefetch(self.leaf_vertices.as_ptr().wrapping_add(first));
-                }
-            }
-            let (mask, t_entry) = pre.pair_entry(pair, t_min, t_cull);
+            let (mask, t_entry) = pre.pair_entry(&self.pairs[pair_index], t_min, t_cull);
             let mut node = match mask {
                 1 => Some(2 * pair_index),
                 2 => Some(2 * pair_index + 1),
@@ -134,7 +122,7 @@ impl Bvh {
                                 t_max = t;
                                 t_cull = loosen(t_max);
                             }
-                            if !(t_min <= t_max) {
+                            if t_max < t_min {
                                 return;
                             }
                         }
@@ -181,16 +169,4 @@ pub(super) fn hit_uv(scene: &Scene, triangle: u32, u: f32, v: f32) -> Vec2 {
             .unwrap_or(Vec2::ZERO)
     };
     uv(0) * (1.0 - u - v) + uv(1) * u + uv(2) * v
-}
-
-/// Hint the CPU to load the cache line at `p` (no effect on results; a no-op off x86-64).
-#[inline(always)]
-fn prefetch<T>(p: *const T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch never faults and never reads into the program, whatever the address.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(p.cast());
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = p;
 }

@@ -4,10 +4,11 @@
 //! The ray is mapped to a space where it starts at the origin and runs along +z (translate, permute
 //! axes so the largest direction component is z, shear x and y). A triangle is hit when the origin
 //! lies inside its 2-D projection there, decided by the signs of three edge functions. Each edge
-//! function is computed from two transformed vertices only, and a vertex's transformed position does
-//! not depend on the triangle it belongs to, so two triangles sharing an edge get exactly negated
-//! values: no ray passes between them. Where an edge function is exactly zero it is recomputed in
-//! f64 (products of f32 are exact there), as the paper does, so the sign is exact too.
+//! function is computed from two transformed vertices only, and a vertex's transformed position
+//! does not depend on the triangle it belongs to, so two triangles sharing an edge get exactly
+//! negated values: no ray passes between them. Where an edge function is exactly zero it is
+//! recomputed in f64 (products of f32 are exact there), as the paper does, so the sign is exact
+//! too.
 
 use glam::{Mat3A, Vec3A, Vec3Swizzles, Vec4, Vec4Swizzles};
 
@@ -90,8 +91,8 @@ impl RayPre {
         row_y[ky] = 1.0;
         row_y[kz] = -sy;
         row_z[kz] = sz;
-        // `shear * a` = (row_x·a, row_y·a, row_z·a). Each row has one zero entry, so every component
-        // is a two-term sum and rounds exactly like the paper's `a[kx] - sx * a[kz]`.
+        // `shear * a` = (row_x·a, row_y·a, row_z·a). Each row has one zero entry, so every
+        // component is a two-term sum and rounds exactly like the paper's `a[kx] - sx * a[kz]`.
         let shear = Mat3A::from_cols(row_x.into(), row_y.into(), row_z.into()).transpose();
 
         // 1 / -0.0 = -inf: the sign test below also classifies negative zeros correctly.
@@ -150,8 +151,8 @@ impl RayPre {
         (mask, [entry.x, entry.y])
     }
 
-    /// The watertight test. Returns the hit when `t` (in units of `ray.dir`) is in `[t_min, t_max]`.
-    /// Degenerate triangles must be filtered out beforehand (see `is_valid_triangle`).
+    /// The watertight test. Returns the hit when `t` (in units of `ray.dir`) is in `[t_min,
+    /// t_max]`. Degenerate triangles must be filtered out beforehand (see `is_valid_triangle`).
     #[inline(always)]
     pub fn intersect(&self, v: &[Vec3A; 3], t_min: f32, t_max: f32) -> Option<TriHit> {
         // Sheared vertices, transposed: rows are (x of a, b, c), (y of a, b, c), (z of a, b, c).
@@ -160,7 +161,8 @@ impl RayPre {
         .transpose();
         let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
         // Scaled barycentrics of vertices 0, 1, 2, i.e. the edge functions of the opposite edges,
-        // all three at once: e0 = c.x b.y - c.y b.x, e1 = a.x c.y - a.y c.x, e2 = b.x a.y - b.y a.x.
+        // all three at once: e0 = c.x b.y - c.y b.x, e1 = a.x c.y - a.y c.x, e2 = b.x a.y - b.y
+        // a.x.
         let mut e = x.zxy() * y.yzx() - y.zxy() * x.yzx();
         if e.cmpeq(Vec3A::ZERO).any() {
             // Exactly on an edge in f32: decide in f64, where the products are exact.

@@ -54,8 +54,7 @@ impl<'g> Renderer<'g> {
         }
         let limits = gpu.device.limits();
         let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &limits)?;
-        // Linear depth does not depend on the near plane; keep it small relative to the scene.
-        let near = (scene_diagonal(scene) * 1e-5).max(1e-5);
+        let near = crate::view::near_plane(scene);
         let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32);
         gpu.check_errors()?;
         Ok(Self {
@@ -167,12 +166,4 @@ impl<'g> Renderer<'g> {
         }
         Ok(out)
     }
-}
-
-fn scene_diagonal(scene: &Scene) -> f32 {
-    let (min, max) = scene.positions.iter().fold(
-        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-        |(a, b), p| (a.min(*p), b.max(*p)),
-    );
-    (max - min).length()
 }

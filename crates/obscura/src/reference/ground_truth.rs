@@ -176,6 +176,12 @@ impl<'a> Tracer<'a> {
 
 /// `vao` model AO of one visible pixel (`x`, `y`) whose first surface is `surface`.
 pub fn vao_ao_at(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings) -> f32 {
+    vao_ao_at_counted(t, surface, x, y, s).0
+}
+
+/// [`vao_ao_at`] and the number of sample rays it traced.
+fn vao_ao_at_counted(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings) -> (f32, u64) {
+    let mut traced = 0;
     let screen = t.view.screen();
     let pixel = UVec2::new(x, y) + screen.guard_band;
     let pos = t.to_view(surface.world);
@@ -190,11 +196,12 @@ pub fn vao_ao_at(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings)
         let free = if sample_pixel == pixel.as_vec2() {
             column.start - column.end
         } else {
+            traced += 1;
             min_visibility_along(t, &frame, &column, sample_pixel + 0.5, s)
         };
         acc.add(&column, free);
     }
-    acc.finish(s)
+    (acc.finish(s), traced)
 }
 
 /// Minimum per-hit visibility of `column` over every surface along the camera ray through `px`.
@@ -316,37 +323,63 @@ pub fn render_reference(
     settings: &ReferenceSettings,
     progress: &(dyn Fn(u32) + Sync),
 ) -> Vec<f32> {
+    render_reference_counted(scene, bvh, view, settings, progress).0
+}
+
+/// [`render_reference`] that also returns how many rays it traced (primary rays, plus one per
+/// hemisphere ray or per traced VAO sample column).
+pub fn render_reference_counted(
+    scene: &Scene,
+    bvh: &Bvh,
+    view: FrameView,
+    settings: &ReferenceSettings,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Vec<f32>, u64) {
     let tracer = Tracer::new(scene, bvh, view);
     let done = std::sync::atomic::AtomicU32::new(0);
+    let rays = std::sync::atomic::AtomicU64::new(0);
+    let count = |n: u64| {
+        rays.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    };
     let (w, h) = (view.width, view.height);
-    (0..h)
+    let image = (0..h)
         .into_par_iter()
         .flat_map_iter(|y| {
             let row: Vec<f32> = (0..w)
                 .map(|x| {
                     let px = (UVec2::new(x, y) + view.guard_band).as_vec2() + 0.5;
+                    count(1);
                     let Some(surface) = tracer.first_surface(&tracer.camera_ray(px)) else {
                         return 1.0;
                     };
                     match settings.model {
-                        ReferenceModel::Vao => vao_ao_at(&tracer, &surface, x, y, &settings.vao),
-                        ReferenceModel::Hemisphere => hemisphere_ao_at(
-                            scene,
-                            bvh,
-                            surface.world,
-                            surface.normal,
-                            &HemisphereRays {
-                                radius: settings.vao.radius,
-                                spp: settings.spp,
-                                falloff: settings.falloff,
-                                rotation: pixel_rotation_2d(settings.seed, x, y),
-                            },
-                        ),
+                        ReferenceModel::Vao => {
+                            let (ao, traced) =
+                                vao_ao_at_counted(&tracer, &surface, x, y, &settings.vao);
+                            count(traced);
+                            ao
+                        }
+                        ReferenceModel::Hemisphere => {
+                            count(u64::from(settings.spp));
+                            hemisphere_ao_at(
+                                scene,
+                                bvh,
+                                surface.world,
+                                surface.normal,
+                                &HemisphereRays {
+                                    radius: settings.vao.radius,
+                                    spp: settings.spp,
+                                    falloff: settings.falloff,
+                                    rotation: pixel_rotation_2d(settings.seed, x, y),
+                                },
+                            )
+                        }
                     }
                 })
                 .collect();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
             row
         })
-        .collect()
+        .collect();
+    (image, rays.into_inner())
 }

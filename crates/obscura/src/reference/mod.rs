@@ -1,6 +1,7 @@
 //! References the GPU is held to. [`cpu_vao`] mirrors the VAO kernel on the CPU (same G-buffer,
 //! same arithmetic) so tests can check the GPU pass pixel by pixel.
 
+pub mod cache;
 pub mod cpu_blur;
 pub mod cpu_vao;
 pub mod ground_truth;

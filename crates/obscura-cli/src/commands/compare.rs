@@ -1,0 +1,164 @@
+//! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
+
+use super::reference::{compute_or_load, ReferenceArgs};
+use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
+use anyhow::{Context, Result};
+use clap::Args;
+use obscura::reference::cpu_blur::cpu_blur;
+use obscura::reference::ground_truth::ReferenceModel;
+use obscura::report::{write_report, Report, ReportInput, TechniqueImage};
+use obscura::scene::Scene;
+use obscura::{FrameView, Gpu, Renderer};
+use std::path::{Path, PathBuf};
+
+#[derive(Args)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Visible image size WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "640x360")]
+    size: (u32, u32),
+    /// Comma-separated techniques.
+    #[arg(long, default_value = "vao")]
+    techniques: String,
+    /// Ground-truth model: vao or hemisphere.
+    #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
+    reference_model: ReferenceModel,
+    #[command(flatten)]
+    reference: ReferenceArgs,
+    #[command(flatten)]
+    ao: AoArgs,
+    /// Output folder (created if missing): report.json, report.md, index.html and the images.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Everything `compare` needs about one view, also used by `demo`.
+pub struct Comparison<'a> {
+    pub scene_spec: &'a str,
+    pub scene: &'a Scene,
+    pub camera_name: &'a str,
+    pub camera: obscura::scene::Camera,
+    pub width: u32,
+    pub height: u32,
+    pub guard_band: u32,
+}
+
+/// Render every technique, get the reference (cached), write the report into `out`.
+pub fn compare(
+    gpu: &Gpu,
+    c: &Comparison,
+    techniques: &[obscura::Technique],
+    ao: &AoArgs,
+    reference: &ReferenceArgs,
+    model: ReferenceModel,
+    out: &Path,
+) -> Result<Report> {
+    let reference_settings = reference.settings(model, ao)?;
+    let mut images = Vec::new();
+    let mut gbuffer = None;
+    for &technique in techniques {
+        let settings = ao.settings(technique)?;
+        let mut renderer = Renderer::new(gpu, c.scene, &settings, c.width, c.height, c.guard_band)?;
+        renderer.render(&c.camera, None)?;
+        images.push((technique.name(), renderer.read_ao()?));
+        gbuffer = Some(renderer.read_gbuffer()?);
+    }
+    let gbuffer = gbuffer.context("no technique rendered")?;
+    let depth = gbuffer.visible_depth(c.guard_band);
+    let view = FrameView::new(
+        c.camera,
+        c.width,
+        c.height,
+        c.guard_band,
+        obscura::near_plane(c.scene),
+    );
+    let mut reference_image = compute_or_load(
+        c.scene_spec,
+        c.scene,
+        view,
+        &reference_settings,
+        !reference.no_cache,
+    )?;
+    // The `vao` model keeps the kernel's per-pixel rotation noise; it goes through the same
+    // bilateral blur as the techniques (on the same depth) so that only hidden geometry differs.
+    let blur = ao.settings(obscura::Technique::Vao)?.blur;
+    if model == ReferenceModel::Vao && blur.enabled {
+        reference_image = cpu_blur(&reference_image, &gbuffer, &view.screen(), &blur);
+    }
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("cannot create output folder '{}'", out.display()))?;
+    let input = ReportInput {
+        scene: &c.scene.name,
+        camera: c.camera_name,
+        width: c.width,
+        height: c.height,
+        guard_band: c.guard_band,
+        reference_model: model.name(),
+        spp: (model == ReferenceModel::Hemisphere).then_some(reference_settings.spp),
+        reference: &reference_image,
+        depth: &depth,
+        techniques: images
+            .iter()
+            .map(|(name, ao)| TechniqueImage { name, ao })
+            .collect(),
+        halo_radius_px: 4,
+        halo_relative_jump: 0.1,
+        adapter: &gpu.summary.name,
+    };
+    Ok(write_report(out, &input)?)
+}
+
+pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
+    // Check everything typed before the slow parts.
+    let techniques = parse_techniques(&args.techniques)?;
+    args.reference.settings(args.reference_model, &args.ao)?;
+    for &t in &techniques {
+        args.ao.settings(t)?;
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| {
+        format!(
+            "cannot create output folder '{}': check the path and permissions",
+            args.out.display()
+        )
+    })?;
+    let probe = args
+        .out
+        .join(format!(".obscura-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("output folder '{}' is not writable", args.out.display()))?;
+    let _ = std::fs::remove_file(&probe);
+    let (width, height) = args.size;
+    let scene = args.scene.load()?;
+    let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
+    let camera_name = args.scene.camera_name(&scene);
+    let gpu = Gpu::new(options)?;
+    let comparison = Comparison {
+        scene_spec: &args.scene.scene,
+        scene: &scene,
+        camera_name: &camera_name,
+        camera,
+        width,
+        height,
+        guard_band: args.ao.guard_band(height),
+    };
+    let report = compare(
+        &gpu,
+        &comparison,
+        &techniques,
+        &args.ao,
+        &args.reference,
+        args.reference_model,
+        &args.out,
+    )?;
+    println!(
+        "{}",
+        std::fs::read_to_string(args.out.join("report.md")).unwrap_or_default()
+    );
+    eprintln!(
+        "wrote {} ({} techniques)",
+        args.out.join("index.html").display(),
+        report.results.len()
+    );
+    Ok(())
+}

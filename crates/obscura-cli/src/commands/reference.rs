@@ -1,0 +1,141 @@
+//! `obscura reference`: the ray-traced ground truth of one view, on the CPU.
+
+use crate::args::{parse_size, AoArgs, SceneArgs};
+use crate::progress::bar;
+use anyhow::{bail, Result};
+use clap::Args;
+use obscura::bvh::Bvh;
+use obscura::reference::cache;
+use obscura::reference::ground_truth::{
+    render_reference_counted, ReferenceModel, ReferenceSettings,
+};
+use obscura::scene::Scene;
+use obscura::{output, FrameView, Technique};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Options shared by `reference` and `compare` for the reference model.
+#[derive(Args, Clone, Debug)]
+pub struct ReferenceArgs {
+    /// Hemisphere rays per pixel.
+    #[arg(long, default_value_t = 1024)]
+    pub spp: u32,
+    /// Hemisphere model: weight hits by max(0, 1 - t/R) instead of counting them fully.
+    #[arg(long)]
+    pub falloff: bool,
+    /// Seed of the hemisphere model's per-pixel sample rotations.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Recompute the reference even if the cache has it.
+    #[arg(long)]
+    pub no_cache: bool,
+}
+
+impl ReferenceArgs {
+    pub fn settings(&self, model: ReferenceModel, ao: &AoArgs) -> Result<ReferenceSettings> {
+        let settings = ReferenceSettings {
+            model,
+            vao: ao.settings(Technique::Vao)?.vao,
+            spp: self.spp,
+            falloff: self.falloff,
+            seed: self.seed,
+        };
+        if let Err(e) = settings.validate() {
+            bail!(e);
+        }
+        Ok(settings)
+    }
+}
+
+#[derive(Args)]
+pub struct ReferenceCmdArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Visible image size WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "640x360")]
+    size: (u32, u32),
+    /// Ground-truth model: vao (the quantity VAO estimates, nothing hidden) or hemisphere.
+    #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
+    model: ReferenceModel,
+    #[command(flatten)]
+    reference: ReferenceArgs,
+    #[command(flatten)]
+    ao: AoArgs,
+    /// Output image: .exr (float, linear) or .png (8-bit).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// The reference for `view`, from the cache when it has it; reports rays/s when computed.
+pub fn compute_or_load(
+    scene_spec: &str,
+    scene: &Scene,
+    view: FrameView,
+    settings: &ReferenceSettings,
+    use_cache: bool,
+) -> Result<Vec<f32>> {
+    let dir = cache::cache_dir();
+    let key = cache::key(scene_spec, &view, settings);
+    let pixels = (view.width * view.height) as usize;
+    if use_cache {
+        if let Some(image) = cache::load(&dir, &key, pixels) {
+            eprintln!("reference: reused from the cache ({})", dir.display());
+            return Ok(image);
+        }
+    }
+    let start = Instant::now();
+    let bvh = Bvh::build(scene);
+    let build = start.elapsed().as_secs_f64();
+    let progress = bar(
+        u64::from(view.height),
+        &format!("{} reference", settings.model),
+    );
+    let trace_start = Instant::now();
+    let (image, rays) = render_reference_counted(scene, &bvh, view, settings, &|_| progress.inc(1));
+    let seconds = trace_start.elapsed().as_secs_f64();
+    progress.finish_and_clear();
+    eprintln!(
+        "reference: {} model, BVH {:.2} s, {} rays in {:.2} s = {:.2} M rays/s on {} threads",
+        settings.model,
+        build,
+        rays,
+        seconds,
+        rays as f64 / seconds / 1e6,
+        rayon_threads()
+    );
+    if use_cache {
+        if let Err(e) = cache::store(&dir, &key, &image) {
+            eprintln!("warning: could not cache the reference: {e}");
+        }
+    }
+    Ok(image)
+}
+
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+pub fn run(args: &ReferenceCmdArgs) -> Result<()> {
+    output::check_writable(&args.out)?;
+    let settings = args.reference.settings(args.model, &args.ao)?;
+    let (width, height) = args.size;
+    let scene = args.scene.load()?;
+    let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
+    let view = FrameView::new(
+        camera,
+        width,
+        height,
+        args.ao.guard_band(height),
+        obscura::near_plane(&scene),
+    );
+    let image = compute_or_load(
+        &args.scene.scene,
+        &scene,
+        view,
+        &settings,
+        !args.reference.no_cache,
+    )?;
+    output::write_ao(&args.out, width, height, &image)?;
+    eprintln!("wrote {}", args.out.display());
+    Ok(())
+}

@@ -1,0 +1,521 @@
+//! Comparison reports: the evidence researchers read when they compare AO
+//! techniques against a ray-traced reference.
+//!
+//! [`build_report`] computes the metrics of every technique (see
+//! [`crate::metrics::summarize`]) and returns a [`Report`]; [`write_report`]
+//! does the same and also writes, into an existing directory:
+//!
+//! | file | content |
+//! |---|---|
+//! | `report.json` | the [`Report`], pretty-printed (see *JSON* below) |
+//! | `report.md` | the same as a Markdown table under a header line naming scene, camera, size and reference |
+//! | `reference.png` | the reference AO, 8-bit grey |
+//! | `<technique>.png` | each technique's AO, 8-bit grey |
+//! | `<technique>.diff.png` | heat map of technique − reference (see [`heatmap_rgb`]) |
+//! | `index.html` | a self-contained page: metrics table, and per technique the reference, the technique and its heat map side by side with a colour legend |
+//!
+//! # Images
+//! Grey PNGs hold the AO value clamped to `[0, 1]` times 255, rounded — the
+//! raw value, not gamma-encoded, like `output::write_ao`, so the pictures look
+//! the same as the renderer's own outputs.
+//!
+//! Heat maps use one symmetric scale `±s` for every technique, so that their
+//! colours are comparable: `s` is the 99th percentile (nearest rank) of
+//! `|technique − reference|` pooled over all pixels of all techniques,
+//! rounded *up* to the next value of the 1-2-5 series (0.01, 0.02, 0.05,
+//! 0.1, 0.2, 0.5, 1, …; never below 0.01). The percentile rather than the
+//! maximum keeps a few outlier pixels (fireflies, single silhouette pixels)
+//! from washing out the whole map; the floor keeps an exact match white
+//! instead of amplifying rounding noise; the rounding gives a legend that
+//! reads at a glance. Differences beyond `±s` saturate.
+//!
+//! # JSON
+//! JSON has no infinity or NaN, but PSNR is `+∞` for a technique identical to
+//! the reference. Every `f64` metric is therefore written as `null` when it is
+//! not finite. Reading back, `null` becomes `+∞` for `psnr` (the only
+//! non-finite value a PSNR of finite images can take: `MSE = 0`) and NaN for
+//! the other metrics (which are always finite for valid inputs, so `null`
+//! never appears there in a report written by this module). Other readers
+//! (Python's `json`, `jq`) see `null` and must treat a `null` PSNR as "exact
+//! match". Finite values round-trip to within one ulp: serde_json's default
+//! float parser is not always correctly rounded (enable its `float_roundtrip`
+//! feature for bit-exact values).
+//!
+//! # Files and failures
+//! Technique names become file names, so they must match `[a-z0-9+_-]+`, be
+//! unique and not be `reference`. All inputs are validated before anything is
+//! written. Every file is then first written to a temporary sibling
+//! `.NAME.partial`; only when all of them were written are they renamed into
+//! place (`index.html` last, so the page never points at a missing picture).
+//! On any error the temporary files — and the files this call already renamed
+//! into place, should a rename fail — are removed, so a failed call leaves no
+//! half-written or partial report behind (files of an older report that this
+//! call did not reach stay as they were). Two concurrent calls on the same
+//! directory are not supported: they share the temporary names.
+
+mod files;
+mod heatmap;
+mod html;
+mod json;
+mod markdown;
+#[cfg(test)]
+mod tests;
+
+pub use self::heatmap::heatmap_rgb;
+
+use crate::metrics::{self, Image, MetricsError};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// One technique's AO image, `width × height` values, row-major, top row
+/// first.
+#[derive(Debug, Clone, Copy)]
+pub struct TechniqueImage<'a> {
+    /// Short name used in the tables and in file names: `[a-z0-9+_-]+`.
+    pub name: &'a str,
+    /// AO values, nominally in `[0, 1]` (1 = unoccluded); must be finite.
+    pub ao: &'a [f32],
+}
+
+/// Everything a report is made of. Every image is the `width × height`
+/// visible image, row-major, top row first.
+#[derive(Debug, Clone)]
+pub struct ReportInput<'a> {
+    /// Scene name, printed in the report.
+    pub scene: &'a str,
+    /// Camera name, printed in the report.
+    pub camera: &'a str,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Guard band the frame was rendered with, in pixels (printed only).
+    pub guard_band: u32,
+    /// How the reference was computed: `"vao"` or `"hemisphere"`.
+    pub reference_model: &'a str,
+    /// Hemisphere rays per pixel; `Some` exactly when `reference_model` is
+    /// `"hemisphere"`, `None` for the `"vao"` model.
+    pub spp: Option<u32>,
+    /// Reference AO, the ground truth every technique is compared against.
+    pub reference: &'a [f32],
+    /// Linear view depth of the visible image (≤ 0 or non-finite:
+    /// background); defines the halo band.
+    pub depth: &'a [f32],
+    /// The techniques to compare, in table order.
+    pub techniques: Vec<TechniqueImage<'a>>,
+    /// Halo band radius in pixels around depth discontinuities, e.g. 4.
+    pub halo_radius_px: usize,
+    /// Relative depth jump that makes a discontinuity, e.g. 0.1.
+    pub halo_relative_jump: f32,
+    /// GPU adapter description, printed in the page.
+    pub adapter: &'a str,
+}
+
+/// The metrics of one technique against the reference.
+///
+/// In JSON a non-finite value is written as `null`; a `null` `psnr` reads
+/// back as `+∞` (exact match), any other `null` as NaN (see the module docs).
+#[derive(serde::Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
+pub struct TechniqueResult {
+    /// Technique name.
+    pub technique: String,
+    /// Mean squared error.
+    #[serde(with = "json::finite_or_null")]
+    pub mse: f64,
+    /// Mean absolute error.
+    #[serde(with = "json::finite_or_null")]
+    pub mae: f64,
+    /// PSNR in dB (data range 1); `+∞` (JSON `null`) for an exact match.
+    #[serde(with = "json::psnr")]
+    pub psnr: f64,
+    /// Mean SSIM.
+    #[serde(with = "json::finite_or_null")]
+    pub ssim: f64,
+    /// Mean positive error over the halo band (≥ 0).
+    #[serde(with = "json::finite_or_null")]
+    pub halo_bright: f64,
+    /// Mean negative error over the halo band (≤ 0).
+    #[serde(with = "json::finite_or_null")]
+    pub halo_dark: f64,
+}
+
+/// How the reference image was computed.
+#[derive(serde::Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
+pub struct ReferenceInfo {
+    /// `"vao"` or `"hemisphere"`.
+    pub model: String,
+    /// Hemisphere rays per pixel (`None` for `"vao"`).
+    pub spp: Option<u32>,
+}
+
+/// A whole comparison: what was rendered and every technique's metrics.
+#[derive(serde::Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
+pub struct Report {
+    /// Scene name.
+    pub scene: String,
+    /// Camera name.
+    pub camera: String,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Guard band in pixels.
+    pub guard_band: u32,
+    /// How the reference was computed.
+    pub reference: ReferenceInfo,
+    /// One entry per technique, in input order.
+    pub results: Vec<TechniqueResult>,
+}
+
+/// Why a report could not be built or written.
+#[derive(Debug)]
+pub enum ReportError {
+    /// A metric rejected its input (e.g. images smaller than the 11×11 SSIM
+    /// window, or a negative `halo_relative_jump`).
+    Metrics(MetricsError),
+    /// A file or the output directory could not be written.
+    Io {
+        /// The file (or directory) concerned.
+        path: PathBuf,
+        /// What went wrong and, where known, what to do about it.
+        message: String,
+    },
+    /// The [`ReportInput`] is inconsistent; the message names the field and
+    /// the fix.
+    Input(String),
+}
+
+impl fmt::Display for ReportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReportError::Metrics(e) => write!(
+                f,
+                "could not compute the report metrics: {e} (check the images and halo \
+                 parameters passed in ReportInput)"
+            ),
+            ReportError::Io { path, message } => {
+                write!(f, "could not write '{}': {message}", path.display())
+            }
+            ReportError::Input(message) => write!(f, "invalid report input: {message}"),
+        }
+    }
+}
+
+// The metrics error is part of the Display text, so it is deliberately not
+// also returned by `source()` (error reporters would print it twice).
+impl std::error::Error for ReportError {}
+
+impl From<MetricsError> for ReportError {
+    fn from(e: MetricsError) -> Self {
+        ReportError::Metrics(e)
+    }
+}
+
+/// Computes every technique's metrics against the reference. Writes nothing.
+///
+/// # Errors
+/// [`ReportError::Input`] for an inconsistent input (slice length, technique
+/// name, reference model/spp, non-finite AO value, no techniques);
+/// [`ReportError::Metrics`] when a metric rejects it (image smaller than
+/// 11×11, negative `halo_relative_jump`).
+pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
+    validate(input)?;
+    let (w, h) = (input.width as usize, input.height as usize);
+    let reference = Image::new(w, h, input.reference)?;
+    let depth = Image::new(w, h, input.depth)?;
+    let results = input
+        .techniques
+        .iter()
+        .map(|t| {
+            let s = metrics::summarize(
+                &Image::new(w, h, t.ao)?,
+                &reference,
+                &depth,
+                input.halo_radius_px,
+                input.halo_relative_jump,
+            )?;
+            Ok(TechniqueResult {
+                technique: t.name.to_owned(),
+                mse: s.mse,
+                mae: s.mae,
+                psnr: s.psnr,
+                ssim: s.ssim,
+                halo_bright: s.halo_bright,
+                halo_dark: s.halo_dark,
+            })
+        })
+        .collect::<Result<Vec<_>, ReportError>>()?;
+    Ok(Report {
+        scene: input.scene.to_owned(),
+        camera: input.camera.to_owned(),
+        width: input.width,
+        height: input.height,
+        guard_band: input.guard_band,
+        reference: ReferenceInfo {
+            model: input.reference_model.to_owned(),
+            spp: input.spp,
+        },
+        results,
+    })
+}
+
+/// [`build_report`], then writes the report files into `dir`, which must
+/// exist (see the module docs for the files and the failure guarantees).
+///
+/// # Errors
+/// As [`build_report`], plus [`ReportError::Io`] when `dir` is not an
+/// existing directory or a file cannot be written.
+pub fn write_report(dir: &Path, input: &ReportInput) -> Result<Report, ReportError> {
+    // Cheap checks first: a typo in the directory should not cost a full
+    // metrics pass.
+    if !dir.is_dir() {
+        let message = if dir.exists() {
+            "this is not a directory: pass the directory the report files should go into"
+        } else {
+            "the output directory does not exist: create it first (write_report does not \
+             create directories)"
+        };
+        return Err(ReportError::Io {
+            path: dir.to_path_buf(),
+            message: message.to_owned(),
+        });
+    }
+    let report = build_report(input)?;
+    let scale = heatmap::diff_scale(input.reference, input.techniques.iter().map(|t| t.ao));
+    let (w, h) = (input.width, input.height);
+
+    let mut staging = files::Staging::new(dir);
+    staging.stage("reference.png", |out| {
+        files::write_png(
+            out,
+            w,
+            h,
+            &files::grey8(input.reference),
+            files::Color::Grey,
+        )
+    })?;
+    for t in &input.techniques {
+        staging.stage(&format!("{}.png", t.name), |out| {
+            files::write_png(out, w, h, &files::grey8(t.ao), files::Color::Grey)
+        })?;
+        staging.stage(&format!("{}.diff.png", t.name), |out| {
+            // f32 is plenty for a picture quantised to 8 bits.
+            let diff: Vec<f32> =
+                t.ao.iter()
+                    .zip(input.reference)
+                    .map(|(a, r)| a - r)
+                    .collect();
+            let rgb = heatmap_rgb(&diff, scale as f32);
+            files::write_png(out, w, h, &rgb, files::Color::Rgb)
+        })?;
+    }
+    staging.stage("report.json", |out| {
+        serde_json::to_writer_pretty(&mut *out, &report).map_err(|e| e.to_string())?;
+        out.write_all(b"\n").map_err(|e| e.to_string())
+    })?;
+    let md = markdown::render(&report, input, scale);
+    staging.stage("report.md", |out| {
+        out.write_all(md.as_bytes()).map_err(|e| e.to_string())
+    })?;
+    let page = html::render(&report, input, scale);
+    // Staged (and therefore renamed) last: see the module docs.
+    staging.stage("index.html", |out| {
+        out.write_all(page.as_bytes()).map_err(|e| e.to_string())
+    })?;
+    staging.commit()?;
+    Ok(report)
+}
+
+/// The one place that decides which file names are allowed.
+fn is_valid_name(name: &str) -> bool {
+    !name.is_empty()
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b"+_-".contains(&b))
+}
+
+/// A valid name close to `name`, offered in the error message.
+fn suggest_name(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            let c = c.to_ascii_lowercase();
+            if is_valid_name(c.encode_utf8(&mut [0; 4])) {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    if s.is_empty() || s == "reference" {
+        format!("{s}-technique").trim_start_matches('-').to_owned()
+    } else {
+        s
+    }
+}
+
+/// Checks a slice's length, naming it in the error.
+fn check_len(what: &str, len: usize, width: u32, height: u32, n: usize) -> Result<(), ReportError> {
+    if len == n {
+        Ok(())
+    } else {
+        Err(ReportError::Input(format!(
+            "{what} has {len} values but the image is {width}x{height} = {n} pixels: pass \
+             exactly width*height values (the visible image, row-major, top row first)"
+        )))
+    }
+}
+
+/// The first non-finite value, named for the error message.
+fn check_finite(what: &str, data: &[f32], width: u32) -> Result<(), ReportError> {
+    match data.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(ReportError::Input(format!(
+            "{what} has a non-finite AO value ({}) at pixel ({}, {}): AO values must be \
+             finite, nominally in [0, 1]",
+            data[i],
+            i % width as usize,
+            i / width as usize
+        ))),
+    }
+}
+
+/// Every check that does not need a metric, so that inconsistent input fails
+/// with a message naming the field before any work (or any file) is done.
+fn validate(input: &ReportInput) -> Result<(), ReportError> {
+    let (w, h) = (input.width, input.height);
+    if w == 0 || h == 0 {
+        return Err(ReportError::Input(format!(
+            "the image is {w}x{h}: width and height must both be positive"
+        )));
+    }
+    let n = (w as usize).checked_mul(h as usize).ok_or_else(|| {
+        ReportError::Input(format!("a {w}x{h} image is too large for this platform"))
+    })?;
+
+    match (input.reference_model, input.spp) {
+        ("vao", None) => {}
+        ("vao", Some(spp)) => {
+            return Err(ReportError::Input(format!(
+                "spp is Some({spp}) but the \"vao\" reference model has no rays per pixel: \
+                 pass spp: None"
+            )))
+        }
+        ("hemisphere", Some(spp)) if spp > 0 => {}
+        ("hemisphere", _) => {
+            return Err(ReportError::Input(
+                "the \"hemisphere\" reference model needs spp: Some(rays per pixel), at least 1"
+                    .to_owned(),
+            ))
+        }
+        (model, _) => {
+            return Err(ReportError::Input(format!(
+                "unknown reference_model {model:?}: use \"vao\" or \"hemisphere\""
+            )))
+        }
+    }
+
+    if input.techniques.is_empty() {
+        return Err(ReportError::Input(
+            "no techniques: a report compares at least one technique against the reference"
+                .to_owned(),
+        ));
+    }
+    for (i, t) in input.techniques.iter().enumerate() {
+        if !is_valid_name(t.name) {
+            return Err(ReportError::Input(format!(
+                "technique name {:?} cannot be used in file names ({0}.png, {0}.diff.png): use \
+                 only lowercase ASCII letters, digits, '+', '_' and '-', e.g. {:?}",
+                t.name,
+                suggest_name(t.name)
+            )));
+        }
+        if t.name == "reference" {
+            return Err(ReportError::Input(
+                "technique name \"reference\" would overwrite reference.png: rename the technique"
+                    .to_owned(),
+            ));
+        }
+        if input.techniques[..i].iter().any(|o| o.name == t.name) {
+            return Err(ReportError::Input(format!(
+                "technique name {:?} appears twice: names must be unique (they name the files)",
+                t.name
+            )));
+        }
+    }
+
+    check_len("reference", input.reference.len(), w, h, n)?;
+    check_len("depth", input.depth.len(), w, h, n)?;
+    for t in &input.techniques {
+        check_len(&format!("technique {:?}", t.name), t.ao.len(), w, h, n)?;
+    }
+    // The metrics check this too, but cannot say *which* technique is bad.
+    check_finite("reference", input.reference, w)?;
+    for t in &input.techniques {
+        check_finite(&format!("technique {:?}", t.name), t.ao, w)?;
+    }
+    Ok(())
+}
+
+/// The six metric cells of a table row, shared by the Markdown and HTML
+/// tables so that both print the same numbers. The JSON keeps full
+/// precision; these are for reading.
+fn metric_cells(r: &TechniqueResult) -> [String; 6] {
+    // -0.0 would print as "-0.0000".
+    let fixed = |v: f64| {
+        if v.is_nan() {
+            "n/a".to_owned()
+        } else {
+            format!("{:.4}", if v == 0.0 { 0.0 } else { v })
+        }
+    };
+    let psnr = if r.psnr == f64::INFINITY {
+        "∞".to_owned()
+    } else if r.psnr.is_nan() {
+        "n/a".to_owned()
+    } else {
+        format!("{:.2}", r.psnr)
+    };
+    [
+        // MSE spans orders of magnitude between techniques: scientific
+        // notation keeps its significant digits comparable.
+        if r.mse.is_nan() {
+            "n/a".to_owned()
+        } else {
+            format!("{:.3e}", r.mse)
+        },
+        fixed(r.mae),
+        psnr,
+        fixed(r.ssim),
+        fixed(r.halo_bright),
+        fixed(r.halo_dark),
+    ]
+}
+
+/// Column headers matching [`metric_cells`].
+const METRIC_HEADERS: [&str; 6] = [
+    "MSE",
+    "MAE",
+    "PSNR (dB)",
+    "SSIM",
+    "bright halo",
+    "dark halo",
+];
+
+/// `"vao"` or `"hemisphere, 256 rays per pixel"`.
+fn reference_description(info: &ReferenceInfo) -> String {
+    match info.spp {
+        Some(spp) => format!("{}, {spp} rays per pixel", info.model),
+        None => info.model.clone(),
+    }
+}
+
+/// The heat map scale as printed in legends: `0.05`, `1`, or `2e30` for
+/// absurd inputs.
+fn format_scale(scale: f64) -> String {
+    if scale < 1e4 {
+        format!("{scale}")
+    } else {
+        format!("{scale:e}")
+    }
+}
