@@ -305,3 +305,204 @@ fn bench_reports_every_pass() {
     }
     assert!(r["total_ms"].as_f64().is_some_and(|t| t > 0.0));
 }
+
+fn obscura_cached(args: &[&str], cache: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(args)
+        .env("OBSCURA_CACHE_DIR", cache)
+        .output()
+        .expect("run obscura")
+}
+
+#[test]
+fn compare_writes_a_report_and_reuses_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().join("cache");
+    let out = dir.path().join("report");
+    let args = [
+        "compare",
+        "--scene",
+        "cornell",
+        "--size",
+        "64x48",
+        "--techniques",
+        "vao",
+        "--reference-model",
+        "vao",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = obscura_cached(&args, &cache);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("rays/s"),
+        "the first run computes: {}",
+        stderr(&o)
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(v["scene"], "cornell");
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(64), Some(48))
+    );
+    assert_eq!(v["reference"]["model"], "vao");
+    let results = v["results"].as_array().unwrap();
+    assert_eq!(results.len(), 1);
+    assert_eq!(results[0]["technique"], "vao");
+    for key in ["mse", "mae", "psnr", "ssim", "halo_bright", "halo_dark"] {
+        assert!(results[0].get(key).is_some(), "{key} missing");
+    }
+    let mse = results[0]["mse"].as_f64().unwrap();
+    assert!((0.0..0.1).contains(&mse), "mse {mse}");
+    for f in [
+        "report.md",
+        "index.html",
+        "reference.png",
+        "vao.png",
+        "vao.diff.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    // Same scene, camera, size and model: the reference comes from the cache.
+    let o = obscura_cached(&args, &cache);
+    assert!(
+        o.status.success() && stderr(&o).contains("reused"),
+        "{}",
+        stderr(&o)
+    );
+    let again: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(again, v, "a cached reference gives the same report");
+}
+
+#[test]
+fn reference_writes_a_float_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let exr = dir.path().join("ref.exr");
+    let o = obscura_cached(
+        &[
+            "reference",
+            "--scene",
+            "cornell",
+            "--size",
+            "48x32",
+            "--model",
+            "hemisphere",
+            "--spp",
+            "16",
+            "--out",
+            exr.to_str().unwrap(),
+        ],
+        &dir.path().join("cache"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&exr).unwrap().to_rgb32f();
+    assert_eq!((img.width(), img.height()), (48, 32));
+    assert!(img.pixels().all(|p| (0.0..=1.0).contains(&p[0])));
+    assert!(
+        img.pixels().any(|p| p[0] < 0.9),
+        "the Cornell box has occluded corners"
+    );
+}
+
+#[test]
+fn compare_and_reference_reject_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r");
+    let out_s = out.to_str().unwrap();
+    let o = obscura(&[
+        "compare",
+        "--size",
+        "64x48",
+        "--reference-model",
+        "photon",
+        "--out",
+        out_s,
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("photon"),
+        "{}",
+        stderr(&o)
+    );
+    let o = obscura(&[
+        "compare",
+        "--size",
+        "64x48",
+        "--reference-model",
+        "hemisphere",
+        "--spp",
+        "0",
+        "--out",
+        out_s,
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("spp"),
+        "{}",
+        stderr(&o)
+    );
+    let o = obscura(&[
+        "reference",
+        "--size",
+        "64x48",
+        "--model",
+        "hemisphere",
+        "--spp",
+        "0",
+        "--out",
+        "x.exr",
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("spp"),
+        "{}",
+        stderr(&o)
+    );
+    // An output folder that cannot be created: its parent is a file.
+    let file = write(dir.path(), "file", b"x");
+    let blocked = file.join("sub");
+    let o = obscura(&[
+        "compare",
+        "--size",
+        "64x48",
+        "--out",
+        blocked.to_str().unwrap(),
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("output folder"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!stderr(&o).contains("panicked"));
+}
+
+#[test]
+fn ctrl_c_during_reference_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ref.exr");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args([
+            "reference",
+            "--scene",
+            "grass",
+            "--size",
+            "320x240",
+            "--model",
+            "hemisphere",
+            "--spp",
+            "100000",
+        ])
+        .args(["--no-cache", "--out", out.to_str().unwrap()])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(800));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "interrupted runs exit with 130");
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(left.is_empty(), "files left after Ctrl-C: {left:?}");
+}

@@ -45,6 +45,8 @@ pub struct Comparison<'a> {
 }
 
 /// Render every technique, get the reference (cached), write the report into `out`.
+/// `on_render` sees each technique's renderer after its frame (e.g. to write a composite).
+#[allow(clippy::too_many_arguments)]
 pub fn compare(
     gpu: &Gpu,
     c: &Comparison,
@@ -53,6 +55,7 @@ pub fn compare(
     reference: &ReferenceArgs,
     model: ReferenceModel,
     out: &Path,
+    on_render: &mut dyn FnMut(obscura::Technique, &Renderer) -> Result<()>,
 ) -> Result<Report> {
     let reference_settings = reference.settings(model, ao)?;
     let mut images = Vec::new();
@@ -63,6 +66,7 @@ pub fn compare(
         renderer.render(&c.camera, None)?;
         images.push((technique.name(), renderer.read_ao()?));
         gbuffer = Some(renderer.read_gbuffer()?);
+        on_render(technique, &renderer)?;
     }
     let gbuffer = gbuffer.context("no technique rendered")?;
     let depth = gbuffer.visible_depth(c.guard_band);
@@ -150,6 +154,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         &args.reference,
         args.reference_model,
         &args.out,
+        &mut |_, _| Ok(()),
     )?;
     println!(
         "{}",
