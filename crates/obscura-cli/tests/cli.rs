@@ -506,3 +506,20 @@ fn ctrl_c_during_reference_leaves_no_file() {
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert!(left.is_empty(), "files left after Ctrl-C: {left:?}");
 }
+
+#[test]
+fn no_matching_adapter_says_how_to_get_one() {
+    let o = obscura(&["info", "--adapter", "no-such-gpu-anywhere"]);
+    assert!(!o.status.success());
+    let err = stderr(&o);
+    assert!(
+        err.contains("no-such-gpu-anywhere") && err.contains("mesa-vulkan-drivers"),
+        "{err}"
+    );
+    let o = obscura(&["info", "--backend", "glide"]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("glide"),
+        "{}",
+        stderr(&o)
+    );
+}

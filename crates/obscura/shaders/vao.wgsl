@@ -22,7 +22,7 @@ struct VaoParams {
     radius: f32,
     thickness: f32,
     exponent: f32,
-    sample_count: u32,
+    _pad0: u32, // the sample count is the pipeline constant SAMPLE_COUNT
     // Samples whose clipped column is shorter than this (world units) contribute nothing.
     min_column: f32,
     // 0: the paper's 2/N normalisation, 1: normalise by the clipped columns' own length.

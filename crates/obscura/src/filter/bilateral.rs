@@ -102,32 +102,18 @@ impl BilateralBlur {
             ),
         ];
         for (name, src, dst, params, (groups_along, groups_across)) in steps {
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(name),
-                layout: &self.pipeline.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.view.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: params.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(inputs.depth),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::TextureView(src),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::TextureView(dst),
-                    },
+            let bind_group = crate::gpu::bind_group(
+                device,
+                name,
+                &self.pipeline.get_bind_group_layout(0),
+                &[
+                    self.view.as_entire_binding(),
+                    params.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(inputs.depth),
+                    wgpu::BindingResource::TextureView(src),
+                    wgpu::BindingResource::TextureView(dst),
                 ],
-            });
+            );
             let timestamp_writes = profiler.as_deref_mut().map(|p| p.compute_pass(name));
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(name),

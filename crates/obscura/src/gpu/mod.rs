@@ -5,7 +5,7 @@ mod profiler;
 mod readback;
 
 pub use profiler::{FrameTimings, PassProfiler};
-pub use readback::{read_texture_bytes, read_texture_f32, read_texture_rgba8};
+pub use readback::{read_buffer, read_texture_bytes, read_texture_f32, read_texture_rgba8};
 
 use std::sync::{Arc, Mutex};
 
@@ -285,6 +285,28 @@ fn pipeline_from_module(
             zero_initialize_workgroup_memory: false,
         },
         cache: None,
+    })
+}
+
+/// A bind group for group 0 of `pipeline` with `resources` at bindings 0, 1, 2, … in order.
+pub fn bind_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = resources
+        .iter()
+        .enumerate()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: binding as u32,
+            resource: resource.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
     })
 }
 

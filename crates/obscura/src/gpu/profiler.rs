@@ -115,13 +115,7 @@ impl PassProfiler {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &staging, 0, size);
         gpu.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        gpu.finish()?;
-        let data = slice
-            .get_mapped_range()
-            .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?;
-        let ticks: &[u64] = bytemuck::cast_slice(&data);
+        let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&super::read_buffer(gpu, &staging)?);
         let stride = (SLOT_BYTES / 8) as usize;
         let frames = self
             .frame_passes
@@ -138,8 +132,6 @@ impl PassProfiler {
                 timings
             })
             .collect();
-        drop(data);
-        staging.unmap();
         Ok(frames)
     }
 }

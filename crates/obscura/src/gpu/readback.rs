@@ -36,20 +36,26 @@ pub fn read_texture_bytes(
         },
     );
     gpu.queue.submit([encoder.finish()]);
-    let slice = buffer.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |_| {});
-    gpu.finish()?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?;
+    let data = read_buffer(gpu, &buffer)?;
     let mut out = Vec::with_capacity((row * height) as usize);
     for y in 0..height as usize {
         let start = y * padded as usize;
         out.extend_from_slice(&data[start..start + row as usize]);
     }
-    drop(data);
-    buffer.unmap();
     Ok(out)
+}
+
+/// Wait for the GPU, then copy a `MAP_READ` buffer's contents out.
+pub fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    let slice = buffer.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |_| {});
+    gpu.finish()?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?
+        .to_vec();
+    buffer.unmap();
+    Ok(data)
 }
 
 /// Read a texture of 32-bit float channels (`R32Float`: 1, `Rgba32Float`: 4, …).

@@ -60,7 +60,7 @@ pub struct VaoParams {
     radius: f32,
     thickness: f32,
     exponent: f32,
-    sample_count: u32,
+    _pad0: u32,
     min_column: f32,
     normalization: u32,
     _pad: [u32; 2],
@@ -84,7 +84,7 @@ impl VaoParams {
             radius: s.radius,
             thickness: s.thickness,
             exponent: s.exponent,
-            sample_count: s.samples,
+            _pad0: 0,
             min_column: MIN_COLUMN_FRACTION * s.radius,
             normalization: match s.normalization {
                 Normalization::Hemisphere => 0,
@@ -135,32 +135,18 @@ impl AoKernel for VaoKernel {
         output: &wgpu::TextureView,
         profiler: Option<&mut PassProfiler>,
     ) {
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("vao"),
-            layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.view.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(inputs.depth),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(inputs.normals),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::TextureView(output),
-                },
+        let bind_group = crate::gpu::bind_group(
+            device,
+            "vao",
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                self.view.as_entire_binding(),
+                self.params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(inputs.depth),
+                wgpu::BindingResource::TextureView(inputs.normals),
+                wgpu::BindingResource::TextureView(output),
             ],
-        });
+        );
         let timestamp_writes = profiler.map(|p| p.compute_pass(self.pass_name()));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("vao"),

@@ -111,36 +111,19 @@ impl GBuffer {
         };
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         let bind_groups = self.pipelines.each_ref().map(|p| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("gbuffer"),
-                layout: &p.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.camera.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: scene.positions.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: scene.uvs.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: scene.triangles.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: scene.materials.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 5,
-                        resource: wgpu::BindingResource::TextureView(&scene.textures),
-                    },
+            crate::gpu::bind_group(
+                device,
+                "gbuffer",
+                &p.get_bind_group_layout(0),
+                &[
+                    self.camera.as_entire_binding(),
+                    scene.positions.as_entire_binding(),
+                    scene.uvs.as_entire_binding(),
+                    scene.triangles.as_entire_binding(),
+                    scene.materials.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&scene.textures),
                 ],
-            })
+            )
         });
         let views =
             [&self.depth, &self.normals, &self.albedo].map(|t| t.create_view(&Default::default()));
