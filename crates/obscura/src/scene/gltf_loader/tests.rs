@@ -7,11 +7,23 @@ use glam::{Vec2, Vec3};
 use super::super::{load, AlphaMode, Scene, SceneError};
 
 /// A fresh, empty folder for one test.
-fn temp_dir(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("obscura-gltf-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp_dir(tag: &str) -> TestDir {
+    TestDir(
+        tempfile::Builder::new()
+            .prefix(&format!("obscura-gltf-{tag}-"))
+            .tempdir()
+            .unwrap(),
+    )
+}
+
+/// A temporary folder removed when the test ends; derefs to its path.
+struct TestDir(tempfile::TempDir);
+
+impl std::ops::Deref for TestDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        self.0.path()
+    }
 }
 
 fn base64(data: &[u8]) -> String {

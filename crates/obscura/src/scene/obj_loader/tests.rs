@@ -6,11 +6,23 @@ use glam::{Vec2, Vec3};
 
 use super::super::{load, AlphaMode, Scene};
 
-fn temp_dir(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("obscura-obj-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp_dir(tag: &str) -> TestDir {
+    TestDir(
+        tempfile::Builder::new()
+            .prefix(&format!("obscura-obj-{tag}-"))
+            .tempdir()
+            .unwrap(),
+    )
+}
+
+/// A temporary folder removed when the test ends; derefs to its path.
+struct TestDir(tempfile::TempDir);
+
+impl std::ops::Deref for TestDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        self.0.path()
+    }
 }
 
 /// A quad (material red) and a triangle (material blue), uvs on every vertex.
