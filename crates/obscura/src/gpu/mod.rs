@@ -212,27 +212,10 @@ impl Gpu {
             Err(GpuError::Validation(message))
         }
     }
-
-    /// Checks that a framebuffer of `width`×`height` fits this adapter.
-    pub fn check_size(&self, what: &str, width: u32, height: u32) -> Result<(), GpuError> {
-        let max = self.summary.max_texture_dimension_2d;
-        if width > max || height > max {
-            return Err(GpuError::Other(format!(
-                "{what} of {width}x{height} exceeds this adapter's maximum texture size {max}x{max} \
-                 ('{}'): choose a smaller --size or --guard-band",
-                self.summary.name
-            )));
-        }
-        Ok(())
-    }
 }
 
-/// A compute pipeline from WGSL source with entry point `main` and an automatic layout.
-pub fn compute_pipeline(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ComputePipeline {
-    compute_pipeline_with(device, label, source, &[])
-}
-
-/// [`compute_pipeline`] with values for the shader's `override` constants.
+/// A compute pipeline from WGSL source with entry point `main`, an automatic layout and values
+/// for the shader's `override` constants.
 pub fn compute_pipeline_with(
     device: &wgpu::Device,
     label: &str,
