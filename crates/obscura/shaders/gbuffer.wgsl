@@ -1,20 +1,14 @@
 // G-buffer (raster): linear view depth, camera-facing geometric face normals in view space and
 // base colour, for the guard-banded framebuffer. Vertices are pulled from storage buffers so the
 // face normal comes from the triangle itself (the authors' AO uses face normals, seed-code-notes
-// §1.1) and the same buffers can serve ray tracing later. Alpha test: nearest texel, LOD 0,
-// exactly the lookup of `Texture::alpha_at` on the CPU.
+// §1.1) and the same buffers serve ray tracing. Alpha test: `material_passes_alpha`
+// (common/material.wgsl), the lookup the ray tracer and the CPU use too.
 
 struct Camera {
     view: mat4x4<f32>,
     projection: mat4x4<f32>,
 }
 
-struct Material {
-    base_color: vec4<f32>,
-    texture_layer: i32,
-    alpha_cutoff: f32,
-    texture_size: vec2<u32>,
-}
 
 @group(0) @binding(0) var<uniform> camera: Camera;
 @group(0) @binding(1) var<storage, read> positions: array<vec4<f32>>;
@@ -63,17 +57,11 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
 @fragment
 fn fs_main(in: VertexOut) -> GBufferOut {
     let material = materials[in.material];
-    var color = material.base_color;
-    if (material.texture_layer >= 0) {
-        let size = material.texture_size;
-        let f = in.uv - floor(in.uv);
-        let texel = min(vec2<u32>(f * vec2<f32>(size)), size - 1u);
-        let t = textureLoad(textures, texel, material.texture_layer, 0);
-        color *= vec4<f32>(srgb_to_linear(t.rgb), t.a);
-    }
-    if (material.alpha_cutoff >= 0.0 && color.a < material.alpha_cutoff) {
+    if (!material_passes_alpha(material, textures, in.uv)) {
         discard;
     }
+    let t = material_texel(material, textures, in.uv);
+    let color = material.base_color * vec4<f32>(srgb_to_linear(t.rgb), t.a);
     var n = in.normal;
     let len = length(n);
     n = select(-normalize(in.view_pos), n / len, len > 0.0);

@@ -25,7 +25,7 @@ pub mod reference;
 pub mod report;
 pub mod scene;
 pub mod settings;
-mod shaders;
+pub(crate) mod shaders;
 pub mod view;
 
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};

@@ -3,10 +3,13 @@
 
 pub const VIEW: &str = include_str!("../shaders/common/view.wgsl");
 pub const BASIS: &str = include_str!("../shaders/common/basis.wgsl");
+pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
+pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const VAO: &str = include_str!("../shaders/vao.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
+pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
 
 /// A pass's source with the shared helpers it names in front.
 pub fn with_common(common: &[&str], pass: &str) -> String {

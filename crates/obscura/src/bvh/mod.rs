@@ -54,6 +54,7 @@
 //! triangles in release); queries are `&self` and meant to be spread over rays with rayon.
 
 mod build;
+pub mod gpu;
 mod traverse;
 mod triangle;
 

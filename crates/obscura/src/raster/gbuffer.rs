@@ -46,7 +46,9 @@ impl GBuffer {
         };
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
-            source: wgpu::ShaderSource::Wgsl(shaders::GBUFFER.into()),
+            source: wgpu::ShaderSource::Wgsl(
+                shaders::with_common(&[shaders::MATERIAL], shaders::GBUFFER).into(),
+            ),
         });
         let pipeline = |cull_mode| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -16,6 +16,9 @@ struct GpuMaterial {
     /// Alpha-test cutoff, or -1 when the material is not alpha-tested.
     alpha_cutoff: f32,
     texture_size: [u32; 2],
+    /// Bit 0: back faces count (double-sided or alpha-tested; `Material::keeps_back_faces`).
+    flags: u32,
+    _pad: [u32; 3],
 }
 
 pub struct GpuScene {
@@ -137,6 +140,8 @@ impl GpuScene {
                         AlphaMode::Opaque | AlphaMode::Blend => -1.0,
                     },
                     texture_size: texture.map_or([1, 1], |t| [t.width, t.height]),
+                    flags: u32::from(m.keeps_back_faces()),
+                    _pad: [0; 3],
                 }
             })
             .collect();

@@ -1,0 +1,194 @@
+//! The BVH on the GPU: the flat nodes of [`Bvh::nodes`] and the triangles in leaf order, bound as
+//! group 1 of every ray-tracing pass (`shaders/common/bvh.wgsl`), next to the scene's positions,
+//! uvs, materials and textures from [`GpuScene`].
+
+use super::Bvh;
+use crate::raster::gpu_scene::GpuScene;
+use crate::scene::Scene;
+use wgpu::util::DeviceExt;
+
+pub struct GpuBvh {
+    pub nodes: wgpu::Buffer,
+    /// `(i0, i1, i2, material)` per leaf slot.
+    pub triangles: wgpu::Buffer,
+    /// Leaf slot → index into `scene.triangles`.
+    pub primitive_ids: wgpu::Buffer,
+    /// Depth of the deepest leaf; the WGSL stack holds 64 entries (deeper trees are reported).
+    pub max_depth: usize,
+}
+
+/// `BVH_STACK_SIZE` in bvh.wgsl.
+pub const STACK_SIZE: usize = 64;
+
+impl GpuBvh {
+    pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Self {
+        // An empty tree still binds: two inverted (empty) boxes that no ray enters.
+        let empty = super::BvhNode {
+            min: [1.0; 3],
+            first: 0,
+            max: [-1.0; 3],
+            count: 0,
+        };
+        let nodes: Vec<super::BvhNode> = if bvh.nodes().len() >= 2 {
+            bvh.nodes().to_vec()
+        } else {
+            vec![empty, empty]
+        };
+        let ids = bvh.primitive_indices();
+        let mut triangles: Vec<[u32; 4]> = ids
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = scene.triangles[t as usize];
+                [a, b, c, scene.triangle_materials[t as usize]]
+            })
+            .collect();
+        let mut ids = ids.to_vec();
+        if triangles.is_empty() {
+            triangles.push([0; 4]);
+            ids.push(0);
+        }
+        if bvh.max_depth() >= STACK_SIZE {
+            log::warn!(
+                "BVH depth {} exceeds the GPU traversal stack ({STACK_SIZE}); overflowing rays are counted",
+                bvh.max_depth()
+            );
+        }
+        let storage = |label, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        Self {
+            nodes: storage("bvh nodes", bytemuck::cast_slice(&nodes)),
+            triangles: storage("bvh triangles", bytemuck::cast_slice(&triangles)),
+            primitive_ids: storage("bvh primitive ids", bytemuck::cast_slice(&ids)),
+            max_depth: bvh.max_depth(),
+        }
+    }
+
+    /// Group 1 of a ray-tracing pipeline (bindings of `shaders/common/bvh.wgsl`).
+    pub fn bind_group(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        scene: &GpuScene,
+    ) -> wgpu::BindGroup {
+        crate::gpu::bind_group(
+            device,
+            "bvh",
+            layout,
+            &[
+                self.nodes.as_entire_binding(),
+                self.triangles.as_entire_binding(),
+                scene.positions.as_entire_binding(),
+                scene.uvs.as_entire_binding(),
+                scene.materials.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&scene.textures),
+            ],
+        )
+    }
+}
+
+/// One ray of a [`trace_batch`] (t in units of `dir`, `t_min >= 0`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct QueryRay {
+    pub origin: [f32; 3],
+    pub t_min: f32,
+    pub dir: [f32; 3],
+    pub t_max: f32,
+}
+
+/// What [`trace_batch`] found for one ray (mirrors `QueryResult` in `shaders/ray_query.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct QueryResult {
+    /// Closest hit's t, or -1 for none (closest mode).
+    pub t: f32,
+    /// Closest hit's index into `scene.triangles` (`u32::MAX` for none).
+    pub triangle: u32,
+    pub u: f32,
+    pub v: f32,
+    pub front_face: u32,
+    /// All-hits mode: the number of hits, the first 16 triangles in `triangles`.
+    pub hit_count: u32,
+    /// Non-zero when the traversal stack overflowed (the result is then incomplete).
+    pub stack_overflow: u32,
+    _pad: u32,
+    pub triangles: [u32; 16],
+}
+
+/// What [`trace_batch`] asks of every ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QueryMode {
+    ClosestHit = 0,
+    AllHits = 1,
+}
+
+/// Trace `rays` through the GPU BVH: the traversal every GPU ray-tracing pass uses, exposed for
+/// checking it against the CPU oracle.
+pub fn trace_batch(
+    gpu: &crate::Gpu,
+    scene: &GpuScene,
+    bvh: &GpuBvh,
+    rays: &[QueryRay],
+    mode: QueryMode,
+) -> Result<Vec<QueryResult>, crate::GpuError> {
+    let device = &gpu.device;
+    let source = crate::shaders::with_common(
+        &[crate::shaders::MATERIAL, crate::shaders::BVH],
+        crate::shaders::RAY_QUERY,
+    );
+    let pipeline = crate::gpu::compute_pipeline_with(device, "ray query", &source, &[]);
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ray query params"),
+        contents: bytemuck::cast_slice(&[rays.len() as u32, mode as u32, 0, 0]),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let ray_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("query rays"),
+        contents: bytemuck::cast_slice(rays),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let size = (rays.len().max(1) * std::mem::size_of::<QueryResult>()) as u64;
+    let results = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("query results"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("query readback"),
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let group0 = crate::gpu::bind_group(
+        device,
+        "ray query",
+        &pipeline.get_bind_group_layout(0),
+        &[
+            params.as_entire_binding(),
+            ray_buffer.as_entire_binding(),
+            results.as_entire_binding(),
+            bvh.primitive_ids.as_entire_binding(),
+        ],
+    );
+    let group1 = bvh.bind_group(device, &pipeline.get_bind_group_layout(1), scene);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group0, &[]);
+        pass.set_bind_group(1, &group1, &[]);
+        pass.dispatch_workgroups((rays.len() as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&results, 0, &staging, 0, size);
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = crate::gpu::read_buffer(gpu, &staging)?;
+    let mut out: Vec<QueryResult> = bytemuck::pod_collect_to_vec(&bytes);
+    out.truncate(rays.len());
+    Ok(out)
+}
