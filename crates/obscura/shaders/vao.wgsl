@@ -13,6 +13,11 @@
 // estimator is 1 only on average over the rotation pattern (so it darkens tilted planes in a
 // 4x4 pattern after the saturate).
 //
+// Where a sample's occluder comes from is the hidden-depth source's business: the kernel's source is
+// prefixed with one file of shaders/hidden/ that defines
+//     fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32
+// (depth_buffer.wgsl: the first depth layer only; column_rays.wgsl: RT-VAO).
+//
 // Pixel snapping: the depth sample is read at the centre of the pixel the sample falls in, which
 // lies beside the sample's column. Its height is corrected for that lateral offset along the
 // surface's tangent plane, so a planar neighbourhood reads exactly its own plane (no
@@ -53,6 +58,36 @@ fn column_visibility(z: f32, column_start: f32, column_end: f32) -> f32 {
     return sphere_vis + halo_vis;
 }
 
+// The shading point's sample frame: `axis` points to the camera, `tangent`/`bitangent` span the
+// sample disc, `n_xy`/`inv_n_z` give the surface normal in that frame.
+struct VaoFrame {
+    pos: vec3<f32>,
+    axis: vec3<f32>,
+    tangent: vec3<f32>,
+    bitangent: vec3<f32>,
+    n_xy: vec2<f32>,
+    inv_n_z: f32,
+    // Framebuffer pixel of the shading point.
+    pixel: vec2<u32>,
+}
+
+// One line sample: lateral offset `d`, its clipped column [end, start] and where it projects
+// (unclamped framebuffer pixel coordinates).
+struct VaoColumn {
+    d: vec2<f32>,
+    start: f32,
+    end: f32,
+    px: vec2<f32>,
+}
+
+// Height of view-space point `p` in the column's frame: along the view axis, corrected along the
+// tangent plane for its lateral offset from the column (see "Pixel snapping" above).
+fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {
+    let offset = p - f.pos;
+    let lateral = vec2<f32>(dot(offset, f.tangent), dot(offset, f.bitangent)) - c.d;
+    return dot(offset, f.axis) + dot(lateral, f.n_xy) * f.inv_n_z;
+}
+
 // The sample count is a pipeline constant so the sample loop unrolls and the depth reads of all
 // samples can be in flight together (measured: the loop, not memory, bounds this pass).
 override SAMPLE_COUNT: u32 = 8u;
@@ -78,7 +113,14 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
     // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).
     let n_z = select(min(n_local.z, -1e-4), max(n_local.z, 1e-4), n_local.z >= 0.0);
-    let inv_n_z = 1.0 / n_z;
+    var frame: VaoFrame;
+    frame.pos = pos;
+    frame.axis = axis;
+    frame.tangent = basis[0];
+    frame.bitangent = basis[1];
+    frame.n_xy = n_local.xy;
+    frame.inv_n_z = 1.0 / n_z;
+    frame.pixel = pixel;
     let rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
     let r = params.radius;
 
@@ -87,36 +129,26 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
         let k = params.kernel[i];
         let dir = vec2<f32>(k.x * rotation.x - k.y * rotation.y, k.x * rotation.y + k.y * rotation.x);
-        let d = dir * (k.z * r);
-        let h = sqrt(max(r * r - dot(d, d), 0.0));
+        var c: VaoColumn;
+        c.d = dir * (k.z * r);
+        let h = sqrt(max(r * r - dot(c.d, c.d), 0.0));
         // Hemisphere clipping: the tangent plane crosses the column at height z_i.
-        let z_i = clamp(-dot(d, n_local.xy) * inv_n_z, -h, h);
-        var column_start = h;
-        var column_end = -h;
+        let z_i = clamp(-dot(c.d, frame.n_xy) * frame.inv_n_z, -h, h);
+        c.start = h;
+        c.end = -h;
         if (n_local.z >= 0.0) {
-            column_end = z_i;
+            c.end = z_i;
         } else {
-            column_start = z_i;
+            c.start = z_i;
         }
-        if (column_start - column_end < params.min_column) {
+        if (c.start - c.end < params.min_column) {
             continue; // the column lies below the hemisphere (seed 000 §3.2: a_i = 0)
         }
-        let sample_pos = pos + basis[0] * d.x + basis[1] * d.y;
-        let sample_px = clamp(view_to_pixel(view, sample_pos), vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5);
-        let sample_pixel = vec2<u32>(sample_px);
-        var free = column_start - column_end;
-        if (any(sample_pixel != pixel)) {
-            let sample_z = textureLoad(depth_tex, sample_pixel, 0).r;
-            if (!is_background(sample_z)) {
-                let offset = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, sample_z) - pos;
-                let lateral = vec2<f32>(dot(offset, basis[0]), dot(offset, basis[1])) - d;
-                let height = dot(offset, axis) + dot(lateral, n_local.xy) * inv_n_z;
-                free = column_visibility(height, column_start, column_end);
-            }
-        }
+        c.px = view_to_pixel(view, pos + frame.tangent * c.d.x + frame.bitangent * c.d.y);
+        let free = sample_free_length(frame, c);
         let inv_2h = 0.5 / h;
         sum += free * inv_2h;
-        clipped_sum += (column_start - column_end) * inv_2h;
+        clipped_sum += (c.start - c.end) * inv_2h;
     }
     var ao = 2.0 * sum / f32(SAMPLE_COUNT);
     if (params.normalization == 1u) {

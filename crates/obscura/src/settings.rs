@@ -10,14 +10,17 @@ pub enum Technique {
     /// Volumetric AO, seed 000 §3.1–3.5.
     #[default]
     Vao,
+    /// VAO whose occluded samples trace the sample's camera ray through the scene, seed 000 §3.6.
+    RtVao,
 }
 
 impl Technique {
-    pub const ALL: &'static [Technique] = &[Technique::Vao];
+    pub const ALL: &'static [Technique] = &[Technique::Vao, Technique::RtVao];
 
     pub fn name(self) -> &'static str {
         match self {
             Technique::Vao => "vao",
+            Technique::RtVao => "rt-vao",
         }
     }
 }

@@ -8,6 +8,8 @@ pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const VAO: &str = include_str!("../shaders/vao.wgsl");
+pub const HIDDEN_DEPTH_BUFFER: &str = include_str!("../shaders/hidden/depth_buffer.wgsl");
+pub const HIDDEN_COLUMN_RAYS: &str = include_str!("../shaders/hidden/column_rays.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
 

@@ -51,3 +51,31 @@ pub fn camera(eye: Vec3, target: Vec3, fov_y_deg: f32) -> Camera {
         fov_y_deg,
     }
 }
+
+/// A smooth height field seen from straight above: every camera ray meets one surface.
+pub fn height_field() -> obscura::scene::Scene {
+    let n = 96;
+    let size = 8.0;
+    let mut s = quads("heightfield", &[]);
+    let h =
+        |x: f32, z: f32| 0.35 * (1.7 * x).sin() * (1.3 * z).cos() + 0.2 * (0.9 * x + 2.1 * z).sin();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, z) = (
+                size * (i as f32 / n as f32 - 0.5),
+                size * (j as f32 / n as f32 - 0.5),
+            );
+            s.positions.push(Vec3::new(x, h(x, z), z));
+            s.uvs.push(Vec2::ZERO);
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            s.triangles.push([v, v + n + 1, v + 1]);
+            s.triangles.push([v + 1, v + n + 1, v + n + 2]);
+            s.triangle_materials.extend([0, 0]);
+        }
+    }
+    s
+}

@@ -1,17 +1,22 @@
 //! Hidden-depth sources: where a kernel looks when the first depth layer says a sample is
 //! occluded (DESIGN.md data flow). A kernel consults its source only for such samples.
 //!
-//! The spine ships the trivial source; the later ones plug in here with their own module each:
-//! dual depth by depth peeling (seed 000 §2.1), the rasterised stochastic depth map (seed 001 §3.1,
-//! seed 000 §3.7/3.9), the ray-traced stochastic depth map (seed 002 §3.1–3.5) and direct ray
-//! tracing of the sample columns (seed 000 §3.6/3.8).
+//! In WGSL a source is one file of `shaders/hidden/` defining `sample_free_length` for the VAO
+//! kernel. There are two so far: the first depth layer only, and direct ray tracing of the sample
+//! columns (seed 000 §3.6). Still to come, each in its own file: dual depth by depth peeling
+//! (seed 000 §2.1), the rasterised stochastic depth map (seed 001 §3.1, seed 000 §3.7/3.9) and the
+//! ray-traced stochastic depth map (seed 002 §3.1–3.5).
 
 /// Which hidden-depth source a technique uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum HiddenDepth {
-    /// Only the first depth layer: occluded samples use the thickness/halo model alone.
+    /// Only the first depth layer: occluded samples use the thickness/halo model alone
+    /// (`shaders/hidden/depth_buffer.wgsl`).
     #[default]
     None,
+    /// Occluded (and off-screen) samples trace their camera ray through the scene's BVH
+    /// (`shaders/hidden/column_rays.wgsl`, seed 000 §3.6).
+    ColumnRays,
 }
 
 impl crate::settings::Technique {
@@ -19,6 +24,7 @@ impl crate::settings::Technique {
     pub fn hidden_depth(self) -> HiddenDepth {
         match self {
             crate::settings::Technique::Vao => HiddenDepth::None,
+            crate::settings::Technique::RtVao => HiddenDepth::ColumnRays,
         }
     }
 }

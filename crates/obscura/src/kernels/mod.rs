@@ -21,6 +21,10 @@ pub trait AoKernel {
     /// The name its timings are reported under.
     fn pass_name(&self) -> &'static str;
 
+    /// Where kernels that trace rays start them: view space → world space, and the near plane.
+    /// Kernels without rays ignore it.
+    fn set_camera(&self, _queue: &wgpu::Queue, _camera_to_world: glam::Mat4, _near: f32) {}
+
     /// Record the kernel. `output` is `R32Float` storage of the visible size.
     fn encode(
         &self,

@@ -97,34 +97,106 @@ impl VaoParams {
     }
 }
 
-/// The VAO compute pass.
+/// GPU mirror of `RayCamera` in `shaders/hidden/column_rays.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct RayCamera {
+    camera_to_world: [[f32; 4]; 4],
+    near: f32,
+    _pad: [f32; 3],
+}
+
+/// The scene as the column-ray source traces it.
+pub struct RayTracedScene<'a> {
+    pub scene: &'a crate::raster::gpu_scene::GpuScene,
+    pub bvh: &'a crate::bvh::gpu::GpuBvh,
+}
+
+/// What the column-ray source (RT-VAO) binds beyond plain VAO.
+struct ColumnRays {
+    camera: wgpu::Buffer,
+    bvh_group: wgpu::BindGroup,
+}
+
+/// The VAO compute pass, with the first depth layer only (`vao`) or with column rays for occluded
+/// samples (`rt-vao`, seed 000 §3.6).
 pub struct VaoKernel {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
+    rays: Option<ColumnRays>,
 }
 
 impl VaoKernel {
-    pub fn new(device: &wgpu::Device, settings: &VaoSettings, view: &wgpu::Buffer) -> Self {
-        let source = shaders::with_common(&[shaders::VIEW, shaders::BASIS], shaders::VAO);
+    /// `rays`: trace occluded samples through this scene (RT-VAO); `None`: depth buffer only.
+    pub fn new(
+        device: &wgpu::Device,
+        settings: &VaoSettings,
+        view: &wgpu::Buffer,
+        rays: Option<RayTracedScene>,
+    ) -> Self {
+        let source = match rays {
+            None => shaders::with_common(
+                &[shaders::VIEW, shaders::BASIS, shaders::VAO],
+                shaders::HIDDEN_DEPTH_BUFFER,
+            ),
+            Some(_) => shaders::with_common(
+                &[
+                    shaders::VIEW,
+                    shaders::BASIS,
+                    shaders::MATERIAL,
+                    shaders::BVH,
+                    shaders::VAO,
+                ],
+                shaders::HIDDEN_COLUMN_RAYS,
+            ),
+        };
+        let label = if rays.is_some() { "rt-vao" } else { "vao" };
         let constants = [("SAMPLE_COUNT", f64::from(settings.samples))];
-        let pipeline = crate::gpu::compute_pipeline_with(device, "vao", &source, &constants);
+        let pipeline = crate::gpu::compute_pipeline_with(device, label, &source, &constants);
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("vao params"),
             contents: bytemuck::bytes_of(&VaoParams::new(settings)),
             usage: wgpu::BufferUsages::UNIFORM,
         });
+        let rays = rays.map(|r| ColumnRays {
+            camera: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ray camera"),
+                size: std::mem::size_of::<RayCamera>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            bvh_group: r
+                .bvh
+                .bind_group(device, &pipeline.get_bind_group_layout(1), r.scene),
+        });
         Self {
             pipeline,
             params,
             view: view.clone(),
+            rays,
         }
     }
 }
 
 impl AoKernel for VaoKernel {
+    fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
+        if let Some(rays) = &self.rays {
+            let camera = RayCamera {
+                camera_to_world: camera_to_world.to_cols_array_2d(),
+                near,
+                _pad: [0.0; 3],
+            };
+            queue.write_buffer(&rays.camera, 0, bytemuck::bytes_of(&camera));
+        }
+    }
+
     fn pass_name(&self) -> &'static str {
-        "vao"
+        if self.rays.is_some() {
+            "rt-vao"
+        } else {
+            "vao"
+        }
     }
 
     fn encode(
@@ -135,25 +207,32 @@ impl AoKernel for VaoKernel {
         output: &wgpu::TextureView,
         profiler: Option<&mut PassProfiler>,
     ) {
+        let mut resources = vec![
+            self.view.as_entire_binding(),
+            self.params.as_entire_binding(),
+            wgpu::BindingResource::TextureView(inputs.depth),
+            wgpu::BindingResource::TextureView(inputs.normals),
+            wgpu::BindingResource::TextureView(output),
+        ];
+        if let Some(rays) = &self.rays {
+            resources.push(rays.camera.as_entire_binding());
+        }
         let bind_group = crate::gpu::bind_group(
             device,
-            "vao",
+            self.pass_name(),
             &self.pipeline.get_bind_group_layout(0),
-            &[
-                self.view.as_entire_binding(),
-                self.params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(inputs.depth),
-                wgpu::BindingResource::TextureView(inputs.normals),
-                wgpu::BindingResource::TextureView(output),
-            ],
+            &resources,
         );
         let timestamp_writes = profiler.map(|p| p.compute_pass(self.pass_name()));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("vao"),
+            label: Some(self.pass_name()),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
+        if let Some(rays) = &self.rays {
+            pass.set_bind_group(1, &rays.bvh_group, &[]);
+        }
         let (x, y, z) = workgroups_32x8(inputs.screen.width, inputs.screen.height);
         pass.dispatch_workgroups(x, y, z);
     }

@@ -5,8 +5,12 @@ pub mod renderer;
 
 use crate::filter::bilateral::BilateralBlur;
 use crate::gpu::PassProfiler;
-use crate::kernels::{vao::VaoKernel, AoKernel, FrameInputs};
-use crate::settings::{AoSettings, SettingsError, Technique};
+use crate::hidden::HiddenDepth;
+use crate::kernels::{
+    vao::{RayTracedScene, VaoKernel},
+    AoKernel, FrameInputs,
+};
+use crate::settings::{AoSettings, Technique};
 use crate::view::ScreenGeometry;
 use crate::Error;
 use wgpu::util::DeviceExt;
@@ -24,20 +28,53 @@ pub struct AmbientOcclusion {
 }
 
 impl AmbientOcclusion {
-    /// Build pipelines and images for `screen`. `settings` are validated first.
+    /// Build pipelines and images for `screen`. `settings` are validated first. Techniques that
+    /// trace rays need the scene: use [`AmbientOcclusion::new_ray_traced`] for them.
     pub fn new(
         device: &wgpu::Device,
         settings: &AoSettings,
         screen: ScreenGeometry,
-    ) -> Result<Self, SettingsError> {
+    ) -> Result<Self, Error> {
+        if settings.technique.hidden_depth() == HiddenDepth::ColumnRays {
+            return Err(Error::Input(format!(
+                "technique '{}' traces rays: create it with AmbientOcclusion::new_ray_traced and the scene",
+                settings.technique
+            )));
+        }
+        Self::build(device, settings, screen, None)
+    }
+
+    /// [`AmbientOcclusion::new`] for any technique, with the scene its rays are traced through
+    /// (call [`AmbientOcclusion::set_camera`] before each frame).
+    pub fn new_ray_traced(
+        device: &wgpu::Device,
+        settings: &AoSettings,
+        screen: ScreenGeometry,
+        scene: RayTracedScene,
+    ) -> Result<Self, Error> {
+        Self::build(device, settings, screen, Some(scene))
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        settings: &AoSettings,
+        screen: ScreenGeometry,
+        scene: Option<RayTracedScene>,
+    ) -> Result<Self, Error> {
         settings.validate()?;
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
+        let rays = match settings.technique.hidden_depth() {
+            HiddenDepth::None => None,
+            HiddenDepth::ColumnRays => scene,
+        };
         let kernel: Box<dyn AoKernel> = match settings.technique {
-            Technique::Vao => Box::new(VaoKernel::new(device, &settings.vao, &view)),
+            Technique::Vao | Technique::RtVao => {
+                Box::new(VaoKernel::new(device, &settings.vao, &view, rays))
+            }
         };
         let blur = settings.blur.enabled.then(|| {
             BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)
@@ -62,6 +99,12 @@ impl AmbientOcclusion {
             blurred: ao_texture("ao blurred"),
             blur,
         })
+    }
+
+    /// The camera of the coming frame (view space → world space) and its near plane; only
+    /// techniques that trace rays use it.
+    pub fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
+        self.kernel.set_camera(queue, camera_to_world, near);
     }
 
     pub fn settings(&self) -> &AoSettings {

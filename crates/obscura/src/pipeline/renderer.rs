@@ -1,7 +1,10 @@
 //! Our own frame: a loaded scene rasterised into a G-buffer, then [`AmbientOcclusion`].
 
 use super::AmbientOcclusion;
+use crate::bvh::{gpu::GpuBvh, Bvh};
 use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
+use crate::hidden::HiddenDepth;
+use crate::kernels::vao::RayTracedScene;
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
 use crate::reference::cpu_vao::GBufferImage;
 use crate::scene::{Camera, Scene};
@@ -14,6 +17,8 @@ use glam::Vec3;
 pub struct Renderer<'g> {
     gpu: &'g Gpu,
     scene: GpuScene,
+    /// The scene's BVH, for techniques that trace rays.
+    bvh: Option<GpuBvh>,
     near: f32,
     width: u32,
     height: u32,
@@ -56,9 +61,12 @@ impl<'g> Renderer<'g> {
         let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &limits)?;
         let near = crate::view::near_plane(scene);
         let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32);
+        let bvh = (settings.technique.hidden_depth() == HiddenDepth::ColumnRays)
+            .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
         gpu.check_errors()?;
         Ok(Self {
             gpu,
+            bvh,
             scene: gpu_scene,
             near,
             width,
@@ -79,13 +87,22 @@ impl<'g> Renderer<'g> {
     ) -> Result<(), Error> {
         let view = FrameView::new(*camera, self.width, self.height, self.guard_band, self.near);
         if self.ao.as_ref().map(|ao| ao.screen()) != Some(view.screen()) {
-            self.ao = Some(AmbientOcclusion::new(
-                &self.gpu.device,
-                &self.settings,
-                view.screen(),
-            )?);
+            let device = &self.gpu.device;
+            self.ao = Some(match &self.bvh {
+                Some(bvh) => AmbientOcclusion::new_ray_traced(
+                    device,
+                    &self.settings,
+                    view.screen(),
+                    RayTracedScene {
+                        scene: &self.scene,
+                        bvh,
+                    },
+                )?,
+                None => AmbientOcclusion::new(device, &self.settings, view.screen())?,
+            });
         }
         let ao = self.ao.as_ref().expect("created above");
+        ao.set_camera(&self.gpu.queue, view.view_matrix().inverse(), view.near);
         let device = &self.gpu.device;
         let mut encoder = device.create_command_encoder(&Default::default());
         self.gbuffer.render(

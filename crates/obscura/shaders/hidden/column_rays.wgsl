@@ -1,0 +1,94 @@
+// Hidden-depth source "column rays" (RT-VAO, seed 000 §3.6 and Fig. 6; seed-code-notes §1.6): when
+// the depth buffer says a sample is occluded (its first surface lies beyond the constant area,
+// i.e. in the falloff or above it), or the sample falls outside the framebuffer, the camera ray
+// through the sample's pixel is traced through the scene's BVH over the heights that can still
+// lower the visibility, past the depth-buffer hit, and the sample takes the minimum of the
+// per-hit visibilities. The result equals the `vao` ground-truth model (src/reference).
+//
+// Needs common/material.wgsl and common/bvh.wgsl in front, and the camera below.
+
+struct RayCamera {
+    // View space -> world space.
+    camera_to_world: mat4x4<f32>,
+    // Near plane: rays start there.
+    near: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+@group(0) @binding(5) var<uniform> ray_camera: RayCamera;
+
+// State of the ray being traced, read by bvh_on_hit.
+var<private> trace_column: VaoColumn;
+var<private> trace_height_at_0: f32;
+var<private> trace_height_slope: f32;
+var<private> trace_visibility: f32;
+
+fn bvh_on_hit(hit: BvhHit) -> u32 {
+    let height = trace_height_at_0 + trace_height_slope * hit.t;
+    trace_visibility = min(trace_visibility, column_visibility(height, trace_column.start, trace_column.end));
+    return select(BVH_CONTINUE, BVH_STOP, trace_visibility <= 0.0);
+}
+
+// Minimum visibility of `c` over the surfaces along the camera ray through framebuffer pixel
+// coordinates `px`, beyond ray parameter `t_after` (the ray parameter is linear view depth).
+fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f32, start_vis: f32) -> f32 {
+    let dir_view = pixel_to_view(view, px, 1.0);
+    // Along the ray the view-space point is t * dir_view, so the column height is affine in t:
+    // only heights in (end, halo end) can lower the visibility; that bounds the interval.
+    let a = column_height(f, c, vec3<f32>(0.0));
+    let b = column_height(f, c, dir_view) - a;
+    let halo_end = (1.0 + params.thickness) * params.radius + (c.start - c.end);
+    var t_min = max(ray_camera.near, t_after);
+    var t_max = 3.4e38;
+    if (abs(b) > 1e-12) {
+        let t0 = (c.end - a) / b;
+        let t1 = (halo_end - a) / b;
+        t_min = max(t_min, min(t0, t1));
+        t_max = max(t0, t1);
+    }
+    trace_column = c;
+    trace_height_at_0 = a;
+    trace_height_slope = b;
+    trace_visibility = start_vis;
+    if (t_min < t_max && start_vis > 0.0) {
+        let origin = ray_camera.camera_to_world[3].xyz;
+        let dir = (ray_camera.camera_to_world * vec4<f32>(dir_view, 0.0)).xyz;
+        bvh_traverse(origin, dir, t_min, t_max);
+    }
+    return trace_visibility;
+}
+
+fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
+    let full = c.start - c.end;
+    let cell = floor(c.px);
+    if (all(cell == vec2<f32>(f.pixel))) {
+        return full; // snaps to the shading pixel itself: fully visible
+    }
+    let inside = all(cell >= vec2<f32>(0.0)) && all(cell < vec2<f32>(view.full_size));
+    if (!inside) {
+        // Off-screen: no depth-buffer sample; trace the whole interval.
+        return trace_column_visibility(f, c, cell + 0.5, 0.0, full);
+    }
+    let sample_pixel = vec2<u32>(cell);
+    let z = textureLoad(depth_tex, sample_pixel, 0).r;
+    if (is_background(z)) {
+        return full;
+    }
+    let occluder = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, z);
+    let height = column_height(f, c, occluder);
+    let first = column_visibility(height, c.start, c.end);
+    // Surfaces beyond the first one lie lower along the column when the height falls with the ray
+    // parameter (the usual case): then they can only lower the visibility when the first surface
+    // is occluded — beyond the constant area (in it the visibility is already 0). Where the
+    // tangent-plane correction makes the height rise with depth, any first surface may hide a
+    // lower visibility, so the ray is traced.
+    let dir_view = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, 1.0);
+    let rising = column_height(f, c, dir_view) > column_height(f, c, vec3<f32>(0.0));
+    if (!rising && height <= (1.0 + params.thickness) * params.radius) {
+        return first;
+    }
+    // Past the depth-buffer hit (relative slack, as the authors' 0.01 R offset).
+    return trace_column_visibility(f, c, cell + 0.5, z * (1.0 + 1e-5), first);
+}
