@@ -92,68 +92,80 @@ fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {
 // samples can be in flight together (measured: the loop, not memory, bounds this pass).
 override SAMPLE_COUNT: u32 = 8u;
 
-@compute @workgroup_size(32, 8)
-fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
-    let id = global_id.xy;
-    if (any(id >= view.visible_size)) {
-        return;
-    }
+// The shading point of visible pixel `id`; `valid` is false for background.
+struct VaoPixel {
+    frame: VaoFrame,
+    n_z_positive: bool,
+    rotation: vec2<f32>,
+    valid: bool,
+}
+
+fn vao_pixel(id: vec2<u32>) -> VaoPixel {
+    var p: VaoPixel;
     let pixel = id + vec2<u32>(view.guard_band);
     let z = textureLoad(depth_tex, pixel, 0).r;
-    if (is_background(z)) {
-        textureStore(ao_out, id, vec4<f32>(1.0));
-        return;
+    p.valid = !is_background(z);
+    if (!p.valid) {
+        return p;
     }
     let pos = pixel_to_view(view, vec2<f32>(pixel) + 0.5, z);
     let n = normalize(textureLoad(normal_tex, pixel, 0).xyz);
-
     // Sample frame perpendicular to the view ray: `axis` points to the camera.
     let axis = -normalize(pos);
     let basis = orthonormal_basis(axis);
     let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
     // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).
     let n_z = select(min(n_local.z, -1e-4), max(n_local.z, 1e-4), n_local.z >= 0.0);
-    var frame: VaoFrame;
-    frame.pos = pos;
-    frame.axis = axis;
-    frame.tangent = basis[0];
-    frame.bitangent = basis[1];
-    frame.n_xy = n_local.xy;
-    frame.inv_n_z = 1.0 / n_z;
-    frame.pixel = pixel;
-    let rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
-    let r = params.radius;
+    p.frame.pos = pos;
+    p.frame.axis = axis;
+    p.frame.tangent = basis[0];
+    p.frame.bitangent = basis[1];
+    p.frame.n_xy = n_local.xy;
+    p.frame.inv_n_z = 1.0 / n_z;
+    p.frame.pixel = pixel;
+    p.n_z_positive = n_local.z >= 0.0;
+    p.rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
+    return p;
+}
 
-    var sum = 0.0;
-    var clipped_sum = 0.0;
-    for (var i = 0u; i < SAMPLE_COUNT; i++) {
-        let k = params.kernel[i];
-        let dir = vec2<f32>(k.x * rotation.x - k.y * rotation.y, k.x * rotation.y + k.y * rotation.x);
-        var c: VaoColumn;
-        c.d = dir * (k.z * r);
-        let h = sqrt(max(r * r - dot(c.d, c.d), 0.0));
-        // Hemisphere clipping: the tangent plane crosses the column at height z_i.
-        let z_i = clamp(-dot(c.d, frame.n_xy) * frame.inv_n_z, -h, h);
-        c.start = h;
-        c.end = -h;
-        if (n_local.z >= 0.0) {
-            c.end = z_i;
-        } else {
-            c.start = z_i;
-        }
-        if (c.start - c.end < params.min_column) {
-            continue; // the column lies below the hemisphere (seed 000 §3.2: a_i = 0)
-        }
-        c.px = view_to_pixel(view, pos + frame.tangent * c.d.x + frame.bitangent * c.d.y);
-        let free = sample_free_length(frame, c);
-        let inv_2h = 0.5 / h;
-        sum += free * inv_2h;
-        clipped_sum += (c.start - c.end) * inv_2h;
+// Sample `i`'s column; `h` is the half height of the unclipped column (pdf 2h), and h = 0 marks
+// a sample whose clipped column is too short to count (seed 000 §3.2: a_i = 0).
+struct VaoSample {
+    column: VaoColumn,
+    h: f32,
+}
+
+fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
+    let k = params.kernel[i];
+    let rot = p.rotation;
+    let dir = vec2<f32>(k.x * rot.x - k.y * rot.y, k.x * rot.y + k.y * rot.x);
+    let r = params.radius;
+    var s: VaoSample;
+    s.column.d = dir * (k.z * r);
+    s.h = sqrt(max(r * r - dot(s.column.d, s.column.d), 0.0));
+    // Hemisphere clipping: the tangent plane crosses the column at height z_i.
+    let z_i = clamp(-dot(s.column.d, p.frame.n_xy) * p.frame.inv_n_z, -s.h, s.h);
+    s.column.start = s.h;
+    s.column.end = -s.h;
+    if (p.n_z_positive) {
+        s.column.end = z_i;
+    } else {
+        s.column.start = z_i;
     }
+    if (s.column.start - s.column.end < params.min_column) {
+        s.h = 0.0;
+        return s;
+    }
+    let f = p.frame;
+    s.column.px = view_to_pixel(view, f.pos + f.tangent * s.column.d.x + f.bitangent * s.column.d.y);
+    return s;
+}
+
+// Final AO from the sums of free and clipped column fractions (normalisation, exponent).
+fn vao_finish(sum: f32, clipped_sum: f32) -> f32 {
     var ao = 2.0 * sum / f32(SAMPLE_COUNT);
     if (params.normalization == 1u) {
         ao = select(1.0, sum / clipped_sum, clipped_sum > 0.0);
     }
-    ao = saturate(ao);
-    textureStore(ao_out, id, vec4<f32>(pow(ao, params.exponent)));
+    return pow(saturate(ao), params.exponent);
 }

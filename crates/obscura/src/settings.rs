@@ -12,15 +12,26 @@ pub enum Technique {
     Vao,
     /// VAO whose occluded samples trace the sample's camera ray through the scene, seed 000 §3.6.
     RtVao,
+    /// RT-VAO in two phases, phase 2 on a compacted work list (indirect dispatch), seed 000 §3.8.
+    RtSvao,
+    /// RT-SVAO with phase 2 over every pixel, returning at once where nothing is flagged.
+    RtSvaoDense,
 }
 
 impl Technique {
-    pub const ALL: &'static [Technique] = &[Technique::Vao, Technique::RtVao];
+    pub const ALL: &'static [Technique] = &[
+        Technique::Vao,
+        Technique::RtVao,
+        Technique::RtSvao,
+        Technique::RtSvaoDense,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Technique::Vao => "vao",
             Technique::RtVao => "rt-vao",
+            Technique::RtSvao => "rt-svao",
+            Technique::RtSvaoDense => "rt-svao-dense",
         }
     }
 }

@@ -60,35 +60,55 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     return trace_visibility;
 }
 
-fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
-    let full = c.start - c.end;
+// What the depth buffer says about a sample: its visibility from the first surface (`free`),
+// and whether a ray must still be traced from there (`trace`: from `px` beyond `t_after`).
+struct DepthLookup {
+    free: f32,
+    trace: bool,
+    px: vec2<f32>,
+    t_after: f32,
+}
+
+fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
+    var l: DepthLookup;
+    l.free = c.start - c.end;
+    l.trace = false;
     let cell = floor(c.px);
+    l.px = cell + 0.5;
+    l.t_after = 0.0;
     if (all(cell == vec2<f32>(f.pixel))) {
-        return full; // snaps to the shading pixel itself: fully visible
+        return l; // snaps to the shading pixel itself: fully visible
     }
     let inside = all(cell >= vec2<f32>(0.0)) && all(cell < vec2<f32>(view.full_size));
     if (!inside) {
         // Off-screen: no depth-buffer sample; trace the whole interval.
-        return trace_column_visibility(f, c, cell + 0.5, 0.0, full);
+        l.trace = true;
+        return l;
     }
     let sample_pixel = vec2<u32>(cell);
     let z = textureLoad(depth_tex, sample_pixel, 0).r;
     if (is_background(z)) {
-        return full;
+        return l;
     }
-    let occluder = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, z);
+    let occluder = pixel_to_view(view, l.px, z);
     let height = column_height(f, c, occluder);
-    let first = column_visibility(height, c.start, c.end);
+    l.free = column_visibility(height, c.start, c.end);
     // Surfaces beyond the first one lie lower along the column when the height falls with the ray
     // parameter (the usual case): then they can only lower the visibility when the first surface
     // is occluded — beyond the constant area (in it the visibility is already 0). Where the
     // tangent-plane correction makes the height rise with depth, any first surface may hide a
     // lower visibility, so the ray is traced.
-    let dir_view = pixel_to_view(view, vec2<f32>(sample_pixel) + 0.5, 1.0);
-    let rising = column_height(f, c, dir_view) > column_height(f, c, vec3<f32>(0.0));
-    if (!rising && height <= (1.0 + params.thickness) * params.radius) {
-        return first;
-    }
+    let rising = column_height(f, c, pixel_to_view(view, l.px, 1.0)) > column_height(f, c, vec3<f32>(0.0));
+    l.trace = l.free > 0.0 && (rising || height > (1.0 + params.thickness) * params.radius);
     // Past the depth-buffer hit (relative slack, as the authors' 0.01 R offset).
-    return trace_column_visibility(f, c, cell + 0.5, z * (1.0 + 1e-5), first);
+    l.t_after = z * (1.0 + 1e-5);
+    return l;
+}
+
+fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
+    let l = depth_lookup(f, c);
+    if (!l.trace) {
+        return l.free;
+    }
+    return trace_column_visibility(f, c, l.px, l.t_after, l.free);
 }

@@ -24,7 +24,9 @@ impl crate::settings::Technique {
     pub fn hidden_depth(self) -> HiddenDepth {
         match self {
             crate::settings::Technique::Vao => HiddenDepth::None,
-            crate::settings::Technique::RtVao => HiddenDepth::ColumnRays,
+            crate::settings::Technique::RtVao
+            | crate::settings::Technique::RtSvao
+            | crate::settings::Technique::RtSvaoDense => HiddenDepth::ColumnRays,
         }
     }
 }

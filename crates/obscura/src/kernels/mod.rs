@@ -2,6 +2,7 @@
 //! view-space normals, screen geometry) to a raw AO image of the visible size (R32Float,
 //! 1 = unoccluded). Filtering happens after, in [`crate::filter`].
 
+pub mod svao;
 pub mod vao;
 
 use crate::gpu::PassProfiler;

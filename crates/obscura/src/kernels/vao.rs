@@ -97,6 +97,23 @@ impl VaoParams {
     }
 }
 
+/// A VAO entry point's source: the kernel's functions, the hidden-depth source (first depth layer
+/// only, or column rays through the BVH) and `entry` (single pass or one of the SVAO phases).
+pub(crate) fn vao_source(column_rays: bool, entry: &str) -> String {
+    let mut parts = vec![shaders::VIEW, shaders::BASIS];
+    if column_rays {
+        parts.extend([
+            shaders::MATERIAL,
+            shaders::BVH,
+            shaders::VAO,
+            shaders::HIDDEN_COLUMN_RAYS,
+        ]);
+    } else {
+        parts.extend([shaders::VAO, shaders::HIDDEN_DEPTH_BUFFER]);
+    }
+    shaders::with_common(&parts, entry)
+}
+
 /// GPU mirror of `RayCamera` in `shaders/hidden/column_rays.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -112,10 +129,47 @@ pub struct RayTracedScene<'a> {
     pub bvh: &'a crate::bvh::gpu::GpuBvh,
 }
 
-/// What the column-ray source (RT-VAO) binds beyond plain VAO.
-struct ColumnRays {
-    camera: wgpu::Buffer,
-    bvh_group: wgpu::BindGroup,
+/// What the column-ray source (RT-VAO) binds beyond plain VAO: the camera (group 0, binding 5)
+/// and the BVH (group 1).
+pub(crate) struct ColumnRays {
+    pub camera: wgpu::Buffer,
+    pub bvh_group: wgpu::BindGroup,
+}
+
+impl ColumnRays {
+    pub fn new(
+        device: &wgpu::Device,
+        bvh_layout: &wgpu::BindGroupLayout,
+        r: &RayTracedScene,
+    ) -> Self {
+        Self {
+            camera: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ray camera"),
+                size: std::mem::size_of::<RayCamera>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            bvh_group: r.bvh.bind_group(device, bvh_layout, r.scene),
+        }
+    }
+
+    pub fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
+        let camera = RayCamera {
+            camera_to_world: camera_to_world.to_cols_array_2d(),
+            near,
+            _pad: [0.0; 3],
+        };
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
+    }
+}
+
+/// The uniform buffer of `VaoParams`.
+pub(crate) fn params_buffer(device: &wgpu::Device, settings: &VaoSettings) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("vao params"),
+        contents: bytemuck::bytes_of(&VaoParams::new(settings)),
+        usage: wgpu::BufferUsages::UNIFORM,
+    })
 }
 
 /// The VAO compute pass, with the first depth layer only (`vao`) or with column rays for occluded
@@ -135,41 +189,12 @@ impl VaoKernel {
         view: &wgpu::Buffer,
         rays: Option<RayTracedScene>,
     ) -> Self {
-        let source = match rays {
-            None => shaders::with_common(
-                &[shaders::VIEW, shaders::BASIS, shaders::VAO],
-                shaders::HIDDEN_DEPTH_BUFFER,
-            ),
-            Some(_) => shaders::with_common(
-                &[
-                    shaders::VIEW,
-                    shaders::BASIS,
-                    shaders::MATERIAL,
-                    shaders::BVH,
-                    shaders::VAO,
-                ],
-                shaders::HIDDEN_COLUMN_RAYS,
-            ),
-        };
+        let source = vao_source(rays.is_some(), shaders::VAO_SINGLE);
         let label = if rays.is_some() { "rt-vao" } else { "vao" };
         let constants = [("SAMPLE_COUNT", f64::from(settings.samples))];
         let pipeline = crate::gpu::compute_pipeline_with(device, label, &source, &constants);
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("vao params"),
-            contents: bytemuck::bytes_of(&VaoParams::new(settings)),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let rays = rays.map(|r| ColumnRays {
-            camera: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ray camera"),
-                size: std::mem::size_of::<RayCamera>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
-            bvh_group: r
-                .bvh
-                .bind_group(device, &pipeline.get_bind_group_layout(1), r.scene),
-        });
+        let params = params_buffer(device, settings);
+        let rays = rays.map(|r| ColumnRays::new(device, &pipeline.get_bind_group_layout(1), &r));
         Self {
             pipeline,
             params,
@@ -182,12 +207,7 @@ impl VaoKernel {
 impl AoKernel for VaoKernel {
     fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
         if let Some(rays) = &self.rays {
-            let camera = RayCamera {
-                camera_to_world: camera_to_world.to_cols_array_2d(),
-                near,
-                _pad: [0.0; 3],
-            };
-            queue.write_buffer(&rays.camera, 0, bytemuck::bytes_of(&camera));
+            rays.set_camera(queue, camera_to_world, near);
         }
     }
 

@@ -7,6 +7,7 @@ use crate::filter::bilateral::BilateralBlur;
 use crate::gpu::PassProfiler;
 use crate::hidden::HiddenDepth;
 use crate::kernels::{
+    svao::SvaoKernel,
     vao::{RayTracedScene, VaoKernel},
     AoKernel, FrameInputs,
 };
@@ -71,10 +72,16 @@ impl AmbientOcclusion {
             HiddenDepth::None => None,
             HiddenDepth::ColumnRays => scene,
         };
-        let kernel: Box<dyn AoKernel> = match settings.technique {
-            Technique::Vao | Technique::RtVao => {
-                Box::new(VaoKernel::new(device, &settings.vao, &view, rays))
-            }
+        let kernel: Box<dyn AoKernel> = match (settings.technique, rays) {
+            (Technique::RtSvao | Technique::RtSvaoDense, Some(rays)) => Box::new(SvaoKernel::new(
+                device,
+                &settings.vao,
+                &view,
+                rays,
+                (screen.width, screen.height),
+                settings.technique == Technique::RtSvao,
+            )),
+            (_, rays) => Box::new(VaoKernel::new(device, &settings.vao, &view, rays)),
         };
         let blur = settings.blur.enabled.then(|| {
             BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)

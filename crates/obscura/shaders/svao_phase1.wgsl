@@ -1,0 +1,59 @@
+// Stenciled VAO, phase 1 (seed 000 §3.8; seed-code-notes §1.3, §2.2): every sample from the depth
+// buffer only. Samples the hidden-depth source still has to resolve (depth_lookup(...).trace) are
+// flagged in a per-pixel bit mask and left out of the sum; a pixel without flags is finished here.
+// The partial sums stay in 32-bit floats for phase 2 (no 8-bit quantisation between phases), and
+// flagged pixels are appended to a work list (when COMPACT) for an indirect phase 2.
+
+struct SvaoPixel {
+    mask: u32,
+    sum: f32,
+    clipped_sum: f32,
+    _pad: u32,
+}
+
+override COMPACT: bool = true;
+
+@group(2) @binding(0) var<storage, read_write> svao_pixels: array<SvaoPixel>;
+@group(2) @binding(1) var<storage, read_write> work_count: atomic<u32>;
+@group(2) @binding(2) var<storage, read_write> work_list: array<u32>;
+
+@compute @workgroup_size(32, 8)
+fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
+    let id = global_id.xy;
+    if (any(id >= view.visible_size)) {
+        return;
+    }
+    let index = id.y * view.visible_size.x + id.x;
+    var out: SvaoPixel;
+    out.mask = 0u;
+    let p = vao_pixel(id);
+    if (!p.valid) {
+        svao_pixels[index] = out;
+        textureStore(ao_out, id, vec4<f32>(1.0));
+        return;
+    }
+    var sum = 0.0;
+    var clipped_sum = 0.0;
+    for (var i = 0u; i < SAMPLE_COUNT; i++) {
+        let s = vao_sample(p, i);
+        if (s.h == 0.0) {
+            continue;
+        }
+        let inv_2h = 0.5 / s.h;
+        clipped_sum += (s.column.start - s.column.end) * inv_2h;
+        let l = depth_lookup(p.frame, s.column);
+        if (l.trace) {
+            out.mask |= 1u << i;
+        } else {
+            sum += l.free * inv_2h;
+        }
+    }
+    out.sum = sum;
+    out.clipped_sum = clipped_sum;
+    svao_pixels[index] = out;
+    if (out.mask == 0u) {
+        textureStore(ao_out, id, vec4<f32>(vao_finish(sum, clipped_sum)));
+    } else if (COMPACT) {
+        work_list[atomicAdd(&work_count, 1u)] = index;
+    }
+}

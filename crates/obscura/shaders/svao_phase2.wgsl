@@ -1,0 +1,46 @@
+// Stenciled VAO, phase 2 (seed 000 §3.8): only the samples phase 1 flagged, resolved by the
+// hidden-depth source, added to phase 1's partial sum. Two ways to find the work (both kept for
+// comparison): COMPACT reads phase 1's work list (dispatched indirectly, one thread per flagged
+// pixel); otherwise one thread per visible pixel returns at once when its mask is empty.
+
+struct SvaoPixel {
+    mask: u32,
+    sum: f32,
+    clipped_sum: f32,
+    _pad: u32,
+}
+
+override COMPACT: bool = true;
+
+@group(2) @binding(0) var<storage, read> svao_pixels: array<SvaoPixel>;
+@group(2) @binding(1) var<storage, read> work_count: u32;
+@group(2) @binding(2) var<storage, read> work_list: array<u32>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
+    var index = global_id.x;
+    if (COMPACT) {
+        if (index >= work_count) {
+            return;
+        }
+        index = work_list[index];
+    } else if (index >= view.visible_size.x * view.visible_size.y) {
+        return;
+    }
+    let stored = svao_pixels[index];
+    if (stored.mask == 0u) {
+        return;
+    }
+    let id = vec2<u32>(index % view.visible_size.x, index / view.visible_size.x);
+    let p = vao_pixel(id);
+    var sum = stored.sum;
+    var mask = stored.mask;
+    while (mask != 0u) {
+        let i = firstTrailingBit(mask);
+        mask &= mask - 1u;
+        let s = vao_sample(p, i);
+        let l = depth_lookup(p.frame, s.column);
+        sum += trace_column_visibility(p.frame, s.column, l.px, l.t_after, l.free) * (0.5 / s.h);
+    }
+    textureStore(ao_out, id, vec4<f32>(vao_finish(sum, stored.clipped_sum)));
+}

@@ -1,0 +1,191 @@
+//! Stenciled VAO (seed 000 §3.8, RT-SVAO): phase 1 takes every sample from the depth buffer and
+//! flags, per pixel, the samples the hidden-depth source must still resolve; phase 2 resolves only
+//! those. The paper needed a hardware stencil and a ray-tracing pipeline against the divergence;
+//! in compute, phase 2 either walks every pixel and returns at once for unflagged ones (`dense`),
+//! or reads a work list of flagged pixels compacted by phase 1 and is dispatched indirectly.
+//! Same arithmetic as the single pass, so it gives the same image (`shaders/svao_phase*.wgsl`).
+
+use super::vao::{params_buffer, vao_source, ColumnRays, RayTracedScene};
+use super::{workgroups_32x8, AoKernel, FrameInputs};
+use crate::gpu::PassProfiler;
+use crate::settings::VaoSettings;
+use crate::shaders;
+
+/// Bytes per visible pixel of phase 1's results (`SvaoPixel` in the WGSL).
+const PIXEL_BYTES: u64 = 16;
+
+pub struct SvaoKernel {
+    phase1: wgpu::ComputePipeline,
+    phase2: wgpu::ComputePipeline,
+    indirect: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    view: wgpu::Buffer,
+    rays: ColumnRays,
+    compact: bool,
+    pixels: wgpu::Buffer,
+    work_count: wgpu::Buffer,
+    work_list: wgpu::Buffer,
+    dispatch: wgpu::Buffer,
+}
+
+impl SvaoKernel {
+    /// Two-phase RT-VAO for a visible image of `width`×`height`; `compact`: phase 2 over a work
+    /// list with an indirect dispatch, else over every pixel with an early return.
+    pub fn new(
+        device: &wgpu::Device,
+        settings: &VaoSettings,
+        view: &wgpu::Buffer,
+        rays: RayTracedScene,
+        (width, height): (u32, u32),
+        compact: bool,
+    ) -> Self {
+        let constants = [
+            ("SAMPLE_COUNT", f64::from(settings.samples)),
+            ("COMPACT", f64::from(u8::from(compact))),
+        ];
+        let pipeline = |label, entry| {
+            crate::gpu::compute_pipeline_with(device, label, &vao_source(true, entry), &constants)
+        };
+        let phase1 = pipeline("svao phase 1", shaders::SVAO_PHASE1);
+        let phase2 = pipeline("svao phase 2", shaders::SVAO_PHASE2);
+        let indirect =
+            crate::gpu::compute_pipeline_with(device, "svao indirect", shaders::SVAO_INDIRECT, &[]);
+        let pixels = u64::from(width) * u64::from(height);
+        let buffer = |label, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(4),
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            rays: ColumnRays::new(device, &phase2.get_bind_group_layout(1), &rays),
+            params: params_buffer(device, settings),
+            view: view.clone(),
+            compact,
+            pixels: buffer(
+                "svao pixels",
+                pixels * PIXEL_BYTES,
+                wgpu::BufferUsages::empty(),
+            ),
+            work_count: buffer(
+                "svao work count",
+                4,
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            ),
+            work_list: buffer("svao work list", pixels * 4, wgpu::BufferUsages::empty()),
+            dispatch: buffer("svao dispatch", 12, wgpu::BufferUsages::INDIRECT),
+            phase1,
+            phase2,
+            indirect,
+        }
+    }
+}
+
+impl AoKernel for SvaoKernel {
+    fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
+        self.rays.set_camera(queue, camera_to_world, near);
+    }
+
+    fn pass_name(&self) -> &'static str {
+        if self.compact {
+            "rt-svao"
+        } else {
+            "rt-svao-dense"
+        }
+    }
+
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs,
+        output: &wgpu::TextureView,
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        let frame = |pipeline: &wgpu::ComputePipeline, with_camera: bool| {
+            let mut resources = vec![
+                self.view.as_entire_binding(),
+                self.params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(inputs.depth),
+                wgpu::BindingResource::TextureView(inputs.normals),
+                wgpu::BindingResource::TextureView(output),
+            ];
+            if with_camera {
+                resources.push(self.rays.camera.as_entire_binding());
+            }
+            crate::gpu::bind_group(
+                device,
+                "svao",
+                &pipeline.get_bind_group_layout(0),
+                &resources,
+            )
+        };
+        let work = |pipeline: &wgpu::ComputePipeline| {
+            crate::gpu::bind_group(
+                device,
+                "svao work",
+                &pipeline.get_bind_group_layout(2),
+                &[
+                    self.pixels.as_entire_binding(),
+                    self.work_count.as_entire_binding(),
+                    self.work_list.as_entire_binding(),
+                ],
+            )
+        };
+        encoder.clear_buffer(&self.work_count, 0, None);
+        {
+            let (group0, group2) = (frame(&self.phase1, false), work(&self.phase1));
+            let timestamp_writes = profiler
+                .as_deref_mut()
+                .map(|p| p.compute_pass("svao_phase1"));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("svao phase 1"),
+                timestamp_writes,
+            });
+            pass.set_pipeline(&self.phase1);
+            pass.set_bind_group(0, &group0, &[]);
+            pass.set_bind_group(2, &group2, &[]);
+            let (x, y, z) = workgroups_32x8(inputs.screen.width, inputs.screen.height);
+            pass.dispatch_workgroups(x, y, z);
+        }
+        if self.compact {
+            let group = crate::gpu::bind_group(
+                device,
+                "svao indirect",
+                &self.indirect.get_bind_group_layout(0),
+                &[
+                    self.work_count.as_entire_binding(),
+                    self.dispatch.as_entire_binding(),
+                ],
+            );
+            let timestamp_writes = profiler
+                .as_deref_mut()
+                .map(|p| p.compute_pass("svao_indirect"));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("svao indirect"),
+                timestamp_writes,
+            });
+            pass.set_pipeline(&self.indirect);
+            pass.set_bind_group(0, &group, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
+        let (group0, group2) = (frame(&self.phase2, true), work(&self.phase2));
+        let timestamp_writes = profiler.map(|p| p.compute_pass("svao_phase2"));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("svao phase 2"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.phase2);
+        pass.set_bind_group(0, &group0, &[]);
+        pass.set_bind_group(1, &self.rays.bvh_group, &[]);
+        pass.set_bind_group(2, &group2, &[]);
+        if self.compact {
+            pass.dispatch_workgroups_indirect(&self.dispatch, 0);
+        } else {
+            let pixels = inputs.screen.width * inputs.screen.height;
+            pass.dispatch_workgroups(pixels.div_ceil(64), 1, 1);
+        }
+    }
+}
