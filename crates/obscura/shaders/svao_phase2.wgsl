@@ -16,9 +16,12 @@ override COMPACT: bool = true;
 @group(2) @binding(1) var<storage, read> work_count: u32;
 @group(2) @binding(2) var<storage, read> work_list: array<u32>;
 
+// Dispatches wider than the 65535-workgroup limit wrap into y rows of 65535 workgroups.
+const ROW_THREADS: u32 = 65535u * 64u;
+
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
-    var index = global_id.x;
+    var index = global_id.x + global_id.y * ROW_THREADS;
     if (COMPACT) {
         if (index >= work_count) {
             return;

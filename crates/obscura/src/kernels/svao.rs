@@ -14,6 +14,14 @@ use crate::shaders;
 /// Bytes per visible pixel of phase 1's results (`SvaoPixel` in the WGSL).
 const PIXEL_BYTES: u64 = 16;
 
+/// Workgroups (x, y) for `threads` threads of 64 per group, in rows of at most 65535 workgroups
+/// (the per-dimension dispatch limit; a 4K image needs 129,600 groups). Phase 2 recovers the
+/// thread index as `x + y · 65535 · 64`.
+pub fn dispatch_rows(threads: u32) -> (u32, u32) {
+    let groups = threads.div_ceil(64);
+    (groups.clamp(1, 65535), groups.div_ceil(65535).max(1))
+}
+
 pub struct SvaoKernel {
     phase1: wgpu::ComputePipeline,
     phase2: wgpu::ComputePipeline,
@@ -184,8 +192,34 @@ impl AoKernel for SvaoKernel {
         if self.compact {
             pass.dispatch_workgroups_indirect(&self.dispatch, 0);
         } else {
-            let pixels = inputs.screen.width * inputs.screen.height;
-            pass.dispatch_workgroups(pixels.div_ceil(64), 1, 1);
+            let (x, y) = dispatch_rows(inputs.screen.width * inputs.screen.height);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::dispatch_rows;
+
+    #[test]
+    fn dispatch_rows_cover_every_thread_within_the_limit() {
+        for threads in [
+            1,
+            64,
+            65,
+            65535 * 64,
+            65535 * 64 + 1,
+            3840 * 2160,
+            7680 * 4320,
+        ] {
+            let (x, y) = dispatch_rows(threads);
+            assert!(x <= 65535 && y <= 65535);
+            // Thread (gx, gy) is index gx + gy·65535·64: with more than one row every row is full,
+            // so the indices reach x·64 + (y − 1)·65535·64 − 1 ≥ threads − 1.
+            assert!(y == 1 || x == 65535);
+            let reachable = u64::from(x) * 64 + u64::from(y - 1) * 65535 * 64;
+            assert!(reachable >= u64::from(threads), "{threads}: ({x}, {y})");
         }
     }
 }
