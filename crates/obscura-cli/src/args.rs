@@ -171,3 +171,17 @@ pub fn parse_techniques(list: &str) -> Result<Vec<Technique>> {
     }
     Ok(techniques)
 }
+
+/// Say so when rays of the last frame overflowed the GPU traversal stack (their AO may be too
+/// bright): never silently wrong.
+pub fn warn_stack_overflows(renderer: &obscura::Renderer) -> Result<()> {
+    let overflows = renderer.read_stack_overflows()?;
+    if overflows > 0 {
+        eprintln!(
+            "warning: {overflows} rays overflowed the GPU BVH traversal stack ({} entries); their \
+             occlusion may be incomplete",
+            obscura::bvh::gpu::STACK_SIZE
+        );
+    }
+    Ok(())
+}

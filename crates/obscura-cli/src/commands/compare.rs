@@ -65,6 +65,7 @@ pub fn compare(
         let mut renderer = Renderer::new(gpu, c.scene, &settings, c.width, c.height, c.guard_band)?;
         renderer.render(&c.camera, None)?;
         images.push((technique.name(), renderer.read_ao()?));
+        crate::args::warn_stack_overflows(&renderer)?;
         gbuffer = Some(renderer.read_gbuffer()?);
         on_render(technique, &renderer)?;
     }

@@ -40,6 +40,7 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     let mut renderer = Renderer::new(&gpu, &scene, &settings, width, height, guard_band)?;
     renderer.render(&camera, None)?;
     let ao = renderer.read_ao()?;
+    crate::args::warn_stack_overflows(&renderer)?;
     output::write_ao(&args.out, width, height, &ao)?;
     if args.composite {
         let path = output::composite_path(&args.out);

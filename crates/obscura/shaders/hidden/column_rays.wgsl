@@ -18,6 +18,9 @@ struct RayCamera {
 }
 
 @group(0) @binding(5) var<uniform> ray_camera: RayCamera;
+// Rays whose traversal overflowed its stack: their result may be incomplete, so they are counted
+// and reported (AmbientOcclusion::read_stack_overflows), never silently wrong.
+@group(0) @binding(6) var<storage, read_write> stack_overflows: atomic<u32>;
 
 // State of the ray being traced, read by bvh_on_hit.
 var<private> trace_column: VaoColumn;
@@ -55,7 +58,11 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     if (t_min < t_max && start_vis > 0.0) {
         let origin = ray_camera.camera_to_world[3].xyz;
         let dir = (ray_camera.camera_to_world * vec4<f32>(dir_view, 0.0)).xyz;
+        bvh_stack_overflow = false;
         bvh_traverse(origin, dir, t_min, t_max);
+        if (bvh_stack_overflow) {
+            atomicAdd(&stack_overflows, 1u);
+        }
     }
     return trace_visibility;
 }

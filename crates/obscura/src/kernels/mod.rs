@@ -26,6 +26,12 @@ pub trait AoKernel {
     /// Kernels without rays ignore it.
     fn set_camera(&self, _queue: &wgpu::Queue, _camera_to_world: glam::Mat4, _near: f32) {}
 
+    /// For kernels that trace rays: a `u32` buffer counting the rays of the last frame whose BVH
+    /// traversal overflowed its stack (their results may be incomplete).
+    fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
+        None
+    }
+
     /// Record the kernel. `output` is `R32Float` storage of the visible size.
     fn encode(
         &self,

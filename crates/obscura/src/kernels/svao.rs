@@ -96,6 +96,10 @@ impl AoKernel for SvaoKernel {
         self.rays.set_camera(queue, camera_to_world, near);
     }
 
+    fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
+        Some(&self.rays.stack_overflows)
+    }
+
     fn pass_name(&self) -> &'static str {
         if self.compact {
             "rt-svao"
@@ -121,7 +125,10 @@ impl AoKernel for SvaoKernel {
                 wgpu::BindingResource::TextureView(output),
             ];
             if with_camera {
-                resources.push(self.rays.camera.as_entire_binding());
+                resources.extend([
+                    self.rays.camera.as_entire_binding(),
+                    self.rays.stack_overflows.as_entire_binding(),
+                ]);
             }
             crate::gpu::bind_group(
                 device,
@@ -143,6 +150,7 @@ impl AoKernel for SvaoKernel {
             )
         };
         encoder.clear_buffer(&self.work_count, 0, None);
+        encoder.clear_buffer(&self.rays.stack_overflows, 0, None);
         {
             let (group0, group2) = (frame(&self.phase1, false), work(&self.phase1));
             let timestamp_writes = profiler

@@ -134,6 +134,8 @@ pub struct RayTracedScene<'a> {
 pub(crate) struct ColumnRays {
     pub camera: wgpu::Buffer,
     pub bvh_group: wgpu::BindGroup,
+    /// `stack_overflows` of column_rays.wgsl (cleared every frame).
+    pub stack_overflows: wgpu::Buffer,
 }
 
 impl ColumnRays {
@@ -150,6 +152,14 @@ impl ColumnRays {
                 mapped_at_creation: false,
             }),
             bvh_group: r.bvh.bind_group(device, bvh_layout, r.scene),
+            stack_overflows: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("stack overflows"),
+                size: 4,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
         }
     }
 
@@ -211,6 +221,10 @@ impl AoKernel for VaoKernel {
         }
     }
 
+    fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
+        self.rays.as_ref().map(|r| &r.stack_overflows)
+    }
+
     fn pass_name(&self) -> &'static str {
         if self.rays.is_some() {
             "rt-vao"
@@ -235,7 +249,11 @@ impl AoKernel for VaoKernel {
             wgpu::BindingResource::TextureView(output),
         ];
         if let Some(rays) = &self.rays {
-            resources.push(rays.camera.as_entire_binding());
+            resources.extend([
+                rays.camera.as_entire_binding(),
+                rays.stack_overflows.as_entire_binding(),
+            ]);
+            encoder.clear_buffer(&rays.stack_overflows, 0, None);
         }
         let bind_group = crate::gpu::bind_group(
             device,

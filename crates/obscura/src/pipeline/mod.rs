@@ -114,6 +114,25 @@ impl AmbientOcclusion {
         self.kernel.set_camera(queue, camera_to_world, near);
     }
 
+    /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
+    /// rays). Waits for the GPU.
+    pub fn read_stack_overflows(&self, gpu: &crate::Gpu) -> Result<u32, Error> {
+        let Some(counter) = self.kernel.stack_overflows() else {
+            return Ok(0);
+        };
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("stack overflow readback"),
+            size: 4,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(counter, 0, &staging, 0, 4);
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = crate::gpu::read_buffer(gpu, &staging)?;
+        Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
+    }
+
     pub fn settings(&self) -> &AoSettings {
         &self.settings
     }

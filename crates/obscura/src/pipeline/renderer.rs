@@ -145,6 +145,11 @@ impl<'g> Renderer<'g> {
         Ok(read_texture_f32(self.gpu, self.last_ao()?.output(), 1)?)
     }
 
+    /// Rays of the last frame whose BVH traversal overflowed its stack (0 without rays).
+    pub fn read_stack_overflows(&self) -> Result<u32, Error> {
+        self.last_ao()?.read_stack_overflows(self.gpu)
+    }
+
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(self.gpu, self.last_ao()?.raw_output(), 1)?)
