@@ -59,7 +59,7 @@ fn main() -> ExitCode {
         Command::Info(a) => commands::info::run(&gpu_options, &a),
         Command::Scenes(a) => commands::scenes::run(&a),
         Command::Render(a) => commands::render::run(&gpu_options, &a),
-        Command::Reference(a) => commands::reference::run(&a),
+        Command::Reference(a) => commands::reference::run(&gpu_options, &a),
         Command::Compare(a) => commands::compare::run(&gpu_options, &a),
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),

@@ -101,15 +101,24 @@ struct VaoPixel {
 }
 
 fn vao_pixel(id: vec2<u32>) -> VaoPixel {
-    var p: VaoPixel;
     let pixel = id + vec2<u32>(view.guard_band);
     let z = textureLoad(depth_tex, pixel, 0).r;
-    p.valid = !is_background(z);
-    if (!p.valid) {
+    if (is_background(z)) {
+        var p: VaoPixel;
+        p.valid = false;
         return p;
     }
     let pos = pixel_to_view(view, vec2<f32>(pixel) + 0.5, z);
-    let n = normalize(textureLoad(normal_tex, pixel, 0).xyz);
+    return vao_pixel_at(id, pos, textureLoad(normal_tex, pixel, 0).xyz);
+}
+
+// The shading point of visible pixel `id` at view-space `pos` with normal `normal` (any source:
+// the G-buffer above, or a primary ray in the ground truth).
+fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
+    var p: VaoPixel;
+    p.valid = true;
+    let pixel = id + vec2<u32>(view.guard_band);
+    let n = normalize(normal);
     // Sample frame perpendicular to the view ray: `axis` points to the camera.
     let axis = -normalize(pos);
     let basis = orthonormal_basis(axis);

@@ -16,6 +16,7 @@ pub const HIDDEN_DEPTH_BUFFER: &str = include_str!("../shaders/hidden/depth_buff
 pub const HIDDEN_COLUMN_RAYS: &str = include_str!("../shaders/hidden/column_rays.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
+pub const REFERENCE: &str = include_str!("../shaders/reference.wgsl");
 
 /// A pass's source with the shared helpers it names in front.
 pub fn with_common(common: &[&str], pass: &str) -> String {

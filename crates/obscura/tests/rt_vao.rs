@@ -180,7 +180,11 @@ fn rt_svao_gives_the_same_image_as_rt_vao() {
             settings.blur.enabled = false;
             let mut r = Renderer::new(&gpu, &scene, &settings, 150, 90, 16).unwrap();
             r.render(&scene.cameras[0].camera, None).unwrap();
-            assert_eq!(r.read_stack_overflows().unwrap(), 0, "{name} {technique}: stack overflows");
+            assert_eq!(
+                r.read_stack_overflows().unwrap(),
+                0,
+                "{name} {technique}: stack overflows"
+            );
             r.read_ao().unwrap()
         };
         let single = render(Technique::RtVao);

@@ -6,6 +6,7 @@ use anyhow::{bail, Result};
 use clap::Args;
 use obscura::bvh::Bvh;
 use obscura::reference::cache;
+use obscura::reference::gpu::render_reference_gpu;
 use obscura::reference::ground_truth::{
     render_reference_counted, ReferenceModel, ReferenceSettings,
 };
@@ -29,6 +30,9 @@ pub struct ReferenceArgs {
     /// Recompute the reference even if the cache has it.
     #[arg(long)]
     pub no_cache: bool,
+    /// Trace on the CPU (the oracle) instead of the GPU.
+    #[arg(long)]
+    pub cpu: bool,
 }
 
 impl ReferenceArgs {
@@ -66,8 +70,10 @@ pub struct ReferenceCmdArgs {
     out: PathBuf,
 }
 
-/// The reference for `view`, from the cache when it has it; reports rays/s when computed.
+/// The reference for `view`, from the cache when it has it; traced on `gpu` when given, else on
+/// the CPU; reports rays/s when computed.
 pub fn compute_or_load(
+    gpu: Option<&obscura::Gpu>,
     scene_spec: &str,
     scene: &Scene,
     view: FrameView,
@@ -86,22 +92,43 @@ pub fn compute_or_load(
     let start = Instant::now();
     let bvh = Bvh::build(scene);
     let build = start.elapsed().as_secs_f64();
-    let progress = bar(
-        u64::from(view.height),
-        &format!("{} reference", settings.model),
-    );
     let trace_start = Instant::now();
-    let (image, rays) = render_reference_counted(scene, &bvh, view, settings, &|_| progress.inc(1));
+    let (image, rays, device) = match gpu {
+        Some(gpu) => {
+            let progress = bar(1, &format!("{} reference", settings.model));
+            let (image, rays) =
+                render_reference_gpu(gpu, scene, &bvh, view, settings, &|done, total| {
+                    progress.set_length(u64::from(total));
+                    progress.set_position(u64::from(done));
+                })?;
+            progress.finish_and_clear();
+            // Counted as if every pixel had geometry: an upper bound.
+            (
+                image,
+                rays,
+                format!("the GPU ({}), at most", gpu.summary.name),
+            )
+        }
+        None => {
+            let progress = bar(
+                u64::from(view.height),
+                &format!("{} reference", settings.model),
+            );
+            let (image, rays) =
+                render_reference_counted(scene, &bvh, view, settings, &|_| progress.inc(1));
+            progress.finish_and_clear();
+            (
+                image,
+                rays,
+                format!("the CPU ({} threads)", rayon_threads()),
+            )
+        }
+    };
     let seconds = trace_start.elapsed().as_secs_f64();
-    progress.finish_and_clear();
     eprintln!(
-        "reference: {} model, BVH {:.2} s, {} rays in {:.2} s = {:.2} M rays/s on {} threads",
+        "reference: {} model on {device} {rays} rays in {seconds:.2} s = {:.2} M rays/s (BVH build {build:.2} s)",
         settings.model,
-        build,
-        rays,
-        seconds,
         rays as f64 / seconds / 1e6,
-        rayon_threads()
     );
     if use_cache {
         if let Err(e) = cache::store(&dir, &key, &image) {
@@ -115,7 +142,7 @@ fn rayon_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
-pub fn run(args: &ReferenceCmdArgs) -> Result<()> {
+pub fn run(gpu_options: &obscura::GpuOptions, args: &ReferenceCmdArgs) -> Result<()> {
     output::check_writable(&args.out)?;
     let settings = args.reference.settings(args.model, &args.ao)?;
     let (width, height) = args.size;
@@ -128,7 +155,19 @@ pub fn run(args: &ReferenceCmdArgs) -> Result<()> {
         args.ao.guard_band(height),
         obscura::near_plane(&scene),
     );
+    let gpu = if args.reference.cpu {
+        None
+    } else {
+        match obscura::Gpu::new(gpu_options) {
+            Ok(gpu) => Some(gpu),
+            Err(e) => {
+                eprintln!("note: tracing on the CPU ({e})");
+                None
+            }
+        }
+    };
     let image = compute_or_load(
+        gpu.as_ref(),
         &args.scene.scene,
         &scene,
         view,

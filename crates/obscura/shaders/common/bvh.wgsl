@@ -8,6 +8,7 @@
 //     fn bvh_on_hit(hit: BvhHit) -> u32
 // returning BVH_CONTINUE, BVH_SHRINK (the interval ends at hit.t: closest-hit search) or BVH_STOP:
 // the shape of an any-hit shader. Hits reach it only after the back-face and alpha rules.
+// bvh_closest_hit and bvh_any_hit are built in and do not call it.
 
 struct BvhNode {
     min: vec3<f32>,
@@ -43,6 +44,43 @@ struct BvhHit {
 
 // Set when a traversal had to drop a subtree because its stack was full.
 var<private> bvh_stack_overflow: bool = false;
+
+// Built-in hit handling for bvh_closest_hit / bvh_any_hit; otherwise hits go to bvh_on_hit.
+const BVH_MODE_PASS: u32 = 0u;
+const BVH_MODE_CLOSEST: u32 = 1u;
+const BVH_MODE_ANY: u32 = 2u;
+var<private> bvh_mode: u32 = 0u;
+var<private> bvh_found: BvhHit;
+
+fn bvh_handle_hit(hit: BvhHit) -> u32 {
+    if (bvh_mode == BVH_MODE_CLOSEST) {
+        bvh_found = hit;
+        return BVH_SHRINK;
+    }
+    if (bvh_mode == BVH_MODE_ANY) {
+        bvh_found = hit;
+        return BVH_STOP;
+    }
+    return bvh_on_hit(hit);
+}
+
+// The closest hit in [t_min, t_max] (`t < 0`: none).
+fn bvh_closest_hit(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> BvhHit {
+    bvh_mode = BVH_MODE_CLOSEST;
+    bvh_found.t = -1.0;
+    bvh_traverse(origin, dir, t_min, t_max);
+    bvh_mode = BVH_MODE_PASS;
+    return bvh_found;
+}
+
+// Whether anything is hit in [t_min, t_max].
+fn bvh_any_hit(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max: f32) -> bool {
+    bvh_mode = BVH_MODE_ANY;
+    bvh_found.t = -1.0;
+    bvh_traverse(origin, dir, t_min, t_max);
+    bvh_mode = BVH_MODE_PASS;
+    return bvh_found.t >= 0.0;
+}
 
 struct BvhRay {
     origin: vec3<f32>,
@@ -197,7 +235,7 @@ fn bvh_traverse(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32) {
                 if (hit.t < 0.0 || !bvh_passes_rules(hit)) {
                     continue;
                 }
-                let action = bvh_on_hit(hit);
+                let action = bvh_handle_hit(hit);
                 if (action == BVH_STOP) {
                     return;
                 }

@@ -251,22 +251,20 @@ fn hammersley(i: u32, n: u32) -> Vec2 {
     )
 }
 
-/// SplitMix64 finaliser: a documented, dependency-free hash for the seeded per-pixel rotation
-/// (we only need a well-mixed 64-bit value per pixel, not a random-number generator).
-fn splitmix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+/// PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020): a
+/// documented 32-bit hash for the seeded per-pixel rotation, the same on the CPU and in
+/// `shaders/reference.wgsl` (no 64-bit integers in WGSL).
+pub fn pcg_hash(v: u32) -> u32 {
+    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
 }
 
 /// Per-pixel Cranley–Patterson rotation in [0,1)² from the seed and the pixel.
 pub fn pixel_rotation_2d(seed: u64, x: u32, y: u32) -> Vec2 {
-    let h = splitmix64(seed ^ (u64::from(x) << 32 | u64::from(y)));
-    Vec2::new(
-        (h >> 40) as f32 / (1u64 << 24) as f32,
-        ((h >> 16) & 0xff_ffff) as f32 / (1u64 << 24) as f32,
-    )
+    let h1 = pcg_hash((seed as u32) ^ pcg_hash(x.wrapping_add(pcg_hash(y))));
+    let h2 = pcg_hash(h1);
+    Vec2::new((h1 >> 8) as f32, (h2 >> 8) as f32) / (1u32 << 24) as f32
 }
 
 /// How the hemisphere model samples one point.

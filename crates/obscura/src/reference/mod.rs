@@ -4,5 +4,6 @@
 pub mod cache;
 pub mod cpu_blur;
 pub mod cpu_vao;
+pub mod gpu;
 pub mod ground_truth;
 pub mod vao_model;

@@ -1,0 +1,115 @@
+// Ground-truth AO on the GPU, from the triangles (never from a depth buffer): the two models of
+// src/reference/ground_truth.rs, through the same BVH traversal as the ray-traced techniques.
+// - model 0 (`vao`): the VAO kernel at the primary ray's surface, every sample's camera ray traced
+//   over its interval (column_rays.wgsl's trace_column_visibility, starting at the near plane).
+// - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
+//   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
+//   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
+
+struct ReferenceParams {
+    model: u32,
+    spp_start: u32,
+    spp_count: u32,
+    spp_total: u32,
+    falloff: u32,
+    seed: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(0) @binding(7) var<uniform> reference: ReferenceParams;
+// Per visible pixel: the AO (vao model) or the summed occlusion of the rays so far (hemisphere).
+@group(0) @binding(8) var<storage, read_write> reference_out: array<f32>;
+
+// src/reference/ground_truth.rs: pcg_hash.
+fn pcg_hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn pixel_rotation_2d(seed: u32, x: u32, y: u32) -> vec2<f32> {
+    let h1 = pcg_hash(seed ^ pcg_hash(x + pcg_hash(y)));
+    let h2 = pcg_hash(h1);
+    return vec2<f32>(f32(h1 >> 8u), f32(h2 >> 8u)) / 16777216.0;
+}
+
+fn hammersley(i: u32, n: u32) -> vec2<f32> {
+    return vec2<f32>((f32(i) + 0.5) / f32(n), f32(reverseBits(i)) * 2.3283064365386963e-10);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
+    let id = global_id.xy;
+    if (any(id >= view.visible_size)) {
+        return;
+    }
+    let index = id.y * view.visible_size.x + id.x;
+    let pixel = id + vec2<u32>(view.guard_band);
+    let dir_view = pixel_to_view(view, vec2<f32>(pixel) + 0.5, 1.0);
+    let origin = ray_camera.camera_to_world[3].xyz;
+    let dir = (ray_camera.camera_to_world * vec4<f32>(dir_view, 0.0)).xyz;
+    let hit = bvh_closest_hit(origin, dir, ray_camera.near, 3.4e38);
+    if (hit.t < 0.0) {
+        reference_out[index] = select(0.0, 1.0, reference.model == 0u);
+        return;
+    }
+    let tri = bvh_triangles[hit.slot];
+    let p0 = bvh_positions[tri.x].xyz;
+    var n = cross(bvh_positions[tri.y].xyz - p0, bvh_positions[tri.z].xyz - p0);
+    n = select(vec3<f32>(0.0), normalize(n), length(n) > 0.0);
+    if (dot(n, dir) > 0.0) {
+        n = -n;
+    }
+    if (reference.model == 0u) {
+        let to_view = transpose(mat3x3<f32>(
+            ray_camera.camera_to_world[0].xyz,
+            ray_camera.camera_to_world[1].xyz,
+            ray_camera.camera_to_world[2].xyz,
+        ));
+        let p = vao_pixel_at(id, dir_view * hit.t, to_view * n);
+        var sum = 0.0;
+        var clipped_sum = 0.0;
+        for (var i = 0u; i < SAMPLE_COUNT; i++) {
+            let s = vao_sample(p, i);
+            if (s.h == 0.0) {
+                continue;
+            }
+            let full = s.column.start - s.column.end;
+            let cell = floor(s.column.px);
+            var free = full;
+            if (any(cell != vec2<f32>(pixel))) {
+                free = trace_column_visibility(p.frame, s.column, cell + 0.5, 0.0, full);
+            }
+            let inv_2h = 0.5 / s.h;
+            sum += free * inv_2h;
+            clipped_sum += full * inv_2h;
+        }
+        reference_out[index] = vao_finish(sum, clipped_sum);
+        return;
+    }
+    // Hemisphere: offset along the normal as the CPU model does.
+    let world = origin + dir * hit.t;
+    let radius = params.radius;
+    let start = world + n * max(1e-4 * radius, 1e-6 * max(max(abs(world.x), abs(world.y)), abs(world.z)));
+    let basis = orthonormal_basis(n);
+    let rotation = pixel_rotation_2d(reference.seed, id.x, id.y);
+    var occlusion = 0.0;
+    for (var i = reference.spp_start; i < reference.spp_start + reference.spp_count; i++) {
+        let h = hammersley(i, reference.spp_total) + rotation;
+        let u = h - floor(h);
+        let r = sqrt(u.x);
+        let phi = 6.283185307179586 * u.y;
+        let local = vec3<f32>(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u.x, 0.0)));
+        let ray_dir = basis[0] * local.x + basis[1] * local.y + n * local.z;
+        if (reference.falloff != 0u) {
+            let occluder = bvh_closest_hit(start, ray_dir, 0.0, radius);
+            if (occluder.t >= 0.0) {
+                occlusion += max(1.0 - occluder.t / radius, 0.0);
+            }
+        } else if (bvh_any_hit(start, ray_dir, 0.0, radius)) {
+            occlusion += 1.0;
+        }
+    }
+    reference_out[index] += occlusion;
+}

@@ -1,0 +1,141 @@
+//! The ground truth on the GPU (`shaders/reference.wgsl`): the same two models as
+//! [`super::ground_truth`] through the compute BVH traversal, held to the CPU oracle by tests.
+
+use super::ground_truth::{ReferenceModel, ReferenceSettings};
+use crate::bvh::gpu::GpuBvh;
+use crate::bvh::Bvh;
+use crate::gpu::Gpu;
+use crate::kernels::vao::{params_buffer, vao_source, ColumnRays, RayTracedScene};
+use crate::raster::gpu_scene::GpuScene;
+use crate::scene::Scene;
+use crate::view::FrameView;
+use crate::Error;
+use wgpu::util::DeviceExt;
+
+/// Hemisphere rays per pixel in one dispatch (progress is reported between batches, and no
+/// single dispatch runs long enough to trip a driver watchdog).
+const BATCH_SPP: u32 = 64;
+
+/// The reference image of the visible `view.width × view.height` (row-major), and the number of
+/// rays traced (primary rays plus hemisphere rays or traced VAO sample columns, as counted on the
+/// CPU: an upper bound for the `vao` model, whose samples snapping to their own pixel trace none).
+/// `progress(done, total)` is called after each batch.
+pub fn render_reference_gpu(
+    gpu: &Gpu,
+    scene: &Scene,
+    bvh: &Bvh,
+    view: FrameView,
+    settings: &ReferenceSettings,
+    progress: &dyn Fn(u32, u32),
+) -> Result<(Vec<f32>, u64), Error> {
+    let device = &gpu.device;
+    let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
+    let gpu_bvh = GpuBvh::new(device, bvh, scene);
+    let constants = [("SAMPLE_COUNT", f64::from(settings.vao.samples))];
+    let source = vao_source(true, crate::shaders::REFERENCE);
+    let pipeline = crate::gpu::compute_pipeline_with(device, "reference", &source, &constants);
+    let rays = ColumnRays::new(
+        device,
+        &pipeline.get_bind_group_layout(1),
+        &RayTracedScene {
+            scene: &gpu_scene,
+            bvh: &gpu_bvh,
+        },
+    );
+    rays.set_camera(&gpu.queue, view.view_matrix().inverse(), view.near);
+    let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("view"),
+        contents: bytemuck::bytes_of(&view.screen().uniform()),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let params = params_buffer(device, &settings.vao);
+    let pixels = u64::from(view.width) * u64::from(view.height);
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("reference"),
+        size: pixels * 4,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let (model, batches) = match settings.model {
+        ReferenceModel::Vao => (0u32, vec![(0, 0)]),
+        ReferenceModel::Hemisphere => (
+            1,
+            (0..settings.spp)
+                .step_by(BATCH_SPP as usize)
+                .map(|start| (start, BATCH_SPP.min(settings.spp - start)))
+                .collect(),
+        ),
+    };
+    let group1 = &rays.bvh_group;
+    for (done, &(spp_start, spp_count)) in batches.iter().enumerate() {
+        let reference = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("reference params"),
+            contents: bytemuck::cast_slice(&[
+                model,
+                spp_start,
+                spp_count,
+                settings.spp,
+                u32::from(settings.falloff),
+                settings.seed as u32,
+                0,
+                0,
+            ]),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let layout = pipeline.get_bind_group_layout(0);
+        let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("reference"),
+            layout: &layout,
+            entries: &[
+                (0, view_buffer.as_entire_binding()),
+                (1, params.as_entire_binding()),
+                (5, rays.camera.as_entire_binding()),
+                (6, rays.stack_overflows.as_entire_binding()),
+                (7, reference.as_entire_binding()),
+                (8, output.as_entire_binding()),
+            ]
+            .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        if done == 0 {
+            encoder.clear_buffer(&output, 0, None);
+            encoder.clear_buffer(&rays.stack_overflows, 0, None);
+        }
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &group0, &[]);
+            pass.set_bind_group(1, group1, &[]);
+            pass.dispatch_workgroups(view.width.div_ceil(8), view.height.div_ceil(8), 1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        gpu.finish()?;
+        progress(done as u32 + 1, batches.len() as u32);
+    }
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("reference readback"),
+        size: pixels * 4 + 4,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, pixels * 4);
+    encoder.copy_buffer_to_buffer(&rays.stack_overflows, 0, &staging, pixels * 4, 4);
+    gpu.queue.submit([encoder.finish()]);
+    let bytes = crate::gpu::read_buffer(gpu, &staging)?;
+    let values: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes[..pixels as usize * 4]);
+    let overflows = u32::from_le_bytes(bytes[pixels as usize * 4..].try_into().expect("4 bytes"));
+    if overflows > 0 {
+        log::warn!("{overflows} reference rays overflowed the GPU BVH stack; their results may be incomplete");
+    }
+    let image = match settings.model {
+        ReferenceModel::Vao => values,
+        ReferenceModel::Hemisphere => values
+            .iter()
+            .map(|&occlusion| 1.0 - occlusion / settings.spp as f32)
+            .collect(),
+    };
+    Ok((image, pixels * settings.rays_per_pixel()))
+}
