@@ -523,3 +523,53 @@ fn no_matching_adapter_says_how_to_get_one() {
         stderr(&o)
     );
 }
+
+#[test]
+fn debug_out_shows_the_flagged_samples() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ao.png");
+    let debug = dir.path().join("debug");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--size",
+        "96x64",
+        "--technique",
+        "rt-svao",
+        "--out",
+        out.to_str().unwrap(),
+        "--debug-out",
+        debug.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(debug.join("stats.json")).unwrap()).unwrap();
+    let (pixels, flagged, rays) = (
+        stats["pixels"].as_u64().unwrap(),
+        stats["flagged_pixels"].as_u64().unwrap(),
+        stats["rays_traced"].as_u64().unwrap(),
+    );
+    assert_eq!(pixels, 96 * 64);
+    // The close-up has hidden geometry behind the figure: some, not all, pixels need rays, and
+    // each flagged pixel traces between 1 and 8 rays.
+    assert!(flagged > 0 && flagged < pixels, "{stats}");
+    assert!(rays >= flagged && rays <= 8 * flagged, "{stats}");
+    assert_eq!(stats["stack_overflows"], 0);
+    let img = image::open(debug.join("samples.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (96, 64));
+    let o = obscura(&[
+        "render",
+        "--size",
+        "64x48",
+        "--out",
+        out.to_str().unwrap(),
+        "--debug-out",
+        debug.to_str().unwrap(),
+    ]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("rt-svao"),
+        "{}",
+        stderr(&o)
+    );
+}

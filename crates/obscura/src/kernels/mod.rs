@@ -32,6 +32,12 @@ pub trait AoKernel {
         None
     }
 
+    /// For two-phase kernels: phase 1's per-pixel records (16 bytes each, the sample bit mask
+    /// first), to show which samples needed rays.
+    fn phase1_records(&self) -> Option<&wgpu::Buffer> {
+        None
+    }
+
     /// Record the kernel. `output` is `R32Float` storage of the visible size.
     fn encode(
         &self,

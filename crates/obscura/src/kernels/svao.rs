@@ -75,7 +75,7 @@ impl SvaoKernel {
             pixels: buffer(
                 "svao pixels",
                 pixels * PIXEL_BYTES,
-                wgpu::BufferUsages::empty(),
+                wgpu::BufferUsages::COPY_SRC,
             ),
             work_count: buffer(
                 "svao work count",
@@ -98,6 +98,10 @@ impl AoKernel for SvaoKernel {
 
     fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
         Some(&self.rays.stack_overflows)
+    }
+
+    fn phase1_records(&self) -> Option<&wgpu::Buffer> {
+        Some(&self.pixels)
     }
 
     fn pass_name(&self) -> &'static str {

@@ -133,6 +133,29 @@ impl AmbientOcclusion {
         Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
     }
 
+    /// For two-phase techniques: per visible pixel, the bit mask of the samples phase 1 flagged
+    /// for rays in the last frame (each flagged sample traces one ray in phase 2). Waits for the GPU.
+    pub fn read_sample_masks(&self, gpu: &crate::Gpu) -> Result<Option<Vec<u32>>, Error> {
+        let Some(records) = self.kernel.phase1_records() else {
+            return Ok(None);
+        };
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("mask readback"),
+            size: records.size(),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(records, 0, &staging, 0, records.size());
+        gpu.queue.submit([encoder.finish()]);
+        let words: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer(gpu, &staging)?);
+        let pixels = (self.screen.width * self.screen.height) as usize;
+        Ok(Some(
+            words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
+        ))
+    }
+
     pub fn settings(&self) -> &AoSettings {
         &self.settings
     }

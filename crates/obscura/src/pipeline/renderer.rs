@@ -150,6 +150,11 @@ impl<'g> Renderer<'g> {
         self.last_ao()?.read_stack_overflows(self.gpu)
     }
 
+    /// Two-phase techniques: the per-pixel masks of samples that needed rays (last frame).
+    pub fn read_sample_masks(&self) -> Result<Option<Vec<u32>>, Error> {
+        self.last_ao()?.read_sample_masks(self.gpu)
+    }
+
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(self.gpu, self.last_ao()?.raw_output(), 1)?)
