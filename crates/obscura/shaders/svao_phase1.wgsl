@@ -17,20 +17,47 @@ override COMPACT: bool = true;
 @group(2) @binding(1) var<storage, read_write> work_count: atomic<u32>;
 @group(2) @binding(2) var<storage, read_write> work_list: array<u32>;
 
+// Work-list compaction per workgroup: flagged pixels take consecutive local slots, then one
+// global atomic reserves the workgroup's range, so the list keeps each 32x8 tile together (phase 2
+// threads then trace neighbouring pixels) and costs one global atomic per workgroup.
+var<workgroup> group_count: atomic<u32>;
+var<workgroup> group_base: u32;
+
 @compute @workgroup_size(32, 8)
-fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
-    let id = global_id.xy;
-    if (any(id >= view.visible_size)) {
-        return;
+fn main(@builtin(global_invocation_id) global_id: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    if (local == 0u) {
+        atomicStore(&group_count, 0u);
     }
+    workgroupBarrier();
+    let id = global_id.xy;
     let index = id.y * view.visible_size.x + id.x;
+    let flagged = shade(id, index);
+    var slot = 0u;
+    if (COMPACT && flagged) {
+        slot = atomicAdd(&group_count, 1u);
+    }
+    workgroupBarrier();
+    if (COMPACT && local == 0u) {
+        group_base = atomicAdd(&work_count, atomicLoad(&group_count));
+    }
+    workgroupBarrier();
+    if (COMPACT && flagged) {
+        work_list[group_base + slot] = index;
+    }
+}
+
+// Phase 1 for one pixel; true when some of its samples need rays.
+fn shade(id: vec2<u32>, index: u32) -> bool {
+    if (any(id >= view.visible_size)) {
+        return false;
+    }
     var out: SvaoPixel;
     out.mask = 0u;
     let p = vao_pixel(id);
     if (!p.valid) {
         svao_pixels[index] = out;
         textureStore(ao_out, id, vec4<f32>(1.0));
-        return;
+        return false;
     }
     var sum = 0.0;
     var clipped_sum = 0.0;
@@ -53,7 +80,6 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     svao_pixels[index] = out;
     if (out.mask == 0u) {
         textureStore(ao_out, id, vec4<f32>(vao_finish(sum, clipped_sum)));
-    } else if (COMPACT) {
-        work_list[atomicAdd(&work_count, 1u)] = index;
     }
+    return out.mask != 0u;
 }
