@@ -14,5 +14,7 @@ for size in 1920x1080 2560x1440 3840x2160; do
   $bin bench "${sponza[@]}" --size $size --techniques $t --frames 100 --warmup 10 --json "$out/rt-sponza-$size.json" 2>&1 | tee -a "$out/rt-bench.txt"
 done
 for scene in stairs grass tower; do
-  $bin bench --scene $scene --size 1920x1080 --techniques $t --frames 100 --warmup 10 --json "$out/rt-$scene-1920x1080.json" 2>&1 | tee -a "$out/rt-bench.txt"
+  for size in 1920x1080 2560x1440 3840x2160; do
+    $bin bench --scene $scene --size $size --techniques $t --frames 100 --warmup 10 --json "$out/rt-$scene-$size.json" 2>&1 | tee -a "$out/rt-bench.txt"
+  done
 done
