@@ -4,15 +4,6 @@
 // The partial sums stay in 32-bit floats for phase 2 (no 8-bit quantisation between phases), and
 // flagged pixels are appended to a work list (when COMPACT) for an indirect phase 2.
 
-struct SvaoPixel {
-    mask: u32,
-    sum: f32,
-    clipped_sum: f32,
-    _pad: u32,
-}
-
-override COMPACT: bool = true;
-
 @group(2) @binding(0) var<storage, read_write> svao_pixels: array<SvaoPixel>;
 @group(2) @binding(1) var<storage, read_write> work_count: atomic<u32>;
 @group(2) @binding(2) var<storage, read_write> work_list: array<u32>;

@@ -3,15 +3,6 @@
 // comparison): COMPACT reads phase 1's work list (dispatched indirectly, one thread per flagged
 // pixel); otherwise one thread per visible pixel returns at once when its mask is empty.
 
-struct SvaoPixel {
-    mask: u32,
-    sum: f32,
-    clipped_sum: f32,
-    _pad: u32,
-}
-
-override COMPACT: bool = true;
-
 @group(2) @binding(0) var<storage, read> svao_pixels: array<SvaoPixel>;
 @group(2) @binding(1) var<storage, read> work_count: u32;
 @group(2) @binding(2) var<storage, read> work_list: array<u32>;

@@ -9,6 +9,7 @@ pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const VAO: &str = include_str!("../shaders/vao.wgsl");
 pub const VAO_SINGLE: &str = include_str!("../shaders/vao_single.wgsl");
+pub const SVAO: &str = include_str!("../shaders/svao.wgsl");
 pub const SVAO_PHASE1: &str = include_str!("../shaders/svao_phase1.wgsl");
 pub const SVAO_PHASE2: &str = include_str!("../shaders/svao_phase2.wgsl");
 pub const SVAO_INDIRECT: &str = include_str!("../shaders/svao_indirect.wgsl");

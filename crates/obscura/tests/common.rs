@@ -79,3 +79,35 @@ pub fn height_field() -> obscura::scene::Scene {
     }
     s
 }
+
+/// A 2×2 m alpha-masked quad at z = −2 (its texture's left column transparent, cutoff 0.5) before a
+/// 10×10 m wall at z = −3, both facing +z.
+pub fn masked_quad_before_wall() -> Scene {
+    use obscura::scene::{AlphaMode, Texture};
+    let quad = |half: f32, z: f32| {
+        [
+            Vec3::new(-half, -half, z),
+            Vec3::new(half, -half, z),
+            Vec3::new(half, half, z),
+            Vec3::new(-half, half, z),
+        ]
+    };
+    let mut scene = quads("mask", &[quad(5.0, -3.0)]);
+    scene.materials.push(Material {
+        name: "leaf".into(),
+        base_color: [1.0; 4],
+        base_color_texture: Some(0),
+        alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
+        double_sided: true,
+    });
+    scene.textures.push(Texture {
+        name: "checker".into(),
+        width: 2,
+        height: 2,
+        rgba8: vec![
+            255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255,
+        ],
+    });
+    push_quad(&mut scene, quad(1.0, -2.0), 1);
+    scene
+}

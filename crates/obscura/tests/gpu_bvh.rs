@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 use obscura::bvh::gpu::{trace_batch, GpuBvh, QueryMode, QueryRay};
 use obscura::bvh::{Bvh, Ray};
 use obscura::raster::gpu_scene::GpuScene;
-use obscura::scene::{self, AlphaMode, Material, Scene, Texture};
+use obscura::scene::{self, Material, Scene};
 
 /// Deterministic rays from each camera (or the bounds' corners) into the scene bounds.
 fn rays_for(scene: &Scene, n: u32) -> Vec<QueryRay> {
@@ -139,30 +139,7 @@ fn gpu_traversal_matches_cpu_on_a_random_soup() {
 fn gpu_traversal_applies_the_alpha_test() {
     // A masked quad (left half transparent) 1 m before a wall: rays through the transparent half
     // must reach the wall, both on the GPU and the CPU.
-    let near = [
-        Vec3::new(-1.0, -1.0, -2.0),
-        Vec3::new(1.0, -1.0, -2.0),
-        Vec3::new(1.0, 1.0, -2.0),
-        Vec3::new(-1.0, 1.0, -2.0),
-    ];
-    let far = near.map(|p| p * Vec3::new(3.0, 3.0, 1.5));
-    let mut scene = quads("mask", &[far]);
-    scene.materials.push(Material {
-        name: "leaf".into(),
-        base_color: [1.0; 4],
-        base_color_texture: Some(0),
-        alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
-        double_sided: true,
-    });
-    scene.textures.push(Texture {
-        name: "checker".into(),
-        width: 2,
-        height: 2,
-        rgba8: vec![
-            255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255,
-        ],
-    });
-    push_quad(&mut scene, near, 1);
+    let scene = masked_quad_before_wall();
     let rays: Vec<QueryRay> = (0..64)
         .map(|i| QueryRay {
             origin: [0.0; 3],

@@ -178,38 +178,8 @@ fn ambient_occlusion_rejects_mismatched_inputs() {
 
 #[test]
 fn gbuffer_alpha_test_cuts_masked_texels() {
-    use obscura::scene::{AlphaMode, Material, Texture};
     let gpu = gpu();
-    // A masked quad 1 m in front of a wall; its 2×2 texture is transparent in the left column.
-    let near = [
-        Vec3::new(-1.0, -1.0, -2.0),
-        Vec3::new(1.0, -1.0, -2.0),
-        Vec3::new(1.0, 1.0, -2.0),
-        Vec3::new(-1.0, 1.0, -2.0),
-    ];
-    let far = [
-        Vec3::new(-5.0, -5.0, -3.0),
-        Vec3::new(5.0, -5.0, -3.0),
-        Vec3::new(5.0, 5.0, -3.0),
-        Vec3::new(-5.0, 5.0, -3.0),
-    ];
-    let mut scene = quads("mask", &[far]);
-    scene.materials.push(Material {
-        name: "leaf".into(),
-        base_color: [1.0; 4],
-        base_color_texture: Some(0),
-        alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
-        double_sided: true,
-    });
-    scene.textures.push(Texture {
-        name: "checker".into(),
-        width: 2,
-        height: 2,
-        rgba8: vec![
-            255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 255,
-        ],
-    });
-    push_quad(&mut scene, near, 1);
+    let scene = masked_quad_before_wall();
     let mut r = Renderer::new(&gpu, &scene, &AoSettings::default(), 64, 64, 0).unwrap();
     // 90° fov from the origin: the quad (±1 at 2 m) covers the middle half of the image.
     r.render(&camera(Vec3::ZERO, Vec3::NEG_Z, 90.0), None)

@@ -51,8 +51,9 @@ impl SvaoKernel {
             ("SAMPLE_COUNT", f64::from(settings.samples)),
             ("COMPACT", f64::from(u8::from(compact))),
         ];
-        let pipeline = |label, entry| {
-            crate::gpu::compute_pipeline_with(device, label, &vao_source(true, entry), &constants)
+        let pipeline = |label, entry: &str| {
+            let source = format!("{}\n{}", shaders::SVAO, entry);
+            crate::gpu::compute_pipeline_with(device, label, &vao_source(true, &source), &constants)
         };
         let phase1 = pipeline("svao phase 1", shaders::SVAO_PHASE1);
         let phase2 = pipeline("svao phase 2", shaders::SVAO_PHASE2);

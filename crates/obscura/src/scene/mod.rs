@@ -138,3 +138,30 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+/// Temporary folders for the loader tests, removed when dropped.
+#[cfg(test)]
+pub(crate) mod test_dir {
+    use std::path::Path;
+
+    /// A temporary folder removed when the test ends; derefs to its path.
+    pub struct TestDir(tempfile::TempDir);
+
+    impl TestDir {
+        pub fn new(tag: &str) -> Self {
+            Self(
+                tempfile::Builder::new()
+                    .prefix(&format!("obscura-{tag}-"))
+                    .tempdir()
+                    .expect("a temporary folder"),
+            )
+        }
+    }
+
+    impl std::ops::Deref for TestDir {
+        type Target = Path;
+        fn deref(&self) -> &Path {
+            self.0.path()
+        }
+    }
+}

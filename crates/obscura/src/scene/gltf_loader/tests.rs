@@ -7,23 +7,8 @@ use glam::{Vec2, Vec3};
 use super::super::{load, AlphaMode, Scene, SceneError};
 
 /// A fresh, empty folder for one test.
-fn temp_dir(tag: &str) -> TestDir {
-    TestDir(
-        tempfile::Builder::new()
-            .prefix(&format!("obscura-gltf-{tag}-"))
-            .tempdir()
-            .unwrap(),
-    )
-}
-
-/// A temporary folder removed when the test ends; derefs to its path.
-struct TestDir(tempfile::TempDir);
-
-impl std::ops::Deref for TestDir {
-    type Target = Path;
-    fn deref(&self) -> &Path {
-        self.0.path()
-    }
+fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
+    crate::scene::test_dir::TestDir::new(&format!("gltf-{tag}"))
 }
 
 fn base64(data: &[u8]) -> String {

@@ -6,23 +6,8 @@ use glam::{Vec2, Vec3};
 
 use super::super::{load, AlphaMode, Scene};
 
-fn temp_dir(tag: &str) -> TestDir {
-    TestDir(
-        tempfile::Builder::new()
-            .prefix(&format!("obscura-obj-{tag}-"))
-            .tempdir()
-            .unwrap(),
-    )
-}
-
-/// A temporary folder removed when the test ends; derefs to its path.
-struct TestDir(tempfile::TempDir);
-
-impl std::ops::Deref for TestDir {
-    type Target = Path;
-    fn deref(&self) -> &Path {
-        self.0.path()
-    }
+fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
+    crate::scene::test_dir::TestDir::new(&format!("obj-{tag}"))
 }
 
 /// A quad (material red) and a triangle (material blue), uvs on every vertex.
