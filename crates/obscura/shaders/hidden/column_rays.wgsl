@@ -1,6 +1,7 @@
 // Hidden-depth source "column rays" (RT-VAO, seed 000 §3.6 and Fig. 6; seed-code-notes §1.6): when
 // the depth buffer says a sample is occluded (its first surface lies beyond the constant area,
-// i.e. in the falloff or above it), or the sample falls outside the framebuffer, the camera ray
+// i.e. in the falloff or above it; or anywhere, where the tangent-plane height correction makes
+// deeper surfaces rise — see depth_lookup), or the sample falls outside the framebuffer, the camera ray
 // through the sample's pixel is traced through the scene's BVH over the heights that can still
 // lower the visibility, past the depth-buffer hit, and the sample takes the minimum of the
 // per-hit visibilities. The result equals the `vao` ground-truth model (src/reference).
