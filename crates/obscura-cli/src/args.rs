@@ -130,6 +130,9 @@ pub struct AoArgs {
     /// Bilateral blur depth sharpness (per world unit of depth difference).
     #[arg(long, default_value_t = 16.0, allow_hyphen_values = true)]
     pub blur_sharpness: f32,
+    /// vao-dual: the second depth layer starts this many world units behind the first.
+    #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+    pub peel_separation: f32,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -149,6 +152,7 @@ impl AoArgs {
         settings.blur.enabled = !self.no_blur;
         settings.blur.radius = self.blur_radius;
         settings.blur.sharpness = self.blur_sharpness;
+        settings.peel_separation = self.peel_separation;
         settings.validate()?;
         Ok(settings)
     }

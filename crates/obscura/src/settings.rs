@@ -10,6 +10,8 @@ pub enum Technique {
     /// Volumetric AO, seed 000 §3.1–3.5.
     #[default]
     Vao,
+    /// VAO whose occluded samples also read a second depth layer from depth peeling, seed 000 §2.1.
+    VaoDual,
     /// VAO whose occluded samples trace the sample's camera ray through the scene, seed 000 §3.6.
     RtVao,
     /// RT-VAO in two phases, phase 2 on a compacted work list (indirect dispatch), seed 000 §3.8.
@@ -21,6 +23,7 @@ pub enum Technique {
 impl Technique {
     pub const ALL: &'static [Technique] = &[
         Technique::Vao,
+        Technique::VaoDual,
         Technique::RtVao,
         Technique::RtSvao,
         Technique::RtSvaoDense,
@@ -29,6 +32,7 @@ impl Technique {
     pub fn name(self) -> &'static str {
         match self {
             Technique::Vao => "vao",
+            Technique::VaoDual => "vao-dual",
             Technique::RtVao => "rt-vao",
             Technique::RtSvao => "rt-svao",
             Technique::RtSvaoDense => "rt-svao-dense",
@@ -145,11 +149,25 @@ impl Default for BlurSettings {
     }
 }
 
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AoSettings {
     pub technique: Technique,
     pub vao: VaoSettings,
     pub blur: BlurSettings,
+    /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
+    /// the first (the authors' `minSeparationDistance`, seed-code-notes §2.1).
+    pub peel_separation: f32,
+}
+
+impl Default for AoSettings {
+    fn default() -> Self {
+        Self {
+            technique: Technique::default(),
+            vao: VaoSettings::default(),
+            blur: BlurSettings::default(),
+            peel_separation: 0.01,
+        }
+    }
 }
 
 fn invalid(name: &'static str, value: impl fmt::Display, rule: &'static str) -> SettingsError {
@@ -187,6 +205,13 @@ impl AoSettings {
         }
         if ![8, 16, 32].contains(&v.samples) {
             return Err(invalid("sample count", v.samples, "must be 8, 16 or 32"));
+        }
+        if !(self.peel_separation.is_finite() && self.peel_separation >= 0.0) {
+            return Err(invalid(
+                "peel separation",
+                self.peel_separation,
+                "must be zero or positive (e.g. --peel-separation 0.01)",
+            ));
         }
         let b = &self.blur;
         if b.radius == 0 || b.radius > 16 {

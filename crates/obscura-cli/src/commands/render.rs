@@ -12,7 +12,7 @@ pub struct RenderArgs {
     /// Visible image size WIDTHxHEIGHT (the guard band is extra).
     #[arg(long, value_parser = parse_size, default_value = "1280x720")]
     size: (u32, u32),
-    /// AO technique: vao, rt-vao, rt-svao or rt-svao-dense.
+    /// AO technique: vao, vao-dual, rt-vao, rt-svao or rt-svao-dense.
     #[arg(long, value_parser = parse_technique, default_value = "vao")]
     technique: Technique,
     #[command(flatten)]

@@ -2,9 +2,9 @@
 //! occluded (DESIGN.md data flow). A kernel consults its source only for such samples.
 //!
 //! In WGSL a source is one file of `shaders/hidden/` defining `sample_free_length` for the VAO
-//! kernel. There are two so far: the first depth layer only, and direct ray tracing of the sample
-//! columns (seed 000 §3.6). Still to come, each in its own file: dual depth by depth peeling
-//! (seed 000 §2.1), the rasterised stochastic depth map (seed 001 §3.1, seed 000 §3.7/3.9) and the
+//! kernel. There are three so far: the first depth layer only, dual depth by depth peeling (seed
+//! 000 §2.1), and direct ray tracing of the sample columns (seed 000 §3.6). Still to come, each in
+//! its own file: the rasterised stochastic depth map (seed 001 §3.1, seed 000 §3.7/3.9) and the
 //! ray-traced stochastic depth map (seed 002 §3.1–3.5).
 
 /// Which hidden-depth source a technique uses.
@@ -14,6 +14,9 @@ pub enum HiddenDepth {
     /// (`shaders/hidden/depth_buffer.wgsl`).
     #[default]
     None,
+    /// Occluded samples also read a second depth layer from depth peeling
+    /// (`shaders/hidden/dual_depth.wgsl`, seed 000 §2.1).
+    DualDepth,
     /// Occluded (and off-screen) samples trace their camera ray through the scene's BVH
     /// (`shaders/hidden/column_rays.wgsl`, seed 000 §3.6).
     ColumnRays,
@@ -24,6 +27,7 @@ impl crate::settings::Technique {
     pub fn hidden_depth(self) -> HiddenDepth {
         match self {
             crate::settings::Technique::Vao => HiddenDepth::None,
+            crate::settings::Technique::VaoDual => HiddenDepth::DualDepth,
             crate::settings::Technique::RtVao
             | crate::settings::Technique::RtSvao
             | crate::settings::Technique::RtSvaoDense => HiddenDepth::ColumnRays,

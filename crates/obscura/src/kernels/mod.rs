@@ -14,6 +14,8 @@ pub struct FrameInputs<'a> {
     pub depth: &'a wgpu::TextureView,
     /// View-space unit normals facing the camera (any float format; xyz used).
     pub normals: &'a wgpu::TextureView,
+    /// The second depth layer from depth peeling (`R32Float`, linear, 0 = none), for `vao-dual`.
+    pub second_layer: Option<&'a wgpu::TextureView>,
     pub screen: ScreenGeometry,
 }
 

@@ -8,6 +8,7 @@
 use super::vao::{params_buffer, vao_source, ColumnRays, RayTracedScene};
 use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
+use crate::hidden::HiddenDepth;
 use crate::settings::VaoSettings;
 use crate::shaders;
 
@@ -53,7 +54,12 @@ impl SvaoKernel {
         ];
         let pipeline = |label, entry: &str| {
             let source = format!("{}\n{}", shaders::SVAO, entry);
-            crate::gpu::compute_pipeline_with(device, label, &vao_source(true, &source), &constants)
+            crate::gpu::compute_pipeline_with(
+                device,
+                label,
+                &vao_source(HiddenDepth::ColumnRays, &source),
+                &constants,
+            )
         };
         let phase1 = pipeline("svao phase 1", shaders::SVAO_PHASE1);
         let phase2 = pipeline("svao phase 2", shaders::SVAO_PHASE2);

@@ -4,6 +4,7 @@
 
 use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
+use crate::hidden::HiddenDepth;
 use crate::settings::{Normalization, VaoSettings};
 use crate::shaders;
 use glam::{Vec2, Vec3};
@@ -99,17 +100,17 @@ impl VaoParams {
 
 /// A VAO entry point's source: the kernel's functions, the hidden-depth source (first depth layer
 /// only, or column rays through the BVH) and `entry` (single pass or one of the SVAO phases).
-pub(crate) fn vao_source(column_rays: bool, entry: &str) -> String {
+pub(crate) fn vao_source(hidden: HiddenDepth, entry: &str) -> String {
     let mut parts = vec![shaders::VIEW, shaders::BASIS];
-    if column_rays {
-        parts.extend([
+    match hidden {
+        HiddenDepth::None => parts.extend([shaders::VAO, shaders::HIDDEN_DEPTH_BUFFER]),
+        HiddenDepth::DualDepth => parts.extend([shaders::VAO, shaders::HIDDEN_DUAL_DEPTH]),
+        HiddenDepth::ColumnRays => parts.extend([
             shaders::MATERIAL,
             shaders::BVH,
             shaders::VAO,
             shaders::HIDDEN_COLUMN_RAYS,
-        ]);
-    } else {
-        parts.extend([shaders::VAO, shaders::HIDDEN_DEPTH_BUFFER]);
+        ]),
     }
     shaders::with_common(&parts, entry)
 }
@@ -189,18 +190,31 @@ pub struct VaoKernel {
     params: wgpu::Buffer,
     view: wgpu::Buffer,
     rays: Option<ColumnRays>,
+    dual_depth: bool,
 }
 
 impl VaoKernel {
-    /// `rays`: trace occluded samples through this scene (RT-VAO); `None`: depth buffer only.
+    /// `rays`: trace occluded samples through this scene (RT-VAO). Without rays, `dual_depth`
+    /// reads the second depth layer ([`FrameInputs::second_layer`]) for occluded samples
+    /// (`vao-dual`); otherwise the first depth layer only.
     pub fn new(
         device: &wgpu::Device,
         settings: &VaoSettings,
         view: &wgpu::Buffer,
         rays: Option<RayTracedScene>,
+        dual_depth: bool,
     ) -> Self {
-        let source = vao_source(rays.is_some(), shaders::VAO_SINGLE);
-        let label = if rays.is_some() { "rt-vao" } else { "vao" };
+        let hidden = match (&rays, dual_depth) {
+            (Some(_), _) => HiddenDepth::ColumnRays,
+            (None, true) => HiddenDepth::DualDepth,
+            (None, false) => HiddenDepth::None,
+        };
+        let source = vao_source(hidden, shaders::VAO_SINGLE);
+        let label = match hidden {
+            HiddenDepth::None => "vao",
+            HiddenDepth::DualDepth => "vao-dual",
+            HiddenDepth::ColumnRays => "rt-vao",
+        };
         let constants = [("SAMPLE_COUNT", f64::from(settings.samples))];
         let pipeline = crate::gpu::compute_pipeline_with(device, label, &source, &constants);
         let params = params_buffer(device, settings);
@@ -209,6 +223,7 @@ impl VaoKernel {
             pipeline,
             params,
             view: view.clone(),
+            dual_depth: hidden == HiddenDepth::DualDepth,
             rays,
         }
     }
@@ -226,10 +241,10 @@ impl AoKernel for VaoKernel {
     }
 
     fn pass_name(&self) -> &'static str {
-        if self.rays.is_some() {
-            "rt-vao"
-        } else {
-            "vao"
+        match (self.rays.is_some(), self.dual_depth) {
+            (true, _) => "rt-vao",
+            (false, true) => "vao-dual",
+            (false, false) => "vao",
         }
     }
 
@@ -254,6 +269,12 @@ impl AoKernel for VaoKernel {
                 rays.stack_overflows.as_entire_binding(),
             ]);
             encoder.clear_buffer(&rays.stack_overflows, 0, None);
+        }
+        if self.dual_depth {
+            let second = inputs
+                .second_layer
+                .expect("AmbientOcclusion checks that vao-dual gets a second depth layer");
+            resources.push(wgpu::BindingResource::TextureView(second));
         }
         let bind_group = crate::gpu::bind_group(
             device,

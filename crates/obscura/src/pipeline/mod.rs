@@ -69,7 +69,7 @@ impl AmbientOcclusion {
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let rays = match settings.technique.hidden_depth() {
-            HiddenDepth::None => None,
+            HiddenDepth::None | HiddenDepth::DualDepth => None,
             HiddenDepth::ColumnRays => scene,
         };
         let kernel: Box<dyn AoKernel> = match (settings.technique, rays) {
@@ -81,7 +81,13 @@ impl AmbientOcclusion {
                 (screen.width, screen.height),
                 settings.technique == Technique::RtSvao,
             )),
-            (_, rays) => Box::new(VaoKernel::new(device, &settings.vao, &view, rays)),
+            (technique, rays) => Box::new(VaoKernel::new(
+                device,
+                &settings.vao,
+                &view,
+                rays,
+                technique == Technique::VaoDual,
+            )),
         };
         let blur = settings.blur.enabled.then(|| {
             BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)
@@ -172,10 +178,37 @@ impl AmbientOcclusion {
         encoder: &mut wgpu::CommandEncoder,
         depth: &wgpu::Texture,
         normals: &wgpu::Texture,
+        profiler: Option<&mut PassProfiler>,
+    ) -> Result<(), Error> {
+        self.encode_with_second_layer(device, encoder, depth, normals, None, profiler)
+    }
+
+    /// [`AmbientOcclusion::encode`] with the second depth layer `vao-dual` needs (linear
+    /// `R32Float`, the same size as `depth`, e.g. from depth peeling).
+    pub fn encode_with_second_layer(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        depth: &wgpu::Texture,
+        normals: &wgpu::Texture,
+        second_layer: Option<&wgpu::Texture>,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
+        let needs_second = self.settings.technique.hidden_depth() == HiddenDepth::DualDepth;
+        if needs_second && second_layer.is_none() {
+            return Err(Error::Input(format!(
+                "technique '{}' needs the second depth layer: use encode_with_second_layer",
+                self.settings.technique
+            )));
+        }
         let (fw, fh) = (self.screen.full_width(), self.screen.full_height());
-        for (what, texture) in [("depth", depth), ("normals", normals)] {
+        let second_layer = second_layer.filter(|_| needs_second);
+        let layers = [
+            ("depth", Some(depth)),
+            ("normals", Some(normals)),
+            ("second depth layer", second_layer),
+        ];
+        for (what, texture) in layers.into_iter().filter_map(|(w, t)| t.map(|t| (w, t))) {
             if (texture.width(), texture.height()) != (fw, fh) {
                 return Err(Error::Input(format!(
                     "AO {what} texture is {}x{}, but the screen geometry ({}x{} visible + {} px guard band) needs {fw}x{fh}",
@@ -195,9 +228,11 @@ impl AmbientOcclusion {
         }
         let depth = depth.create_view(&Default::default());
         let normals = normals.create_view(&Default::default());
+        let second = second_layer.map(|t| t.create_view(&Default::default()));
         let inputs = FrameInputs {
             depth: &depth,
             normals: &normals,
+            second_layer: second.as_ref(),
             screen: self.screen,
         };
         let raw = self.raw.create_view(&Default::default());

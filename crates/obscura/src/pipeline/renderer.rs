@@ -60,7 +60,9 @@ impl<'g> Renderer<'g> {
         let limits = gpu.device.limits();
         let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &limits)?;
         let near = crate::view::near_plane(scene);
-        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32);
+        let peel = (settings.technique.hidden_depth() == HiddenDepth::DualDepth)
+            .then_some(settings.peel_separation);
+        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel);
         let bvh = (settings.technique.hidden_depth() == HiddenDepth::ColumnRays)
             .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
         gpu.check_errors()?;
@@ -113,11 +115,12 @@ impl<'g> Renderer<'g> {
             &view,
             profiler.as_deref_mut(),
         );
-        ao.encode(
+        ao.encode_with_second_layer(
             device,
             &mut encoder,
             &self.gbuffer.depth,
             &self.gbuffer.normals,
+            self.gbuffer.second_layer(),
             profiler.as_deref_mut(),
         )?;
         if let Some(p) = profiler {
@@ -158,6 +161,14 @@ impl<'g> Renderer<'g> {
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(self.gpu, self.last_ao()?.raw_output(), 1)?)
+    }
+
+    /// The second depth layer of the whole framebuffer (`vao-dual` only), row-major.
+    pub fn read_second_layer(&self) -> Result<Option<Vec<f32>>, Error> {
+        match self.gbuffer.second_layer() {
+            Some(t) => Ok(Some(read_texture_f32(self.gpu, t, 1)?)),
+            None => Ok(None),
+        }
     }
 
     /// Depth and normals of the whole framebuffer.

@@ -1,11 +1,13 @@
 //! The G-buffer pass (`shaders/gbuffer.wgsl`): linear depth (`R32Float`), camera-facing view-space
 //! face normals (`Rgba16Float`) and base colour (`Rgba8UnormSrgb`) over the guard-banded
-//! framebuffer, with a reversed-Z `Depth32Float` buffer for visibility.
+//! framebuffer, with a reversed-Z `Depth32Float` buffer for visibility; and, when asked for, a
+//! second depth layer by depth peeling (`shaders/depth_peel.wgsl`, seed 000 §2.1).
 
 use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::FrameView;
+use wgpu::util::DeviceExt;
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -19,6 +21,14 @@ struct CameraUniform {
     projection: [[f32; 4]; 4],
 }
 
+/// The depth-peeling pass: the second layer and what it needs.
+struct Peel {
+    /// Back faces culled / kept, as the main pass.
+    pipelines: [wgpu::RenderPipeline; 2],
+    params: wgpu::Buffer,
+    depth: wgpu::Texture,
+}
+
 pub struct GBuffer {
     pub depth: wgpu::Texture,
     pub normals: wgpu::Texture,
@@ -27,11 +37,19 @@ pub struct GBuffer {
     /// Back faces culled / kept (double-sided and alpha-tested materials).
     pipelines: [wgpu::RenderPipeline; 2],
     camera: wgpu::Buffer,
+    peel: Option<Peel>,
 }
 
 impl GBuffer {
-    /// Targets for a framebuffer of `width`×`height` (guard band included).
-    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
+    /// Targets for a framebuffer of `width`×`height` (guard band included). With
+    /// `peel_separation`, a second depth layer is peeled too: the nearest surface more than that
+    /// many world units behind the first.
+    pub fn new(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        peel_separation: Option<f32>,
+    ) -> Self {
         let target = |label, format| {
             crate::gpu::texture_2d(
                 device,
@@ -44,15 +62,15 @@ impl GBuffer {
                     | wgpu::TextureUsages::COPY_SRC,
             )
         };
+        let source =
+            shaders::with_common(&[shaders::MATERIAL, shaders::GBUFFER], shaders::DEPTH_PEEL);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
-            source: wgpu::ShaderSource::Wgsl(
-                shaders::with_common(&[shaders::MATERIAL], shaders::GBUFFER).into(),
-            ),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let pipeline = |cull_mode| {
+        let pipeline = |cull_mode, fragment: &str, targets: &[Option<wgpu::ColorTargetState>]| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("gbuffer"),
+                label: Some(fragment),
                 layout: None,
                 vertex: wgpu::VertexState {
                     module: &module,
@@ -74,30 +92,51 @@ impl GBuffer {
                 multisample: Default::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some("fs_main"),
+                    entry_point: Some(fragment),
                     compilation_options: Default::default(),
-                    targets: &[DEPTH_FORMAT, NORMAL_FORMAT, ALBEDO_FORMAT].map(|f| Some(f.into())),
+                    targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             })
         };
+        let gbuffer_targets = [DEPTH_FORMAT, NORMAL_FORMAT, ALBEDO_FORMAT].map(|f| Some(f.into()));
+        let peel = peel_separation.map(|separation| {
+            let targets = [Some(DEPTH_FORMAT.into())];
+            Peel {
+                pipelines: [Some(wgpu::Face::Back), None]
+                    .map(|cull| pipeline(cull, "fs_peel", &targets)),
+                params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("peel params"),
+                    contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                }),
+                depth: target("second depth layer", DEPTH_FORMAT),
+            }
+        });
         Self {
             depth: target("linear depth", DEPTH_FORMAT),
             normals: target("normals", NORMAL_FORMAT),
             albedo: target("albedo", ALBEDO_FORMAT),
             z: target("z", Z_FORMAT),
-            pipelines: [pipeline(Some(wgpu::Face::Back)), pipeline(None)],
+            pipelines: [Some(wgpu::Face::Back), None]
+                .map(|cull| pipeline(cull, "fs_main", &gbuffer_targets)),
             camera: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gbuffer camera"),
                 size: std::mem::size_of::<CameraUniform>() as u64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
+            peel,
         }
     }
 
-    /// Rasterise `scene` seen through `view`. Timing: `gbuffer`.
+    /// The second depth layer (linear, 0 = none), when depth peeling was asked for.
+    pub fn second_layer(&self) -> Option<&wgpu::Texture> {
+        self.peel.as_ref().map(|p| &p.depth)
+    }
+
+    /// Rasterise `scene` seen through `view`. Timings: `gbuffer`, and `depth_peel` when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,
@@ -105,54 +144,92 @@ impl GBuffer {
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
         view: &FrameView,
-        profiler: Option<&mut PassProfiler>,
+        mut profiler: Option<&mut PassProfiler>,
     ) {
         let camera = CameraUniform {
             view: view.view_matrix().to_cols_array_2d(),
             projection: view.projection().to_cols_array_2d(),
         };
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
-        let bind_groups = self.pipelines.each_ref().map(|p| {
-            crate::gpu::bind_group(
-                device,
-                "gbuffer",
-                &p.get_bind_group_layout(0),
-                &[
-                    self.camera.as_entire_binding(),
-                    scene.positions.as_entire_binding(),
-                    scene.uvs.as_entire_binding(),
-                    scene.triangles.as_entire_binding(),
-                    scene.materials.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(&scene.textures),
-                ],
-            )
-        });
-        let views =
-            [&self.depth, &self.normals, &self.albedo].map(|t| t.create_view(&Default::default()));
-        let clears = [
-            wgpu::Color::TRANSPARENT,
-            wgpu::Color::TRANSPARENT,
-            wgpu::Color::WHITE,
+        let targets = [
+            (&self.depth, wgpu::Color::TRANSPARENT),
+            (&self.normals, wgpu::Color::TRANSPARENT),
+            (&self.albedo, wgpu::Color::WHITE),
         ];
+        let resources = scene_resources(&self.camera, scene, Vec::new());
+        self.draw(
+            device,
+            encoder,
+            scene,
+            &self.pipelines,
+            &resources,
+            &targets,
+            "gbuffer",
+            profiler.as_deref_mut(),
+        );
+        if let Some(peel) = &self.peel {
+            let first = self.depth.create_view(&Default::default());
+            let resources = scene_resources(
+                &self.camera,
+                scene,
+                vec![
+                    wgpu::BindingResource::TextureView(&first),
+                    peel.params.as_entire_binding(),
+                ],
+            );
+            let targets = [(&peel.depth, wgpu::Color::TRANSPARENT)];
+            self.draw(
+                device,
+                encoder,
+                scene,
+                &peel.pipelines,
+                &resources,
+                &targets,
+                "depth_peel",
+                profiler,
+            );
+        }
+    }
+
+    /// One raster pass of the whole scene: culled triangles, then the ones that keep back faces.
+    #[allow(clippy::too_many_arguments)]
+    fn draw(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        pipelines: &[wgpu::RenderPipeline; 2],
+        resources: &[wgpu::BindingResource],
+        targets: &[(&wgpu::Texture, wgpu::Color)],
+        name: &str,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        let bind_groups = pipelines
+            .each_ref()
+            .map(|p| crate::gpu::bind_group(device, name, &p.get_bind_group_layout(0), resources));
+        let views: Vec<_> = targets
+            .iter()
+            .map(|(t, _)| t.create_view(&Default::default()))
+            .collect();
         let attachments: Vec<_> = views
             .iter()
-            .zip(clears)
-            .map(|(view, clear)| {
+            .zip(targets)
+            .map(|(view, (_, clear))| {
                 Some(wgpu::RenderPassColorAttachment {
                     view,
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear),
+                        load: wgpu::LoadOp::Clear(*clear),
                         store: wgpu::StoreOp::Store,
                     },
                 })
             })
             .collect();
         let z_view = self.z.create_view(&Default::default());
-        let timestamp_writes = profiler.map(|p| p.render_pass("gbuffer"));
+        let timestamp_writes = profiler.map(|p| p.render_pass(name));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gbuffer"),
+            label: Some(name),
             color_attachments: &attachments,
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &z_view,
@@ -170,7 +247,7 @@ impl GBuffer {
             0..scene.culled_count,
             scene.culled_count..scene.triangle_count,
         ];
-        for ((pipeline, bind_group), range) in self.pipelines.iter().zip(&bind_groups).zip(ranges) {
+        for ((pipeline, bind_group), range) in pipelines.iter().zip(&bind_groups).zip(ranges) {
             if range.is_empty() {
                 continue;
             }
@@ -179,4 +256,22 @@ impl GBuffer {
             pass.draw(range.start * 3..range.end * 3, 0..1);
         }
     }
+}
+
+/// Bindings 0–5 of gbuffer.wgsl (camera and scene), then `extra` from binding 6 on.
+fn scene_resources<'a>(
+    camera: &'a wgpu::Buffer,
+    scene: &'a GpuScene,
+    extra: Vec<wgpu::BindingResource<'a>>,
+) -> Vec<wgpu::BindingResource<'a>> {
+    let mut r = vec![
+        camera.as_entire_binding(),
+        scene.positions.as_entire_binding(),
+        scene.uvs.as_entire_binding(),
+        scene.triangles.as_entire_binding(),
+        scene.materials.as_entire_binding(),
+        wgpu::BindingResource::TextureView(&scene.textures),
+    ];
+    r.extend(extra);
+    r
 }
