@@ -5,7 +5,7 @@
 //! or reads a work list of flagged pixels compacted by phase 1 and is dispatched indirectly.
 //! Same arithmetic as the single pass, so it gives the same image (`shaders/svao_phase*.wgsl`).
 
-use super::vao::{params_buffer, vao_source, ColumnRays, RayTracedScene};
+use super::vao::{frame_resources, params_buffer, vao_source, ColumnRays, RayTracedScene};
 use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
 use crate::hidden::HiddenDepth;
@@ -128,13 +128,7 @@ impl AoKernel for SvaoKernel {
         mut profiler: Option<&mut PassProfiler>,
     ) {
         let frame = |pipeline: &wgpu::ComputePipeline, with_camera: bool| {
-            let mut resources = vec![
-                self.view.as_entire_binding(),
-                self.params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(inputs.depth),
-                wgpu::BindingResource::TextureView(inputs.normals),
-                wgpu::BindingResource::TextureView(output),
-            ];
+            let mut resources = frame_resources(&self.view, &self.params, inputs, output);
             if with_camera {
                 resources.extend([
                     self.rays.camera.as_entire_binding(),

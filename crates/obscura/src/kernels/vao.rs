@@ -115,6 +115,23 @@ pub(crate) fn vao_source(hidden: HiddenDepth, entry: &str) -> String {
     shaders::with_common(&parts, entry)
 }
 
+/// Bindings 0–4 of group 0 shared by every VAO entry point (vao.wgsl): view, parameters, depth,
+/// normals, AO output.
+pub(crate) fn frame_resources<'a>(
+    view: &'a wgpu::Buffer,
+    params: &'a wgpu::Buffer,
+    inputs: &FrameInputs<'a>,
+    output: &'a wgpu::TextureView,
+) -> Vec<wgpu::BindingResource<'a>> {
+    vec![
+        view.as_entire_binding(),
+        params.as_entire_binding(),
+        wgpu::BindingResource::TextureView(inputs.depth),
+        wgpu::BindingResource::TextureView(inputs.normals),
+        wgpu::BindingResource::TextureView(output),
+    ]
+}
+
 /// GPU mirror of `RayCamera` in `shaders/hidden/column_rays.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -256,13 +273,7 @@ impl AoKernel for VaoKernel {
         output: &wgpu::TextureView,
         profiler: Option<&mut PassProfiler>,
     ) {
-        let mut resources = vec![
-            self.view.as_entire_binding(),
-            self.params.as_entire_binding(),
-            wgpu::BindingResource::TextureView(inputs.depth),
-            wgpu::BindingResource::TextureView(inputs.normals),
-            wgpu::BindingResource::TextureView(output),
-        ];
+        let mut resources = frame_resources(&self.view, &self.params, inputs, output);
         if let Some(rays) = &self.rays {
             resources.extend([
                 rays.camera.as_entire_binding(),
