@@ -130,9 +130,20 @@ pub struct AoArgs {
     /// Bilateral blur depth sharpness (per world unit of depth difference).
     #[arg(long, default_value_t = 16.0, allow_hyphen_values = true)]
     pub blur_sharpness: f32,
-    /// vao-dual: the second depth layer starts this many world units behind the first.
+    /// vao-dual, sd-vao, sd-svao: hidden layers start this many world units behind the first.
     #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
     pub peel_separation: f32,
+    /// sd-vao, sd-svao: stochastic depth samples per pixel (1, 2, 4, 8 or 16; counts one target
+    /// cannot hold on this adapter are stacked maps; `obscura info` lists them).
+    #[arg(long, default_value_t = 4)]
+    pub sd_samples: u32,
+    /// sd-vao, sd-svao: global transparency α in (0, 1]; a hidden fragment is kept in
+    /// ⌊αS + ξ⌋ samples. 0.2 is the authors' 2022 value, their 2024 code used 1.5/S.
+    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+    pub sd_alpha: f32,
+    /// sd-vao, sd-svao: seed of the stochastic depth map's hash.
+    #[arg(long, default_value_t = 0)]
+    pub sd_seed: u32,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -153,6 +164,11 @@ impl AoArgs {
         settings.blur.radius = self.blur_radius;
         settings.blur.sharpness = self.blur_sharpness;
         settings.peel_separation = self.peel_separation;
+        settings.stochastic_depth = obscura::settings::StochasticDepthSettings {
+            samples: self.sd_samples,
+            alpha: self.sd_alpha,
+            seed: self.sd_seed,
+        };
         settings.validate()?;
         Ok(settings)
     }

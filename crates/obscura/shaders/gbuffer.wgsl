@@ -23,6 +23,8 @@ struct VertexOut {
     @location(1) uv: vec2<f32>,
     @location(2) @interpolate(flat) normal: vec3<f32>,
     @location(3) @interpolate(flat) material: u32,
+    // Index of the triangle in `triangles` (the stochastic depth map hashes it).
+    @location(4) @interpolate(flat) triangle: u32,
 }
 
 @vertex
@@ -41,6 +43,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
     out.uv = uvs[index];
     out.normal = (camera.view * vec4<f32>(cross(p1 - p0, p2 - p0), 0.0)).xyz;
     out.material = tri.w;
+    out.triangle = vertex / 3u;
     return out;
 }
 

@@ -5,6 +5,7 @@
 // - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
 //   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
 //   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
+// Needs common/hash.wgsl in front.
 
 struct ReferenceParams {
     model: u32,
@@ -20,13 +21,6 @@ struct ReferenceParams {
 @group(0) @binding(7) var<uniform> reference: ReferenceParams;
 // Per visible pixel: the AO (vao model) or the summed occlusion of the rays so far (hemisphere).
 @group(0) @binding(8) var<storage, read_write> reference_out: array<f32>;
-
-// src/reference/ground_truth.rs: pcg_hash.
-fn pcg_hash(v: u32) -> u32 {
-    let state = v * 747796405u + 2891336453u;
-    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
 
 fn pixel_rotation_2d(seed: u32, x: u32, y: u32) -> vec2<f32> {
     let h1 = pcg_hash(seed ^ pcg_hash(x + pcg_hash(y)));

@@ -1,6 +1,8 @@
-// Stenciled VAO, phase 1 (seed 000 §3.8; seed-code-notes §1.3, §2.2): every sample from the depth
-// buffer only. Samples the hidden-depth source still has to resolve (depth_lookup(...).trace) are
-// flagged in a per-pixel bit mask and left out of the sum; a pixel without flags is finished here.
+// Stenciled VAO, phase 1 (seed 000 §3.8, §3.9; seed-code-notes §1.3, §2.2): every sample from the
+// depth buffer only. Samples the hidden-depth source still has to resolve (depth_lookup(...).trace)
+// are flagged in a per-pixel bit mask and left out of the sum, and the source is told
+// (`request_hidden`: SD-SVAO marks the sample's pixel for the stochastic depth map); a pixel
+// without flags is finished here.
 // The partial sums stay in 32-bit floats for phase 2 (no 8-bit quantisation between phases), and
 // flagged pixels are appended to a work list (when COMPACT) for an indirect phase 2.
 
@@ -62,6 +64,7 @@ fn shade(id: vec2<u32>, index: u32) -> bool {
         let l = depth_lookup(p.frame, s.column);
         if (l.trace) {
             out.mask |= 1u << i;
+            request_hidden(l);
         } else {
             sum += l.free * inv_2h;
         }

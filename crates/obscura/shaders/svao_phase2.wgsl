@@ -1,5 +1,6 @@
-// Stenciled VAO, phase 2 (seed 000 §3.8): only the samples phase 1 flagged, resolved by the
-// hidden-depth source, added to phase 1's partial sum. Two ways to find the work (both kept for
+// Stenciled VAO, phase 2 (seed 000 §3.8, §3.9): only the samples phase 1 flagged, resolved by the
+// hidden-depth source (`resolve_hidden`: rays or the stochastic depth map), added to phase 1's
+// partial sum. Two ways to find the work (both kept for
 // comparison): COMPACT reads phase 1's work list (dispatched indirectly, one thread per flagged
 // pixel); otherwise one thread per visible pixel returns at once when its mask is empty.
 
@@ -34,7 +35,7 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
         mask &= mask - 1u;
         let s = vao_sample(p, i);
         let l = depth_lookup(p.frame, s.column);
-        sum += trace_column_visibility(p.frame, s.column, l.px, l.t_after, l.free) * (0.5 / s.h);
+        sum += resolve_hidden(p.frame, s.column, l) * (0.5 / s.h);
     }
     textureStore(ao_out, id, vec4<f32>(vao_finish(sum, stored.clipped_sum)));
 }

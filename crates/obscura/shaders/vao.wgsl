@@ -80,6 +80,17 @@ struct VaoColumn {
     px: vec2<f32>,
 }
 
+// What the first depth layer says about a sample, for hidden-depth sources that resolve samples
+// in a second step (the two-phase kernels, svao_phase*.wgsl): its visibility from the first
+// surface (`free`), and whether the source must still resolve it (`trace`) from framebuffer
+// pixel coordinates `px` (beyond ray parameter `t_after`, for rays).
+struct DepthLookup {
+    free: f32,
+    trace: bool,
+    px: vec2<f32>,
+    t_after: f32,
+}
+
 // Height of view-space point `p` in the column's frame: along the view axis, corrected along the
 // tangent plane for its lateral offset from the column (see "Pixel snapping" above).
 fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {

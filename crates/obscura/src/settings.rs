@@ -18,6 +18,12 @@ pub enum Technique {
     RtSvao,
     /// RT-SVAO with phase 2 over every pixel, returning at once where nothing is flagged.
     RtSvaoDense,
+    /// VAO whose occluded samples also read every sample of a stratified stochastic depth map at
+    /// the sample's pixel, seed 000 §3.7 (the map: seed 001 §3.1, Alg. 1).
+    SdVao,
+    /// SD-VAO in two phases; the stochastic depth map is rasterised only where phase 1 asked for
+    /// it (stencil), seed 000 §3.9, Fig. 8.
+    SdSvao,
 }
 
 impl Technique {
@@ -27,6 +33,8 @@ impl Technique {
         Technique::RtVao,
         Technique::RtSvao,
         Technique::RtSvaoDense,
+        Technique::SdVao,
+        Technique::SdSvao,
     ];
 
     pub fn name(self) -> &'static str {
@@ -36,6 +44,8 @@ impl Technique {
             Technique::RtVao => "rt-vao",
             Technique::RtSvao => "rt-svao",
             Technique::RtSvaoDense => "rt-svao-dense",
+            Technique::SdVao => "sd-vao",
+            Technique::SdSvao => "sd-svao",
         }
     }
 }
@@ -149,6 +159,35 @@ impl Default for BlurSettings {
     }
 }
 
+/// The stratified stochastic depth map (seed 001 §3.1, Alg. 1).
+///
+/// Defaults are the authors' 2022 values (S = 4, α = 0.2: seed 000 §4.1 and its scripts,
+/// seed-code-notes §1.5). Their 2024 code used α = 1.5/S instead (0.375 for S = 4,
+/// seed-code-notes §2.2); pass `--sd-alpha 0.375` for that.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StochasticDepthSettings {
+    /// Depth samples per pixel, S: 1, 2, 4, 8 or 16. Counts the adapter cannot rasterise in one
+    /// multisampled target are made of several maps stacked (each with its own seed).
+    pub samples: u32,
+    /// Global transparency α in (0, 1]: a hidden fragment is stored in ⌊αS + ξ⌋ samples.
+    pub alpha: f32,
+    /// Seed of the per-fragment hash (ξ and the choice of samples).
+    pub seed: u32,
+}
+
+impl Default for StochasticDepthSettings {
+    fn default() -> Self {
+        Self {
+            samples: 4,
+            alpha: 0.2,
+            seed: 0,
+        }
+    }
+}
+
+/// Depth samples per pixel the stochastic depth map accepts (before the adapter's own limits).
+pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AoSettings {
     pub technique: Technique,
@@ -156,7 +195,10 @@ pub struct AoSettings {
     pub blur: BlurSettings,
     /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
     /// the first (the authors' `minSeparationDistance`, seed-code-notes §2.1).
+    /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
+    /// depth map (`sd-vao`, `sd-svao`).
     pub peel_separation: f32,
+    pub stochastic_depth: StochasticDepthSettings,
 }
 
 impl Default for AoSettings {
@@ -166,6 +208,7 @@ impl Default for AoSettings {
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
             peel_separation: 0.01,
+            stochastic_depth: StochasticDepthSettings::default(),
         }
     }
 }
@@ -211,6 +254,21 @@ impl AoSettings {
                 "peel separation",
                 self.peel_separation,
                 "must be zero or positive (e.g. --peel-separation 0.01)",
+            ));
+        }
+        let sd = &self.stochastic_depth;
+        if !SD_SAMPLE_COUNTS.contains(&sd.samples) {
+            return Err(invalid(
+                "stochastic depth sample count",
+                sd.samples,
+                "must be 1, 2, 4, 8 or 16 (e.g. --sd-samples 4)",
+            ));
+        }
+        if !(sd.alpha > 0.0 && sd.alpha <= 1.0) {
+            return Err(invalid(
+                "stochastic depth alpha",
+                sd.alpha,
+                "must be in (0, 1] (e.g. --sd-alpha 0.2)",
             ));
         }
         let b = &self.blur;

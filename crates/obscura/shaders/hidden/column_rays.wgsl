@@ -68,15 +68,6 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     return trace_visibility;
 }
 
-// What the depth buffer says about a sample: its visibility from the first surface (`free`),
-// and whether a ray must still be traced from there (`trace`: from `px` beyond `t_after`).
-struct DepthLookup {
-    free: f32,
-    trace: bool,
-    px: vec2<f32>,
-    t_after: f32,
-}
-
 fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
     var l: DepthLookup;
     l.free = c.start - c.end;
@@ -113,10 +104,18 @@ fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
     return l;
 }
 
+// The visibility of a sample `depth_lookup` flagged: its camera ray traced.
+fn resolve_hidden(f: VaoFrame, c: VaoColumn, l: DepthLookup) -> f32 {
+    return trace_column_visibility(f, c, l.px, l.t_after, l.free);
+}
+
 fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
     let l = depth_lookup(f, c);
     if (!l.trace) {
         return l.free;
     }
-    return trace_column_visibility(f, c, l.px, l.t_after, l.free);
+    return resolve_hidden(f, c, l);
 }
+
+// Two-phase kernel, phase 1: rays need nothing prepared.
+fn request_hidden(l: DepthLookup) {}

@@ -57,6 +57,15 @@ pub struct AdapterSummary {
     pub max_compute_invocations_per_workgroup: u32,
     /// MSAA sample counts a depth texture (`Depth32Float`) supports on this adapter.
     pub depth_msaa_sample_counts: Vec<u32>,
+    /// Depth-stencil format of the stochastic depth map on this device
+    /// ([`crate::raster::stochastic_depth::sd_format`]).
+    pub sd_format: String,
+    /// Samples per pixel one stochastic depth map target can have on this device.
+    pub sd_map_sample_counts: Vec<u32>,
+    /// `--sd-samples` values this device accepts (larger ones as stacked maps).
+    pub sd_sample_counts: Vec<u32>,
+    /// The same, with their layouts: e.g. "1, 4, 8 (2 maps of 4), 16 (4 maps of 4)".
+    pub sd_layouts: String,
 }
 
 /// The device, its queue and what we know about the adapter.
@@ -139,7 +148,8 @@ impl Gpu {
     fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let wanted = wgpu::Features::TIMESTAMP_QUERY
-            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES;
+            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
+            | wgpu::Features::DEPTH32FLOAT_STENCIL8;
         let features = adapter.features() & wanted;
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -164,6 +174,17 @@ impl Gpu {
                 .filter(|&n| f.flags.sample_count_supported(n))
                 .collect()
         };
+        let (sd_format, sd_map_sample_counts, sd_sample_counts, sd_layouts) = {
+            use crate::raster::stochastic_depth::{map_sample_counts, sd_format, SdLayout};
+            let per_map = map_sample_counts(&adapter, &device);
+            let accepted = crate::settings::SD_SAMPLE_COUNTS
+                .into_iter()
+                .filter(|&s| SdLayout::plan(s, &per_map).is_some())
+                .collect();
+            let layouts = SdLayout::describe_supported(&per_map);
+            let format = format!("{:?}", sd_format(&device));
+            (format, per_map, accepted, layouts)
+        };
         let summary = AdapterSummary {
             name: info.name.clone(),
             backend: format!("{:?}", info.backend),
@@ -183,6 +204,10 @@ impl Gpu {
             ],
             max_compute_invocations_per_workgroup: limits.max_compute_invocations_per_workgroup,
             depth_msaa_sample_counts,
+            sd_format,
+            sd_map_sample_counts,
+            sd_sample_counts,
+            sd_layouts,
         };
         Ok(Self {
             adapter,

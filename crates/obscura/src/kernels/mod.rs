@@ -24,9 +24,19 @@ pub trait AoKernel {
     /// The name its timings are reported under.
     fn pass_name(&self) -> &'static str;
 
-    /// Where kernels that trace rays start them: view space → world space, and the near plane.
-    /// Kernels without rays ignore it.
-    fn set_camera(&self, _queue: &wgpu::Queue, _camera_to_world: glam::Mat4, _near: f32) {}
+    /// The camera of the coming frame, for kernels that trace rays or rasterise the scene.
+    fn set_camera(&self, _queue: &wgpu::Queue, _view: &crate::view::FrameView) {}
+
+    /// For kernels that read a stochastic depth map: the map (its last frame can be read back).
+    fn stochastic_depth(&self) -> Option<&crate::raster::stochastic_depth::StochasticDepthMap> {
+        None
+    }
+
+    /// For SD-SVAO: phase 1's SD-request mask (one u32 per framebuffer pixel, non-zero where the
+    /// stochastic depth map was asked for).
+    fn sd_requests(&self) -> Option<&wgpu::Buffer> {
+        None
+    }
 
     /// For kernels that trace rays: a `u32` buffer counting the rays of the last frame whose BVH
     /// traversal overflowed its stack (their results may be incomplete).

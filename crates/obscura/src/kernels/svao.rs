@@ -1,16 +1,19 @@
-//! Stenciled VAO (seed 000 §3.8, RT-SVAO): phase 1 takes every sample from the depth buffer and
-//! flags, per pixel, the samples the hidden-depth source must still resolve; phase 2 resolves only
-//! those. The paper needed a hardware stencil and a ray-tracing pipeline against the divergence;
+//! Stenciled VAO (seed 000 §3.8 RT-SVAO, §3.9 SD-SVAO): phase 1 takes every sample from the depth
+//! buffer and flags, per pixel, the samples the hidden-depth source must still resolve; phase 2
+//! resolves only those. For SD-SVAO phase 1 also marks each flagged sample's pixel in an SD-request
+//! mask, and the stochastic depth map is rasterised between the phases only there (stencil). The paper needed a hardware stencil and a ray-tracing pipeline against the divergence;
 //! in compute, phase 2 either walks every pixel and returns at once for unflagged ones (`dense`),
 //! or reads a work list of flagged pixels compacted by phase 1 and is dispatched indirectly.
 //! Same arithmetic as the single pass, so it gives the same image (`shaders/svao_phase*.wgsl`).
 
-use super::vao::{frame_resources, params_buffer, vao_source, ColumnRays, RayTracedScene};
+use super::vao::{frame_resources, params_buffer, vao_source, Hidden, HiddenSource};
 use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
 use crate::hidden::HiddenDepth;
+use crate::raster::stochastic_depth::StochasticDepthMap;
 use crate::settings::VaoSettings;
 use crate::shaders;
+use crate::view::{FrameView, ScreenGeometry};
 
 /// Bytes per visible pixel of phase 1's results (`SvaoPixel` in the WGSL).
 const PIXEL_BYTES: u64 = 16;
@@ -29,25 +32,37 @@ pub struct SvaoKernel {
     indirect: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
-    rays: ColumnRays,
+    hidden: Hidden,
+    name: &'static str,
     compact: bool,
     pixels: wgpu::Buffer,
     work_count: wgpu::Buffer,
     work_list: wgpu::Buffer,
     dispatch: wgpu::Buffer,
+    /// SD-SVAO: the SD-request mask, one u32 per framebuffer pixel (seed 000 §3.9).
+    sd_request: Option<wgpu::Buffer>,
 }
 
 impl SvaoKernel {
-    /// Two-phase RT-VAO for a visible image of `width`×`height`; `compact`: phase 2 over a work
-    /// list with an indirect dispatch, else over every pixel with an early return.
+    /// Two-phase VAO for a visible image of `screen`, resolving flagged samples with column rays
+    /// (`rt-svao`) or a stenciled stochastic depth map (`sd-svao`, which must have been made
+    /// with `stenciled`). `compact`: phase 2 over a work list with an indirect dispatch, else over
+    /// every pixel with an early return.
     pub fn new(
         device: &wgpu::Device,
         settings: &VaoSettings,
         view: &wgpu::Buffer,
-        rays: RayTracedScene,
-        (width, height): (u32, u32),
+        hidden: HiddenSource,
+        screen: &ScreenGeometry,
         compact: bool,
     ) -> Self {
+        let (kind, sd_layout, name) = match &hidden {
+            HiddenSource::StochasticDepth(map) => {
+                (HiddenDepth::StochasticDepth, Some(map.layout()), "sd-svao")
+            }
+            _ if compact => (HiddenDepth::ColumnRays, None, "rt-svao"),
+            _ => (HiddenDepth::ColumnRays, None, "rt-svao-dense"),
+        };
         let constants = [
             ("SAMPLE_COUNT", f64::from(settings.samples)),
             ("COMPACT", f64::from(u8::from(compact))),
@@ -57,7 +72,7 @@ impl SvaoKernel {
             crate::gpu::compute_pipeline_with(
                 device,
                 label,
-                &vao_source(HiddenDepth::ColumnRays, &source),
+                &vao_source(kind, sd_layout, &source),
                 &constants,
             )
         };
@@ -65,7 +80,7 @@ impl SvaoKernel {
         let phase2 = pipeline("svao phase 2", shaders::SVAO_PHASE2);
         let indirect =
             crate::gpu::compute_pipeline_with(device, "svao indirect", shaders::SVAO_INDIRECT, &[]);
-        let pixels = u64::from(width) * u64::from(height);
+        let pixels = u64::from(screen.width) * u64::from(screen.height);
         let buffer = |label, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -74,10 +89,19 @@ impl SvaoKernel {
                 mapped_at_creation: false,
             })
         };
+        let full_pixels = u64::from(screen.full_width()) * u64::from(screen.full_height());
+        let sd_request = (kind == HiddenDepth::StochasticDepth).then(|| {
+            buffer(
+                "sd request",
+                full_pixels * 4,
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            )
+        });
         Self {
-            rays: ColumnRays::new(device, &phase2.get_bind_group_layout(1), &rays),
+            hidden: Hidden::new(device, hidden, &phase2),
             params: params_buffer(device, settings),
             view: view.clone(),
+            name,
             compact,
             pixels: buffer(
                 "svao pixels",
@@ -91,6 +115,7 @@ impl SvaoKernel {
             ),
             work_list: buffer("svao work list", pixels * 4, wgpu::BufferUsages::empty()),
             dispatch: buffer("svao dispatch", 12, wgpu::BufferUsages::INDIRECT),
+            sd_request,
             phase1,
             phase2,
             indirect,
@@ -99,24 +124,31 @@ impl SvaoKernel {
 }
 
 impl AoKernel for SvaoKernel {
-    fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
-        self.rays.set_camera(queue, camera_to_world, near);
+    fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        self.hidden.set_camera(queue, view);
     }
 
     fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
-        Some(&self.rays.stack_overflows)
+        self.hidden.stack_overflows()
     }
 
     fn phase1_records(&self) -> Option<&wgpu::Buffer> {
         Some(&self.pixels)
     }
 
-    fn pass_name(&self) -> &'static str {
-        if self.compact {
-            "rt-svao"
-        } else {
-            "rt-svao-dense"
+    fn stochastic_depth(&self) -> Option<&StochasticDepthMap> {
+        match &self.hidden {
+            Hidden::StochasticDepth(map) => Some(map),
+            _ => None,
         }
+    }
+
+    fn sd_requests(&self) -> Option<&wgpu::Buffer> {
+        self.sd_request.as_ref()
+    }
+
+    fn pass_name(&self) -> &'static str {
+        self.name
     }
 
     fn encode(
@@ -127,37 +159,32 @@ impl AoKernel for SvaoKernel {
         output: &wgpu::TextureView,
         mut profiler: Option<&mut PassProfiler>,
     ) {
-        let frame = |pipeline: &wgpu::ComputePipeline, with_camera: bool| {
-            let mut resources = frame_resources(&self.view, &self.params, inputs, output);
-            if with_camera {
-                resources.extend([
-                    self.rays.camera.as_entire_binding(),
-                    self.rays.stack_overflows.as_entire_binding(),
-                ]);
-            }
-            crate::gpu::bind_group(
-                device,
-                "svao",
-                &pipeline.get_bind_group_layout(0),
-                &resources,
-            )
-        };
-        let work = |pipeline: &wgpu::ComputePipeline| {
+        let work = |pipeline: &wgpu::ComputePipeline, request: Option<&wgpu::Buffer>| {
+            let mut resources = vec![
+                self.pixels.as_entire_binding(),
+                self.work_count.as_entire_binding(),
+                self.work_list.as_entire_binding(),
+            ];
+            resources.extend(request.map(|r| r.as_entire_binding()));
             crate::gpu::bind_group(
                 device,
                 "svao work",
                 &pipeline.get_bind_group_layout(2),
-                &[
-                    self.pixels.as_entire_binding(),
-                    self.work_count.as_entire_binding(),
-                    self.work_list.as_entire_binding(),
-                ],
+                &resources,
             )
         };
         encoder.clear_buffer(&self.work_count, 0, None);
-        encoder.clear_buffer(&self.rays.stack_overflows, 0, None);
+        if let Some(request) = &self.sd_request {
+            encoder.clear_buffer(request, 0, None);
+        }
         {
-            let (group0, group2) = (frame(&self.phase1, false), work(&self.phase1));
+            let group0 = crate::gpu::bind_group(
+                device,
+                "svao phase 1",
+                &self.phase1.get_bind_group_layout(0),
+                &frame_resources(&self.view, &self.params, inputs, output),
+            );
+            let group2 = work(&self.phase1, self.sd_request.as_ref());
             let timestamp_writes = profiler
                 .as_deref_mut()
                 .map(|p| p.compute_pass("svao_phase1"));
@@ -192,7 +219,25 @@ impl AoKernel for SvaoKernel {
             pass.set_bind_group(0, &group, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }
-        let (group0, group2) = (frame(&self.phase2, true), work(&self.phase2));
+        if let Hidden::StochasticDepth(map) = &self.hidden {
+            map.render(
+                device,
+                encoder,
+                inputs.depth,
+                self.sd_request.as_ref(),
+                profiler.as_deref_mut(),
+            );
+        }
+        let views = self.hidden.views();
+        let mut resources = frame_resources(&self.view, &self.params, inputs, output);
+        resources.extend(self.hidden.resources(encoder, inputs, &views));
+        let group0 = crate::gpu::bind_group(
+            device,
+            "svao phase 2",
+            &self.phase2.get_bind_group_layout(0),
+            &resources,
+        );
+        let group2 = work(&self.phase2, None);
         let timestamp_writes = profiler.map(|p| p.compute_pass("svao_phase2"));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("svao phase 2"),
@@ -200,7 +245,9 @@ impl AoKernel for SvaoKernel {
         });
         pass.set_pipeline(&self.phase2);
         pass.set_bind_group(0, &group0, &[]);
-        pass.set_bind_group(1, &self.rays.bvh_group, &[]);
+        if let Hidden::ColumnRays(rays) = &self.hidden {
+            pass.set_bind_group(1, &rays.bvh_group, &[]);
+        }
         pass.set_bind_group(2, &group2, &[]);
         if self.compact {
             pass.dispatch_workgroups_indirect(&self.dispatch, 0);

@@ -5,8 +5,10 @@
 use super::{workgroups_32x8, AoKernel, FrameInputs};
 use crate::gpu::PassProfiler;
 use crate::hidden::HiddenDepth;
+use crate::raster::stochastic_depth::{bindings_wgsl, SdLayout, StochasticDepthMap};
 use crate::settings::{Normalization, VaoSettings};
 use crate::shaders;
+use crate::view::FrameView;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 use wgpu::util::DeviceExt;
@@ -99,8 +101,10 @@ impl VaoParams {
 }
 
 /// A VAO entry point's source: the kernel's functions, the hidden-depth source (first depth layer
-/// only, or column rays through the BVH) and `entry` (single pass or one of the SVAO phases).
-pub(crate) fn vao_source(hidden: HiddenDepth, entry: &str) -> String {
+/// only, dual depth, column rays through the BVH, or the stochastic depth map of `sd_layout`) and
+/// `entry` (single pass or one of the SVAO phases).
+pub(crate) fn vao_source(hidden: HiddenDepth, sd_layout: Option<SdLayout>, entry: &str) -> String {
+    let sd_bindings = sd_layout.map(bindings_wgsl).unwrap_or_default();
     let mut parts = vec![shaders::VIEW, shaders::BASIS];
     match hidden {
         HiddenDepth::None => parts.extend([shaders::VAO, shaders::HIDDEN_DEPTH_BUFFER]),
@@ -110,6 +114,11 @@ pub(crate) fn vao_source(hidden: HiddenDepth, entry: &str) -> String {
             shaders::BVH,
             shaders::VAO,
             shaders::HIDDEN_COLUMN_RAYS,
+        ]),
+        HiddenDepth::StochasticDepth => parts.extend([
+            shaders::VAO,
+            sd_bindings.as_str(),
+            shaders::HIDDEN_STOCHASTIC_DEPTH,
         ]),
     }
     shaders::with_common(&parts, entry)
@@ -200,69 +209,160 @@ pub(crate) fn params_buffer(device: &wgpu::Device, settings: &VaoSettings) -> wg
     })
 }
 
-/// The VAO compute pass, with the first depth layer only (`vao`) or with column rays for occluded
-/// samples (`rt-vao`, seed 000 §3.6).
+/// What a kernel's hidden-depth source is built from.
+pub enum HiddenSource<'a> {
+    /// The first depth layer only (`vao`).
+    DepthBuffer,
+    /// The second depth layer of [`FrameInputs::second_layer`] (`vao-dual`).
+    DualDepth,
+    /// Column rays through this scene (`rt-vao`, `rt-svao`).
+    ColumnRays(RayTracedScene<'a>),
+    /// This stochastic depth map, which the kernel renders before it reads it (`sd-vao`,
+    /// `sd-svao`).
+    StochasticDepth(Box<StochasticDepthMap>),
+}
+
+/// A hidden-depth source as a kernel holds it: what it binds beyond the frame (group 0 from
+/// binding 5 on, and group 1 for the BVH) and what it renders first.
+pub(crate) enum Hidden {
+    DepthBuffer,
+    DualDepth,
+    ColumnRays(ColumnRays),
+    StochasticDepth(Box<StochasticDepthMap>),
+}
+
+impl Hidden {
+    /// The held form of `source`; `pipeline`'s group 1 is the BVH's layout for column rays.
+    pub fn new(
+        device: &wgpu::Device,
+        source: HiddenSource,
+        pipeline: &wgpu::ComputePipeline,
+    ) -> Self {
+        match source {
+            HiddenSource::DepthBuffer => Hidden::DepthBuffer,
+            HiddenSource::DualDepth => Hidden::DualDepth,
+            HiddenSource::ColumnRays(r) => Hidden::ColumnRays(ColumnRays::new(
+                device,
+                &pipeline.get_bind_group_layout(1),
+                &r,
+            )),
+            HiddenSource::StochasticDepth(map) => Hidden::StochasticDepth(map),
+        }
+    }
+
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        match self {
+            Hidden::ColumnRays(rays) => {
+                rays.set_camera(queue, view.view_matrix().inverse(), view.near)
+            }
+            Hidden::StochasticDepth(map) => map.set_camera(queue, view),
+            Hidden::DepthBuffer | Hidden::DualDepth => {}
+        }
+    }
+
+    pub fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
+        match self {
+            Hidden::ColumnRays(rays) => Some(&rays.stack_overflows),
+            _ => None,
+        }
+    }
+
+    /// Depth-only views of the stochastic depth maps (empty for other sources), to be borrowed by
+    /// [`Hidden::resources`].
+    pub fn views(&self) -> Vec<wgpu::TextureView> {
+        match self {
+            Hidden::StochasticDepth(map) => map.read_resources().1,
+            _ => Vec::new(),
+        }
+    }
+
+    /// Group 0 from binding 5 on for the passes that resolve hidden samples; `views` from
+    /// [`Hidden::views`]. Clears the per-frame counters it binds.
+    pub fn resources<'a>(
+        &'a self,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs<'a>,
+        views: &'a [wgpu::TextureView],
+    ) -> Vec<wgpu::BindingResource<'a>> {
+        match self {
+            Hidden::DepthBuffer => Vec::new(),
+            Hidden::DualDepth => vec![wgpu::BindingResource::TextureView(
+                inputs
+                    .second_layer
+                    .expect("AmbientOcclusion checks that vao-dual gets a second depth layer"),
+            )],
+            Hidden::ColumnRays(rays) => {
+                encoder.clear_buffer(&rays.stack_overflows, 0, None);
+                vec![
+                    rays.camera.as_entire_binding(),
+                    rays.stack_overflows.as_entire_binding(),
+                ]
+            }
+            Hidden::StochasticDepth(map) => {
+                let mut r = vec![map.read_resources().0];
+                r.extend(views.iter().map(wgpu::BindingResource::TextureView));
+                r
+            }
+        }
+    }
+}
+
+/// The single-pass VAO compute pass (`vao`, `vao-dual`, `rt-vao`, `sd-vao`).
 pub struct VaoKernel {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
-    rays: Option<ColumnRays>,
-    dual_depth: bool,
+    hidden: Hidden,
+    name: &'static str,
 }
 
 impl VaoKernel {
-    /// `rays`: trace occluded samples through this scene (RT-VAO). Without rays, `dual_depth`
-    /// reads the second depth layer ([`FrameInputs::second_layer`]) for occluded samples
-    /// (`vao-dual`); otherwise the first depth layer only.
+    /// VAO whose occluded samples consult `hidden`.
     pub fn new(
         device: &wgpu::Device,
         settings: &VaoSettings,
         view: &wgpu::Buffer,
-        rays: Option<RayTracedScene>,
-        dual_depth: bool,
+        hidden: HiddenSource,
     ) -> Self {
-        let hidden = match (&rays, dual_depth) {
-            (Some(_), _) => HiddenDepth::ColumnRays,
-            (None, true) => HiddenDepth::DualDepth,
-            (None, false) => HiddenDepth::None,
+        let (kind, sd_layout, name) = match &hidden {
+            HiddenSource::DepthBuffer => (HiddenDepth::None, None, "vao"),
+            HiddenSource::DualDepth => (HiddenDepth::DualDepth, None, "vao-dual"),
+            HiddenSource::ColumnRays(_) => (HiddenDepth::ColumnRays, None, "rt-vao"),
+            HiddenSource::StochasticDepth(map) => {
+                (HiddenDepth::StochasticDepth, Some(map.layout()), "sd-vao")
+            }
         };
-        let source = vao_source(hidden, shaders::VAO_SINGLE);
-        let label = match hidden {
-            HiddenDepth::None => "vao",
-            HiddenDepth::DualDepth => "vao-dual",
-            HiddenDepth::ColumnRays => "rt-vao",
-        };
+        let source = vao_source(kind, sd_layout, shaders::VAO_SINGLE);
         let constants = [("SAMPLE_COUNT", f64::from(settings.samples))];
-        let pipeline = crate::gpu::compute_pipeline_with(device, label, &source, &constants);
-        let params = params_buffer(device, settings);
-        let rays = rays.map(|r| ColumnRays::new(device, &pipeline.get_bind_group_layout(1), &r));
+        let pipeline = crate::gpu::compute_pipeline_with(device, name, &source, &constants);
         Self {
-            pipeline,
-            params,
+            params: params_buffer(device, settings),
             view: view.clone(),
-            dual_depth: hidden == HiddenDepth::DualDepth,
-            rays,
+            hidden: Hidden::new(device, hidden, &pipeline),
+            pipeline,
+            name,
         }
     }
 }
 
 impl AoKernel for VaoKernel {
-    fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
-        if let Some(rays) = &self.rays {
-            rays.set_camera(queue, camera_to_world, near);
-        }
+    fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        self.hidden.set_camera(queue, view);
     }
 
     fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
-        self.rays.as_ref().map(|r| &r.stack_overflows)
+        self.hidden.stack_overflows()
+    }
+
+    fn stochastic_depth(&self) -> Option<&StochasticDepthMap> {
+        match &self.hidden {
+            Hidden::StochasticDepth(map) => Some(map),
+            _ => None,
+        }
     }
 
     fn pass_name(&self) -> &'static str {
-        match (self.rays.is_some(), self.dual_depth) {
-            (true, _) => "rt-vao",
-            (false, true) => "vao-dual",
-            (false, false) => "vao",
-        }
+        self.name
     }
 
     fn encode(
@@ -271,36 +371,28 @@ impl AoKernel for VaoKernel {
         encoder: &mut wgpu::CommandEncoder,
         inputs: &FrameInputs,
         output: &wgpu::TextureView,
-        profiler: Option<&mut PassProfiler>,
+        mut profiler: Option<&mut PassProfiler>,
     ) {
+        if let Hidden::StochasticDepth(map) = &self.hidden {
+            map.render(device, encoder, inputs.depth, None, profiler.as_deref_mut());
+        }
+        let views = self.hidden.views();
         let mut resources = frame_resources(&self.view, &self.params, inputs, output);
-        if let Some(rays) = &self.rays {
-            resources.extend([
-                rays.camera.as_entire_binding(),
-                rays.stack_overflows.as_entire_binding(),
-            ]);
-            encoder.clear_buffer(&rays.stack_overflows, 0, None);
-        }
-        if self.dual_depth {
-            let second = inputs
-                .second_layer
-                .expect("AmbientOcclusion checks that vao-dual gets a second depth layer");
-            resources.push(wgpu::BindingResource::TextureView(second));
-        }
+        resources.extend(self.hidden.resources(encoder, inputs, &views));
         let bind_group = crate::gpu::bind_group(
             device,
-            self.pass_name(),
+            self.name,
             &self.pipeline.get_bind_group_layout(0),
             &resources,
         );
-        let timestamp_writes = profiler.map(|p| p.compute_pass(self.pass_name()));
+        let timestamp_writes = profiler.map(|p| p.compute_pass(self.name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(self.pass_name()),
+            label: Some(self.name),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
-        if let Some(rays) = &self.rays {
+        if let Hidden::ColumnRays(rays) = &self.hidden {
             pass.set_bind_group(1, &rays.bvh_group, &[]);
         }
         let (x, y, z) = workgroups_32x8(inputs.screen.width, inputs.screen.height);

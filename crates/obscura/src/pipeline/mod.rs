@@ -8,11 +8,12 @@ use crate::gpu::PassProfiler;
 use crate::hidden::HiddenDepth;
 use crate::kernels::{
     svao::SvaoKernel,
-    vao::{RayTracedScene, VaoKernel},
+    vao::{HiddenSource, RayTracedScene, VaoKernel},
     AoKernel, FrameInputs,
 };
+use crate::raster::{gpu_scene::GpuScene, stochastic_depth::StochasticDepthMap};
 use crate::settings::{AoSettings, Technique};
-use crate::view::ScreenGeometry;
+use crate::view::{FrameView, ScreenGeometry};
 use crate::Error;
 use wgpu::util::DeviceExt;
 
@@ -30,22 +31,33 @@ pub struct AmbientOcclusion {
 
 impl AmbientOcclusion {
     /// Build pipelines and images for `screen`. `settings` are validated first. Techniques that
-    /// trace rays need the scene: use [`AmbientOcclusion::new_ray_traced`] for them.
+    /// trace rays or rasterise a stochastic depth map need the scene: use
+    /// [`AmbientOcclusion::new_ray_traced`] or [`AmbientOcclusion::new_stochastic`] for them.
     pub fn new(
         device: &wgpu::Device,
         settings: &AoSettings,
         screen: ScreenGeometry,
     ) -> Result<Self, Error> {
-        if settings.technique.hidden_depth() == HiddenDepth::ColumnRays {
-            return Err(Error::Input(format!(
-                "technique '{}' traces rays: create it with AmbientOcclusion::new_ray_traced and the scene",
-                settings.technique
-            )));
-        }
-        Self::build(device, settings, screen, None)
+        let source = match settings.technique.hidden_depth() {
+            HiddenDepth::None => HiddenSource::DepthBuffer,
+            HiddenDepth::DualDepth => HiddenSource::DualDepth,
+            HiddenDepth::ColumnRays => {
+                return Err(Error::Input(format!(
+                    "technique '{}' traces rays: create it with AmbientOcclusion::new_ray_traced and the scene",
+                    settings.technique
+                )))
+            }
+            HiddenDepth::StochasticDepth => {
+                return Err(Error::Input(format!(
+                    "technique '{}' rasterises a stochastic depth map: create it with AmbientOcclusion::new_stochastic and the scene",
+                    settings.technique
+                )))
+            }
+        };
+        Self::build(device, settings, screen, source)
     }
 
-    /// [`AmbientOcclusion::new`] for any technique, with the scene its rays are traced through
+    /// [`AmbientOcclusion::new`] for techniques that trace rays, with the scene they trace
     /// (call [`AmbientOcclusion::set_camera`] before each frame).
     pub fn new_ray_traced(
         device: &wgpu::Device,
@@ -53,14 +65,49 @@ impl AmbientOcclusion {
         screen: ScreenGeometry,
         scene: RayTracedScene,
     ) -> Result<Self, Error> {
-        Self::build(device, settings, screen, Some(scene))
+        if settings.technique.hidden_depth() != HiddenDepth::ColumnRays {
+            return Self::new(device, settings, screen);
+        }
+        Self::build(device, settings, screen, HiddenSource::ColumnRays(scene))
+    }
+
+    /// [`AmbientOcclusion::new`] for the stochastic-depth techniques (`sd-vao`, `sd-svao`), with
+    /// the scene their map is rasterised from (call [`AmbientOcclusion::set_camera`] before each
+    /// frame). The adapter says which sample counts the map can have; an unsupported
+    /// `--sd-samples` is an error naming the supported ones.
+    pub fn new_stochastic(
+        adapter: &wgpu::Adapter,
+        device: &wgpu::Device,
+        settings: &AoSettings,
+        screen: ScreenGeometry,
+        scene: &GpuScene,
+    ) -> Result<Self, Error> {
+        if settings.technique.hidden_depth() != HiddenDepth::StochasticDepth {
+            return Self::new(device, settings, screen);
+        }
+        settings.validate()?;
+        let map = StochasticDepthMap::new(
+            adapter,
+            device,
+            &settings.stochastic_depth,
+            settings.peel_separation,
+            (screen.full_width(), screen.full_height()),
+            scene,
+            settings.technique == Technique::SdSvao,
+        )?;
+        Self::build(
+            device,
+            settings,
+            screen,
+            HiddenSource::StochasticDepth(Box::new(map)),
+        )
     }
 
     fn build(
         device: &wgpu::Device,
         settings: &AoSettings,
         screen: ScreenGeometry,
-        scene: Option<RayTracedScene>,
+        source: HiddenSource,
     ) -> Result<Self, Error> {
         settings.validate()?;
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -68,26 +115,20 @@ impl AmbientOcclusion {
             contents: bytemuck::bytes_of(&screen.uniform()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let rays = match settings.technique.hidden_depth() {
-            HiddenDepth::None | HiddenDepth::DualDepth => None,
-            HiddenDepth::ColumnRays => scene,
-        };
-        let kernel: Box<dyn AoKernel> = match (settings.technique, rays) {
-            (Technique::RtSvao | Technique::RtSvaoDense, Some(rays)) => Box::new(SvaoKernel::new(
-                device,
-                &settings.vao,
-                &view,
-                rays,
-                (screen.width, screen.height),
-                settings.technique == Technique::RtSvao,
-            )),
-            (technique, rays) => Box::new(VaoKernel::new(
-                device,
-                &settings.vao,
-                &view,
-                rays,
-                technique == Technique::VaoDual,
-            )),
+        let kernel: Box<dyn AoKernel> = match settings.technique {
+            Technique::RtSvao | Technique::RtSvaoDense | Technique::SdSvao => {
+                Box::new(SvaoKernel::new(
+                    device,
+                    &settings.vao,
+                    &view,
+                    source,
+                    &screen,
+                    settings.technique != Technique::RtSvaoDense,
+                ))
+            }
+            Technique::Vao | Technique::VaoDual | Technique::RtVao | Technique::SdVao => {
+                Box::new(VaoKernel::new(device, &settings.vao, &view, source))
+            }
         };
         let blur = settings.blur.enabled.then(|| {
             BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)
@@ -114,10 +155,31 @@ impl AmbientOcclusion {
         })
     }
 
-    /// The camera of the coming frame (view space → world space) and its near plane; only
-    /// techniques that trace rays use it.
-    pub fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
-        self.kernel.set_camera(queue, camera_to_world, near);
+    /// The camera of the coming frame; techniques that trace rays or rasterise use it.
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        self.kernel.set_camera(queue, view);
+    }
+
+    /// The stochastic depth map of the last frame (`sd-vao`, `sd-svao`): every sample layer of
+    /// the framebuffer as linear depth, 0 = empty (see [`StochasticDepthMap::read_layers`]).
+    /// Waits for the GPU.
+    pub fn read_stochastic_depth(&self, gpu: &crate::Gpu) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        match self.kernel.stochastic_depth() {
+            Some(map) => Ok(Some(map.read_layers(gpu)?)),
+            None => Ok(None),
+        }
+    }
+
+    /// SD-SVAO: the SD-request mask of the last frame, one value per framebuffer pixel (guard
+    /// band included), non-zero where phase 1 asked for the stochastic depth map. Waits for the
+    /// GPU.
+    pub fn read_sd_requests(&self, gpu: &crate::Gpu) -> Result<Option<Vec<u32>>, Error> {
+        let Some(buffer) = self.kernel.sd_requests() else {
+            return Ok(None);
+        };
+        Ok(Some(bytemuck::pod_collect_to_vec(&read_whole_buffer(
+            gpu, buffer,
+        )?)))
     }
 
     /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
@@ -126,16 +188,7 @@ impl AmbientOcclusion {
         let Some(counter) = self.kernel.stack_overflows() else {
             return Ok(0);
         };
-        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("stack overflow readback"),
-            size: 4,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(counter, 0, &staging, 0, 4);
-        gpu.queue.submit([encoder.finish()]);
-        let bytes = crate::gpu::read_buffer(gpu, &staging)?;
+        let bytes = read_whole_buffer(gpu, counter)?;
         Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
     }
 
@@ -145,17 +198,7 @@ impl AmbientOcclusion {
         let Some(records) = self.kernel.phase1_records() else {
             return Ok(None);
         };
-        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("mask readback"),
-            size: records.size(),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(records, 0, &staging, 0, records.size());
-        gpu.queue.submit([encoder.finish()]);
-        let words: Vec<u32> =
-            bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer(gpu, &staging)?);
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&read_whole_buffer(gpu, records)?);
         let pixels = (self.screen.width * self.screen.height) as usize;
         Ok(Some(
             words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
@@ -258,4 +301,18 @@ impl AmbientOcclusion {
     pub fn raw_output(&self) -> &wgpu::Texture {
         &self.raw
     }
+}
+
+/// A GPU buffer's bytes (copied to a mappable buffer first). Waits for the GPU.
+fn read_whole_buffer(gpu: &crate::Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Error> {
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    gpu.queue.submit([encoder.finish()]);
+    Ok(crate::gpu::read_buffer(gpu, &staging)?)
 }

@@ -100,11 +100,18 @@ impl<'g> Renderer<'g> {
                         bvh,
                     },
                 )?,
-                None => AmbientOcclusion::new(device, &self.settings, view.screen())?,
+                None => AmbientOcclusion::new_stochastic(
+                    &self.gpu.adapter,
+                    device,
+                    &self.settings,
+                    view.screen(),
+                    &self.scene,
+                )?,
             });
+            self.gpu.check_errors()?;
         }
         let ao = self.ao.as_ref().expect("created above");
-        ao.set_camera(&self.gpu.queue, view.view_matrix().inverse(), view.near);
+        ao.set_camera(&self.gpu.queue, &view);
         let device = &self.gpu.device;
         let mut encoder = device.create_command_encoder(&Default::default());
         self.gbuffer.render(
@@ -156,6 +163,18 @@ impl<'g> Renderer<'g> {
     /// Two-phase techniques: the per-pixel masks of samples that needed rays (last frame).
     pub fn read_sample_masks(&self) -> Result<Option<Vec<u32>>, Error> {
         self.last_ao()?.read_sample_masks(self.gpu)
+    }
+
+    /// `sd-vao`, `sd-svao`: every sample layer of the last frame's stochastic depth map
+    /// (framebuffer-sized, linear depth, 0 = empty; layer `m · samples_per_map + s` is sample `s`
+    /// of map `m`).
+    pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        self.last_ao()?.read_stochastic_depth(self.gpu)
+    }
+
+    /// `sd-svao`: the last frame's SD-request mask (framebuffer-sized, non-zero = requested).
+    pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
+        self.last_ao()?.read_sd_requests(self.gpu)
     }
 
     /// The kernel's AO before the blur.

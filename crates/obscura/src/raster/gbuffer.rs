@@ -14,11 +14,21 @@ pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
+/// `Camera` of gbuffer.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct CameraUniform {
+pub(crate) struct CameraUniform {
     view: [[f32; 4]; 4],
     projection: [[f32; 4]; 4],
+}
+
+impl CameraUniform {
+    pub fn new(view: &FrameView) -> Self {
+        Self {
+            view: view.view_matrix().to_cols_array_2d(),
+            projection: view.projection().to_cols_array_2d(),
+        }
+    }
 }
 
 /// The depth-peeling pass: the second layer and what it needs.
@@ -68,37 +78,23 @@ impl GBuffer {
             label: Some("gbuffer"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
+        let depth = wgpu::DepthStencilState {
+            format: Z_FORMAT,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Greater),
+            stencil: Default::default(),
+            bias: Default::default(),
+        };
         let pipeline = |cull_mode, fragment: &str, targets: &[Option<wgpu::ColorTargetState>]| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(fragment),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState {
-                    cull_mode,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: Z_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Greater),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
+            ScenePipeline {
+                module: &module,
+                cull_mode,
+                depth_stencil: depth.clone(),
                 multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fragment),
-                    compilation_options: Default::default(),
-                    targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+                fragment,
+                targets,
+            }
+            .create(device)
         };
         let gbuffer_targets = [DEPTH_FORMAT, NORMAL_FORMAT, ALBEDO_FORMAT].map(|f| Some(f.into()));
         let peel = peel_separation.map(|separation| {
@@ -146,10 +142,7 @@ impl GBuffer {
         view: &FrameView,
         mut profiler: Option<&mut PassProfiler>,
     ) {
-        let camera = CameraUniform {
-            view: view.view_matrix().to_cols_array_2d(),
-            projection: view.projection().to_cols_array_2d(),
-        };
+        let camera = CameraUniform::new(view);
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         let targets = [
             (&self.depth, wgpu::Color::TRANSPARENT),
@@ -243,23 +236,34 @@ impl GBuffer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        let ranges = [
-            0..scene.culled_count,
-            scene.culled_count..scene.triangle_count,
-        ];
-        for ((pipeline, bind_group), range) in pipelines.iter().zip(&bind_groups).zip(ranges) {
-            if range.is_empty() {
-                continue;
-            }
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bind_group, &[]);
-            pass.draw(range.start * 3..range.end * 3, 0..1);
+        draw_scene(&mut pass, scene, pipelines, &bind_groups);
+    }
+}
+
+/// Draw the whole scene: the back-face-culled triangles with `pipelines[0]`, the ones that keep
+/// back faces with `pipelines[1]`.
+pub(crate) fn draw_scene(
+    pass: &mut wgpu::RenderPass,
+    scene: &GpuScene,
+    pipelines: &[wgpu::RenderPipeline; 2],
+    bind_groups: &[wgpu::BindGroup; 2],
+) {
+    let ranges = [
+        0..scene.culled_count,
+        scene.culled_count..scene.triangle_count,
+    ];
+    for ((pipeline, bind_group), range) in pipelines.iter().zip(bind_groups).zip(ranges) {
+        if range.is_empty() {
+            continue;
         }
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.draw(range.start * 3..range.end * 3, 0..1);
     }
 }
 
 /// Bindings 0–5 of gbuffer.wgsl (camera and scene), then `extra` from binding 6 on.
-fn scene_resources<'a>(
+pub(crate) fn scene_resources<'a>(
     camera: &'a wgpu::Buffer,
     scene: &'a GpuScene,
     extra: Vec<wgpu::BindingResource<'a>>,
@@ -274,4 +278,43 @@ fn scene_resources<'a>(
     ];
     r.extend(extra);
     r
+}
+
+/// A raster pipeline over the scene's vertices (`vs_main` of gbuffer.wgsl, pulled from storage).
+pub(crate) struct ScenePipeline<'a> {
+    pub module: &'a wgpu::ShaderModule,
+    pub cull_mode: Option<wgpu::Face>,
+    pub depth_stencil: wgpu::DepthStencilState,
+    pub multisample: wgpu::MultisampleState,
+    pub fragment: &'a str,
+    pub targets: &'a [Option<wgpu::ColorTargetState>],
+}
+
+impl ScenePipeline<'_> {
+    pub fn create(self, device: &wgpu::Device) -> wgpu::RenderPipeline {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(self.fragment),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: self.module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: self.cull_mode,
+                ..Default::default()
+            },
+            depth_stencil: Some(self.depth_stencil),
+            multisample: self.multisample,
+            fragment: Some(wgpu::FragmentState {
+                module: self.module,
+                entry_point: Some(self.fragment),
+                compilation_options: Default::default(),
+                targets: self.targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
 }

@@ -21,6 +21,7 @@ struct GpuMaterial {
     _pad: [u32; 3],
 }
 
+#[derive(Clone)]
 pub struct GpuScene {
     pub positions: wgpu::Buffer,
     pub uvs: wgpu::Buffer,
@@ -31,6 +32,8 @@ pub struct GpuScene {
     /// Triangles `0..culled_count` are drawn with back-face culling, the rest without.
     pub culled_count: u32,
     pub triangle_count: u32,
+    /// World-space bounds of every vertex.
+    pub bounds: crate::scene::Bounds,
 }
 
 impl GpuScene {
@@ -161,6 +164,7 @@ impl GpuScene {
             textures,
             culled_count,
             triangle_count: triangles.len() as u32,
+            bounds: scene.bounds(),
         })
     }
 }

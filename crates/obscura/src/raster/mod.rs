@@ -1,4 +1,5 @@
-//! Rasterisation passes: the scene on the GPU and the G-buffer.
+//! Rasterisation passes: the scene on the GPU, the G-buffer and the stochastic depth map.
 
 pub mod gbuffer;
 pub mod gpu_scene;
+pub mod stochastic_depth;

@@ -32,10 +32,8 @@ pub fn render_reference_gpu(
     let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
     let gpu_bvh = GpuBvh::new(device, bvh, scene);
     let constants = [("SAMPLE_COUNT", f64::from(settings.vao.samples))];
-    let source = vao_source(
-        crate::hidden::HiddenDepth::ColumnRays,
-        crate::shaders::REFERENCE,
-    );
+    let entry = crate::shaders::with_common(&[crate::shaders::HASH], crate::shaders::REFERENCE);
+    let source = vao_source(crate::hidden::HiddenDepth::ColumnRays, None, &entry);
     let pipeline = crate::gpu::compute_pipeline_with(device, "reference", &source, &constants);
     let rays = ColumnRays::new(
         device,

@@ -1,0 +1,79 @@
+// Stratified stochastic depth map (seed 001 §3.1, Alg. 1; the authors' raster pass as recorded in
+// seed-code-notes §1.5). Appended to gbuffer.wgsl (same vertices, alpha test and culling) and
+// common/hash.wgsl.
+//
+// The target is a multisampled depth buffer of S samples per pixel. Every fragment behind the
+// first layer (more than `separation` behind the G-buffer's linear depth, the same rule as depth
+// peeling) draws xi from a hash of its pixel, triangle, depth and the map's seed, is stored in
+// R = floor(alpha * S + xi) samples (mean alpha * S), chosen uniformly among the S-bit masks with R
+// bits set (`sd_lut`: all masks sorted by popcount), and writes `@builtin(sample_mask)`; the depth
+// test (less) keeps the nearest fragment per sample. The depth written is linear view depth over
+// `far` (a depth target holds [0, 1]), so the map stores positions; 1 (the clear value) = empty.
+//
+// Sample positions: the paper puts all samples at the pixel centre (programmable sample
+// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage, while
+// the depth is always the one at the pixel centre (the fragment shader runs once per pixel, at its
+// centre). Inside a triangle this is the paper's map exactly; at a triangle edge a sample may take
+// its fragment from the neighbouring triangle of the same surface, which keeps every sample's
+// chance of storing the surface at alpha but not the exact count R of one fragment.
+
+struct SdRaster {
+    // Linear depth is stored as depth / far.
+    far: f32,
+    alpha: f32,
+    // Minimum distance behind the first layer (world units).
+    separation: f32,
+    seed: u32,
+    // Samples per pixel of this map.
+    samples: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(0) @binding(6) var first_layer: texture_2d<f32>;
+@group(0) @binding(7) var<uniform> sd: SdRaster;
+// [0, S + 1]: index in the mask list of the first mask with R bits (R = 0..S, then 2^S);
+// from S + 2 on: all 2^S masks sorted by popcount.
+@group(0) @binding(8) var<storage, read> sd_lut: array<u32>;
+
+// The fragment's hash: pixel, triangle and depth (seed 001 §3.1: "using the pixel location,
+// sample index, and sample depth"), and the map's seed.
+fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32, depth: f32) -> u32 {
+    let h = pcg_hash(pixel.x ^ pcg_hash(pixel.y ^ pcg_hash(triangle ^ pcg_hash(bitcast<u32>(depth)))));
+    return pcg_hash(h ^ sd.seed);
+}
+
+struct SdOut {
+    @builtin(frag_depth) depth: f32,
+    @builtin(sample_mask) mask: u32,
+}
+
+@fragment
+fn fs_stochastic_depth(in: VertexOut) -> SdOut {
+    let material = materials[in.material];
+    if (!material_passes_alpha(material, textures, in.uv)) {
+        discard;
+    }
+    let pixel = vec2<u32>(in.clip.xy);
+    let depth = -in.view_pos.z;
+    let first = textureLoad(first_layer, pixel, 0).r;
+    // Alg. 1 stores hidden layers only: the first layer (and anything within `separation` behind
+    // it) is skipped; without a first layer the pixel shows no geometry at all.
+    if (!(first > 0.0) || depth <= first + sd.separation) {
+        discard;
+    }
+    let h = sd_fragment_hash(pixel, in.triangle, depth);
+    let xi = hash_to_unit(h);
+    let count = min(u32(floor(sd.alpha * f32(sd.samples) + xi)), sd.samples);
+    if (count == 0u) {
+        discard;
+    }
+    // Uniform choice among the masks with `count` bits.
+    let first_mask = sd_lut[count];
+    let choices = sd_lut[count + 1u] - first_mask;
+    var out: SdOut;
+    out.mask = sd_lut[sd.samples + 2u + first_mask + pcg_hash(h) % choices];
+    out.depth = min(depth / sd.far, 0.99999994);
+    return out;
+}
