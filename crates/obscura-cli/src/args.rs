@@ -144,6 +144,11 @@ pub struct AoArgs {
     /// sd-vao, sd-svao: seed of the stochastic depth map's hash.
     #[arg(long, default_value_t = 0)]
     pub sd_seed: u32,
+    /// sd-svao: limit the map to the requested pixels by 'stencil' (the paper's full-screen
+    /// copy into the stencil, then the stencil test) or 'discard' (the map's fragment shader
+    /// reads the request mask; no copy pass).
+    #[arg(long, default_value = "stencil")]
+    pub sd_mask: obscura::settings::SdMask,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -168,6 +173,7 @@ impl AoArgs {
             samples: self.sd_samples,
             alpha: self.sd_alpha,
             seed: self.sd_seed,
+            mask: self.sd_mask,
         };
         settings.validate()?;
         Ok(settings)

@@ -2,7 +2,7 @@
 // buffer): one sample layer (map `layer.x`, sample `layer.y`) of the whole framebuffer as linear
 // depth, 0 = empty. Preceded by the generated bindings of src/raster/stochastic_depth.rs.
 
-@group(0) @binding(5) var<uniform> sd_far: vec4<f32>;
+@group(0) @binding(5) var<uniform> sd_near: vec4<f32>;
 @group(1) @binding(0) var<uniform> layer: vec4<u32>;
 @group(1) @binding(1) var<storage, read_write> unpacked: array<f32>;
 
@@ -13,5 +13,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let v = sd_load(layer.x, id.xy, layer.y);
-    unpacked[id.y * size.x + id.x] = select(0.0, v * sd_far.x, v < 1.0);
+    unpacked[id.y * size.x + id.x] = select(0.0, sd_near.x / v, v > 0.0);
 }

@@ -7,19 +7,25 @@
 // peeling) draws xi from a hash of its pixel, triangle, depth and the map's seed, is stored in
 // R = floor(alpha * S + xi) samples (mean alpha * S), chosen uniformly among the S-bit masks with R
 // bits set (`sd_lut`: all masks sorted by popcount), and writes `@builtin(sample_mask)`; the depth
-// test (less) keeps the nearest fragment per sample. The depth written is linear view depth over
-// `far` (a depth target holds [0, 1]), so the map stores positions; 1 (the clear value) = empty.
+// test keeps the nearest fragment per sample.
+//
+// Depth: the map keeps the rasteriser's own reversed-Z depth (near / linear depth, 0 = empty) in a
+// 32-bit float target, which holds positions to float precision and lets the hardware test depth
+// and stencil before shading. The authors write linear depth from the shader instead
+// (seed-code-notes §1.5); a shader-written depth turns the early tests off, and on the
+// raster-poor H100 the stencil of SD-SVAO then saved nothing (BENCHMARKS.md).
 //
 // Sample positions: the paper puts all samples at the pixel centre (programmable sample
-// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage, while
-// the depth is always the one at the pixel centre (the fragment shader runs once per pixel, at its
-// centre). Inside a triangle this is the paper's map exactly; at a triangle edge a sample may take
-// its fragment from the neighbouring triangle of the same surface, which keeps every sample's
-// chance of storing the surface at alpha but not the exact count R of one fragment.
+// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage and
+// each sample's depth is the surface's at that sample position; readers place it at the pixel
+// centre (as they do the first layer's). Inside a triangle a sample stores its pixel's fragment as
+// in the paper; at a triangle edge it may take the neighbouring triangle of the same surface,
+// which keeps every sample's chance of storing the surface at alpha but not the exact count R of
+// one fragment.
 
 struct SdRaster {
-    // Linear depth is stored as depth / far.
-    far: f32,
+    // The projection's near plane: stored depth = near / linear depth (readers invert it).
+    near: f32,
     alpha: f32,
     // Minimum distance behind the first layer (world units).
     separation: f32,
@@ -44,16 +50,11 @@ fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32, depth: f32) -> u32 {
     return pcg_hash(h ^ sd.seed);
 }
 
-struct SdOut {
-    @builtin(frag_depth) depth: f32,
-    @builtin(sample_mask) mask: u32,
-}
-
-@fragment
-fn fs_stochastic_depth(in: VertexOut) -> SdOut {
+// Alg. 1 for one fragment: the samples it is stored in (0: none).
+fn sd_coverage(in: VertexOut) -> u32 {
     let material = materials[in.material];
     if (!material_passes_alpha(material, textures, in.uv)) {
-        discard;
+        return 0u;
     }
     let pixel = vec2<u32>(in.clip.xy);
     let depth = -in.view_pos.z;
@@ -61,19 +62,43 @@ fn fs_stochastic_depth(in: VertexOut) -> SdOut {
     // Alg. 1 stores hidden layers only: the first layer (and anything within `separation` behind
     // it) is skipped; without a first layer the pixel shows no geometry at all.
     if (!(first > 0.0) || depth <= first + sd.separation) {
-        discard;
+        return 0u;
     }
     let h = sd_fragment_hash(pixel, in.triangle, depth);
     let xi = hash_to_unit(h);
     let count = min(u32(floor(sd.alpha * f32(sd.samples) + xi)), sd.samples);
     if (count == 0u) {
-        discard;
+        return 0u;
     }
     // Uniform choice among the masks with `count` bits.
     let first_mask = sd_lut[count];
     let choices = sd_lut[count + 1u] - first_mask;
-    var out: SdOut;
-    out.mask = sd_lut[sd.samples + 2u + first_mask + pcg_hash(h) % choices];
-    out.depth = min(depth / sd.far, 0.99999994);
-    return out;
+    return sd_lut[sd.samples + 2u + first_mask + pcg_hash(h) % choices];
+}
+
+@fragment
+fn fs_stochastic_depth(in: VertexOut) -> @builtin(sample_mask) u32 {
+    let mask = sd_coverage(in);
+    if (mask == 0u) {
+        discard;
+    }
+    return mask;
+}
+
+// SD-SVAO without the stencil (`--sd-mask discard`): the fragment reads the SD-request mask itself
+// and is dropped where it is not set, so no full-screen copy pass is needed (see
+// sd_stencil_copy.wgsl for the paper's way). One u32 per framebuffer pixel, non-zero = requested.
+@group(0) @binding(9) var<storage, read> sd_request: array<u32>;
+
+@fragment
+fn fs_stochastic_depth_requested(in: VertexOut) -> @builtin(sample_mask) u32 {
+    let pixel = vec2<u32>(in.clip.xy);
+    if (sd_request[pixel.y * textureDimensions(first_layer).x + pixel.x] == 0u) {
+        discard;
+    }
+    let mask = sd_coverage(in);
+    if (mask == 0u) {
+        discard;
+    }
+    return mask;
 }

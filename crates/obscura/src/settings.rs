@@ -173,6 +173,44 @@ pub struct StochasticDepthSettings {
     pub alpha: f32,
     /// Seed of the per-fragment hash (ξ and the choice of samples).
     pub seed: u32,
+    /// `sd-svao`: how the map is limited to the pixels phase 1 requested.
+    pub mask: SdMask,
+}
+
+/// How `sd-svao` rasterises its stochastic depth map only where phase 1 asked for it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SdMask {
+    /// The paper's way (seed 000 §3.9): a full-screen pass copies the request mask into the
+    /// map's stencil, then the scene is drawn with the stencil test.
+    #[default]
+    Stencil,
+    /// No stencil: the map's fragment shader reads the request mask and discards where it is
+    /// not set (saves the full-screen copy pass; the fragments are still rasterised).
+    Discard,
+}
+
+impl FromStr for SdMask {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "stencil" => Ok(SdMask::Stencil),
+            "discard" => Ok(SdMask::Discard),
+            _ => Err(invalid(
+                "sd mask",
+                s,
+                "must be 'stencil' (default, the paper's) or 'discard'",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdMask {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdMask::Stencil => "stencil",
+            SdMask::Discard => "discard",
+        })
+    }
 }
 
 impl Default for StochasticDepthSettings {
@@ -181,6 +219,7 @@ impl Default for StochasticDepthSettings {
             samples: 4,
             alpha: 0.2,
             seed: 0,
+            mask: SdMask::Stencil,
         }
     }
 }

@@ -5,10 +5,11 @@
 //
 // Preceded by bindings generated in src/raster/stochastic_depth.rs (WGSL cannot index an array of
 // multisampled textures): the SD_MAPS maps of SD_SAMPLES samples each, read by
-// `fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32` (depth / far; 1 = empty).
+// `fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32` (reversed-Z: near / linear depth,
+// 0 = empty).
 
-// The map's normalisation (the `far` of stochastic_depth.wgsl's SdRaster, its first member).
-@group(0) @binding(5) var<uniform> sd_far: vec4<f32>;
+// The projection's near plane (the first member of stochastic_depth.wgsl's SdRaster).
+@group(0) @binding(5) var<uniform> sd_near: vec4<f32>;
 
 // The pixel a sample reads: clamped into the framebuffer, snapped to its centre.
 fn sample_pixel_of(c: VaoColumn) -> vec2<u32> {
@@ -46,8 +47,8 @@ fn resolve_hidden(f: VaoFrame, c: VaoColumn, l: DepthLookup) -> f32 {
     for (var m = 0u; m < SD_MAPS; m++) {
         for (var s = 0u; s < SD_SAMPLES; s++) {
             let v = sd_load(m, pixel, s);
-            if (v < 1.0) {
-                let p = pixel_to_view(view, l.px, v * sd_far.x);
+            if (v > 0.0) {
+                let p = pixel_to_view(view, l.px, sd_near.x / v);
                 visibility = min(visibility, column_visibility(column_height(f, c, p), c.start, c.end));
             }
         }

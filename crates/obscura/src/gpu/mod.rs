@@ -57,8 +57,8 @@ pub struct AdapterSummary {
     pub max_compute_invocations_per_workgroup: u32,
     /// MSAA sample counts a depth texture (`Depth32Float`) supports on this adapter.
     pub depth_msaa_sample_counts: Vec<u32>,
-    /// Depth-stencil format of the stochastic depth map on this device
-    /// ([`crate::raster::stochastic_depth::sd_format`]).
+    /// Depth-stencil format of the stochastic depth map
+    /// ([`crate::raster::stochastic_depth::SD_FORMAT`]), or "unavailable" on this device.
     pub sd_format: String,
     /// Samples per pixel one stochastic depth map target can have on this device.
     pub sd_map_sample_counts: Vec<u32>,
@@ -175,14 +175,20 @@ impl Gpu {
                 .collect()
         };
         let (sd_format, sd_map_sample_counts, sd_sample_counts, sd_layouts) = {
-            use crate::raster::stochastic_depth::{map_sample_counts, sd_format, SdLayout};
+            use crate::raster::stochastic_depth::{
+                map_sample_counts, sd_format_available, SdLayout, SD_FORMAT,
+            };
             let per_map = map_sample_counts(&adapter, &device);
             let accepted = crate::settings::SD_SAMPLE_COUNTS
                 .into_iter()
                 .filter(|&s| SdLayout::plan(s, &per_map).is_some())
                 .collect();
             let layouts = SdLayout::describe_supported(&per_map);
-            let format = format!("{:?}", sd_format(&device));
+            let format = if sd_format_available(&device) {
+                format!("{SD_FORMAT:?}")
+            } else {
+                "unavailable".to_string()
+            };
             (format, per_map, accepted, layouts)
         };
         let summary = AdapterSummary {

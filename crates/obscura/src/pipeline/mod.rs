@@ -93,7 +93,7 @@ impl AmbientOcclusion {
             settings.peel_separation,
             (screen.full_width(), screen.full_height()),
             scene,
-            settings.technique == Technique::SdSvao,
+            (settings.technique == Technique::SdSvao).then_some(settings.stochastic_depth.mask),
         )?;
         Self::build(
             device,

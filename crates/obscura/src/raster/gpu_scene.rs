@@ -32,8 +32,6 @@ pub struct GpuScene {
     /// Triangles `0..culled_count` are drawn with back-face culling, the rest without.
     pub culled_count: u32,
     pub triangle_count: u32,
-    /// World-space bounds of every vertex.
-    pub bounds: crate::scene::Bounds,
 }
 
 impl GpuScene {
@@ -164,7 +162,6 @@ impl GpuScene {
             textures,
             culled_count,
             triangle_count: triangles.len() as u32,
-            bounds: scene.bounds(),
         })
     }
 }

@@ -1,8 +1,9 @@
 //! The stratified stochastic depth map (seed 001 §3.1, Alg. 1; `shaders/stochastic_depth.wgsl`):
 //! a multisampled depth target in which every hidden fragment is kept in ⌊αS + ξ⌋ of the S
-//! samples of its pixel, nearest first. Optionally stenciled (seed 000 §3.9): a full-screen pass
-//! copies an SD-request mask into the stencil (`shaders/sd_stencil_copy.wgsl`) and the scene is
-//! drawn only where it is set.
+//! samples of its pixel, nearest first. Optionally limited to the pixels of an SD-request mask
+//! (seed 000 §3.9): a full-screen pass copies the mask into the stencil
+//! (`shaders/sd_stencil_copy.wgsl`) and the scene is drawn with the stencil test, or
+//! ([`SdMask::Discard`]) the map's fragment shader reads the mask and discards.
 //!
 //! S samples per pixel need a target with S samples. When the adapter cannot rasterise S samples
 //! into one target, S is made of several 4× or 8× maps with independent seeds ([`SdLayout`]).
@@ -10,7 +11,7 @@
 use super::gbuffer::{draw_scene, scene_resources, CameraUniform, ScenePipeline};
 use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
-use crate::settings::StochasticDepthSettings;
+use crate::settings::{SdMask, StochasticDepthSettings};
 use crate::view::FrameView;
 use crate::{shaders, Error};
 use wgpu::util::DeviceExt;
@@ -66,21 +67,20 @@ impl SdLayout {
     }
 }
 
-/// The map's depth-stencil format: 32-bit float depth when the device has it with a stencil,
-/// else 24-bit depth. Both techniques use the same one, so `sd-svao` reads the values `sd-vao`
-/// reads.
-pub fn sd_format(device: &wgpu::Device) -> wgpu::TextureFormat {
-    if device
+/// The map's depth-stencil format: reversed-Z depth in 32-bit float keeps positions to float
+/// precision (24-bit fixed point would not, at reversed-Z's small values), with the stencil of
+/// SD-SVAO. Both techniques use it, so `sd-svao` reads the values `sd-vao` reads.
+pub const SD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32FloatStencil8;
+
+/// Whether this device can make the map at all (wgpu feature `DEPTH32FLOAT_STENCIL8`, requested
+/// by [`crate::Gpu`] where the adapter has it).
+pub fn sd_format_available(device: &wgpu::Device) -> bool {
+    device
         .features()
         .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
-    {
-        wgpu::TextureFormat::Depth32FloatStencil8
-    } else {
-        wgpu::TextureFormat::Depth24PlusStencil8
-    }
 }
 
-/// Samples per pixel one map of [`sd_format`] can have on this adapter (WebGPU guarantees 1
+/// Samples per pixel one map of [`SD_FORMAT`] can have on this adapter (WebGPU guarantees 1
 /// and 4; more need the adapter-specific format features, which [`crate::Gpu`] requests).
 pub fn map_sample_counts(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Vec<u32> {
     if !device
@@ -89,7 +89,10 @@ pub fn map_sample_counts(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Vec<
     {
         return vec![1, 4];
     }
-    let flags = adapter.get_texture_format_features(sd_format(device)).flags;
+    if !sd_format_available(device) {
+        return Vec::new();
+    }
+    let flags = adapter.get_texture_format_features(SD_FORMAT).flags;
     MAP_SAMPLE_COUNTS
         .into_iter()
         .filter(|&n| flags.sample_count_supported(n))
@@ -139,7 +142,7 @@ pub(crate) fn bindings_wgsl(layout: SdLayout) -> String {
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct SdRaster {
-    far: f32,
+    near: f32,
     alpha: f32,
     separation: f32,
     seed: u32,
@@ -155,7 +158,7 @@ pub struct StochasticDepthMap {
     separation: f32,
     scene: GpuScene,
     maps: Vec<wgpu::Texture>,
-    /// `SdRaster` per map (the seeds differ); its first member `far` is what readers bind.
+    /// `SdRaster` per map (the seeds differ); its first member `near` is what readers bind.
     params: Vec<wgpu::Buffer>,
     camera: wgpu::Buffer,
     lut: wgpu::Buffer,
@@ -163,12 +166,14 @@ pub struct StochasticDepthMap {
     pipelines: [wgpu::RenderPipeline; 2],
     /// With a stencil: the copy pass and the width uniform it indexes the request mask with.
     stencil: Option<(wgpu::RenderPipeline, wgpu::Buffer)>,
+    /// The fragment shader reads the request mask itself ([`SdMask::Discard`]).
+    discards: bool,
 }
 
 impl StochasticDepthMap {
     /// Targets for a `width`×`height` framebuffer (guard band included). `separation`: how far
-    /// behind the first layer a fragment must lie to count as hidden. `stenciled`: rasterise only
-    /// where an SD-request mask is set ([`StochasticDepthMap::render`]).
+    /// behind the first layer a fragment must lie to count as hidden. `requested`: rasterise only
+    /// where an SD-request mask is set ([`StochasticDepthMap::render`]), by stencil or discard.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         adapter: &wgpu::Adapter,
@@ -177,9 +182,16 @@ impl StochasticDepthMap {
         separation: f32,
         (width, height): (u32, u32),
         scene: &GpuScene,
-        stenciled: bool,
+        requested: Option<SdMask>,
     ) -> Result<Self, Error> {
-        let format = sd_format(device);
+        let stenciled = requested == Some(SdMask::Stencil);
+        let format = SD_FORMAT;
+        if !sd_format_available(device) {
+            return Err(Error::Input(format!(
+                "adapter '{}' has no {format:?} depth-stencil format (wgpu feature DEPTH32FLOAT_STENCIL8), which the stochastic depth map needs: use another --adapter or a technique without a stochastic depth map (vao, vao-dual, rt-vao, rt-svao)",
+                adapter.get_info().name
+            )));
+        }
         let supported = map_sample_counts(adapter, device);
         let layout = SdLayout::plan(settings.samples, &supported).ok_or_else(|| {
             Error::Input(format!(
@@ -259,12 +271,16 @@ impl StochasticDepthMap {
                 depth_stencil: wgpu::DepthStencilState {
                     format,
                     depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    depth_compare: Some(wgpu::CompareFunction::Greater),
                     stencil: stencil_test.clone(),
                     bias: Default::default(),
                 },
                 multisample,
-                fragment: "fs_stochastic_depth",
+                fragment: if requested == Some(SdMask::Discard) {
+                    "fs_stochastic_depth_requested"
+                } else {
+                    "fs_stochastic_depth"
+                },
                 targets: &[],
             }
             .create(device)
@@ -338,6 +354,7 @@ impl StochasticDepthMap {
             }),
             pipelines,
             stencil,
+            discards: requested == Some(SdMask::Discard),
         })
     }
 
@@ -345,30 +362,16 @@ impl StochasticDepthMap {
         self.layout
     }
 
-    /// The camera of the coming frame. The stored depth is normalised by the farthest corner of
-    /// the scene's bounds, so every surface fits in the depth target's [0, 1].
+    /// The camera of the coming frame.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
         queue.write_buffer(
             &self.camera,
             0,
             bytemuck::bytes_of(&CameraUniform::new(view)),
         );
-        let b = self.scene.bounds;
-        let to_view = view.view_matrix();
-        let far = (0..8)
-            .map(|i| {
-                let corner = glam::Vec3::new(
-                    if i & 1 == 0 { b.min.x } else { b.max.x },
-                    if i & 2 == 0 { b.min.y } else { b.max.y },
-                    if i & 4 == 0 { b.min.z } else { b.max.z },
-                );
-                -to_view.transform_point3(corner).z
-            })
-            .fold(view.near, f32::max)
-            * 1.01;
         for (m, buffer) in self.params.iter().enumerate() {
             let raster = SdRaster {
-                far,
+                near: view.near,
                 alpha: self.settings.alpha,
                 separation: self.separation,
                 // Stacked maps: independent seeds.
@@ -383,7 +386,7 @@ impl StochasticDepthMap {
     }
 
     /// Rasterise the map behind `first_layer` (the G-buffer's linear depth). With `request` (a
-    /// stenciled map), only the pixels whose u32 in it is non-zero. Timings: `sd_stencil` (the
+    /// map made with `requested`), only the pixels whose u32 in it is non-zero. Timings: `sd_stencil` (the
     /// copy into the stencil) and `sd_map`, summed over stacked maps.
     pub fn render(
         &self,
@@ -410,15 +413,15 @@ impl StochasticDepthMap {
                 pass.set_stencil_reference(1);
                 pass.draw(0..3, 0..1);
             }
-            let resources = scene_resources(
-                &self.camera,
-                &self.scene,
-                vec![
-                    wgpu::BindingResource::TextureView(first_layer),
-                    params.as_entire_binding(),
-                    self.lut.as_entire_binding(),
-                ],
-            );
+            let mut extra = vec![
+                wgpu::BindingResource::TextureView(first_layer),
+                params.as_entire_binding(),
+                self.lut.as_entire_binding(),
+            ];
+            if self.discards {
+                extra.extend(request.map(|r| r.as_entire_binding()));
+            }
+            let resources = scene_resources(&self.camera, &self.scene, extra);
             let bind_groups = self.pipelines.each_ref().map(|p| {
                 crate::gpu::bind_group(
                     device,
@@ -434,7 +437,7 @@ impl StochasticDepthMap {
         }
     }
 
-    /// What a reader binds: the uniform whose first float is `far` (binding 5), then one
+    /// What a reader binds: the uniform whose first float is `near` (binding 5), then one
     /// depth-only view per map (bindings 6…), matching [`bindings_wgsl`].
     pub(crate) fn read_resources(&self) -> (wgpu::BindingResource<'_>, Vec<wgpu::TextureView>) {
         let views = self
@@ -456,8 +459,8 @@ impl StochasticDepthMap {
         let device = &gpu.device;
         let source = format!("{}\n{}", bindings_wgsl(self.layout), shaders::SD_UNPACK);
         let pipeline = crate::gpu::compute_pipeline_with(device, "sd unpack", &source, &[]);
-        let (far, views) = self.read_resources();
-        let mut resources = vec![far];
+        let (near, views) = self.read_resources();
+        let mut resources = vec![near];
         resources.extend(views.iter().map(wgpu::BindingResource::TextureView));
         // The readers' bindings start at 5 (after the VAO frame's 0–4).
         let entries: Vec<_> = resources
@@ -518,8 +521,8 @@ impl StochasticDepthMap {
     }
 }
 
-/// A render pass on one map's depth-stencil target; `clear`: start from empty (depth 1,
-/// stencil 0), else keep what an earlier pass wrote.
+/// A render pass on one map's depth-stencil target; `clear`: start from empty (reversed-Z
+/// depth 0, stencil 0), else keep what an earlier pass wrote.
 fn begin<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     target: &'e wgpu::TextureView,
@@ -527,7 +530,7 @@ fn begin<'e>(
     timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'e>>,
 ) -> wgpu::RenderPass<'e> {
     let (depth, stencil) = if clear {
-        (wgpu::LoadOp::Clear(1.0), wgpu::LoadOp::Clear(0))
+        (wgpu::LoadOp::Clear(0.0), wgpu::LoadOp::Clear(0))
     } else {
         (wgpu::LoadOp::Load, wgpu::LoadOp::Load)
     };
