@@ -2,9 +2,11 @@
 # Make sure a Vulkan driver is installed. On a machine without one (no GPU, fresh Debian/Ubuntu),
 # install Mesa's software Vulkan driver (lavapipe): slow but real, enough for the demo and tests.
 set -euo pipefail
-if ls /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json /usr/local/share/vulkan/icd.d/*.json >/dev/null 2>&1; then
-  exit 0
-fi
+# Any one of the usual ICD folders holding a manifest will do (`ls` of all three would fail as soon
+# as one folder is missing).
+for icd in /usr/share/vulkan/icd.d/*.json /etc/vulkan/icd.d/*.json /usr/local/share/vulkan/icd.d/*.json; do
+  if [ -e "$icd" ]; then exit 0; fi
+done
 echo "ensure-vulkan: no Vulkan driver found; installing mesa-vulkan-drivers (software Vulkan)" >&2
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

@@ -17,8 +17,8 @@ fn stderr(o: &Output) -> String {
 
 /// Runs `obscura render` with `extra` arguments writing to a fresh `out.png` that already holds
 /// old content; asserts failure with a message containing every `needle`, and that the old file
-/// is untouched and no temporary file is left.
-fn assert_render_fails(extra: &[&str], needles: &[&str]) {
+/// is untouched and no temporary file is left. Returns the message.
+fn assert_render_fails(extra: &[&str], needles: &[&str]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.png");
     std::fs::write(&out, b"old").unwrap();
@@ -48,6 +48,7 @@ fn assert_render_fails(extra: &[&str], needles: &[&str]) {
         .map(|e| e.unwrap().file_name())
         .collect();
     assert_eq!(leftovers.len(), 1, "{extra:?} left files: {leftovers:?}");
+    err
 }
 
 fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
@@ -264,7 +265,7 @@ fn bench_reports_every_pass() {
         "--size",
         "64x48",
         "--techniques",
-        "vao",
+        "vao,sd-svao",
         "--frames",
         "5",
         "--warmup",
@@ -304,6 +305,33 @@ fn bench_reports_every_pass() {
         );
     }
     assert!(r["total_ms"].as_f64().is_some_and(|t| t > 0.0));
+    assert!(r.get("sd_samples").is_none(), "vao has no SD settings: {r}");
+    // A stochastic-depth technique records its settings and times its raster passes.
+    let r = &v["results"][1];
+    assert_eq!(r["technique"], "sd-svao");
+    assert_eq!(
+        (r["sd_samples"].as_u64(), r["sd_alpha"].as_f64()),
+        (Some(4), Some(0.2))
+    );
+    let layout = &r["layout"];
+    assert_eq!(
+        layout["maps"].as_u64().unwrap() * layout["samples_per_map"].as_u64().unwrap(),
+        4,
+        "{r}"
+    );
+    for pass in [
+        "gbuffer",
+        "sd_stencil",
+        "sd_map",
+        "svao_phase1",
+        "svao_phase2",
+        "blur",
+    ] {
+        assert!(
+            r["passes"][pass].as_f64().is_some_and(|ms| ms >= 0.0),
+            "{pass} missing in {r}"
+        );
+    }
 }
 
 fn obscura_cached(args: &[&str], cache: &Path) -> Output {
@@ -568,8 +596,187 @@ fn debug_out_shows_the_flagged_samples() {
         debug.to_str().unwrap(),
     ]);
     assert!(
-        !o.status.success() && stderr(&o).contains("rt-svao"),
+        !o.status.success() && stderr(&o).contains("rt-svao") && stderr(&o).contains("sd-svao"),
         "{}",
         stderr(&o)
+    );
+}
+
+fn info_json() -> serde_json::Value {
+    let o = obscura(&["info", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+#[test]
+fn stochastic_depth_options_are_clear_errors() {
+    // Ours is one line; Mesa's Vulkan WSI adds its own when XDG_RUNTIME_DIR is unset (the README
+    // test command may run without it), which is not our message.
+    let one_line = |err: &str| {
+        let ours = err
+            .trim()
+            .lines()
+            .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
+            .count();
+        assert_eq!(ours, 1, "one message: {err}");
+    };
+    let sd = ["--technique", "sd-vao"];
+    let err = assert_render_fails(
+        &[&sd[..], &["--sd-samples", "3"]].concat(),
+        &["3", "1, 2, 4, 8 or 16"],
+    );
+    one_line(&err);
+    for alpha in ["0", "1.5"] {
+        let err = assert_render_fails(
+            &[&sd[..], &["--sd-alpha", alpha]].concat(),
+            &[alpha, "(0, 1]"],
+        );
+        one_line(&err);
+    }
+    // S = 2 needs 2x multisampled depth, which lavapipe lacks (it has 1x and 4x): the message
+    // names the flag and the counts this adapter does support, as `obscura info` lists them.
+    let info = info_json();
+    let accepted: Vec<u64> = info["sd_sample_counts"]
+        .as_array()
+        .expect("info --json lists sd_sample_counts")
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    let layouts = info["sd_layouts"]
+        .as_str()
+        .expect("info --json has sd_layouts");
+    if info["name"]
+        .as_str()
+        .is_some_and(|n| n.contains("llvmpipe"))
+    {
+        // So that the check below is not skipped where it matters (CI).
+        assert_eq!(accepted, [1, 4, 8, 16], "{info}");
+    }
+    if !accepted.is_empty() && !accepted.contains(&2) {
+        assert!(layouts.starts_with('1'), "{layouts}");
+        let err = assert_render_fails(
+            &[&sd[..], &["--sd-samples", "2"]].concat(),
+            &["--sd-samples 2", layouts],
+        );
+        one_line(&err);
+    }
+}
+
+/// Grey levels of an 8-bit PNG.
+fn grey(path: &Path) -> (u32, u32, Vec<u8>) {
+    let img = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let (w, h) = (img.width(), img.height());
+    (w, h, img.to_luma8().into_raw())
+}
+
+/// `render --debug-out` for one technique on the stairs close-up at 96x64; returns stats.json.
+fn sd_debug(technique: &str, dir: &Path) -> serde_json::Value {
+    let out = dir.join(format!("{technique}.png"));
+    let debug = dir.join(technique);
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--size",
+        "96x64",
+        "--technique",
+        technique,
+        "--out",
+        out.to_str().unwrap(),
+        "--debug-out",
+        debug.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_str(&std::fs::read_to_string(debug.join("stats.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn debug_out_shows_the_stochastic_depth_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let stats = sd_debug("sd-svao", dir.path());
+    let debug = dir.path().join("sd-svao");
+    assert_eq!(
+        (stats["sd_samples"].as_u64(), stats["sd_alpha"].as_f64()),
+        (Some(4), Some(0.2))
+    );
+    let layout = &stats["layout"];
+    assert_eq!(
+        layout["maps"].as_u64().unwrap() * layout["samples_per_map"].as_u64().unwrap(),
+        4,
+        "{stats}"
+    );
+    // The SD images cover the framebuffer: the visible 96x64 plus the guard band on each side.
+    let g = stats["guard_band"].as_u64().unwrap() as u32;
+    let (fw, fh) = (96 + 2 * g, 64 + 2 * g);
+    assert_eq!(
+        (
+            stats["framebuffer_width"].as_u64(),
+            stats["framebuffer_height"].as_u64()
+        ),
+        (Some(u64::from(fw)), Some(u64::from(fh)))
+    );
+    let f = |key: &str| {
+        stats[key]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{key} in {stats}"))
+    };
+    let n = |key: &str| {
+        stats[key]
+            .as_u64()
+            .unwrap_or_else(|| panic!("{key} in {stats}"))
+    };
+    // Hidden geometry behind the figure: some of the map is stored and requested, not all.
+    let stored = f("stored_fraction");
+    assert!(stored > 0.0 && stored <= 1.0, "{stats}");
+    let requested = f("requested_fraction");
+    assert!(requested > 0.0 && requested < 1.0, "{stats}");
+    assert_eq!(
+        n("requested_pixels"),
+        (requested * f64::from(fw * fh)).round() as u64
+    );
+    assert_eq!(n("pixels"), 96 * 64);
+    let (flagged, samples) = (n("flagged_pixels"), n("samples_flagged"));
+    assert!(flagged > 0 && flagged < 96 * 64, "{stats}");
+    assert!(samples >= flagged && samples <= 8 * flagged, "{stats}");
+
+    // The images agree with the numbers.
+    let (w, h, request) = grey(&debug.join("sd_request.png"));
+    assert_eq!((w, h), (fw, fh));
+    assert!(request.iter().all(|&v| v == 0 || v == 255));
+    assert_eq!(
+        request.iter().filter(|&&v| v == 255).count() as u64,
+        n("requested_pixels")
+    );
+    let (w, h, counts) = grey(&debug.join("sd_counts.png"));
+    assert_eq!((w, h), (fw, fh));
+    let mean = counts.iter().map(|&v| f64::from(v) / 255.0).sum::<f64>() / counts.len() as f64;
+    assert!(
+        (mean - stored).abs() < 0.005,
+        "sd_counts mean {mean} vs stored_fraction {stored}"
+    );
+    let (w, h, layer) = grey(&debug.join("sd_layer.png"));
+    assert_eq!((w, h), (fw, fh));
+    assert!(layer.iter().any(|&v| v > 0), "layer 0 stores something");
+    for i in 0..layer.len() {
+        // A stored sample is never black (the farthest maps to grey 0.25) and lies in a pixel
+        // that stores at least one sample, which sd-svao only does where it was requested.
+        assert!(layer[i] == 0 || layer[i] >= 63, "pixel {i}: {}", layer[i]);
+        if layer[i] > 0 {
+            assert!(counts[i] > 0 && request[i] == 255, "pixel {i}");
+        }
+    }
+    let (w, h, _) = grey(&debug.join("samples.png"));
+    assert_eq!((w, h), (96, 64));
+
+    // sd-vao: the same map everywhere (no request mask, no phase 1), so at least what the
+    // stenciled map stored.
+    let full = sd_debug("sd-vao", dir.path());
+    let debug = dir.path().join("sd-vao");
+    assert!(debug.join("sd_layer.png").is_file() && debug.join("sd_counts.png").is_file());
+    assert!(!debug.join("sd_request.png").exists() && !debug.join("samples.png").exists());
+    assert!(full.get("requested_fraction").is_none(), "{full}");
+    assert!(
+        full["stored_samples"].as_u64() >= stats["stored_samples"].as_u64(),
+        "sd-vao {full} vs sd-svao {stats}"
     );
 }

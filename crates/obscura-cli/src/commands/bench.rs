@@ -5,7 +5,8 @@ use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
-use obscura::{output, PassProfiler, Renderer};
+use obscura::raster::stochastic_depth::SdLayout;
+use obscura::{output, PassProfiler, Renderer, Technique};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -41,8 +42,25 @@ struct BenchResult {
     height: u32,
     guard_band: u32,
     frames: u32,
+    /// `sd-vao`, `sd-svao`: stochastic depth samples per pixel S, α and how S is laid out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sd_samples: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sd_alpha: Option<f32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    layout: Option<Layout>,
+    /// `sd-svao`: how the map is limited to the requested pixels (`stencil` or `discard`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sd_mask: Option<String>,
     passes: BTreeMap<String, f64>,
     total_ms: f64,
+}
+
+/// [`SdLayout`] as JSON.
+#[derive(serde::Serialize)]
+struct Layout {
+    maps: u32,
+    samples_per_map: u32,
 }
 
 #[derive(serde::Serialize)]
@@ -132,8 +150,21 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             }
             totals.push(frame.values().sum());
         }
+        let sd = matches!(technique, Technique::SdVao | Technique::SdSvao)
+            .then_some(settings.stochastic_depth);
+        let layout = sd
+            .and_then(|sd| SdLayout::plan(sd.samples, &gpu.summary.sd_map_sample_counts))
+            .map(|l| Layout {
+                maps: l.maps,
+                samples_per_map: l.samples_per_map,
+            });
         results.push(BenchResult {
             technique: technique.name().into(),
+            sd_samples: sd.map(|sd| sd.samples),
+            sd_alpha: sd.map(|sd| sd.alpha),
+            layout,
+            sd_mask: (technique == Technique::SdSvao)
+                .then(|| settings.stochastic_depth.mask.to_string()),
             scene: scene.name.clone(),
             camera: camera_name.clone(),
             width,
@@ -156,14 +187,28 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         report.adapter, report.backend, report.driver
     );
     for r in &report.results {
+        let sd = match (r.sd_samples, r.sd_alpha, &r.layout) {
+            (Some(s), Some(alpha), Some(l)) => {
+                let maps = match l.maps {
+                    1 => "one map".to_string(),
+                    n => format!("{n} maps of {}", l.samples_per_map),
+                };
+                let mask = r
+                    .sd_mask
+                    .as_ref()
+                    .map_or(String::new(), |m| format!(", mask {m}"));
+                format!(", S = {s} ({maps}), α = {alpha}{mask}")
+            }
+            _ => String::new(),
+        };
         println!(
-            "{} on {} ({}) {}x{} +{} guard band, median of {} frames:",
+            "{} on {} ({}) {}x{} +{} guard band{sd}, median of {} frames:",
             r.technique, r.scene, r.camera, r.width, r.height, r.guard_band, r.frames
         );
         for (pass, ms) in &r.passes {
-            println!("  {pass:<10} {ms:>9.4} ms");
+            println!("  {pass:<14} {ms:>9.4} ms");
         }
-        println!("  {:<10} {:>9.4} ms", "total", r.total_ms);
+        println!("  {:<14} {:>9.4} ms", "total", r.total_ms);
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;

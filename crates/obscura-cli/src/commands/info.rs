@@ -39,5 +39,14 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
         s.max_compute_workgroup_size, s.max_compute_invocations_per_workgroup
     );
     println!("depth MSAA   {:?} samples", s.depth_msaa_sample_counts);
+    if s.sd_sample_counts.is_empty() {
+        println!("SD map       unavailable on this device: sd-vao and sd-svao cannot run");
+    } else {
+        println!(
+            "SD map       {}, {:?} samples per target",
+            s.sd_format, s.sd_map_sample_counts
+        );
+        println!("--sd-samples {}", s.sd_layouts);
+    }
     Ok(())
 }

@@ -12,7 +12,7 @@ pub struct RenderArgs {
     /// Visible image size WIDTHxHEIGHT (the guard band is extra).
     #[arg(long, value_parser = parse_size, default_value = "1280x720")]
     size: (u32, u32),
-    /// AO technique: vao, vao-dual, rt-vao, rt-svao or rt-svao-dense.
+    /// AO technique: vao, vao-dual, rt-vao, rt-svao, rt-svao-dense, sd-vao or sd-svao.
     #[arg(long, value_parser = parse_technique, default_value = "vao")]
     technique: Technique,
     #[command(flatten)]
@@ -23,8 +23,11 @@ pub struct RenderArgs {
     /// Also write AO × base colour next to it (NAME.composite.png/.exr).
     #[arg(long)]
     composite: bool,
-    /// Two-phase techniques (rt-svao, rt-svao-dense): write the per-pixel count of samples that
-    /// needed rays (samples.png) and the frame's ray statistics (stats.json) into this folder.
+    /// Write the technique's intermediate images and statistics into this folder (rt-svao,
+    /// rt-svao-dense, sd-vao, sd-svao). Two-phase techniques: the per-pixel count of flagged
+    /// samples (samples.png). sd-vao, sd-svao: one stochastic depth layer (sd_layer.png), the
+    /// stored samples per pixel (sd_counts.png) and, for sd-svao, the SD-request mask
+    /// (sd_request.png). Always stats.json.
     #[arg(long)]
     debug_out: Option<PathBuf>,
 }
@@ -34,9 +37,11 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     output::check_writable(&args.out)?;
     let settings = args.ao.settings(args.technique)?;
     if let Some(dir) = &args.debug_out {
-        if !matches!(args.technique, Technique::RtSvao | Technique::RtSvaoDense) {
+        if !DEBUG_TECHNIQUES.contains(&args.technique) {
             anyhow::bail!(
-                "--debug-out shows the two-phase pipeline's flagged samples: use it with --technique rt-svao or rt-svao-dense"
+                "--technique {} has no --debug-out images: use it with --technique {}",
+                args.technique,
+                technique_list(&DEBUG_TECHNIQUES)
             );
         }
         std::fs::create_dir_all(dir).map_err(|e| {
@@ -57,7 +62,12 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     crate::args::warn_stack_overflows(&renderer)?;
     output::write_ao(&args.out, width, height, &ao)?;
     if let Some(dir) = &args.debug_out {
-        write_debug(dir, &renderer, width, height, settings.vao.samples)?;
+        match args.technique {
+            Technique::SdVao | Technique::SdSvao => {
+                write_sd_debug(dir, &gpu, &renderer, &settings, (width, height), guard_band)?
+            }
+            _ => write_debug(dir, &renderer, width, height, settings.vao.samples)?,
+        }
     }
     if args.composite {
         let path = output::composite_path(&args.out);
@@ -67,6 +77,23 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
         eprintln!("wrote {}", args.out.display());
     }
     Ok(())
+}
+
+/// The techniques `--debug-out` has images for.
+const DEBUG_TECHNIQUES: [Technique; 4] = [
+    Technique::RtSvao,
+    Technique::RtSvaoDense,
+    Technique::SdVao,
+    Technique::SdSvao,
+];
+
+/// "a, b, c or d".
+fn technique_list(techniques: &[Technique]) -> String {
+    let names: Vec<&str> = techniques.iter().map(|t| t.name()).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(""),
+    }
 }
 
 /// The two-phase pipeline's flagged samples: an image of their count per pixel and the totals.
@@ -85,8 +112,7 @@ fn write_debug(
         .map(|m| m.count_ones() as f32 / samples as f32)
         .collect();
     output::write_ao(&dir.join("samples.png"), width, height, &counts)?;
-    let flagged_pixels = masks.iter().filter(|&&m| m != 0).count();
-    let rays: u64 = masks.iter().map(|m| u64::from(m.count_ones())).sum();
+    let (flagged_pixels, rays) = flagged(&masks);
     let stats = serde_json::json!({
         "pixels": masks.len(),
         "flagged_pixels": flagged_pixels,
@@ -94,15 +120,163 @@ fn write_debug(
         "rays_traced": rays,
         "stack_overflows": renderer.read_stack_overflows()?,
     });
-    let text = serde_json::to_string_pretty(&stats)?;
-    output::write_atomically(&dir.join("stats.json"), |tmp| {
-        std::fs::write(tmp, &text).map_err(|e| e.to_string())
-    })?;
+    write_json(&dir.join("stats.json"), &stats)?;
     eprintln!(
         "debug: {flagged_pixels} of {} pixels ({:.1} %) flagged, {rays} rays traced; wrote {}",
         masks.len(),
         100.0 * flagged_pixels as f64 / masks.len().max(1) as f64,
         dir.display()
     );
+    Ok(())
+}
+
+/// Counts of a phase-1 sample bitmask image: (pixels with any flagged sample, flagged samples).
+fn flagged(masks: &[u32]) -> (usize, u64) {
+    (
+        masks.iter().filter(|&&m| m != 0).count(),
+        masks.iter().map(|m| u64::from(m.count_ones())).sum(),
+    )
+}
+
+fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
+    let text = serde_json::to_string_pretty(value)?;
+    output::write_atomically(path, |tmp| {
+        std::fs::write(tmp, &text).map_err(|e| e.to_string())
+    })?;
+    Ok(())
+}
+
+/// `sd-vao`, `sd-svao`: the stochastic depth map of the frame, over the whole framebuffer (guard
+/// band included, so these images are `width + 2·guard_band` wide):
+/// - `sd_layer.png`: sample 0 of map 0 as a depth image (seed 000 Fig. 2). Empty samples are black;
+///   stored depths d map linearly to grey 1 − 0.75·(d − d_min)/(d_max − d_min), d_min/d_max the
+///   nearest/farthest stored depth over all samples of the map, so near is white and the farthest
+///   stored depth (grey 0.25) stays distinct from empty;
+/// - `sd_counts.png`: stored samples per pixel / S (black: none, white: all S);
+/// - `sd-svao` only: `sd_request.png` (white = phase 1 requested the map there) and the phase-1
+///   flagged samples per visible pixel `samples.png` (count / VAO samples, as for rt-svao);
+/// - `stats.json`: settings, layout and the fractions.
+fn write_sd_debug(
+    dir: &std::path::Path,
+    gpu: &obscura::Gpu,
+    renderer: &Renderer,
+    settings: &obscura::AoSettings,
+    (width, height): (u32, u32),
+    guard_band: u32,
+) -> Result<()> {
+    use obscura::raster::stochastic_depth::SdLayout;
+    let sd = settings.stochastic_depth;
+    let layers = renderer
+        .read_stochastic_depth()?
+        .ok_or_else(|| anyhow::anyhow!("this technique has no stochastic depth map"))?;
+    let layout = SdLayout::plan(sd.samples, &gpu.summary.sd_map_sample_counts)
+        .ok_or_else(|| anyhow::anyhow!("--sd-samples {} has no layout", sd.samples))?;
+    let (fw, fh) = (width + 2 * guard_band, height + 2 * guard_band);
+    let texels = (fw * fh) as usize;
+    if layers.len() != layout.samples() as usize || layers.iter().any(|l| l.len() != texels) {
+        anyhow::bail!(
+            "stochastic depth map read back as {} layers, expected {} of {fw}x{fh}",
+            layers.len(),
+            layout.samples()
+        );
+    }
+    let stored = |d: f32| d > 0.0 && d.is_finite();
+    let (near, far) = layers
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|&d| stored(d))
+        .fold((f32::INFINITY, 0.0f32), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    let span = (far - near).max(f32::MIN_POSITIVE);
+    let layer: Vec<f32> = layers[0]
+        .iter()
+        .map(|&d| {
+            if stored(d) {
+                1.0 - 0.75 * (d - near) / span
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    output::write_ao(&dir.join("sd_layer.png"), fw, fh, &layer)?;
+    let mut counts = vec![0u32; texels];
+    for l in &layers {
+        for (c, &d) in counts.iter_mut().zip(l) {
+            *c += u32::from(stored(d));
+        }
+    }
+    let s = layers.len() as f32;
+    let count_image: Vec<f32> = counts.iter().map(|&c| c as f32 / s).collect();
+    output::write_ao(&dir.join("sd_counts.png"), fw, fh, &count_image)?;
+    let stored_samples: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+    let all_samples = texels as u64 * layers.len() as u64;
+    let stored_fraction = stored_samples as f64 / all_samples.max(1) as f64;
+    let mut stats = serde_json::json!({
+        "technique": settings.technique.name(),
+        "sd_samples": sd.samples,
+        // Through its shortest decimal form: 0.2, not 0.20000000298023224.
+        "sd_alpha": sd.alpha.to_string().parse::<f64>().ok(),
+        "sd_seed": sd.seed,
+        "layout": { "maps": layout.maps, "samples_per_map": layout.samples_per_map },
+        "framebuffer_width": fw,
+        "framebuffer_height": fh,
+        "guard_band": guard_band,
+        "stored_samples": stored_samples,
+        "stored_fraction": stored_fraction,
+        "stored_pixels": counts.iter().filter(|&&c| c > 0).count(),
+        "stored_depth_range": [
+            if stored_samples > 0 { near } else { 0.0 },
+            far,
+        ],
+    });
+    let maps = match layout.maps {
+        1 => "one map".to_string(),
+        n => format!("{n} maps of {}", layout.samples_per_map),
+    };
+    let mut summary = format!(
+        "debug: S = {} ({maps}), {:.2} % of all samples stored",
+        sd.samples,
+        100.0 * stored_fraction
+    );
+    if let Some(requests) = renderer.read_sd_requests()? {
+        let mask: Vec<f32> = requests
+            .iter()
+            .map(|&r| f32::from(u8::from(r != 0)))
+            .collect();
+        output::write_ao(&dir.join("sd_request.png"), fw, fh, &mask)?;
+        let requested = requests.iter().filter(|&&r| r != 0).count();
+        let requested_fraction = requested as f64 / requests.len().max(1) as f64;
+        let masks = renderer
+            .read_sample_masks()?
+            .ok_or_else(|| anyhow::anyhow!("sd-svao returned no phase-1 sample masks"))?;
+        let per_pixel = settings.vao.samples as f32;
+        let flagged_image: Vec<f32> = masks
+            .iter()
+            .map(|m| m.count_ones() as f32 / per_pixel)
+            .collect();
+        output::write_ao(&dir.join("samples.png"), width, height, &flagged_image)?;
+        let (flagged_pixels, samples_flagged) = flagged(&masks);
+        let extra = serde_json::json!({
+            "requested_pixels": requested,
+            "requested_fraction": requested_fraction,
+            "pixels": masks.len(),
+            "flagged_pixels": flagged_pixels,
+            "flagged_fraction": flagged_pixels as f64 / masks.len().max(1) as f64,
+            "samples_flagged": samples_flagged,
+        });
+        if let (Some(stats), serde_json::Value::Object(extra)) = (stats.as_object_mut(), extra) {
+            stats.extend(extra);
+        }
+        summary += &format!(
+            ", {requested} of {} framebuffer pixels ({:.1} %) requested the map, \
+             {flagged_pixels} visible pixels flagged",
+            requests.len(),
+            100.0 * requested_fraction
+        );
+    }
+    write_json(&dir.join("stats.json"), &stats)?;
+    eprintln!("{summary}; wrote {}", dir.display());
     Ok(())
 }

@@ -83,14 +83,14 @@ pub fn sd_format_available(device: &wgpu::Device) -> bool {
 /// Samples per pixel one map of [`SD_FORMAT`] can have on this adapter (WebGPU guarantees 1
 /// and 4; more need the adapter-specific format features, which [`crate::Gpu`] requests).
 pub fn map_sample_counts(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Vec<u32> {
+    if !sd_format_available(device) {
+        return Vec::new();
+    }
     if !device
         .features()
         .contains(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
     {
         return vec![1, 4];
-    }
-    if !sd_format_available(device) {
-        return Vec::new();
     }
     let flags = adapter.get_texture_format_features(SD_FORMAT).flags;
     MAP_SAMPLE_COUNTS
