@@ -86,7 +86,7 @@ with open(os.path.join(out, "sd-bench.json"), "w") as f:
     json.dump({"adapter": info, "runs": runs, "failed": failed}, f, indent=1)
 
 # Passes that are not the AO kernel (everything else in a result is).
-NOT_AO = {"gbuffer", "depth_peel", "sd_stencil", "sd_map", "blur"}
+NOT_AO = {"gbuffer", "depth_peel", "sd_reset", "sd_map", "blur"}
 
 def result(run, technique):
     for r in runs.get(run, {}).get("results", []):
@@ -116,9 +116,11 @@ md.append(f"Adapter: {a['name']} ({a['backend']}), driver {a['driver']} {a['driv
 # Tab. 1: hidden depth, at HD, every scene.
 md.append(f"## Hidden depth ({hd}, seed 000 Tab. 1)\n")
 md.append("Time of the pass(es) that make the depth, then in brackets the total with the single "
-          "depth (G-buffer) pass of the same run. Stenciled = `sd_stencil` + `sd_map` of sd-svao "
-          "(its phase 1 is not counted, as in the paper); Discard = `sd_map` of sd-svao with "
-          "`--sd-mask discard` (no stencil copy; the map's shader drops unrequested pixels).\n")
+          "depth (G-buffer) pass of the same run. Every map = `sd_reset` (emptying it; for a "
+          "stenciled map also the copy of the request mask into the stencil) + `sd_map`. SD = "
+          "sd-vao's full map; Stenciled = sd-svao's (its phase 1 is not counted, as in the paper); "
+          "Discard = sd-svao with `--sd-mask discard` (no stencil; the map's shader drops "
+          "unrequested pixels).\n")
 md.append("| | " + " | ".join(scenes) + " |")
 md.append("|---|" + "---|" * len(scenes))
 
@@ -146,13 +148,14 @@ def layout(S):
     return ""
 
 for S in (2, 4, 8):
-    tab1_row(f"SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-vao", ("sd_map",))
+    tab1_row(f"SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-vao",
+             ("sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Stenciled-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-svao",
-             ("sd_stencil", "sd_map"))
+             ("sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Discard-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}-discard", "sd-svao",
-             ("sd_map",))
+             ("sd_reset", "sd_map"))
 md.append("")
 
 # Tab. 2 / 3: AO techniques per scene and size (S = 4).
@@ -175,9 +178,9 @@ def ao_rows(sc, size, with_baselines):
         blur = r["passes"].get("blur", blur)
         total = r["total_ms"] - r["passes"].get("gbuffer", 0.0)
         totals[label] = total
-        depth = {"VAO": None, "VAO-dual": p(r, "depth_peel"), "SD-VAO": p(r, "sd_map"),
-                 "SD-SVAO": p(r, "sd_stencil", "sd_map"),
-                 "SD-SVAO (discard)": p(r, "sd_map")}[label]
+        depth = {"VAO": None, "VAO-dual": p(r, "depth_peel"), "SD-VAO": p(r, "sd_reset", "sd_map"),
+                 "SD-SVAO": p(r, "sd_reset", "sd_map"),
+                 "SD-SVAO (discard)": p(r, "sd_reset", "sd_map")}[label]
         depth_cell = ms(depth) if depth is not None else ""
         if label == "VAO-dual":
             depth_cell += " (peel)"
@@ -190,7 +193,8 @@ def ao_rows(sc, size, with_baselines):
     return rows, blur
 
 md.append(f"## AO at {hd} (seed 000 Tab. 2), S = 4\n")
-md.append("SD map: the stochastic depth map (SD-SVAO: stencil copy + stenciled map; VAO-dual: its "
+md.append("SD map: the stochastic depth map, reset + raster (SD-SVAO: limited to the requested "
+          "pixels; VAO-dual: its "
           "depth peeling pass). AO: the kernel (SD-SVAO: phase 1 + indirect and phase 2). Total: "
           "every pass but the G-buffer (seed 000 §4.2: depth and normals are taken as given), "
           "blur included. Speed-up: SD-VAO total / SD-SVAO total. SD-SVAO (discard): "
@@ -216,7 +220,7 @@ for sc in scenes:
         if v is None:
             cells += [missing(run), "", ""]
         else:
-            cells += [ms(p(v, "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, "gbuffer"))]
+            cells += [ms(p(v, "sd_reset", "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, "gbuffer"))]
         if sv is None:
             cells += [missing(run), "", "", "", ""]
         else:
@@ -224,7 +228,7 @@ for sc in scenes:
             speedup = ""
             if v is not None and total > 0:
                 speedup = f"{(v['total_ms'] - p(v, 'gbuffer')) / total:.2f}"
-            cells += [ms(p(sv, "sd_stencil", "sd_map")),
+            cells += [ms(p(sv, "sd_reset", "sd_map")),
                       f"{ms(p(sv, 'svao_phase1'))}+{ms(p(sv, 'svao_indirect', 'svao_phase2'))}",
                       ms(total), speedup, ms(sv["passes"].get("blur"))]
         d = result(run + "-discard", "sd-svao")

@@ -321,7 +321,7 @@ fn bench_reports_every_pass() {
     );
     for pass in [
         "gbuffer",
-        "sd_stencil",
+        "sd_reset",
         "sd_map",
         "svao_phase1",
         "svao_phase2",

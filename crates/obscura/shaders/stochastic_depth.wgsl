@@ -87,7 +87,7 @@ fn fs_stochastic_depth(in: VertexOut) -> @builtin(sample_mask) u32 {
 
 // SD-SVAO without the stencil (`--sd-mask discard`): the fragment reads the SD-request mask itself
 // and is dropped where it is not set, so no full-screen copy pass is needed (see
-// sd_stencil_copy.wgsl for the paper's way). One u32 per framebuffer pixel, non-zero = requested.
+// sd_reset.wgsl for the paper's stencil). One u32 per framebuffer pixel, non-zero = requested.
 @group(0) @binding(9) var<storage, read> sd_request: array<u32>;
 
 @fragment

@@ -244,6 +244,46 @@ fn sd_svao_equals_sd_vao() {
 }
 
 #[test]
+fn sd_svao_keeps_nothing_from_earlier_frames() {
+    // The limited map is emptied only at the pixels requested in the frame, and a stenciled map
+    // tests a new stencil value each frame: a second frame from another camera must still equal
+    // sd-vao from that camera, for both ways of limiting the map.
+    let gpu = gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let first = scene.cameras[1].camera;
+    let second = scene.cameras[0].camera;
+    let (single, _) = {
+        let mut r = Renderer::new(
+            &gpu,
+            &scene,
+            &settings(Technique::SdVao, 4, 0.375),
+            96,
+            64,
+            16,
+        )
+        .unwrap();
+        r.render(&first, None).unwrap();
+        r.render(&second, None).unwrap();
+        (r.read_ao().unwrap(), ())
+    };
+    for mask in [SdMask::Stencil, SdMask::Discard] {
+        let mut s = settings(Technique::SdSvao, 4, 0.375);
+        s.stochastic_depth.mask = mask;
+        let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
+        for frame in 0..3 {
+            r.render(if frame == 1 { &first } else { &second }, None)
+                .unwrap();
+        }
+        let worst = single
+            .iter()
+            .zip(&r.read_ao().unwrap())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        assert!(worst <= 1e-5, "{mask}: max |sd-vao − sd-svao| {worst}");
+    }
+}
+
+#[test]
 fn sd_vao_equals_vao_with_one_layer() {
     let gpu = gpu();
     let scene = height_field();

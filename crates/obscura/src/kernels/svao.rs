@@ -45,8 +45,8 @@ pub struct SvaoKernel {
 
 impl SvaoKernel {
     /// Two-phase VAO for a visible image of `screen`, resolving flagged samples with column rays
-    /// (`rt-svao`) or a stenciled stochastic depth map (`sd-svao`, which must have been made
-    /// with `stenciled`). `compact`: phase 2 over a work list with an indirect dispatch, else over
+    /// (`rt-svao`) or a stochastic depth map limited to the requested pixels (`sd-svao`, made
+    /// with `requested`). `compact`: phase 2 over a work list with an indirect dispatch, else over
     /// every pixel with an early return.
     pub fn new(
         device: &wgpu::Device,

@@ -162,12 +162,23 @@ impl AmbientOcclusion {
 
     /// The stochastic depth map of the last frame (`sd-vao`, `sd-svao`): every sample layer of
     /// the framebuffer as linear depth, 0 = empty (see [`StochasticDepthMap::read_layers`]).
-    /// Waits for the GPU.
+    /// `sd-svao`'s map is defined only at the pixels phase 1 requested; it reads as empty
+    /// elsewhere. Waits for the GPU.
     pub fn read_stochastic_depth(&self, gpu: &crate::Gpu) -> Result<Option<Vec<Vec<f32>>>, Error> {
-        match self.kernel.stochastic_depth() {
-            Some(map) => Ok(Some(map.read_layers(gpu)?)),
-            None => Ok(None),
+        let Some(map) = self.kernel.stochastic_depth() else {
+            return Ok(None);
+        };
+        let mut layers = map.read_layers(gpu)?;
+        if let Some(requests) = self.read_sd_requests(gpu)? {
+            for layer in &mut layers {
+                for (z, &r) in layer.iter_mut().zip(&requests) {
+                    if r == 0 {
+                        *z = 0.0;
+                    }
+                }
+            }
         }
+        Ok(Some(layers))
     }
 
     /// SD-SVAO: the SD-request mask of the last frame, one value per framebuffer pixel (guard

@@ -2,4 +2,5 @@
 
 pub mod gbuffer;
 pub mod gpu_scene;
+mod sd_reset;
 pub mod stochastic_depth;

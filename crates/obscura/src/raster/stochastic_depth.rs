@@ -2,7 +2,7 @@
 //! a multisampled depth target in which every hidden fragment is kept in ⌊αS + ξ⌋ of the S
 //! samples of its pixel, nearest first. Optionally limited to the pixels of an SD-request mask
 //! (seed 000 §3.9): a full-screen pass copies the mask into the stencil
-//! (`shaders/sd_stencil_copy.wgsl`) and the scene is drawn with the stencil test, or
+//! (`shaders/sd_reset.wgsl`) and the scene is drawn with the stencil test, or
 //! ([`SdMask::Discard`]) the map's fragment shader reads the mask and discards.
 //!
 //! S samples per pixel need a target with S samples. When the adapter cannot rasterise S samples
@@ -10,6 +10,7 @@
 
 use super::gbuffer::{draw_scene, scene_resources, CameraUniform, ScenePipeline};
 use super::gpu_scene::GpuScene;
+use super::sd_reset::{ResetScope, SdReset};
 use crate::gpu::PassProfiler;
 use crate::settings::{SdMask, StochasticDepthSettings};
 use crate::view::FrameView;
@@ -164,8 +165,8 @@ pub struct StochasticDepthMap {
     lut: wgpu::Buffer,
     /// Back faces culled / kept.
     pipelines: [wgpu::RenderPipeline; 2],
-    /// With a stencil: the copy pass and the width uniform it indexes the request mask with.
-    stencil: Option<(wgpu::RenderPipeline, wgpu::Buffer)>,
+    /// Empties the map (or its requested pixels) before each frame, and writes the stencil.
+    reset: SdReset,
     /// The fragment shader reads the request mask itself ([`SdMask::Discard`]).
     discards: bool,
 }
@@ -249,7 +250,7 @@ impl StochasticDepthMap {
             count: layout.samples_per_map,
             ..Default::default()
         };
-        // Stenciled: draw only where the copy pass wrote 1.
+        // Stenciled: draw only where the reset wrote this frame's stencil value.
         let stencil_test = if stenciled {
             let face = wgpu::StencilFaceState {
                 compare: wgpu::CompareFunction::Equal,
@@ -285,55 +286,13 @@ impl StochasticDepthMap {
             }
             .create(device)
         });
-        let stencil = stenciled.then(|| {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("sd stencil copy"),
-                source: wgpu::ShaderSource::Wgsl(shaders::SD_STENCIL_COPY.into()),
-            });
-            let replace = wgpu::StencilFaceState {
-                compare: wgpu::CompareFunction::Always,
-                pass_op: wgpu::StencilOperation::Replace,
-                ..Default::default()
-            };
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("sd stencil copy"),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_full_screen"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::Always),
-                    stencil: wgpu::StencilState {
-                        front: replace,
-                        back: replace,
-                        read_mask: 0xff,
-                        write_mask: 0xff,
-                    },
-                    bias: Default::default(),
-                }),
-                multisample,
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_stencil_copy"),
-                    compilation_options: Default::default(),
-                    targets: &[],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
-            let width = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sd stencil width"),
-                contents: bytemuck::cast_slice(&[width, height, 0, 0]),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            (pipeline, width)
-        });
+        let scope = match requested {
+            None => ResetScope::All,
+            Some(mask) => ResetScope::Requested {
+                stencil: mask == SdMask::Stencil,
+            },
+        };
+        let reset = SdReset::new(device, format, multisample, (width, height), scope);
         Ok(Self {
             layout,
             settings: *settings,
@@ -353,7 +312,7 @@ impl StochasticDepthMap {
                 usage: wgpu::BufferUsages::STORAGE,
             }),
             pipelines,
-            stencil,
+            reset,
             discards: requested == Some(SdMask::Discard),
         })
     }
@@ -386,8 +345,10 @@ impl StochasticDepthMap {
     }
 
     /// Rasterise the map behind `first_layer` (the G-buffer's linear depth). With `request` (a
-    /// map made with `requested`), only the pixels whose u32 in it is non-zero. Timings: `sd_stencil` (the
-    /// copy into the stencil) and `sd_map`, summed over stacked maps.
+    /// map made with `requested`), only the pixels whose u32 in it is non-zero; the map is then
+    /// defined only there (elsewhere it holds what earlier frames left). Timings: `sd_reset`
+    /// (emptying the map, and for a stenciled map the copy of the request mask into the stencil)
+    /// and `sd_map`, summed over stacked maps.
     pub fn render(
         &self,
         device: &wgpu::Device,
@@ -396,23 +357,17 @@ impl StochasticDepthMap {
         request: Option<&wgpu::Buffer>,
         mut profiler: Option<&mut PassProfiler>,
     ) {
-        let stencil = self.stencil.as_ref().zip(request);
+        let stencil_value = self.reset.next_frame();
         for (map, params) in self.maps.iter().zip(&self.params) {
             let target = map.create_view(&Default::default());
-            if let Some(((pipeline, width), request)) = stencil {
-                let bind_group = crate::gpu::bind_group(
-                    device,
-                    "sd stencil copy",
-                    &pipeline.get_bind_group_layout(0),
-                    &[request.as_entire_binding(), width.as_entire_binding()],
-                );
-                let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_stencil"));
-                let mut pass = begin(encoder, &target, true, timestamp_writes);
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.set_stencil_reference(1);
-                pass.draw(0..3, 0..1);
-            }
+            self.reset.encode(
+                device,
+                encoder,
+                &target,
+                request,
+                stencil_value,
+                profiler.as_deref_mut(),
+            );
             let mut extra = vec![
                 wgpu::BindingResource::TextureView(first_layer),
                 params.as_entire_binding(),
@@ -431,8 +386,8 @@ impl StochasticDepthMap {
                 )
             });
             let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_map"));
-            let mut pass = begin(encoder, &target, stencil.is_none(), timestamp_writes);
-            pass.set_stencil_reference(1);
+            let mut pass = begin(encoder, &target, timestamp_writes);
+            pass.set_stencil_reference(stencil_value);
             draw_scene(&mut pass, &self.scene, &self.pipelines, &bind_groups);
         }
     }
@@ -521,32 +476,26 @@ impl StochasticDepthMap {
     }
 }
 
-/// A render pass on one map's depth-stencil target; `clear`: start from empty (reversed-Z
-/// depth 0, stencil 0), else keep what an earlier pass wrote.
-fn begin<'e>(
+/// A render pass on one map's depth-stencil target, keeping what earlier passes wrote (the map
+/// is emptied by [`SdReset`], not by a clear).
+pub(crate) fn begin<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     target: &'e wgpu::TextureView,
-    clear: bool,
     timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'e>>,
 ) -> wgpu::RenderPass<'e> {
-    let (depth, stencil) = if clear {
-        (wgpu::LoadOp::Clear(0.0), wgpu::LoadOp::Clear(0))
-    } else {
-        (wgpu::LoadOp::Load, wgpu::LoadOp::Load)
-    };
+    fn keep<V>() -> wgpu::Operations<V> {
+        wgpu::Operations {
+            load: wgpu::LoadOp::Load,
+            store: wgpu::StoreOp::Store,
+        }
+    }
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("stochastic depth"),
         color_attachments: &[],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: target,
-            depth_ops: Some(wgpu::Operations {
-                load: depth,
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: Some(wgpu::Operations {
-                load: stencil,
-                store: wgpu::StoreOp::Store,
-            }),
+            depth_ops: Some(keep()),
+            stencil_ops: Some(keep()),
         }),
         timestamp_writes,
         occlusion_query_set: None,
