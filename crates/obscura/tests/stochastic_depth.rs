@@ -380,6 +380,43 @@ fn unsupported_settings_are_clear_errors() {
         let err = try_render(&settings(Technique::SdSvao, samples, alpha)).unwrap_err();
         assert!(err.to_string().contains(expected), "{err}");
     }
+    // A device without the map's depth-stencil format (the feature not requested): a clear
+    // error naming it; with the format but without the adapter-specific sample counts only
+    // WebGPU's guaranteed 1 and 4 remain, so 2 is refused and 8 is stacked.
+    let bare_device = |features| {
+        pollster::block_on(gpu.adapter.request_device(&wgpu::DeviceDescriptor {
+            required_features: features,
+            ..Default::default()
+        }))
+        .unwrap()
+    };
+    let view = obscura::FrameView::new(camera(Vec3::ZERO, Vec3::NEG_Z, 90.0), 32, 32, 0, 0.1);
+    let stochastic = |device: &wgpu::Device, queue: &wgpu::Queue, settings: &AoSettings| {
+        let scene =
+            obscura::raster::gpu_scene::GpuScene::new(device, queue, &scene, &device.limits())
+                .unwrap();
+        obscura::AmbientOcclusion::new_stochastic(
+            &gpu.adapter,
+            device,
+            settings,
+            view.screen(),
+            &scene,
+        )
+        .map(|_| ())
+    };
+    let (device, queue) = bare_device(wgpu::Features::empty());
+    let err = stochastic(&device, &queue, &settings(Technique::SdVao, 4, 0.2)).unwrap_err();
+    assert!(err.to_string().contains("DEPTH32FLOAT_STENCIL8"), "{err}");
+    if gpu
+        .adapter
+        .features()
+        .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
+    {
+        let (device, queue) = bare_device(wgpu::Features::DEPTH32FLOAT_STENCIL8);
+        let err = stochastic(&device, &queue, &settings(Technique::SdSvao, 2, 0.2)).unwrap_err();
+        assert!(err.to_string().contains("8 (2 maps of 4)"), "{err}");
+        stochastic(&device, &queue, &settings(Technique::SdSvao, 8, 0.2)).unwrap();
+    }
     // Embedding without the scene: the error names the constructor that takes it.
     let view = obscura::FrameView::new(camera(Vec3::ZERO, Vec3::NEG_Z, 90.0), 32, 32, 0, 0.1);
     let err = obscura::AmbientOcclusion::new(
