@@ -3,4 +3,5 @@
 pub mod gbuffer;
 pub mod gpu_scene;
 mod sd_reset;
+mod sd_unpack;
 pub mod stochastic_depth;
