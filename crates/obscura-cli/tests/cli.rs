@@ -633,6 +633,10 @@ fn stochastic_depth_options_are_clear_errors() {
         );
         one_line(&err);
     }
+    assert_render_fails(
+        &["--technique", "sd-svao", "--sd-mask", "stencils"],
+        &["stencils", "'stencil'", "'discard'"],
+    );
     // S = 2 needs 2x multisampled depth, which lavapipe lacks (it has 1x and 4x): the message
     // names the flag and the counts this adapter does support, as `obscura info` lists them.
     let info = info_json();
