@@ -9,19 +9,21 @@
 // bits set (`sd_lut`: all masks sorted by popcount), and writes `@builtin(sample_mask)`; the depth
 // test keeps the nearest fragment per sample.
 //
-// Depth: the map keeps the rasteriser's own reversed-Z depth (near / linear depth, 0 = empty) in a
-// 32-bit float target, which holds positions to float precision and lets the hardware test depth
-// and stencil before shading. The authors write linear depth from the shader instead
-// (seed-code-notes §1.5); a shader-written depth turns the early tests off, and on the
-// raster-poor H100 the stencil of SD-SVAO then saved nothing (BENCHMARKS.md).
+// Depth: the shader writes the fragment's linear depth at the pixel centre (so the map stores
+// positions, as the authors' code does, seed-code-notes §1.5), encoded as reversed-Z near / depth
+// in a 32-bit float target: float precision at any distance, no far plane needed, 0 = empty.
 //
 // Sample positions: the paper puts all samples at the pixel centre (programmable sample
-// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage and
-// each sample's depth is the surface's at that sample position; readers place it at the pixel
-// centre (as they do the first layer's). Inside a triangle a sample stores its pixel's fragment as
-// in the paper; at a triangle edge it may take the neighbouring triangle of the same surface,
-// which keeps every sample's chance of storing the surface at alpha but not the exact count R of
-// one fragment.
+// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage, while
+// the depth written is the pixel centre's for every sample (the shader runs once per pixel, at its
+// centre). Inside a triangle a sample stores its pixel's fragment as in the paper; at a triangle
+// edge it may take the neighbouring triangle of the same surface, which keeps every sample's
+// chance of storing the surface at alpha but not the exact count R of one fragment.
+//
+// A shader-written depth turns the hardware's early depth test off. Measured on the H100
+// (BENCHMARKS.md) the rasteriser's own depth (at the sample positions) made the map 9 % faster on
+// Sponza and its errors larger (colonnade, MSE against the ground truth 2.1e-6 to 3.4e-6 instead
+// of 0.9e-6 to 2.0e-6); we keep the positions exact.
 
 struct SdRaster {
     // The projection's near plane: stored depth = near / linear depth (readers invert it).
@@ -76,13 +78,26 @@ fn sd_coverage(in: VertexOut) -> u32 {
     return sd_lut[sd.samples + 2u + first_mask + pcg_hash(h) % choices];
 }
 
+struct SdOut {
+    @builtin(frag_depth) depth: f32,
+    @builtin(sample_mask) mask: u32,
+}
+
+// The stored samples with the pixel centre's depth.
+fn sd_out(in: VertexOut, mask: u32) -> SdOut {
+    var out: SdOut;
+    out.depth = sd.near / -in.view_pos.z;
+    out.mask = mask;
+    return out;
+}
+
 @fragment
-fn fs_stochastic_depth(in: VertexOut) -> @builtin(sample_mask) u32 {
+fn fs_stochastic_depth(in: VertexOut) -> SdOut {
     let mask = sd_coverage(in);
     if (mask == 0u) {
         discard;
     }
-    return mask;
+    return sd_out(in, mask);
 }
 
 // SD-SVAO without the stencil (`--sd-mask discard`): the fragment reads the SD-request mask itself
@@ -91,7 +106,7 @@ fn fs_stochastic_depth(in: VertexOut) -> @builtin(sample_mask) u32 {
 @group(0) @binding(9) var<storage, read> sd_request: array<u32>;
 
 @fragment
-fn fs_stochastic_depth_requested(in: VertexOut) -> @builtin(sample_mask) u32 {
+fn fs_stochastic_depth_requested(in: VertexOut) -> SdOut {
     let pixel = vec2<u32>(in.clip.xy);
     if (sd_request[pixel.y * textureDimensions(first_layer).x + pixel.x] == 0u) {
         discard;
@@ -100,5 +115,5 @@ fn fs_stochastic_depth_requested(in: VertexOut) -> @builtin(sample_mask) u32 {
     if (mask == 0u) {
         discard;
     }
-    return mask;
+    return sd_out(in, mask);
 }

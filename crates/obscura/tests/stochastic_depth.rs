@@ -312,11 +312,11 @@ fn sd_vao_beats_vao_dual_beats_vao_against_the_ground_truth() {
     //
     // Settings: S = 4 with the authors' 2024 α = 1.5/S = 0.375. With their 2022 α = 0.2 a hidden
     // fragment misses a pixel altogether with probability 0.2, and on `colonnade`, where a single
-    // hidden layer matters, sd-vao then loses to vao-dual (measured at this size with the
-    // map's depth taken at the pixel centre, seeds 0–3: 1.6e-5 to 2.7e-5 against 5.7e-6). Guard band 32 px: samples that leave the framebuffer see
+    // hidden layer matters, sd-vao then loses to vao-dual (measured at this size, seeds 0–3:
+    // 1.6e-5 to 2.7e-5 against 5.7e-6). Guard band 32 px: samples that leave the framebuffer see
     // no layer at all (only rays reach them), and with the default 16 px band at this size their
-    // error dominates sd-vao's. Measured here with seeds 0–3: stairs sd-vao/vao 0.092–0.114,
-    // colonnade sd-vao 2.1e-6 to 3.4e-6 against vao-dual 5.7e-6.
+    // error dominates sd-vao's. Measured here with seeds 0–3: stairs sd-vao/vao 0.093–0.118,
+    // colonnade sd-vao 0.9e-6 to 2.0e-6 against vao-dual 5.7e-6.
     let gpu = gpu();
     for name in ["stairs", "colonnade"] {
         let scene = scene::builtin(name).unwrap();
