@@ -80,6 +80,12 @@ struct VaoColumn {
     px: vec2<f32>,
 }
 
+// The pixel a sample reads in the depth-buffer sources: clamped into the framebuffer (guard band
+// included), snapped to its centre.
+fn sample_pixel_of(c: VaoColumn) -> vec2<u32> {
+    return vec2<u32>(clamp(c.px, vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
+}
+
 // What the first depth layer says about a sample, for hidden-depth sources that resolve samples
 // in a second step (the two-phase kernels, svao_phase*.wgsl): its visibility from the first
 // surface (`free`), and whether the source must still resolve it (`trace`) from framebuffer

@@ -1,11 +1,6 @@
 // Hidden-depth source "none": the occluder of a VAO sample is the first depth layer at the pixel
 // the sample falls in (clamped to the framebuffer, guard band included). Seed 000 §3.5.
 
-// The pixel a sample reads: clamped into the framebuffer, snapped to its centre.
-fn sample_pixel_of(c: VaoColumn) -> vec2<u32> {
-    return vec2<u32>(clamp(c.px, vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
-}
-
 fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
     let full = c.start - c.end;
     let sample_pixel = sample_pixel_of(c);

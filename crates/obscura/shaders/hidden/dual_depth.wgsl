@@ -6,7 +6,7 @@
 
 fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
     let full = c.start - c.end;
-    let sample_pixel = vec2<u32>(clamp(c.px, vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
+    let sample_pixel = sample_pixel_of(c);
     if (all(sample_pixel == f.pixel)) {
         return full;
     }

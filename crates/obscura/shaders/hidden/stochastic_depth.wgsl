@@ -11,11 +11,6 @@
 // The projection's near plane (the first member of stochastic_depth.wgsl's SdRaster).
 @group(0) @binding(5) var<uniform> sd_near: vec4<f32>;
 
-// The pixel a sample reads: clamped into the framebuffer, snapped to its centre.
-fn sample_pixel_of(c: VaoColumn) -> vec2<u32> {
-    return vec2<u32>(clamp(c.px, vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
-}
-
 // The DepthLookup of vao.wgsl: `trace` = read the stochastic depth map at pixel `px` (its
 // centre); the two-phase kernel's phase 1 flags exactly these samples.
 fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {

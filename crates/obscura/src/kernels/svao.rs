@@ -1,7 +1,8 @@
 //! Stenciled VAO (seed 000 §3.8 RT-SVAO, §3.9 SD-SVAO): phase 1 takes every sample from the depth
 //! buffer and flags, per pixel, the samples the hidden-depth source must still resolve; phase 2
 //! resolves only those. For SD-SVAO phase 1 also marks each flagged sample's pixel in an SD-request
-//! mask, and the stochastic depth map is rasterised between the phases only there (stencil). The paper needed a hardware stencil and a ray-tracing pipeline against the divergence;
+//! mask, and the stochastic depth map is rasterised between the phases only there (stencil). The
+//! paper needed a hardware stencil and a ray-tracing pipeline against the divergence;
 //! in compute, phase 2 either walks every pixel and returns at once for unflagged ones (`dense`),
 //! or reads a work list of flagged pixels compacted by phase 1 and is dispatched indirectly.
 //! Same arithmetic as the single pass, so it gives the same image (`shaders/svao_phase*.wgsl`).
