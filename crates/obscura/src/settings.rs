@@ -22,7 +22,7 @@ pub enum Technique {
     /// the sample's pixel, seed 000 §3.7 (the map: seed 001 §3.1, Alg. 1).
     SdVao,
     /// SD-VAO in two phases; the stochastic depth map is rasterised only where phase 1 asked for
-    /// it (stencil), seed 000 §3.9, Fig. 8.
+    /// it (stencil, or discard: [`StochasticDepthSettings::mask`]), seed 000 §3.9, Fig. 8.
     SdSvao,
 }
 

@@ -100,6 +100,8 @@ impl<'g> Renderer<'g> {
                         bvh,
                     },
                 )?,
+                // Every technique without rays; those without a stochastic depth map ignore
+                // the scene and the adapter.
                 None => AmbientOcclusion::new_stochastic(
                     &self.gpu.adapter,
                     device,
