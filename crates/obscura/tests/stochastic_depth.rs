@@ -198,7 +198,15 @@ fn sd_svao_equals_sd_vao() {
     // Same seeds, so the map limited to the requested pixels (by stencil or by discard) holds the
     // same values wherever phase 1 asked for it, and the two-phase kernel sums the same samples.
     let gpu = gpu();
-    for (name, s) in [("stairs", 4), ("colonnade", 4), ("grass", 4), ("stairs", 8)] {
+    // S = 1 reads single-sample maps (another binding type), 8 and 16 stack maps on lavapipe.
+    for (name, s) in [
+        ("stairs", 4),
+        ("colonnade", 4),
+        ("grass", 4),
+        ("stairs", 8),
+        ("colonnade", 1),
+        ("stairs", 16),
+    ] {
         let scene = scene::builtin(name).unwrap();
         let cam = scene.cameras[0].camera;
         let render = |technique, mask| {
