@@ -97,6 +97,31 @@ struct DepthLookup {
     t_after: f32,
 }
 
+// The first depth layer's answer for a sample, shared by the depth-buffer sources (depth_buffer,
+// dual_depth, stochastic_depth): read at `sample_pixel_of` (`px`, its centre); `trace` when the
+// surface there is occluded, i.e. when a deeper layer could still lower the visibility.
+fn depth_buffer_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
+    var l: DepthLookup;
+    l.free = c.start - c.end;
+    l.trace = false;
+    l.t_after = 0.0;
+    let sample_pixel = sample_pixel_of(c);
+    l.px = vec2<f32>(sample_pixel) + 0.5;
+    if (all(sample_pixel == f.pixel)) {
+        return l; // snaps to the shading pixel itself: fully visible
+    }
+    let z = textureLoad(depth_tex, sample_pixel, 0).r;
+    if (is_background(z)) {
+        return l;
+    }
+    let height = column_height(f, c, pixel_to_view(view, l.px, z));
+    l.free = column_visibility(height, c.start, c.end);
+    // Only an occluded first surface (beyond the constant area) can hide a lower visibility
+    // (seed 000 §3.7: "if and only if a sample is considered occluded"); at 0 nothing is lower.
+    l.trace = l.free > 0.0 && height > (1.0 + params.thickness) * params.radius;
+    return l;
+}
+
 // Height of view-space point `p` in the column's frame: along the view axis, corrected along the
 // tangent plane for its lateral offset from the column (see "Pixel snapping" above).
 fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {

@@ -11,28 +11,10 @@
 // The projection's near plane (the first member of stochastic_depth.wgsl's SdRaster).
 @group(0) @binding(5) var<uniform> sd_near: vec4<f32>;
 
-// The DepthLookup of vao.wgsl: `trace` = read the stochastic depth map at pixel `px` (its
-// centre); the two-phase kernel's phase 1 flags exactly these samples.
+// `trace` = read the stochastic depth map at pixel `px`; the two-phase kernel's phase 1 flags
+// exactly these samples.
 fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
-    var l: DepthLookup;
-    l.free = c.start - c.end;
-    l.trace = false;
-    l.t_after = 0.0;
-    let sample_pixel = sample_pixel_of(c);
-    l.px = vec2<f32>(sample_pixel) + 0.5;
-    if (all(sample_pixel == f.pixel)) {
-        return l; // snaps to the shading pixel itself: fully visible
-    }
-    let z = textureLoad(depth_tex, sample_pixel, 0).r;
-    if (is_background(z)) {
-        return l;
-    }
-    let height = column_height(f, c, pixel_to_view(view, l.px, z));
-    l.free = column_visibility(height, c.start, c.end);
-    // Only an occluded first surface (beyond the constant area) can hide a lower visibility
-    // (seed 000 §3.7: "if and only if a sample is considered occluded"); at 0 nothing is lower.
-    l.trace = l.free > 0.0 && height > (1.0 + params.thickness) * params.radius;
-    return l;
+    return depth_buffer_lookup(f, c);
 }
 
 // The lowest visibility over the first surface (`l.free`) and every stored stochastic sample.

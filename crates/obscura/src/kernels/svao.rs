@@ -229,9 +229,8 @@ impl AoKernel for SvaoKernel {
                 profiler.as_deref_mut(),
             );
         }
-        let views = self.hidden.views();
         let mut resources = frame_resources(&self.view, &self.params, inputs, output);
-        resources.extend(self.hidden.resources(encoder, inputs, &views));
+        resources.extend(self.hidden.resources(encoder, inputs));
         let group0 = crate::gpu::bind_group(
             device,
             "svao phase 2",

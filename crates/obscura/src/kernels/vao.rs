@@ -267,22 +267,12 @@ impl Hidden {
         }
     }
 
-    /// Depth-only views of the stochastic depth maps (empty for other sources), to be borrowed by
-    /// [`Hidden::resources`].
-    pub fn views(&self) -> Vec<wgpu::TextureView> {
-        match self {
-            Hidden::StochasticDepth(map) => map.read_resources().1,
-            _ => Vec::new(),
-        }
-    }
-
-    /// Group 0 from binding 5 on for the passes that resolve hidden samples; `views` from
-    /// [`Hidden::views`]. Clears the per-frame counters it binds.
+    /// Group 0 from binding 5 on for the passes that resolve hidden samples. Clears the
+    /// per-frame counters it binds.
     pub fn resources<'a>(
         &'a self,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &FrameInputs<'a>,
-        views: &'a [wgpu::TextureView],
     ) -> Vec<wgpu::BindingResource<'a>> {
         match self {
             Hidden::DepthBuffer => Vec::new(),
@@ -298,11 +288,7 @@ impl Hidden {
                     rays.stack_overflows.as_entire_binding(),
                 ]
             }
-            Hidden::StochasticDepth(map) => {
-                let mut r = vec![map.read_resources().0];
-                r.extend(views.iter().map(wgpu::BindingResource::TextureView));
-                r
-            }
+            Hidden::StochasticDepth(map) => map.read_resources(),
         }
     }
 }
@@ -376,9 +362,8 @@ impl AoKernel for VaoKernel {
         if let Hidden::StochasticDepth(map) = &self.hidden {
             map.render(device, encoder, inputs.depth, None, profiler.as_deref_mut());
         }
-        let views = self.hidden.views();
         let mut resources = frame_resources(&self.view, &self.params, inputs, output);
-        resources.extend(self.hidden.resources(encoder, inputs, &views));
+        resources.extend(self.hidden.resources(encoder, inputs));
         let bind_group = crate::gpu::bind_group(
             device,
             self.name,

@@ -13,11 +13,9 @@ impl StochasticDepthMap {
         let device = &gpu.device;
         let source = format!("{}\n{}", bindings_wgsl(self.layout()), shaders::SD_UNPACK);
         let pipeline = crate::gpu::compute_pipeline_with(device, "sd unpack", &source, &[]);
-        let (near, views) = self.read_resources();
-        let mut resources = vec![near];
-        resources.extend(views.iter().map(wgpu::BindingResource::TextureView));
         // The readers' bindings start at 5 (after the VAO frame's 0–4).
-        let entries: Vec<_> = resources
+        let entries: Vec<_> = self
+            .read_resources()
             .into_iter()
             .zip(5..)
             .map(|(resource, binding)| wgpu::BindGroupEntry { binding, resource })

@@ -159,6 +159,9 @@ pub struct StochasticDepthMap {
     separation: f32,
     scene: GpuScene,
     maps: Vec<wgpu::Texture>,
+    /// Per map: the view rendered into, and the depth-only view readers sample.
+    targets: Vec<wgpu::TextureView>,
+    read_views: Vec<wgpu::TextureView>,
     /// `SdRaster` per map (the seeds differ); its first member `near` is what readers bind.
     params: Vec<wgpu::Buffer>,
     camera: wgpu::Buffer,
@@ -209,7 +212,7 @@ impl StochasticDepthMap {
                 settings.alpha
             )));
         }
-        let maps = (0..layout.maps)
+        let maps: Vec<wgpu::Texture> = (0..layout.maps)
             .map(|m| {
                 device.create_texture(&wgpu::TextureDescriptor {
                     label: Some(&format!("stochastic depth map {m}")),
@@ -298,6 +301,19 @@ impl StochasticDepthMap {
             settings: *settings,
             separation,
             scene: scene.clone(),
+            targets: maps
+                .iter()
+                .map(|m| m.create_view(&Default::default()))
+                .collect(),
+            read_views: maps
+                .iter()
+                .map(|m| {
+                    m.create_view(&wgpu::TextureViewDescriptor {
+                        aspect: wgpu::TextureAspect::DepthOnly,
+                        ..Default::default()
+                    })
+                })
+                .collect(),
             maps,
             params,
             camera: device.create_buffer(&wgpu::BufferDescriptor {
@@ -363,12 +379,11 @@ impl StochasticDepthMap {
         mut profiler: Option<&mut PassProfiler>,
     ) {
         let stencil_value = self.reset.next_frame();
-        for (map, params) in self.maps.iter().zip(&self.params) {
-            let target = map.create_view(&Default::default());
+        for (target, params) in self.targets.iter().zip(&self.params) {
             self.reset.encode(
                 device,
                 encoder,
-                &target,
+                target,
                 request,
                 stencil_value,
                 profiler.as_deref_mut(),
@@ -391,26 +406,22 @@ impl StochasticDepthMap {
                 )
             });
             let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_map"));
-            let mut pass = begin(encoder, &target, timestamp_writes);
+            let mut pass = begin(encoder, target, timestamp_writes);
             pass.set_stencil_reference(stencil_value);
             draw_scene(&mut pass, &self.scene, &self.pipelines, &bind_groups);
         }
     }
 
-    /// What a reader binds: the uniform whose first float is `near` (binding 5), then one
+    /// What a reader binds from binding 5 on: the uniform whose first float is `near`, then one
     /// depth-only view per map (bindings 6…), matching [`bindings_wgsl`].
-    pub(crate) fn read_resources(&self) -> (wgpu::BindingResource<'_>, Vec<wgpu::TextureView>) {
-        let views = self
-            .maps
-            .iter()
-            .map(|m| {
-                m.create_view(&wgpu::TextureViewDescriptor {
-                    aspect: wgpu::TextureAspect::DepthOnly,
-                    ..Default::default()
-                })
-            })
-            .collect();
-        (self.params[0].as_entire_binding(), views)
+    pub(crate) fn read_resources(&self) -> Vec<wgpu::BindingResource<'_>> {
+        std::iter::once(self.params[0].as_entire_binding())
+            .chain(
+                self.read_views
+                    .iter()
+                    .map(wgpu::BindingResource::TextureView),
+            )
+            .collect()
     }
 }
 
