@@ -48,7 +48,8 @@ pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
 }
 
 pub fn parse_technique(s: &str) -> Result<Technique, String> {
-    s.parse().map_err(|e: obscura::SettingsError| e.to_string())
+    s.parse()
+        .map_err(|e: obscura::technique::UnknownTechnique| e.to_string())
 }
 
 /// Which scene and from where.

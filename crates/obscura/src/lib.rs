@@ -26,6 +26,7 @@ pub mod report;
 pub mod scene;
 pub mod settings;
 pub(crate) mod shaders;
+pub mod technique;
 pub mod view;
 
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};

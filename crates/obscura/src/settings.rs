@@ -1,90 +1,19 @@
 //! What a user chooses: the technique and its parameters. Defaults are the papers' / authors'.
 
+pub use crate::technique::{Technique, UnknownTechnique};
 use std::fmt;
 use std::str::FromStr;
 
-/// An AO technique (DESIGN.md technique catalogue). More arrive with later work; every name the
-/// CLI accepts is listed in [`Technique::ALL`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Technique {
-    /// Volumetric AO, seed 000 §3.1–3.5.
-    #[default]
-    Vao,
-    /// VAO whose occluded samples also read a second depth layer from depth peeling, seed 000 §2.1.
-    VaoDual,
-    /// VAO whose occluded samples trace the sample's camera ray through the scene, seed 000 §3.6.
-    RtVao,
-    /// RT-VAO in two phases, phase 2 on a compacted work list (indirect dispatch), seed 000 §3.8.
-    RtSvao,
-    /// RT-SVAO with phase 2 over every pixel, returning at once where nothing is flagged.
-    RtSvaoDense,
-    /// VAO whose occluded samples also read every sample of a stratified stochastic depth map at
-    /// the sample's pixel, seed 000 §3.7 (the map: seed 001 §3.1, Alg. 1).
-    SdVao,
-    /// SD-VAO in two phases; the stochastic depth map is rasterised only where phase 1 asked for
-    /// it (stencil, or discard: [`StochasticDepthSettings::mask`]), seed 000 §3.9, Fig. 8.
-    SdSvao,
-}
-
-impl Technique {
-    pub const ALL: &'static [Technique] = &[
-        Technique::Vao,
-        Technique::VaoDual,
-        Technique::RtVao,
-        Technique::RtSvao,
-        Technique::RtSvaoDense,
-        Technique::SdVao,
-        Technique::SdSvao,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Technique::Vao => "vao",
-            Technique::VaoDual => "vao-dual",
-            Technique::RtVao => "rt-vao",
-            Technique::RtSvao => "rt-svao",
-            Technique::RtSvaoDense => "rt-svao-dense",
-            Technique::SdVao => "sd-vao",
-            Technique::SdSvao => "sd-svao",
-        }
-    }
-}
-
-impl fmt::Display for Technique {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Technique {
-    type Err = SettingsError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Technique::ALL
-            .iter()
-            .copied()
-            .find(|t| t.name() == s.trim().to_ascii_lowercase())
-            .ok_or_else(|| SettingsError::UnknownTechnique(s.to_string()))
-    }
-}
-
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingsError {
-    #[error("unknown technique '{0}': available: {list}", list = technique_list())]
-    UnknownTechnique(String),
+    #[error(transparent)]
+    UnknownTechnique(#[from] UnknownTechnique),
     #[error("invalid {name} {value}: {rule}")]
     Invalid {
         name: &'static str,
         value: String,
         rule: &'static str,
     },
-}
-
-fn technique_list() -> String {
-    Technique::ALL
-        .iter()
-        .map(|t| t.name())
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, seed-code-notes §1.2).

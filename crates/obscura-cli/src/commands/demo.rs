@@ -66,7 +66,7 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
         let report = compare(
             &gpu,
             &comparison,
-            Technique::ALL,
+            &Technique::all().collect::<Vec<_>>(),
             &args.ao,
             &args.reference,
             ReferenceModel::Vao,

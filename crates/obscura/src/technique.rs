@@ -1,0 +1,380 @@
+//! The technique table: every technique is one row naming its estimator, hidden-depth source and
+//! schedule (DESIGN.md "a technique is estimator × hidden-depth source × schedule").
+//!
+//! This is the only place that matches on [`Technique`]. Everything else (pipeline assembly, the
+//! CLI's help and lists, validation messages, `--debug-out` support, reports, the README table,
+//! the shader validation test) reads the row's axes. Adding a technique is one [`Technique`]
+//! variant and one row of [`TABLE`] here, plus at most one estimator `.rs`/`.wgsl` pair
+//! (`docs/ARCHITECTURE.md`, "Adding a technique").
+
+use std::fmt;
+use std::str::FromStr;
+
+/// Declares [`Technique`] and the list of its variants (so a test can hold every variant to
+/// exactly one row).
+macro_rules! techniques {
+    ($first:ident $(, $rest:ident)* $(,)?) => {
+        /// An AO technique: a handle on its row of [`TABLE`].
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+        pub enum Technique {
+            #[default]
+            $first,
+            $($rest,)*
+        }
+
+        #[cfg(test)]
+        const VARIANTS: &[Technique] = &[Technique::$first, $(Technique::$rest,)*];
+    };
+}
+
+techniques!(Vao, VaoDual, RtVao, RtSvao, RtSvaoDense, SdVao, SdSvao);
+
+/// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Estimator {
+    /// Volumetric AO, seed 000 §3.1–3.5.
+    Vao,
+}
+
+/// What answers "what lies behind the first surface here" (`src/sources/`, `shaders/sources/`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Source {
+    /// The first depth layer only: occluded samples keep the estimator's thickness model.
+    FirstLayer,
+    /// A second depth layer by depth peeling (seed 000 §2.1).
+    DualDepth,
+    /// The camera ray through the sample's pixel traced through the BVH (seed 000 §3.6). Reads
+    /// the VAO estimator's columns: a VAO-only source.
+    ColumnRays,
+    /// The rasterised stratified stochastic depth map (seed 001 §3.1, seed 000 §3.7/§3.9).
+    StochasticDepth,
+}
+
+/// Which passes run the estimator over the source (`src/schedules/`, `shaders/schedules/`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Schedule {
+    /// One pass: every sample consults the source inline.
+    Single,
+    /// Phase 1 over the first layer flags samples in an 8-bit mask and compacts flagged pixels
+    /// into a work list; phase 2 (indirect dispatch) resolves only those (seed 000 §3.8).
+    TwoPhase,
+    /// Two phases, phase 2 walking every pixel and returning at once where nothing is flagged.
+    TwoPhaseDense,
+}
+
+/// One row of the technique table.
+#[derive(Clone, Copy, Debug)]
+pub struct TechniqueRow {
+    pub technique: Technique,
+    /// The name the CLI, reports and JSON use.
+    pub name: &'static str,
+    /// One line for help texts and the README.
+    pub summary: &'static str,
+    /// Paper (DESIGN.md numbering) and section.
+    pub paper: &'static str,
+    pub estimator: Estimator,
+    pub source: Source,
+    pub schedule: Schedule,
+}
+
+/// Every technique, in the order lists and reports show them.
+pub const TABLE: &[TechniqueRow] = &[
+    TechniqueRow {
+        technique: Technique::Vao,
+        name: "vao",
+        summary: "Volumetric AO over the depth buffer",
+        paper: "seed 000 §3.1–3.5",
+        estimator: Estimator::Vao,
+        source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::VaoDual,
+        name: "vao-dual",
+        summary: "VAO; occluded samples also read a second depth layer (depth peeling)",
+        paper: "seed 000 §2.1, §4.3",
+        estimator: Estimator::Vao,
+        source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::RtVao,
+        name: "rt-vao",
+        summary: "VAO; occluded samples trace their camera-ray column through the BVH",
+        paper: "seed 000 §3.6",
+        estimator: Estimator::Vao,
+        source: Source::ColumnRays,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::RtSvao,
+        name: "rt-svao",
+        summary: "RT-VAO in two phases; phase 2 traces only flagged samples (work list)",
+        paper: "seed 000 §3.8",
+        estimator: Estimator::Vao,
+        source: Source::ColumnRays,
+        schedule: Schedule::TwoPhase,
+    },
+    TechniqueRow {
+        technique: Technique::RtSvaoDense,
+        name: "rt-svao-dense",
+        summary: "RT-SVAO with phase 2 walking every pixel (no work list)",
+        paper: "seed 000 §3.8",
+        estimator: Estimator::Vao,
+        source: Source::ColumnRays,
+        schedule: Schedule::TwoPhaseDense,
+    },
+    TechniqueRow {
+        technique: Technique::SdVao,
+        name: "sd-vao",
+        summary: "VAO; occluded samples read every sample of a stochastic depth map",
+        paper: "seed 000 §3.7, seed 001 §3.1",
+        estimator: Estimator::Vao,
+        source: Source::StochasticDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::SdSvao,
+        name: "sd-svao",
+        summary: "SD-VAO in two phases; the map is rasterised only where phase 1 asked",
+        paper: "seed 000 §3.9",
+        estimator: Estimator::Vao,
+        source: Source::StochasticDepth,
+        schedule: Schedule::TwoPhase,
+    },
+];
+
+/// What a technique needs from the caller beyond depth and normals.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Needs {
+    /// The scene's triangles (uploaded as a `GpuScene`).
+    pub triangles: bool,
+    /// A BVH over the triangles.
+    pub bvh: bool,
+    /// The second depth layer (depth peeling).
+    pub second_layer: bool,
+    /// The adapter rasterises a stochastic depth map (needs `Depth32FloatStencil8`).
+    pub stochastic_depth_map: bool,
+}
+
+impl Source {
+    pub fn needs(self) -> Needs {
+        match self {
+            Source::FirstLayer => Needs::default(),
+            Source::DualDepth => Needs {
+                second_layer: true,
+                ..Needs::default()
+            },
+            Source::ColumnRays => Needs {
+                triangles: true,
+                bvh: true,
+                ..Needs::default()
+            },
+            Source::StochasticDepth => Needs {
+                triangles: true,
+                stochastic_depth_map: true,
+                ..Needs::default()
+            },
+        }
+    }
+
+    /// The estimators this source can answer for (column rays read the VAO columns).
+    pub fn supports(self, estimator: Estimator) -> bool {
+        match self {
+            Source::ColumnRays => estimator == Estimator::Vao,
+            Source::FirstLayer | Source::DualDepth | Source::StochasticDepth => true,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Source::FirstLayer => "first layer",
+            Source::DualDepth => "dual depth",
+            Source::ColumnRays => "column rays",
+            Source::StochasticDepth => "stochastic depth",
+        }
+    }
+}
+
+impl Schedule {
+    pub fn two_phase(self) -> bool {
+        self != Schedule::Single
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Schedule::Single => "single pass",
+            Schedule::TwoPhase => "two-phase (work list)",
+            Schedule::TwoPhaseDense => "two-phase (dense)",
+        }
+    }
+}
+
+impl Estimator {
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimator::Vao => "vao",
+        }
+    }
+}
+
+impl TechniqueRow {
+    pub fn needs(&self) -> Needs {
+        self.source.needs()
+    }
+
+    /// Whether `render --debug-out` has images for it: two-phase schedules show their flagged
+    /// samples, the stochastic depth source its map.
+    pub fn has_debug_output(&self) -> bool {
+        self.schedule.two_phase() || self.source == Source::StochasticDepth
+    }
+}
+
+impl Technique {
+    /// Every technique, in table order.
+    pub fn all() -> impl Iterator<Item = Technique> {
+        TABLE.iter().map(|r| r.technique)
+    }
+
+    /// This technique's row.
+    pub fn row(self) -> &'static TechniqueRow {
+        TABLE
+            .iter()
+            .find(|r| r.technique == self)
+            .expect("every Technique has a row in TABLE (tested)")
+    }
+
+    pub fn name(self) -> &'static str {
+        self.row().name
+    }
+
+    pub fn estimator(self) -> Estimator {
+        self.row().estimator
+    }
+
+    pub fn source(self) -> Source {
+        self.row().source
+    }
+
+    pub fn schedule(self) -> Schedule {
+        self.row().schedule
+    }
+
+    pub fn needs(self) -> Needs {
+        self.row().needs()
+    }
+}
+
+/// Names of the rows that satisfy `keep`, comma-separated (help texts and messages).
+pub fn names_where(keep: impl Fn(&TechniqueRow) -> bool) -> String {
+    TABLE
+        .iter()
+        .filter(|r| keep(r))
+        .map(|r| r.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The README's technique table (a test keeps README.md equal to it).
+pub fn markdown_table() -> String {
+    let mut out = String::from(
+        "| technique | estimator | hidden-depth source | schedule | paper | what |\n|---|---|---|---|---|---|\n",
+    );
+    for r in TABLE {
+        out += &format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n",
+            r.name,
+            r.estimator.name(),
+            r.source.name(),
+            r.schedule.name(),
+            r.paper,
+            r.summary
+        );
+    }
+    out
+}
+
+impl fmt::Display for Technique {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A technique name that is not in [`TABLE`].
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("unknown technique '{0}': available: {list}", list = names_where(|_| true))]
+pub struct UnknownTechnique(pub String);
+
+impl FromStr for Technique {
+    type Err = UnknownTechnique;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let wanted = s.trim().to_ascii_lowercase();
+        TABLE
+            .iter()
+            .find(|r| r.name == wanted)
+            .map(|r| r.technique)
+            .ok_or_else(|| UnknownTechnique(s.to_string()))
+    }
+}
+
+impl serde::Serialize for Technique {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Technique {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_technique_has_exactly_one_row_with_a_unique_name() {
+        assert_eq!(TABLE.len(), VARIANTS.len());
+        for t in VARIANTS {
+            assert_eq!(
+                TABLE.iter().filter(|r| r.technique == *t).count(),
+                1,
+                "{t:?}"
+            );
+        }
+        for r in TABLE {
+            assert_eq!(
+                TABLE.iter().filter(|o| o.technique == r.technique).count(),
+                1
+            );
+            assert_eq!(TABLE.iter().filter(|o| o.name == r.name).count(), 1);
+            assert_eq!(r.name.parse::<Technique>().unwrap(), r.technique);
+            assert!(
+                r.source.supports(r.estimator),
+                "{}: source {:?} cannot answer for estimator {:?}",
+                r.name,
+                r.source,
+                r.estimator
+            );
+        }
+    }
+
+    #[test]
+    fn unknown_names_list_the_table() {
+        let err = "hbao".parse::<Technique>().unwrap_err().to_string();
+        for r in TABLE {
+            assert!(err.contains(r.name), "{err}");
+        }
+    }
+
+    #[test]
+    fn serde_uses_the_names() {
+        let json = serde_json::to_string(&Technique::RtSvaoDense).unwrap();
+        assert_eq!(json, "\"rt-svao-dense\"");
+        let back: Technique = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, Technique::RtSvaoDense);
+        assert!(serde_json::from_str::<Technique>("\"nope\"").is_err());
+    }
+}
