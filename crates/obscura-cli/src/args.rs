@@ -52,6 +52,14 @@ pub fn parse_technique(s: &str) -> Result<Technique, String> {
         .map_err(|e: obscura::technique::UnknownTechnique| e.to_string())
 }
 
+/// Help text of `--technique`: every row of the technique table.
+pub fn technique_help() -> String {
+    format!(
+        "AO technique: {} (see `obscura info --json` for each one's estimator, source and schedule)",
+        obscura::technique::names_where(|_| true)
+    )
+}
+
 /// Which scene and from where.
 #[derive(Args, Clone, Debug)]
 pub struct SceneArgs {

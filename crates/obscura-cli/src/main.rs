@@ -40,6 +40,8 @@ enum Command {
     Demo(commands::demo::DemoArgs),
     /// Time every pass with GPU timestamp queries (medians over frames).
     Bench(commands::bench::BenchArgs),
+    /// Compare two AO images: largest and mean absolute difference.
+    Diff(commands::diff::DiffArgs),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +65,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => commands::compare::run(&gpu_options, &a),
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
+        Command::Diff(a) => commands::diff::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -32,6 +32,10 @@ struct QueryResult {
     triangles: array<u32, 16>,
 }
 
+// The BVH (common/bvh.wgsl) in group 1 from binding 0.
+const BVH_GROUP: u32 = 1u;
+const BVH_BINDING: u32 = 0u;
+
 @group(0) @binding(0) var<uniform> params: QueryParams;
 @group(0) @binding(1) var<storage, read> rays: array<QueryRay>;
 @group(0) @binding(2) var<storage, read_write> results: array<QueryResult>;

@@ -1,11 +1,12 @@
 // Ground-truth AO on the GPU, from the triangles (never from a depth buffer): the two models of
 // src/reference/ground_truth.rs, through the same BVH traversal as the ray-traced techniques.
-// - model 0 (`vao`): the VAO kernel at the primary ray's surface, every sample's camera ray traced
-//   over its interval (column_rays.wgsl's trace_column_visibility, starting at the near plane).
+// - model 0 (`vao`): the VAO estimator at the primary ray's surface through the single-pass loop
+//   (schedules/single.wgsl) over the all-layers source: every sample's camera ray traced over its
+//   interval from the near plane (sources/all_layers.wgsl, column_trace.wgsl).
 // - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
 //   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
 //   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
-// Needs common/hash.wgsl in front.
+// Needs common/hash.wgsl in front. Its own parameters and output take the schedule group.
 
 struct ReferenceParams {
     model: u32,
@@ -18,9 +19,9 @@ struct ReferenceParams {
     _pad1: u32,
 }
 
-@group(0) @binding(7) var<uniform> reference: ReferenceParams;
+@group(GROUP_SCHEDULE) @binding(REFERENCE_PARAMS) var<uniform> reference: ReferenceParams;
 // Per visible pixel: the AO (vao model) or the summed occlusion of the rays so far (hemisphere).
-@group(0) @binding(8) var<storage, read_write> reference_out: array<f32>;
+@group(GROUP_SCHEDULE) @binding(REFERENCE_OUT) var<storage, read_write> reference_out: array<f32>;
 
 fn pixel_rotation_2d(seed: u32, x: u32, y: u32) -> vec2<f32> {
     let h1 = pcg_hash(seed ^ pcg_hash(x + pcg_hash(y)));
@@ -62,24 +63,7 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
             ray_camera.camera_to_world[2].xyz,
         ));
         let p = vao_pixel_at(id, dir_view * hit.t, to_view * n);
-        var sum = 0.0;
-        var clipped_sum = 0.0;
-        for (var i = 0u; i < SAMPLE_COUNT; i++) {
-            let s = vao_sample(p, i);
-            if (s.h == 0.0) {
-                continue;
-            }
-            let full = s.column.start - s.column.end;
-            let cell = floor(s.column.px);
-            var free = full;
-            if (any(cell != vec2<f32>(pixel))) {
-                free = trace_column_visibility(p.frame, s.column, cell + 0.5, 0.0, full);
-            }
-            let inv_2h = 0.5 / s.h;
-            sum += free * inv_2h;
-            clipped_sum += full * inv_2h;
-        }
-        reference_out[index] = vao_finish(sum, clipped_sum);
+        reference_out[index] = single_pass_ao(p);
         return;
     }
     // Hemisphere: offset along the normal as the CPU model does.

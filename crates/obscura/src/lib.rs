@@ -1,9 +1,10 @@
 //! obscura: screen-space ambient occlusion that keeps the geometry a depth buffer hides.
 //!
-//! The pieces, in the order a frame uses them (DESIGN.md "Data flow"):
+//! The pieces, in the order a frame uses them (docs/ARCHITECTURE.md):
 //! [`scene`] (loaders, procedural scenes, cameras) → [`raster`] (G-buffer with a guard band) →
-//! [`kernels`] (AO compute passes; [`hidden`] depth sources) → [`filter`] (bilateral blur).
-//! [`AmbientOcclusion`] is the piece an engine embeds; [`Renderer`] renders our own scenes.
+//! the AO passes of a [`technique`] row: its hidden-depth [`sources`] prepare, its [`schedules`]
+//! run its [`estimators`] → [`filter`] (bilateral blur). [`AmbientOcclusion`] is the piece an
+//! engine embeds; [`Renderer`] renders our own scenes.
 //!
 //! The evidence: [`bvh`] (CPU SAH BVH), [`reference`] (ray-traced ground truth and CPU mirrors of
 //! the GPU passes), [`metrics`] (MSE, MAE, PSNR, SSIM, halo metric) and [`report`] (the
@@ -12,11 +13,13 @@
 //! Conventions: right-handed view space looking down −Z, linear depth = −z in world units,
 //! AO = 1 unoccluded / 0 fully occluded, exponent applied last.
 
+pub mod bindings;
 pub mod bvh;
+pub mod estimators;
 pub mod filter;
+pub mod frame;
 pub mod gpu;
-pub mod hidden;
-pub mod kernels;
+pub mod hash;
 pub mod metrics;
 pub mod output;
 pub mod pipeline;
@@ -24,16 +27,19 @@ pub mod raster;
 pub mod reference;
 pub mod report;
 pub mod scene;
+pub mod schedules;
 pub mod settings;
 pub(crate) mod shaders;
+pub mod sources;
 pub mod technique;
 pub mod view;
 
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};
-pub use pipeline::{renderer::Renderer, AmbientOcclusion};
+pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};
 pub use settings::{
     AoSettings, BlurSettings, Normalization, SettingsError, Technique, VaoSettings,
 };
+pub use sources::SceneResources;
 pub use view::{default_guard_band, near_plane, FrameView, ScreenGeometry};
 
 use std::path::PathBuf;

@@ -101,6 +101,55 @@ pub fn write_atomically(
     Ok(())
 }
 
+/// A single-channel image read back: `width × height` values, row-major.
+pub struct AoImage {
+    pub width: u32,
+    pub height: u32,
+    pub values: Vec<f32>,
+}
+
+/// Read an AO image written by [`write_ao`] (or any EXR/PNG): the first channel, as floats
+/// (PNG values scaled to [0, 1]).
+pub fn read_ao(path: &Path) -> Result<AoImage, Error> {
+    let fail = |message: String| {
+        Error::Input(format!("cannot read image '{}': {message}", path.display()))
+    };
+    match ImageFormat::from_path(path)? {
+        ImageFormat::Png => {
+            let image = image::open(path)
+                .map_err(|e| fail(e.to_string()))?
+                .to_luma32f();
+            Ok(AoImage {
+                width: image.width(),
+                height: image.height(),
+                values: image.into_raw(),
+            })
+        }
+        ImageFormat::Exr => {
+            let image = exr::prelude::read_first_rgba_layer_from_file(
+                path,
+                |resolution, _| {
+                    (
+                        resolution.width(),
+                        vec![0.0f32; resolution.width() * resolution.height()],
+                    )
+                },
+                |(width, values), position, (r, _g, _b, _a): (f32, f32, f32, f32)| {
+                    values[position.y() * *width + position.x()] = r;
+                },
+            )
+            .map_err(|e| fail(e.to_string()))?;
+            let (width, values) = image.layer_data.channel_data.pixels;
+            let height = values.len() / width.max(1);
+            Ok(AoImage {
+                width: width as u32,
+                height: height as u32,
+                values,
+            })
+        }
+    }
+}
+
 /// A single-channel AO image (values in [0, 1]) as 8-bit PNG or float EXR.
 pub fn write_ao(path: &Path, width: u32, height: u32, ao: &[f32]) -> Result<(), Error> {
     match ImageFormat::from_path(path)? {

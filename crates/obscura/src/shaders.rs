@@ -1,5 +1,7 @@
-//! WGSL sources. Shared helpers live once in `shaders/common/` and are prepended to the passes
-//! that use them (WGSL has no `#include`; a prefix keeps line numbers of the pass readable).
+//! WGSL sources and how they are composed. WGSL has no `#include`: a pass is the binding names of
+//! [`crate::bindings`], then the shared helpers it needs (`shaders/common/`), then its axis files
+//! joined in one string (module-scope declarations may come in any order). `wesl` was evaluated
+//! instead and not adopted; docs/ARCHITECTURE.md says why.
 
 pub const VIEW: &str = include_str!("../shaders/common/view.wgsl");
 pub const BASIS: &str = include_str!("../shaders/common/basis.wgsl");
@@ -7,29 +9,52 @@ pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
 pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
 
+pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
+
+pub const ESTIMATOR_VAO: &str = include_str!("../shaders/estimators/vao.wgsl");
+
+pub const SOURCE_FIRST_LAYER: &str = include_str!("../shaders/sources/first_layer.wgsl");
+pub const SOURCE_DUAL_DEPTH: &str = include_str!("../shaders/sources/dual_depth.wgsl");
+pub const SOURCE_COLUMN_TRACE: &str = include_str!("../shaders/sources/column_trace.wgsl");
+pub const SOURCE_COLUMN_RAYS: &str = include_str!("../shaders/sources/column_rays.wgsl");
+pub const SOURCE_ALL_LAYERS: &str = include_str!("../shaders/sources/all_layers.wgsl");
+pub const SOURCE_STOCHASTIC_DEPTH: &str =
+    include_str!("../shaders/sources/stochastic_depth/read.wgsl");
+pub const STOCHASTIC_DEPTH_MAP: &str = include_str!("../shaders/sources/stochastic_depth/map.wgsl");
+pub const STOCHASTIC_DEPTH_RESET: &str =
+    include_str!("../shaders/sources/stochastic_depth/reset.wgsl");
+pub const STOCHASTIC_DEPTH_UNPACK: &str =
+    include_str!("../shaders/sources/stochastic_depth/unpack.wgsl");
+
+pub const SCHEDULE_SINGLE: &str = include_str!("../shaders/schedules/single.wgsl");
+pub const SCHEDULE_SINGLE_MAIN: &str = include_str!("../shaders/schedules/single_main.wgsl");
+pub const SCHEDULE_TWO_PHASE: &str = include_str!("../shaders/schedules/two_phase.wgsl");
+pub const SCHEDULE_TWO_PHASE_1: &str = include_str!("../shaders/schedules/two_phase_1.wgsl");
+pub const SCHEDULE_TWO_PHASE_2: &str = include_str!("../shaders/schedules/two_phase_2.wgsl");
+pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
+    include_str!("../shaders/schedules/two_phase_indirect.wgsl");
+
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
-pub const VAO: &str = include_str!("../shaders/vao.wgsl");
-pub const VAO_SINGLE: &str = include_str!("../shaders/vao_single.wgsl");
-pub const SVAO: &str = include_str!("../shaders/svao.wgsl");
-pub const SVAO_PHASE1: &str = include_str!("../shaders/svao_phase1.wgsl");
-pub const SVAO_PHASE2: &str = include_str!("../shaders/svao_phase2.wgsl");
-pub const SVAO_INDIRECT: &str = include_str!("../shaders/svao_indirect.wgsl");
-pub const HIDDEN_DEPTH_BUFFER: &str = include_str!("../shaders/hidden/depth_buffer.wgsl");
-pub const HIDDEN_DUAL_DEPTH: &str = include_str!("../shaders/hidden/dual_depth.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
-pub const HIDDEN_COLUMN_RAYS: &str = include_str!("../shaders/hidden/column_rays.wgsl");
-pub const HIDDEN_STOCHASTIC_DEPTH: &str = include_str!("../shaders/hidden/stochastic_depth.wgsl");
-pub const STOCHASTIC_DEPTH: &str = include_str!("../shaders/stochastic_depth.wgsl");
-pub const SD_RESET: &str = include_str!("../shaders/sd_reset.wgsl");
-pub const SD_UNPACK: &str = include_str!("../shaders/sd_unpack.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
 pub const REFERENCE: &str = include_str!("../shaders/reference.wgsl");
 
-/// A pass's source with the shared helpers it names in front.
+/// A pass's source with the shared helpers it names in front (raster and utility passes, which
+/// use no binding names).
 pub fn with_common(common: &[&str], pass: &str) -> String {
     let mut source = common.join("\n");
     source.push('\n');
     source.push_str(pass);
+    source
+}
+
+/// An AO pass: the binding names, then `parts` in order.
+pub fn compose(parts: &[&str]) -> String {
+    let mut source = crate::bindings::wgsl_constants();
+    for part in parts {
+        source.push_str(part);
+        source.push('\n');
+    }
     source
 }

@@ -5,8 +5,7 @@ use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
-use obscura::raster::stochastic_depth::SdLayout;
-use obscura::{output, PassProfiler, Renderer, Technique};
+use obscura::{output, PassProfiler, Renderer};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -56,7 +55,7 @@ struct BenchResult {
     total_ms: f64,
 }
 
-/// [`SdLayout`] as JSON.
+/// The stochastic depth map's layout (`obscura::sources::stochastic_depth::SdLayout`) as JSON.
 #[derive(serde::Serialize)]
 struct Layout {
     maps: u32,
@@ -150,10 +149,14 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             }
             totals.push(frame.values().sum());
         }
-        let sd = matches!(technique, Technique::SdVao | Technique::SdSvao)
+        let row = technique.row();
+        let sd = row
+            .needs()
+            .stochastic_depth_map
             .then_some(settings.stochastic_depth);
-        let layout = sd
-            .and_then(|sd| SdLayout::plan(sd.samples, &gpu.summary.sd_map_sample_counts))
+        let layout = renderer
+            .ambient_occlusion()
+            .and_then(|ao| ao.stochastic_depth_layout())
             .map(|l| Layout {
                 maps: l.maps,
                 samples_per_map: l.samples_per_map,
@@ -163,7 +166,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             sd_samples: sd.map(|sd| sd.samples),
             sd_alpha: sd.map(|sd| sd.alpha),
             layout,
-            sd_mask: (technique == Technique::SdSvao)
+            sd_mask: (sd.is_some() && row.schedule.two_phase())
                 .then(|| settings.stochastic_depth.mask.to_string()),
             scene: scene.name.clone(),
             camera: camera_name.clone(),

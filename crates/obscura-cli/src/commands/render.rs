@@ -12,8 +12,7 @@ pub struct RenderArgs {
     /// Visible image size WIDTHxHEIGHT (the guard band is extra).
     #[arg(long, value_parser = parse_size, default_value = "1280x720")]
     size: (u32, u32),
-    /// AO technique: vao, vao-dual, rt-vao, rt-svao, rt-svao-dense, sd-vao or sd-svao.
-    #[arg(long, value_parser = parse_technique, default_value = "vao")]
+    #[arg(long, value_parser = parse_technique, default_value = "vao", help = crate::args::technique_help())]
     technique: Technique,
     #[command(flatten)]
     ao: AoArgs,
@@ -23,12 +22,11 @@ pub struct RenderArgs {
     /// Also write AO × base colour next to it (NAME.composite.png/.exr).
     #[arg(long)]
     composite: bool,
-    /// Write the technique's intermediate images and statistics into this folder (rt-svao,
-    /// rt-svao-dense, sd-vao, sd-svao). Two-phase techniques: the per-pixel count of flagged
-    /// samples (samples.png). sd-vao, sd-svao: one stochastic depth layer (sd_layer.png), the
-    /// stored samples per pixel (sd_counts.png) and, for sd-svao, the SD-request mask
-    /// (sd_request.png). Always stats.json.
-    #[arg(long)]
+    /// Write the technique's intermediate images and statistics into this folder. Two-phase
+    /// techniques: the per-pixel count of flagged samples (samples.png). Stochastic-depth
+    /// techniques: one stochastic depth layer (sd_layer.png), the stored samples per pixel
+    /// (sd_counts.png) and, two-phase, the SD-request mask (sd_request.png). Always stats.json.
+    #[arg(long, help = debug_out_help())]
     debug_out: Option<PathBuf>,
 }
 
@@ -37,11 +35,11 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     output::check_writable(&args.out)?;
     let settings = args.ao.settings(args.technique)?;
     if let Some(dir) = &args.debug_out {
-        if !DEBUG_TECHNIQUES.contains(&args.technique) {
+        if !args.technique.row().has_debug_output() {
             anyhow::bail!(
                 "--technique {} has no --debug-out images: use it with --technique {}",
                 args.technique,
-                technique_list(&DEBUG_TECHNIQUES)
+                technique_list(&debug_techniques())
             );
         }
         std::fs::create_dir_all(dir).map_err(|e| {
@@ -62,11 +60,10 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     crate::args::warn_stack_overflows(&renderer)?;
     output::write_ao(&args.out, width, height, &ao)?;
     if let Some(dir) = &args.debug_out {
-        match args.technique {
-            Technique::SdVao | Technique::SdSvao => {
-                write_sd_debug(dir, &gpu, &renderer, &settings, (width, height), guard_band)?
-            }
-            _ => write_debug(dir, &renderer, width, height, settings.vao.samples)?,
+        if args.technique.needs().stochastic_depth_map {
+            write_sd_debug(dir, &renderer, &settings, (width, height), guard_band)?
+        } else {
+            write_debug(dir, &renderer, width, height, settings.vao.samples)?
         }
     }
     if args.composite {
@@ -79,13 +76,19 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// The techniques `--debug-out` has images for.
-const DEBUG_TECHNIQUES: [Technique; 4] = [
-    Technique::RtSvao,
-    Technique::RtSvaoDense,
-    Technique::SdVao,
-    Technique::SdSvao,
-];
+/// The techniques `--debug-out` has images for (from the technique table).
+fn debug_techniques() -> Vec<Technique> {
+    Technique::all()
+        .filter(|t| t.row().has_debug_output())
+        .collect()
+}
+
+fn debug_out_help() -> String {
+    format!(
+        "Write the technique's intermediate images and statistics into this folder ({}).",
+        technique_list(&debug_techniques())
+    )
+}
 
 /// "a, b, c or d".
 fn technique_list(techniques: &[Technique]) -> String {
@@ -153,24 +156,24 @@ fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
 ///   nearest/farthest stored depth over all samples of the map, so near is white and the farthest
 ///   stored depth (grey 0.25) stays distinct from empty;
 /// - `sd_counts.png`: stored samples per pixel / S (black: none, white: all S);
-/// - `sd-svao` only: `sd_request.png` (white = phase 1 requested the map there) and the phase-1
+/// - two-phase only: `sd_request.png` (white = phase 1 requested the map there) and the phase-1
 ///   flagged samples per visible pixel `samples.png` (count / VAO samples, as for rt-svao);
 /// - `stats.json`: settings, layout and the fractions.
 fn write_sd_debug(
     dir: &std::path::Path,
-    gpu: &obscura::Gpu,
     renderer: &Renderer,
     settings: &obscura::AoSettings,
     (width, height): (u32, u32),
     guard_band: u32,
 ) -> Result<()> {
-    use obscura::raster::stochastic_depth::SdLayout;
     let sd = settings.stochastic_depth;
     let layers = renderer
         .read_stochastic_depth()?
         .ok_or_else(|| anyhow::anyhow!("this technique has no stochastic depth map"))?;
-    let layout = SdLayout::plan(sd.samples, &gpu.summary.sd_map_sample_counts)
-        .ok_or_else(|| anyhow::anyhow!("--sd-samples {} has no layout", sd.samples))?;
+    let layout = renderer
+        .ambient_occlusion()
+        .and_then(|ao| ao.stochastic_depth_layout())
+        .ok_or_else(|| anyhow::anyhow!("this technique has no stochastic depth map"))?;
     let (fw, fh) = (width + 2 * guard_band, height + 2 * guard_band);
     let texels = (fw * fh) as usize;
     if layers.len() != layout.samples() as usize || layers.iter().any(|l| l.len() != texels) {
@@ -250,7 +253,7 @@ fn write_sd_debug(
         let requested_fraction = requested as f64 / requests.len().max(1) as f64;
         let masks = renderer
             .read_sample_masks()?
-            .ok_or_else(|| anyhow::anyhow!("sd-svao returned no phase-1 sample masks"))?;
+            .ok_or_else(|| anyhow::anyhow!("the two-phase schedule returned no sample masks"))?;
         let per_pixel = settings.vao.samples as f32;
         let flagged_image: Vec<f32> = masks
             .iter()

@@ -17,13 +17,13 @@ struct BvhNode {
     count: u32,
 }
 
-@group(1) @binding(0) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(BVH_GROUP) @binding(BVH_BINDING) var<storage, read> bvh_nodes: array<BvhNode>;
 // Leaf order: (vertex 0, vertex 1, vertex 2, material).
-@group(1) @binding(1) var<storage, read> bvh_triangles: array<vec4<u32>>;
-@group(1) @binding(2) var<storage, read> bvh_positions: array<vec4<f32>>;
-@group(1) @binding(3) var<storage, read> bvh_uvs: array<vec2<f32>>;
-@group(1) @binding(4) var<storage, read> bvh_materials: array<Material>;
-@group(1) @binding(5) var bvh_textures: texture_2d_array<f32>;
+@group(BVH_GROUP) @binding(BVH_BINDING + 1u) var<storage, read> bvh_triangles: array<vec4<u32>>;
+@group(BVH_GROUP) @binding(BVH_BINDING + 2u) var<storage, read> bvh_positions: array<vec4<f32>>;
+@group(BVH_GROUP) @binding(BVH_BINDING + 3u) var<storage, read> bvh_uvs: array<vec2<f32>>;
+@group(BVH_GROUP) @binding(BVH_BINDING + 4u) var<storage, read> bvh_materials: array<Material>;
+@group(BVH_GROUP) @binding(BVH_BINDING + 5u) var bvh_textures: texture_2d_array<f32>;
 
 const BVH_CONTINUE: u32 = 0u;
 const BVH_SHRINK: u32 = 1u;

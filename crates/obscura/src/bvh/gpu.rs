@@ -1,6 +1,7 @@
-//! The BVH on the GPU: the flat nodes of [`Bvh::nodes`] and the triangles in leaf order, bound as
-//! group 1 of every ray-tracing pass (`shaders/common/bvh.wgsl`), next to the scene's positions,
-//! uvs, materials and textures from [`GpuScene`].
+//! The BVH on the GPU: the flat nodes of [`Bvh::nodes`] and the triangles in leaf order, bound in
+//! every ray-tracing pass (`shaders/common/bvh.wgsl`, six bindings from the includer's
+//! `BVH_BINDING` in its `BVH_GROUP`) next to the scene's positions, uvs, materials and textures
+//! from [`GpuScene`].
 
 use super::Bvh;
 use crate::raster::gpu_scene::GpuScene;
@@ -68,26 +69,38 @@ impl GpuBvh {
         }
     }
 
-    /// Group 1 of a ray-tracing pipeline (bindings of `shaders/common/bvh.wgsl`).
-    pub fn bind_group(
-        &self,
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-        scene: &GpuScene,
-    ) -> wgpu::BindGroup {
-        crate::gpu::bind_group(
-            device,
-            "bvh",
-            layout,
-            &[
-                self.nodes.as_entire_binding(),
-                self.triangles.as_entire_binding(),
-                scene.positions.as_entire_binding(),
-                scene.uvs.as_entire_binding(),
-                scene.materials.as_entire_binding(),
+    /// Layout entries of `shaders/common/bvh.wgsl`'s six bindings from `first` on (its
+    /// `BVH_BINDING`), visible to compute.
+    pub fn layout_entries(first: u32) -> Vec<wgpu::BindGroupLayoutEntry> {
+        use crate::bindings::entry;
+        vec![
+            entry::storage(first, true),
+            entry::storage(first + 1, true),
+            entry::storage(first + 2, true),
+            entry::storage(first + 3, true),
+            entry::storage(first + 4, true),
+            entry::texture_array(first + 5),
+        ]
+    }
+
+    /// The resources of those bindings: nodes and triangles, then the scene's positions, uvs,
+    /// materials and alpha-mask atlas.
+    pub fn resources<'a>(
+        &'a self,
+        first: u32,
+        scene: &'a GpuScene,
+    ) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+        vec![
+            (first, self.nodes.as_entire_binding()),
+            (first + 1, self.triangles.as_entire_binding()),
+            (first + 2, scene.positions.as_entire_binding()),
+            (first + 3, scene.uvs.as_entire_binding()),
+            (first + 4, scene.materials.as_entire_binding()),
+            (
+                first + 5,
                 wgpu::BindingResource::TextureView(&scene.textures),
-            ],
-        )
+            ),
+        ]
     }
 }
 
@@ -141,6 +154,7 @@ pub fn trace_batch(
         &[crate::shaders::MATERIAL, crate::shaders::BVH],
         crate::shaders::RAY_QUERY,
     );
+    // ray_query.wgsl names its own BVH group (1) and first binding (0).
     let pipeline = crate::gpu::compute_pipeline_with(device, "ray query", &source, &[]);
     let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("ray query params"),
@@ -176,7 +190,12 @@ pub fn trace_batch(
             bvh.primitive_ids.as_entire_binding(),
         ],
     );
-    let group1 = bvh.bind_group(device, &pipeline.get_bind_group_layout(1), scene);
+    let group1 = crate::bindings::group(
+        device,
+        "bvh",
+        &pipeline.get_bind_group_layout(1),
+        &bvh.resources(0, scene),
+    );
     let mut encoder = device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());

@@ -1,7 +1,7 @@
 //! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/bilateral_blur.wgsl`).
 
+use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
-use crate::kernels::FrameInputs;
 use crate::settings::BlurSettings;
 use crate::shaders;
 use wgpu::util::DeviceExt;
@@ -72,9 +72,11 @@ impl BilateralBlur {
             intermediate,
         }
     }
+}
 
+impl super::AoFilter for BilateralBlur {
     /// Blur `input` into `output` (both R32Float, visible size). Timings: `blur_x`, `blur_y`.
-    pub fn encode(
+    fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,

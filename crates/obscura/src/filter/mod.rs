@@ -1,3 +1,20 @@
-//! Filters applied to raw AO.
+//! Filters applied to raw AO: the tail of the pass list ([`crate::AmbientOcclusion`]).
 
 pub mod bilateral;
+
+use crate::frame::FrameInputs;
+use crate::gpu::PassProfiler;
+
+/// A pass from one AO image to the next (`R32Float`, visible size), with the frame's inputs at
+/// hand (depth for edge-aware weights, the screen geometry).
+pub trait AoFilter {
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInputs,
+        input: &wgpu::TextureView,
+        output: &wgpu::TextureView,
+        profiler: Option<&mut PassProfiler>,
+    );
+}

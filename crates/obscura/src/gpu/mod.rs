@@ -57,18 +57,12 @@ pub struct AdapterSummary {
     pub max_compute_invocations_per_workgroup: u32,
     /// MSAA sample counts a depth texture (`Depth32Float`) supports on this adapter.
     pub depth_msaa_sample_counts: Vec<u32>,
-    /// Depth-stencil format of the stochastic depth map
-    /// ([`crate::raster::stochastic_depth::SD_FORMAT`]), or "unavailable" on this device.
-    pub sd_format: String,
-    /// Samples per pixel one stochastic depth map target can have on this device.
-    pub sd_map_sample_counts: Vec<u32>,
-    /// `--sd-samples` values this device accepts (larger ones as stacked maps).
-    pub sd_sample_counts: Vec<u32>,
-    /// The same, with their layouts: e.g. "1, 4, 8 (2 maps of 4), 16 (4 maps of 4)".
-    pub sd_layouts: String,
 }
 
-/// The device, its queue and what we know about the adapter.
+/// The device, its queue and what we know about the adapter. A cheap handle (wgpu's objects are
+/// reference-counted): clones share the device, so a renderer, a viewer or a Python object can
+/// each own one.
+#[derive(Clone)]
 pub struct Gpu {
     pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
@@ -162,6 +156,18 @@ impl Gpu {
             adapter: info.name.clone(),
             source,
         })?;
+        Ok(Self::from_device(adapter, device, queue))
+    }
+
+    /// Wrap a device the caller made (an engine's), with its adapter and queue. obscura uses the
+    /// features the device has: without `TIMESTAMP_QUERY` there are no pass timings, without
+    /// `DEPTH32FLOAT_STENCIL8` no stochastic depth map (its techniques then return an error
+    /// naming the feature). Validation errors the device does not capture are collected for
+    /// [`Gpu::check_errors`]: this installs the device's uncaptured-error handler.
+    pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
+        let info = adapter.get_info();
+        let features = device.features();
+        let limits = device.limits();
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
@@ -173,23 +179,6 @@ impl Gpu {
                 .into_iter()
                 .filter(|&n| f.flags.sample_count_supported(n))
                 .collect()
-        };
-        let (sd_format, sd_map_sample_counts, sd_sample_counts, sd_layouts) = {
-            use crate::raster::stochastic_depth::{
-                map_sample_counts, sd_format_available, SdLayout, SD_FORMAT,
-            };
-            let per_map = map_sample_counts(&adapter, &device);
-            let accepted = crate::settings::SD_SAMPLE_COUNTS
-                .into_iter()
-                .filter(|&s| SdLayout::plan(s, &per_map).is_some())
-                .collect();
-            let layouts = SdLayout::describe_supported(&per_map);
-            let format = if sd_format_available(&device) {
-                format!("{SD_FORMAT:?}")
-            } else {
-                "unavailable".to_string()
-            };
-            (format, per_map, accepted, layouts)
         };
         let summary = AdapterSummary {
             name: info.name.clone(),
@@ -210,18 +199,14 @@ impl Gpu {
             ],
             max_compute_invocations_per_workgroup: limits.max_compute_invocations_per_workgroup,
             depth_msaa_sample_counts,
-            sd_format,
-            sd_map_sample_counts,
-            sd_sample_counts,
-            sd_layouts,
         };
-        Ok(Self {
+        Self {
             adapter,
             device,
             queue,
             summary,
             errors,
-        })
+        }
     }
 
     /// Wait for all submitted work, then report any validation error raised since the last check.

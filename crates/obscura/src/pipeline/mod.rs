@@ -1,138 +1,97 @@
 //! How passes chain. [`AmbientOcclusion`] is the part an engine embeds: its depth and normals in,
 //! an AO texture out. [`renderer::Renderer`] adds our own G-buffer for scenes we load ourselves.
+//!
+//! A frame is a list of passes (docs/ARCHITECTURE.md, "Data flow"): the technique row's source
+//! prepares what it reads (e.g. the stochastic depth map), the row's schedule runs the estimator
+//! over it into the raw AO, and then each filter of [`AmbientOcclusion`]'s filter list reads the
+//! previous image and writes its own. The schedule decides when the source prepares (before the
+//! single pass; between the phases of a two-phase schedule). New sources, schedules and filters
+//! (a depth pyramid, half resolution with upsampling, temporal accumulation) slot into this list
+//! without touching the estimators.
 
 pub mod renderer;
 
-use crate::filter::bilateral::BilateralBlur;
-use crate::gpu::PassProfiler;
-use crate::hidden::HiddenDepth;
-use crate::kernels::{
-    svao::SvaoKernel,
-    vao::{HiddenSource, RayTracedScene, VaoKernel},
-    AoKernel, FrameInputs,
-};
-use crate::raster::{gpu_scene::GpuScene, stochastic_depth::StochasticDepthMap};
-use crate::settings::{AoSettings, Technique};
+use crate::bindings;
+use crate::estimators::EstimatorPass;
+use crate::filter::{bilateral::BilateralBlur, AoFilter};
+use crate::frame::FrameInputs;
+use crate::gpu::{Gpu, PassProfiler};
+use crate::schedules::SchedulePass;
+use crate::settings::AoSettings;
+use crate::sources::stochastic_depth::{SdLayout, StochasticDepthMap};
+use crate::sources::{SceneResources, SourcePass};
 use crate::view::{FrameView, ScreenGeometry};
 use crate::Error;
 use wgpu::util::DeviceExt;
 
-/// AO for one screen configuration: the technique's kernel, then (optionally) the blur.
+/// The textures of one frame, as the engine has them. All cover the guard-banded framebuffer:
+/// `(width + 2g) × (height + 2g)` of the [`ScreenGeometry`].
+#[derive(Clone, Copy)]
+pub struct FrameTextures<'a> {
+    /// Linear view depth, `R32Float`, world units, 0 = background.
+    pub depth: &'a wgpu::Texture,
+    /// View-space unit normals facing the camera (a float format; xyz used).
+    pub normals: &'a wgpu::Texture,
+    /// The second depth layer (linear `R32Float`, 0 = none, e.g. from depth peeling), for
+    /// techniques whose row needs it ([`crate::technique::Needs::second_layer`]).
+    pub second_layer: Option<&'a wgpu::Texture>,
+}
+
+/// One filter of the list and the image it writes.
+struct FilterStage {
+    filter: Box<dyn AoFilter>,
+    output: wgpu::Texture,
+}
+
+/// AO for one screen configuration: the technique row's source, schedule and estimator, then
+/// the filters (today the bilateral blur, when enabled).
 ///
 /// The output is an `R32Float` texture of the *visible* size (no guard band), 1 = unoccluded.
 pub struct AmbientOcclusion {
+    gpu: Gpu,
     settings: AoSettings,
     screen: ScreenGeometry,
-    kernel: Box<dyn AoKernel>,
-    blur: Option<BilateralBlur>,
+    view: wgpu::Buffer,
+    frame_layout: wgpu::BindGroupLayout,
+    estimator: EstimatorPass,
+    source: SourcePass,
+    schedule: SchedulePass,
     raw: wgpu::Texture,
-    blurred: wgpu::Texture,
+    filters: Vec<FilterStage>,
 }
 
 impl AmbientOcclusion {
-    /// Build pipelines and images for `screen`. `settings` are validated first. Techniques that
-    /// trace rays or rasterise a stochastic depth map need the scene: use
-    /// [`AmbientOcclusion::new_ray_traced`] or [`AmbientOcclusion::new_stochastic`] for them.
+    /// Build pipelines and images for `screen`. `settings` are validated first. `scene` holds
+    /// what the technique's row needs ([`crate::technique::Needs`]): the triangles for the
+    /// stochastic depth map and column rays, a BVH for column rays; a missing one is an error
+    /// naming it. The adapter says which stochastic depth sample counts the map can have; an
+    /// unsupported one is an error naming the supported ones.
     pub fn new(
-        device: &wgpu::Device,
+        gpu: &Gpu,
         settings: &AoSettings,
         screen: ScreenGeometry,
-    ) -> Result<Self, Error> {
-        let source = match settings.technique.hidden_depth() {
-            HiddenDepth::None => HiddenSource::DepthBuffer,
-            HiddenDepth::DualDepth => HiddenSource::DualDepth,
-            HiddenDepth::ColumnRays => {
-                return Err(Error::Input(format!(
-                    "technique '{}' traces rays: create it with AmbientOcclusion::new_ray_traced and the scene",
-                    settings.technique
-                )))
-            }
-            HiddenDepth::StochasticDepth => {
-                return Err(Error::Input(format!(
-                    "technique '{}' rasterises a stochastic depth map: create it with AmbientOcclusion::new_stochastic and the scene",
-                    settings.technique
-                )))
-            }
-        };
-        Self::build(device, settings, screen, source)
-    }
-
-    /// [`AmbientOcclusion::new`] for techniques that trace rays, with the scene they trace
-    /// (call [`AmbientOcclusion::set_camera`] before each frame).
-    pub fn new_ray_traced(
-        device: &wgpu::Device,
-        settings: &AoSettings,
-        screen: ScreenGeometry,
-        scene: RayTracedScene,
-    ) -> Result<Self, Error> {
-        if settings.technique.hidden_depth() != HiddenDepth::ColumnRays {
-            return Self::new(device, settings, screen);
-        }
-        Self::build(device, settings, screen, HiddenSource::ColumnRays(scene))
-    }
-
-    /// [`AmbientOcclusion::new`] for the stochastic-depth techniques (`sd-vao`, `sd-svao`), with
-    /// the scene their map is rasterised from (call [`AmbientOcclusion::set_camera`] before each
-    /// frame). The adapter says which sample counts the map can have; an unsupported
-    /// `--sd-samples` is an error naming the supported ones.
-    pub fn new_stochastic(
-        adapter: &wgpu::Adapter,
-        device: &wgpu::Device,
-        settings: &AoSettings,
-        screen: ScreenGeometry,
-        scene: &GpuScene,
-    ) -> Result<Self, Error> {
-        if settings.technique.hidden_depth() != HiddenDepth::StochasticDepth {
-            return Self::new(device, settings, screen);
-        }
-        settings.validate()?;
-        let map = StochasticDepthMap::new(
-            adapter,
-            device,
-            &settings.stochastic_depth,
-            settings.peel_separation,
-            (screen.full_width(), screen.full_height()),
-            scene,
-            (settings.technique == Technique::SdSvao).then_some(settings.stochastic_depth.mask),
-        )?;
-        Self::build(
-            device,
-            settings,
-            screen,
-            HiddenSource::StochasticDepth(Box::new(map)),
-        )
-    }
-
-    fn build(
-        device: &wgpu::Device,
-        settings: &AoSettings,
-        screen: ScreenGeometry,
-        source: HiddenSource,
+        scene: SceneResources,
     ) -> Result<Self, Error> {
         settings.validate()?;
+        let device = &gpu.device;
+        let row = settings.technique.row();
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let kernel: Box<dyn AoKernel> = match settings.technique {
-            Technique::RtSvao | Technique::RtSvaoDense | Technique::SdSvao => {
-                Box::new(SvaoKernel::new(
-                    device,
-                    &settings.vao,
-                    &view,
-                    source,
-                    &screen,
-                    settings.technique != Technique::RtSvaoDense,
-                ))
-            }
-            Technique::Vao | Technique::VaoDual | Technique::RtVao | Technique::SdVao => {
-                Box::new(VaoKernel::new(device, &settings.vao, &view, source))
-            }
-        };
-        let blur = settings.blur.enabled.then(|| {
-            BilateralBlur::new(device, &settings.blur, &view, screen.width, screen.height)
-        });
+        let frame_layout = bindings::frame_layout(device, true);
+        let estimator = EstimatorPass::for_row(device, row.estimator, settings);
+        let source = SourcePass::new(gpu, row.source, row.schedule, settings, &screen, scene)?;
+        let schedule = SchedulePass::new(
+            device,
+            row.schedule,
+            row.name,
+            &frame_layout,
+            &estimator,
+            &source,
+            &screen,
+        );
         let ao_texture = |label| {
             crate::gpu::texture_2d(
                 device,
@@ -145,75 +104,36 @@ impl AmbientOcclusion {
                     | wgpu::TextureUsages::COPY_SRC,
             )
         };
+        let mut filters = Vec::new();
+        if settings.blur.enabled {
+            filters.push(FilterStage {
+                filter: Box::new(BilateralBlur::new(
+                    device,
+                    &settings.blur,
+                    &view,
+                    screen.width,
+                    screen.height,
+                )),
+                output: ao_texture("ao blurred"),
+            });
+        }
         Ok(Self {
+            gpu: gpu.clone(),
             settings: *settings,
             screen,
-            kernel,
+            view,
+            frame_layout,
+            estimator,
+            source,
+            schedule,
             raw: ao_texture("ao raw"),
-            blurred: ao_texture("ao blurred"),
-            blur,
+            filters,
         })
     }
 
-    /// The camera of the coming frame; techniques that trace rays or rasterise use it.
+    /// The camera of the coming frame; sources that trace rays or rasterise use it.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
-        self.kernel.set_camera(queue, view);
-    }
-
-    /// The stochastic depth map of the last frame (`sd-vao`, `sd-svao`): every sample layer of
-    /// the framebuffer as linear depth, 0 = empty (see [`StochasticDepthMap::read_layers`]).
-    /// `sd-svao`'s map is defined only at the pixels phase 1 requested; it reads as empty
-    /// elsewhere. Waits for the GPU.
-    pub fn read_stochastic_depth(&self, gpu: &crate::Gpu) -> Result<Option<Vec<Vec<f32>>>, Error> {
-        let Some(map) = self.kernel.stochastic_depth() else {
-            return Ok(None);
-        };
-        let mut layers = map.read_layers(gpu)?;
-        if let Some(requests) = self.read_sd_requests(gpu)? {
-            for layer in &mut layers {
-                for (z, &r) in layer.iter_mut().zip(&requests) {
-                    if r == 0 {
-                        *z = 0.0;
-                    }
-                }
-            }
-        }
-        Ok(Some(layers))
-    }
-
-    /// SD-SVAO: the SD-request mask of the last frame, one value per framebuffer pixel (guard
-    /// band included), non-zero where phase 1 asked for the stochastic depth map. Waits for the
-    /// GPU.
-    pub fn read_sd_requests(&self, gpu: &crate::Gpu) -> Result<Option<Vec<u32>>, Error> {
-        let Some(buffer) = self.kernel.sd_requests() else {
-            return Ok(None);
-        };
-        Ok(Some(bytemuck::pod_collect_to_vec(&read_whole_buffer(
-            gpu, buffer,
-        )?)))
-    }
-
-    /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
-    /// rays). Waits for the GPU.
-    pub fn read_stack_overflows(&self, gpu: &crate::Gpu) -> Result<u32, Error> {
-        let Some(counter) = self.kernel.stack_overflows() else {
-            return Ok(0);
-        };
-        let bytes = read_whole_buffer(gpu, counter)?;
-        Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
-    }
-
-    /// For two-phase techniques: per visible pixel, the bit mask of the samples phase 1 flagged
-    /// for rays in the last frame (each flagged sample traces one ray in phase 2). Waits for the GPU.
-    pub fn read_sample_masks(&self, gpu: &crate::Gpu) -> Result<Option<Vec<u32>>, Error> {
-        let Some(records) = self.kernel.phase1_records() else {
-            return Ok(None);
-        };
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&read_whole_buffer(gpu, records)?);
-        let pixels = (self.screen.width * self.screen.height) as usize;
-        Ok(Some(
-            words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
-        ))
+        self.source.set_camera(queue, view);
     }
 
     pub fn settings(&self) -> &AoSettings {
@@ -224,42 +144,28 @@ impl AmbientOcclusion {
         self.screen
     }
 
-    /// Record the kernel and the blur. `depth` (`R32Float`, linear) and `normals` (a float format,
-    /// view space) must cover the guard-banded framebuffer: `(width + 2g) × (height + 2g)`.
+    /// Record the passes of one frame. The textures must cover the guard-banded framebuffer
+    /// ([`FrameTextures`]); a wrong size or format, or a missing second layer where the row needs
+    /// it, is an error naming the texture.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        depth: &wgpu::Texture,
-        normals: &wgpu::Texture,
-        profiler: Option<&mut PassProfiler>,
-    ) -> Result<(), Error> {
-        self.encode_with_second_layer(device, encoder, depth, normals, None, profiler)
-    }
-
-    /// [`AmbientOcclusion::encode`] with the second depth layer `vao-dual` needs (linear
-    /// `R32Float`, the same size as `depth`, e.g. from depth peeling).
-    pub fn encode_with_second_layer(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        depth: &wgpu::Texture,
-        normals: &wgpu::Texture,
-        second_layer: Option<&wgpu::Texture>,
+        textures: FrameTextures,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
-        let needs_second = self.settings.technique.hidden_depth() == HiddenDepth::DualDepth;
-        if needs_second && second_layer.is_none() {
+        let device = &self.gpu.device;
+        let needs_second = self.settings.technique.needs().second_layer;
+        if needs_second && textures.second_layer.is_none() {
             return Err(Error::Input(format!(
-                "technique '{}' needs the second depth layer: use encode_with_second_layer",
+                "technique '{}' needs the second depth layer: set FrameTextures::second_layer",
                 self.settings.technique
             )));
         }
         let (fw, fh) = (self.screen.full_width(), self.screen.full_height());
-        let second_layer = second_layer.filter(|_| needs_second);
+        let second_layer = textures.second_layer.filter(|_| needs_second);
         let layers = [
-            ("depth", Some(depth)),
-            ("normals", Some(normals)),
+            ("depth", Some(textures.depth)),
+            ("normals", Some(textures.normals)),
             ("second depth layer", second_layer),
         ];
         for (what, texture) in layers.into_iter().filter_map(|(w, t)| t.map(|t| (w, t))) {
@@ -274,48 +180,125 @@ impl AmbientOcclusion {
                 )));
             }
         }
-        if depth.format() != wgpu::TextureFormat::R32Float {
+        if textures.depth.format() != wgpu::TextureFormat::R32Float {
             return Err(Error::Input(format!(
                 "AO depth texture is {:?}: it must be R32Float linear view depth",
-                depth.format()
+                textures.depth.format()
             )));
         }
-        let depth = depth.create_view(&Default::default());
-        let normals = normals.create_view(&Default::default());
+        let depth = textures.depth.create_view(&Default::default());
+        let normals = textures.normals.create_view(&Default::default());
         let second = second_layer.map(|t| t.create_view(&Default::default()));
-        let inputs = FrameInputs {
+        let frame = FrameInputs {
             depth: &depth,
             normals: &normals,
             second_layer: second.as_ref(),
             screen: self.screen,
+            view: &self.view,
         };
         let raw = self.raw.create_view(&Default::default());
-        self.kernel
-            .encode(device, encoder, &inputs, &raw, profiler.as_deref_mut());
-        if let Some(blur) = &self.blur {
-            let blurred = self.blurred.create_view(&Default::default());
-            blur.encode(device, encoder, &inputs, &raw, &blurred, profiler);
+        let frame_group = frame.group(device, &self.frame_layout, &raw);
+        self.schedule.encode(
+            device,
+            encoder,
+            &frame,
+            &frame_group,
+            &self.estimator,
+            &self.source,
+            profiler.as_deref_mut(),
+        )?;
+        let mut input = raw;
+        for stage in &self.filters {
+            let output = stage.output.create_view(&Default::default());
+            stage.filter.encode(
+                device,
+                encoder,
+                &frame,
+                &input,
+                &output,
+                profiler.as_deref_mut(),
+            );
+            input = output;
         }
         Ok(())
     }
 
-    /// The final AO (blurred if the blur is enabled).
+    /// The final AO (after the last filter).
     pub fn output(&self) -> &wgpu::Texture {
-        if self.blur.is_some() {
-            &self.blurred
-        } else {
-            &self.raw
-        }
+        self.filters.last().map_or(&self.raw, |f| &f.output)
     }
 
-    /// The kernel's AO before the blur.
+    /// The schedule's AO before the filters.
     pub fn raw_output(&self) -> &wgpu::Texture {
         &self.raw
+    }
+
+    /// The stochastic depth map's layout (stochastic-depth rows only).
+    pub fn stochastic_depth_layout(&self) -> Option<SdLayout> {
+        self.source
+            .stochastic_depth()
+            .map(StochasticDepthMap::layout)
+    }
+
+    /// The stochastic depth map of the last frame (stochastic-depth rows): every sample layer of
+    /// the framebuffer as linear depth, 0 = empty (see [`StochasticDepthMap::read_layers`]). A
+    /// two-phase row's map is defined only at the pixels phase 1 requested; it reads as empty
+    /// elsewhere. Waits for the GPU.
+    pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        let Some(map) = self.source.stochastic_depth() else {
+            return Ok(None);
+        };
+        let mut layers = map.read_layers(&self.gpu)?;
+        if let Some(requests) = self.read_sd_requests()? {
+            for layer in &mut layers {
+                for (z, &r) in layer.iter_mut().zip(&requests) {
+                    if r == 0 {
+                        *z = 0.0;
+                    }
+                }
+            }
+        }
+        Ok(Some(layers))
+    }
+
+    /// Two-phase stochastic depth: the SD-request mask of the last frame, one value per
+    /// framebuffer pixel (guard band included), non-zero where phase 1 asked for the map. Waits
+    /// for the GPU.
+    pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
+        let Some(buffer) = self.source.requests() else {
+            return Ok(None);
+        };
+        Ok(Some(bytemuck::pod_collect_to_vec(&read_whole_buffer(
+            &self.gpu, buffer,
+        )?)))
+    }
+
+    /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
+    /// rays). Waits for the GPU.
+    pub fn read_stack_overflows(&self) -> Result<u32, Error> {
+        let Some(counter) = self.source.stack_overflows() else {
+            return Ok(0);
+        };
+        let bytes = read_whole_buffer(&self.gpu, counter)?;
+        Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
+    }
+
+    /// Two-phase rows: per visible pixel, the bit mask of the samples phase 1 flagged for the
+    /// source in the last frame. Waits for the GPU.
+    pub fn read_sample_masks(&self) -> Result<Option<Vec<u32>>, Error> {
+        let Some(records) = self.schedule.phase1_records() else {
+            return Ok(None);
+        };
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&read_whole_buffer(&self.gpu, records)?);
+        let pixels = (self.screen.width * self.screen.height) as usize;
+        Ok(Some(
+            words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
+        ))
     }
 }
 
 /// A GPU buffer's bytes (copied to a mappable buffer first). Waits for the GPU.
-fn read_whole_buffer(gpu: &crate::Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Error> {
+fn read_whole_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Error> {
     let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: buffer.size(),

@@ -1,21 +1,21 @@
 //! Our own frame: a loaded scene rasterised into a G-buffer, then [`AmbientOcclusion`].
 
-use super::AmbientOcclusion;
+use super::{AmbientOcclusion, FrameTextures};
 use crate::bvh::{gpu::GpuBvh, Bvh};
 use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
-use crate::hidden::HiddenDepth;
-use crate::kernels::vao::RayTracedScene;
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
 use crate::reference::cpu_vao::GBufferImage;
 use crate::scene::{Camera, Scene};
 use crate::settings::AoSettings;
+use crate::sources::SceneResources;
 use crate::view::FrameView;
 use crate::Error;
 use glam::Vec3;
 
-/// Renders AO images of one scene at one size.
-pub struct Renderer<'g> {
-    gpu: &'g Gpu,
+/// Renders AO images of one scene at one size. Owns what it uses (a [`Gpu`] is a cheap handle on
+/// a shared device), so a viewer or a game loop can keep it.
+pub struct Renderer {
+    gpu: Gpu,
     scene: GpuScene,
     /// The scene's BVH, for techniques that trace rays.
     bvh: Option<GpuBvh>,
@@ -29,10 +29,10 @@ pub struct Renderer<'g> {
     view: Option<FrameView>,
 }
 
-impl<'g> Renderer<'g> {
+impl Renderer {
     /// Upload `scene` and allocate targets for a visible `width`×`height` plus `guard_band`.
     pub fn new(
-        gpu: &'g Gpu,
+        gpu: &Gpu,
         scene: &Scene,
         settings: &AoSettings,
         width: u32,
@@ -60,14 +60,15 @@ impl<'g> Renderer<'g> {
         let limits = gpu.device.limits();
         let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &limits)?;
         let near = crate::view::near_plane(scene);
-        let peel = (settings.technique.hidden_depth() == HiddenDepth::DualDepth)
-            .then_some(settings.peel_separation);
+        let needs = settings.technique.needs();
+        let peel = needs.second_layer.then_some(settings.peel_separation);
         let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel);
-        let bvh = (settings.technique.hidden_depth() == HiddenDepth::ColumnRays)
+        let bvh = needs
+            .bvh
             .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
         gpu.check_errors()?;
         Ok(Self {
-            gpu,
+            gpu: gpu.clone(),
             bvh,
             scene: gpu_scene,
             near,
@@ -89,27 +90,17 @@ impl<'g> Renderer<'g> {
     ) -> Result<(), Error> {
         let view = FrameView::new(*camera, self.width, self.height, self.guard_band, self.near);
         if self.ao.as_ref().map(|ao| ao.screen()) != Some(view.screen()) {
-            let device = &self.gpu.device;
-            self.ao = Some(match &self.bvh {
-                Some(bvh) => AmbientOcclusion::new_ray_traced(
-                    device,
-                    &self.settings,
-                    view.screen(),
-                    RayTracedScene {
-                        scene: &self.scene,
-                        bvh,
-                    },
-                )?,
-                // Every technique without rays; those without a stochastic depth map ignore
-                // the scene and the adapter.
-                None => AmbientOcclusion::new_stochastic(
-                    &self.gpu.adapter,
-                    device,
-                    &self.settings,
-                    view.screen(),
-                    &self.scene,
-                )?,
-            });
+            let needs = self.settings.technique.needs();
+            let resources = SceneResources {
+                scene: needs.triangles.then_some(&self.scene),
+                bvh: self.bvh.as_ref(),
+            };
+            self.ao = Some(AmbientOcclusion::new(
+                &self.gpu,
+                &self.settings,
+                view.screen(),
+                resources,
+            )?);
             self.gpu.check_errors()?;
         }
         let ao = self.ao.as_ref().expect("created above");
@@ -124,12 +115,13 @@ impl<'g> Renderer<'g> {
             &view,
             profiler.as_deref_mut(),
         );
-        ao.encode_with_second_layer(
-            device,
+        ao.encode(
             &mut encoder,
-            &self.gbuffer.depth,
-            &self.gbuffer.normals,
-            self.gbuffer.second_layer(),
+            FrameTextures {
+                depth: &self.gbuffer.depth,
+                normals: &self.gbuffer.normals,
+                second_layer: self.gbuffer.second_layer(),
+            },
             profiler.as_deref_mut(),
         )?;
         if let Some(p) = profiler {
@@ -154,48 +146,57 @@ impl<'g> Renderer<'g> {
 
     /// Final AO of the visible image, row-major.
     pub fn read_ao(&self) -> Result<Vec<f32>, Error> {
-        Ok(read_texture_f32(self.gpu, self.last_ao()?.output(), 1)?)
+        Ok(read_texture_f32(&self.gpu, self.last_ao()?.output(), 1)?)
     }
 
     /// Rays of the last frame whose BVH traversal overflowed its stack (0 without rays).
     pub fn read_stack_overflows(&self) -> Result<u32, Error> {
-        self.last_ao()?.read_stack_overflows(self.gpu)
+        self.last_ao()?.read_stack_overflows()
     }
 
     /// Two-phase techniques: the per-pixel masks of samples that needed rays (last frame).
     pub fn read_sample_masks(&self) -> Result<Option<Vec<u32>>, Error> {
-        self.last_ao()?.read_sample_masks(self.gpu)
+        self.last_ao()?.read_sample_masks()
+    }
+
+    /// The AO passes of the last frame (their settings, screen and read-backs).
+    pub fn ambient_occlusion(&self) -> Option<&AmbientOcclusion> {
+        self.ao.as_ref()
     }
 
     /// `sd-vao`, `sd-svao`: every sample layer of the last frame's stochastic depth map
     /// (framebuffer-sized, linear depth, 0 = empty; layer `m · samples_per_map + s` is sample `s`
     /// of map `m`).
     pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
-        self.last_ao()?.read_stochastic_depth(self.gpu)
+        self.last_ao()?.read_stochastic_depth()
     }
 
     /// `sd-svao`: the last frame's SD-request mask (framebuffer-sized, non-zero = requested).
     pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
-        self.last_ao()?.read_sd_requests(self.gpu)
+        self.last_ao()?.read_sd_requests()
     }
 
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
-        Ok(read_texture_f32(self.gpu, self.last_ao()?.raw_output(), 1)?)
+        Ok(read_texture_f32(
+            &self.gpu,
+            self.last_ao()?.raw_output(),
+            1,
+        )?)
     }
 
     /// The second depth layer of the whole framebuffer (`vao-dual` only), row-major.
     pub fn read_second_layer(&self) -> Result<Option<Vec<f32>>, Error> {
         match self.gbuffer.second_layer() {
-            Some(t) => Ok(Some(read_texture_f32(self.gpu, t, 1)?)),
+            Some(t) => Ok(Some(read_texture_f32(&self.gpu, t, 1)?)),
             None => Ok(None),
         }
     }
 
     /// Depth and normals of the whole framebuffer.
     pub fn read_gbuffer(&self) -> Result<GBufferImage, Error> {
-        let depth = read_texture_f32(self.gpu, &self.gbuffer.depth, 1)?;
-        let bytes = crate::gpu::read_texture_bytes(self.gpu, &self.gbuffer.normals, 8)?;
+        let depth = read_texture_f32(&self.gpu, &self.gbuffer.depth, 1)?;
+        let bytes = crate::gpu::read_texture_bytes(&self.gpu, &self.gbuffer.normals, 8)?;
         let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
         let normals = halves
             .chunks_exact(4)
@@ -211,7 +212,7 @@ impl<'g> Renderer<'g> {
 
     /// Base colour (sRGB-encoded RGBA8) of the visible image.
     pub fn read_albedo(&self) -> Result<Vec<[u8; 4]>, Error> {
-        let full = read_texture_rgba8(self.gpu, &self.gbuffer.albedo)?;
+        let full = read_texture_rgba8(&self.gpu, &self.gbuffer.albedo)?;
         let fw = self.gbuffer.albedo.width() as usize;
         let g = self.guard_band as usize;
         let mut out = Vec::with_capacity((self.width * self.height) as usize);

@@ -1,7 +1,5 @@
-//! Rasterisation passes: the scene on the GPU, the G-buffer and the stochastic depth map.
+//! Rasterisation passes: the scene on the GPU and the G-buffer (with depth peeling). The stochastic
+//! depth map, also rasterised, is a hidden-depth source: [`crate::sources::stochastic_depth`].
 
 pub mod gbuffer;
 pub mod gpu_scene;
-mod sd_reset;
-mod sd_unpack;
-pub mod stochastic_depth;

@@ -2,12 +2,17 @@
 //! [`super::ground_truth`] through the compute BVH traversal, held to the CPU oracle by tests.
 
 use super::ground_truth::{ReferenceModel, ReferenceSettings};
+use crate::bindings::{
+    self, entry, FRAME_VIEW, GROUP_ESTIMATOR, GROUP_FRAME, GROUP_SCHEDULE, GROUP_SOURCE,
+    REFERENCE_OUT, REFERENCE_PARAMS,
+};
 use crate::bvh::gpu::GpuBvh;
 use crate::bvh::Bvh;
 use crate::gpu::Gpu;
-use crate::kernels::vao::{params_buffer, vao_source, ColumnRays, RayTracedScene};
 use crate::raster::gpu_scene::GpuScene;
 use crate::scene::Scene;
+use crate::shaders;
+use crate::sources::column_rays::{self, ColumnRays};
 use crate::view::FrameView;
 use crate::Error;
 use wgpu::util::DeviceExt;
@@ -31,25 +36,50 @@ pub fn render_reference_gpu(
     let device = &gpu.device;
     let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
     let gpu_bvh = GpuBvh::new(device, bvh, scene);
-    let constants = [("SAMPLE_COUNT", f64::from(settings.vao.samples))];
-    let entry = crate::shaders::with_common(&[crate::shaders::HASH], crate::shaders::REFERENCE);
-    let source = vao_source(crate::hidden::HiddenDepth::ColumnRays, None, &entry);
-    let pipeline = crate::gpu::compute_pipeline_with(device, "reference", &source, &constants);
-    let rays = ColumnRays::new(
+    // The VAO estimator through the single-pass loop over the all-layers source (reference.wgsl).
+    let estimator = crate::estimators::vao::estimator(device, &settings.vao);
+    let mut parts = vec![
+        shaders::VIEW,
+        shaders::BASIS,
+        shaders::FRAME,
+        estimator.wgsl,
+    ];
+    parts.extend(column_rays::trace_wgsl());
+    parts.extend([
+        shaders::SOURCE_ALL_LAYERS,
+        shaders::SCHEDULE_SINGLE,
+        shaders::HASH,
+        shaders::REFERENCE,
+    ]);
+    let frame_layout = bindings::layout(device, "reference view", &[entry::uniform(FRAME_VIEW)]);
+    let source_layout = bindings::layout(device, "column rays", &column_rays::layout_entries());
+    let output_layout = bindings::layout(
         device,
-        &pipeline.get_bind_group_layout(1),
-        &RayTracedScene {
-            scene: &gpu_scene,
-            bvh: &gpu_bvh,
-        },
+        "reference output",
+        &[
+            entry::uniform(REFERENCE_PARAMS),
+            entry::storage(REFERENCE_OUT, false),
+        ],
     );
+    let pipeline = bindings::compute_pipeline(
+        device,
+        "reference",
+        &shaders::compose(&parts),
+        &estimator.constants,
+        &bindings::by_group(&[
+            (GROUP_FRAME, &frame_layout),
+            (GROUP_ESTIMATOR, &estimator.layout),
+            (GROUP_SOURCE, &source_layout),
+            (GROUP_SCHEDULE, &output_layout),
+        ]),
+    );
+    let rays = ColumnRays::new(device, &source_layout, &gpu_scene, &gpu_bvh);
     rays.set_camera(&gpu.queue, view.view_matrix().inverse(), view.near);
     let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("view"),
         contents: bytemuck::bytes_of(&view.screen().uniform()),
         usage: wgpu::BufferUsages::UNIFORM,
     });
-    let params = params_buffer(device, &settings.vao);
     let pixels = u64::from(view.width) * u64::from(view.height);
     let output = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("reference"),
@@ -69,7 +99,12 @@ pub fn render_reference_gpu(
                 .collect(),
         ),
     };
-    let group1 = &rays.bvh_group;
+    let frame_group = bindings::group(
+        device,
+        "reference view",
+        &frame_layout,
+        &[(FRAME_VIEW, view_buffer.as_entire_binding())],
+    );
     for (done, &(spp_start, spp_count)) in batches.iter().enumerate() {
         let reference = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("reference params"),
@@ -85,20 +120,15 @@ pub fn render_reference_gpu(
             ]),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let layout = pipeline.get_bind_group_layout(0);
-        let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reference"),
-            layout: &layout,
-            entries: &[
-                (0, view_buffer.as_entire_binding()),
-                (1, params.as_entire_binding()),
-                (5, rays.camera.as_entire_binding()),
-                (6, rays.stack_overflows.as_entire_binding()),
-                (7, reference.as_entire_binding()),
-                (8, output.as_entire_binding()),
-            ]
-            .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
-        });
+        let output_group = bindings::group(
+            device,
+            "reference output",
+            &output_layout,
+            &[
+                (REFERENCE_PARAMS, reference.as_entire_binding()),
+                (REFERENCE_OUT, output.as_entire_binding()),
+            ],
+        );
         let mut encoder = device.create_command_encoder(&Default::default());
         if done == 0 {
             encoder.clear_buffer(&output, 0, None);
@@ -107,8 +137,10 @@ pub fn render_reference_gpu(
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &group0, &[]);
-            pass.set_bind_group(1, group1, &[]);
+            pass.set_bind_group(GROUP_FRAME, &frame_group, &[]);
+            pass.set_bind_group(GROUP_ESTIMATOR, &estimator.group, &[]);
+            pass.set_bind_group(GROUP_SOURCE, rays.group(), &[]);
+            pass.set_bind_group(GROUP_SCHEDULE, &output_group, &[]);
             pass.dispatch_workgroups(view.width.div_ceil(8), view.height.div_ceil(8), 1);
         }
         gpu.queue.submit([encoder.finish()]);

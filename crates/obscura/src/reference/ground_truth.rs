@@ -247,18 +247,11 @@ fn min_visibility_along(
 fn hammersley(i: u32, n: u32) -> Vec2 {
     Vec2::new(
         (i as f32 + 0.5) / n as f32,
-        crate::kernels::vao::van_der_corput(i),
+        crate::estimators::vao::van_der_corput(i),
     )
 }
 
-/// PCG hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020): a
-/// documented 32-bit hash for the seeded per-pixel rotation, the same on the CPU and in
-/// `shaders/reference.wgsl` (no 64-bit integers in WGSL).
-pub fn pcg_hash(v: u32) -> u32 {
-    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
-    (word >> 22) ^ word
-}
+pub use crate::hash::pcg_hash;
 
 /// Per-pixel Cranley–Patterson rotation in [0,1)² from the seed and the pixel.
 pub fn pixel_rotation_2d(seed: u64, x: u32, y: u32) -> Vec2 {
@@ -289,7 +282,7 @@ pub fn hemisphere_ao_at(scene: &Scene, bvh: &Bvh, p: Vec3, n: Vec3, rays: &Hemis
         rotation,
     } = *rays;
     let n = n.normalize();
-    let (tangent, bitangent) = crate::kernels::vao::orthonormal_basis(n);
+    let (tangent, bitangent) = crate::estimators::vao::orthonormal_basis(n);
     // Offset along the normal against self-intersection, relative to R (and to the magnitude of
     // the position, where f32 spacing grows).
     let origin = p + n * (1e-4 * radius).max(1e-6 * p.abs().max_element());

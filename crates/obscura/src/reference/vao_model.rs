@@ -2,7 +2,9 @@
 //! ([`super::cpu_vao`], occluders from a depth buffer) and the ray-traced `vao` reference
 //! ([`super::ground_truth`], occluders from every ray hit). It mirrors `shaders/vao.wgsl`.
 
-use crate::kernels::vao::{kernel_sample, orthonormal_basis, pixel_rotation, MIN_COLUMN_FRACTION};
+use crate::estimators::vao::{
+    kernel_sample, orthonormal_basis, pixel_rotation, MIN_COLUMN_FRACTION,
+};
 use crate::settings::{Normalization, VaoSettings};
 use crate::view::ScreenGeometry;
 use glam::{UVec2, Vec2, Vec3};

@@ -1,12 +1,14 @@
-// Hidden-depth source "column rays" (RT-VAO, seed 000 §3.6 and Fig. 6; seed-code-notes §1.6): when
+// Column rays (RT-VAO, seed 000 §3.6 and Fig. 6; seed-code-notes §1.6), the tracing half: when
 // the depth buffer says a sample is occluded (its first surface lies beyond the constant area,
 // i.e. in the falloff or above it; or anywhere, where the tangent-plane height correction makes
 // deeper surfaces rise — see depth_lookup), or the sample falls outside the framebuffer, the camera ray
 // through the sample's pixel is traced through the scene's BVH over the heights that can still
 // lower the visibility, past the depth-buffer hit, and the sample takes the minimum of the
 // per-hit visibilities. The result equals the `vao` ground-truth model (src/reference).
+// Reads the VAO estimator's columns: a VAO-only source (src/technique.rs says so).
 //
-// Needs common/material.wgsl and common/bvh.wgsl in front, and the camera below.
+// Needs common/material.wgsl and common/bvh.wgsl in front, and the camera below. The source
+// functions are in column_rays.wgsl (depth buffer first) or all_layers.wgsl (the ground truth).
 
 struct RayCamera {
     // View space -> world space.
@@ -18,12 +20,16 @@ struct RayCamera {
     _pad2: f32,
 }
 
-@group(0) @binding(5) var<uniform> ray_camera: RayCamera;
+@group(GROUP_SOURCE) @binding(SOURCE_RAY_CAMERA) var<uniform> ray_camera: RayCamera;
 // Rays whose traversal overflowed its stack: their result may be incomplete, so they are counted
 // and reported (AmbientOcclusion::read_stack_overflows), never silently wrong.
-@group(0) @binding(6) var<storage, read_write> stack_overflows: atomic<u32>;
+@group(GROUP_SOURCE) @binding(SOURCE_STACK_OVERFLOWS) var<storage, read_write> stack_overflows: atomic<u32>;
 
 // State of the ray being traced, read by bvh_on_hit.
+// The BVH (common/bvh.wgsl) in the source group, from binding SOURCE_BVH.
+const BVH_GROUP: u32 = GROUP_SOURCE;
+const BVH_BINDING: u32 = SOURCE_BVH;
+
 var<private> trace_column: VaoColumn;
 var<private> trace_height_at_0: f32;
 var<private> trace_height_slope: f32;
@@ -68,54 +74,3 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     return trace_visibility;
 }
 
-fn depth_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
-    var l: DepthLookup;
-    l.free = c.start - c.end;
-    l.trace = false;
-    let cell = floor(c.px);
-    l.px = cell + 0.5;
-    l.t_after = 0.0;
-    if (all(cell == vec2<f32>(f.pixel))) {
-        return l; // snaps to the shading pixel itself: fully visible
-    }
-    let inside = all(cell >= vec2<f32>(0.0)) && all(cell < vec2<f32>(view.full_size));
-    if (!inside) {
-        // Off-screen: no depth-buffer sample; trace the whole interval.
-        l.trace = true;
-        return l;
-    }
-    let sample_pixel = vec2<u32>(cell);
-    let z = textureLoad(depth_tex, sample_pixel, 0).r;
-    if (is_background(z)) {
-        return l;
-    }
-    let occluder = pixel_to_view(view, l.px, z);
-    let height = column_height(f, c, occluder);
-    l.free = column_visibility(height, c.start, c.end);
-    // Surfaces beyond the first one lie lower along the column when the height falls with the ray
-    // parameter (the usual case): then they can only lower the visibility when the first surface
-    // is occluded — beyond the constant area (in it the visibility is already 0). Where the
-    // tangent-plane correction makes the height rise with depth, any first surface may hide a
-    // lower visibility, so the ray is traced.
-    let rising = column_height(f, c, pixel_to_view(view, l.px, 1.0)) > column_height(f, c, vec3<f32>(0.0));
-    l.trace = l.free > 0.0 && (rising || height > (1.0 + params.thickness) * params.radius);
-    // Past the depth-buffer hit (relative slack, as the authors' 0.01 R offset).
-    l.t_after = z * (1.0 + 1e-5);
-    return l;
-}
-
-// The visibility of a sample `depth_lookup` flagged: its camera ray traced.
-fn resolve_hidden(f: VaoFrame, c: VaoColumn, l: DepthLookup) -> f32 {
-    return trace_column_visibility(f, c, l.px, l.t_after, l.free);
-}
-
-fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32 {
-    let l = depth_lookup(f, c);
-    if (!l.trace) {
-        return l.free;
-    }
-    return resolve_hidden(f, c, l);
-}
-
-// Two-phase kernel, phase 1: rays need nothing prepared.
-fn request_hidden(l: DepthLookup) {}

@@ -1,12 +1,12 @@
-// Stenciled VAO, phase 2 (seed 000 §3.8, §3.9): only the samples phase 1 flagged, resolved by the
-// hidden-depth source (`resolve_hidden`: rays or the stochastic depth map), added to phase 1's
-// partial sum. Two ways to find the work (both kept for
+// Two-phase schedule, phase 2 (seed 000 §3.8, §3.9): only the samples phase 1 flagged, resolved by
+// the hidden-depth source (`source_resolve`: rays or the stochastic depth map), added to phase 1's
+// partial state. Two ways to find the work (both kept for
 // comparison): COMPACT reads phase 1's work list (dispatched indirectly, one thread per flagged
 // pixel); otherwise one thread per visible pixel returns at once when its mask is empty.
 
-@group(2) @binding(0) var<storage, read> svao_pixels: array<SvaoPixel>;
-@group(2) @binding(1) var<storage, read> work_count: u32;
-@group(2) @binding(2) var<storage, read> work_list: array<u32>;
+@group(GROUP_SCHEDULE) @binding(SCHEDULE_PIXELS) var<storage, read> two_phase_pixels: array<TwoPhasePixel>;
+@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_COUNT) var<storage, read> work_count: u32;
+@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_LIST) var<storage, read> work_list: array<u32>;
 
 // Dispatches wider than the 65535-workgroup limit wrap into y rows of 65535 workgroups.
 const ROW_THREADS: u32 = 65535u * 64u;
@@ -22,20 +22,20 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     } else if (index >= view.visible_size.x * view.visible_size.y) {
         return;
     }
-    let stored = svao_pixels[index];
+    let stored = two_phase_pixels[index];
     if (stored.mask == 0u) {
         return;
     }
     let id = vec2<u32>(index % view.visible_size.x, index / view.visible_size.x);
-    let p = vao_pixel(id);
-    var sum = stored.sum;
+    let p = estimator_pixel(id);
+    var acc = stored.accum;
     var mask = stored.mask;
     while (mask != 0u) {
         let i = firstTrailingBit(mask);
         mask &= mask - 1u;
-        let s = vao_sample(p, i);
-        let l = depth_lookup(p.frame, s.column);
-        sum += resolve_hidden(p.frame, s.column, l) * (0.5 / s.h);
+        let s = estimator_sample(p, i);
+        let l = source_lookup(p, s);
+        acc = estimator_accum_value(acc, s, source_resolve(p, s, l));
     }
-    textureStore(ao_out, id, vec4<f32>(vao_finish(sum, stored.clipped_sum)));
+    textureStore(ao_out, id, vec4<f32>(estimator_finish(acc)));
 }

@@ -1,4 +1,4 @@
-//! Resetting the stochastic depth map each frame (`shaders/sd_reset.wgsl`): depth back to empty
+//! Resetting the stochastic depth map each frame (`shaders/sources/stochastic_depth/reset.wgsl`): depth back to empty
 //! everywhere (`sd-vao`) or only at the pixels phase 1 requested (`sd-svao`, seed 000 §3.9), where
 //! a stenciled map also gets the frame's stencil value. A draw rather than a load-op clear:
 //! measured on the H100 (BENCHMARKS.md), clearing a 4× depth-stencil target of 1080p + 64 px cost
@@ -37,7 +37,7 @@ impl SdReset {
     ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("sd reset"),
-            source: wgpu::ShaderSource::Wgsl(shaders::SD_RESET.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders::STOCHASTIC_DEPTH_RESET.into()),
         });
         let stencil = if scope == (ResetScope::Requested { stencil: true }) {
             let replace = wgpu::StencilFaceState {
@@ -126,7 +126,7 @@ impl SdReset {
             (ResetScope::All, _) => None,
         };
         let timestamp_writes = profiler.map(|p| p.render_pass("sd_reset"));
-        let mut pass = super::stochastic_depth::begin(encoder, target, timestamp_writes);
+        let mut pass = super::begin(encoder, target, timestamp_writes);
         pass.set_pipeline(&self.pipeline);
         if let Some(bind_group) = &bind_group {
             pass.set_bind_group(0, bind_group, &[]);

@@ -1,10 +1,11 @@
 // Debug read-back of the stochastic depth map (multisampled textures cannot be copied to a
 // buffer): one sample layer (map `layer.x`, sample `layer.y`) of the whole framebuffer as linear
-// depth, 0 = empty. Preceded by the generated bindings of src/raster/stochastic_depth.rs.
+// depth, 0 = empty. Preceded by the generated bindings of src/sources/stochastic_depth/mod.rs; the
+// map binds as the source group, this pass's own layer and output as the schedule group.
 
-@group(0) @binding(5) var<uniform> sd_near: vec4<f32>;
-@group(1) @binding(0) var<uniform> layer: vec4<u32>;
-@group(1) @binding(1) var<storage, read_write> unpacked: array<f32>;
+@group(GROUP_SOURCE) @binding(SOURCE_SD_NEAR) var<uniform> sd_near: vec4<f32>;
+@group(GROUP_SCHEDULE) @binding(UNPACK_LAYER) var<uniform> layer: vec4<u32>;
+@group(GROUP_SCHEDULE) @binding(UNPACK_OUT) var<storage, read_write> unpacked: array<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -13,10 +13,11 @@
 // estimator is 1 only on average over the rotation pattern (so it darkens tilted planes in a
 // 4x4 pattern after the saturate).
 //
-// Where a sample's occluder comes from is the hidden-depth source's business: the kernel's source is
-// prefixed with one file of shaders/hidden/ that defines
-//     fn sample_free_length(f: VaoFrame, c: VaoColumn) -> f32
-// (depth_buffer.wgsl: the first depth layer only; column_rays.wgsl: RT-VAO).
+// This file is the VAO estimator: it implements the estimator contract (the `estimator_*` functions
+// and types at the end, docs/ARCHITECTURE.md) that the schedules (shaders/schedules/) loop over and
+// the sources (shaders/sources/) consult. Where a sample's occluder comes from is the source's
+// business. The value of one sample is its free column length; several depths for one sample
+// combine by the minimum (the lowest visibility wins).
 //
 // Pixel snapping: the depth sample is read at the centre of the pixel the sample falls in, which
 // lies beside the sample's column. Its height is corrected for that lateral offset along the
@@ -40,11 +41,7 @@ struct VaoParams {
     rotations: array<vec4<f32>, 16>,
 }
 
-@group(0) @binding(0) var<uniform> view: View;
-@group(0) @binding(1) var<uniform> params: VaoParams;
-@group(0) @binding(2) var depth_tex: texture_2d<f32>;
-@group(0) @binding(3) var normal_tex: texture_2d<f32>;
-@group(0) @binding(4) var ao_out: texture_storage_2d<r32float, write>;
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: VaoParams;
 
 // Free length of the column [column_end, column_start] for an occluder at object-space height z
 // (positive towards the camera), seed 000 Fig. 4 / Eq. 8: inside the column the part above z is
@@ -78,48 +75,6 @@ struct VaoColumn {
     start: f32,
     end: f32,
     px: vec2<f32>,
-}
-
-// The pixel a sample reads in the depth-buffer sources: clamped into the framebuffer (guard band
-// included), snapped to its centre.
-fn sample_pixel_of(c: VaoColumn) -> vec2<u32> {
-    return vec2<u32>(clamp(c.px, vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
-}
-
-// What the first depth layer says about a sample, for hidden-depth sources that resolve samples
-// in a second step (the two-phase kernels, svao_phase*.wgsl): its visibility from the first
-// surface (`free`), and whether the source must still resolve it (`trace`) from framebuffer
-// pixel coordinates `px` (beyond ray parameter `t_after`, for rays).
-struct DepthLookup {
-    free: f32,
-    trace: bool,
-    px: vec2<f32>,
-    t_after: f32,
-}
-
-// The first depth layer's answer for a sample, shared by the depth-buffer sources (depth_buffer,
-// dual_depth, stochastic_depth): read at `sample_pixel_of` (`px`, its centre); `trace` when the
-// surface there is occluded, i.e. when a deeper layer could still lower the visibility.
-fn depth_buffer_lookup(f: VaoFrame, c: VaoColumn) -> DepthLookup {
-    var l: DepthLookup;
-    l.free = c.start - c.end;
-    l.trace = false;
-    l.t_after = 0.0;
-    let sample_pixel = sample_pixel_of(c);
-    l.px = vec2<f32>(sample_pixel) + 0.5;
-    if (all(sample_pixel == f.pixel)) {
-        return l; // snaps to the shading pixel itself: fully visible
-    }
-    let z = textureLoad(depth_tex, sample_pixel, 0).r;
-    if (is_background(z)) {
-        return l;
-    }
-    let height = column_height(f, c, pixel_to_view(view, l.px, z));
-    l.free = column_visibility(height, c.start, c.end);
-    // Only an occluded first surface (beyond the constant area) can hide a lower visibility
-    // (seed 000 §3.7: "if and only if a sample is considered occluded"); at 0 nothing is lower.
-    l.trace = l.free > 0.0 && height > (1.0 + params.thickness) * params.radius;
-    return l;
 }
 
 // Height of view-space point `p` in the column's frame: along the view axis, corrected along the
@@ -219,4 +174,95 @@ fn vao_finish(sum: f32, clipped_sum: f32) -> f32 {
         ao = select(1.0, sum / clipped_sum, clipped_sum > 0.0);
     }
     return pow(saturate(ao), params.exponent);
+}
+
+// ---- The estimator contract (docs/ARCHITECTURE.md) ----
+
+alias EstimatorPixel = VaoPixel;
+alias EstimatorSample = VaoSample;
+
+// The partial sums a two-phase schedule carries between its phases (three 32-bit words, stored
+// next to the pixel's sample mask).
+struct EstimatorAccum {
+    // Free column fractions of the samples resolved so far.
+    sum: f32,
+    // Clipped column fractions of every active sample (the `clipped` normalisation).
+    clipped_sum: f32,
+    _pad: f32,
+}
+
+// How an occluder at one depth affects a sample: its value and whether a deeper surface could
+// still lower it ("needs hidden depth?", seed 000 §3.7: "if and only if a sample is considered
+// occluded").
+struct Occluder {
+    value: f32,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> VaoPixel {
+    return vao_pixel(id);
+}
+
+fn estimator_pixel_valid(p: VaoPixel) -> bool {
+    return p.valid;
+}
+
+fn estimator_shading_pixel(p: VaoPixel) -> vec2<u32> {
+    return p.frame.pixel;
+}
+
+fn estimator_sample(p: VaoPixel, i: u32) -> VaoSample {
+    return vao_sample(p, i);
+}
+
+// Samples whose clipped column is too short count nowhere (seed 000 §3.2: a_i = 0).
+fn estimator_sample_active(s: VaoSample) -> bool {
+    return s.h != 0.0;
+}
+
+// Where the sample projects: unclamped framebuffer pixel coordinates.
+fn estimator_sample_px(p: VaoPixel, s: VaoSample) -> vec2<f32> {
+    return s.column.px;
+}
+
+// The value of an unoccluded sample: its whole clipped column is free.
+fn estimator_unoccluded(p: VaoPixel, s: VaoSample) -> f32 {
+    return s.column.start - s.column.end;
+}
+
+// A surface at view-space `pos` as the sample's occluder: only one beyond the constant area can
+// hide a lower visibility behind it (in the constant area the visibility is already 0).
+fn estimator_occluder(p: VaoPixel, s: VaoSample, pos: vec3<f32>) -> Occluder {
+    let height = column_height(p.frame, s.column, pos);
+    var o: Occluder;
+    o.value = column_visibility(height, s.column.start, s.column.end);
+    o.hidden = o.value > 0.0 && height > (1.0 + params.thickness) * params.radius;
+    return o;
+}
+
+// Several depths for one sample: the lowest visibility.
+fn estimator_combine(a: f32, b: f32) -> f32 {
+    return min(a, b);
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    return EstimatorAccum(0.0, 0.0, 0.0);
+}
+
+// Counts an active sample into the normalisation (whatever its value).
+fn estimator_accum_sample(acc: EstimatorAccum, s: VaoSample) -> EstimatorAccum {
+    var a = acc;
+    a.clipped_sum += (s.column.start - s.column.end) * (0.5 / s.h);
+    return a;
+}
+
+// Adds a resolved sample's value.
+fn estimator_accum_value(acc: EstimatorAccum, s: VaoSample, value: f32) -> EstimatorAccum {
+    var a = acc;
+    a.sum += value * (0.5 / s.h);
+    return a;
+}
+
+fn estimator_finish(acc: EstimatorAccum) -> f32 {
+    return vao_finish(acc.sum, acc.clipped_sum);
 }

@@ -1,20 +1,26 @@
-//! The stratified stochastic depth map (seed 001 §3.1, Alg. 1; `shaders/stochastic_depth.wgsl`):
+//! Hidden-depth source "stochastic depth". The stratified stochastic depth map (seed 001 §3.1,
+//! Alg. 1; `shaders/sources/stochastic_depth/map.wgsl`):
 //! a multisampled depth target in which every hidden fragment is kept in ⌊αS + ξ⌋ of the S
 //! samples of its pixel, nearest first. Optionally limited to the pixels of an SD-request mask
 //! (seed 000 §3.9): a full-screen pass copies the mask into the stencil
-//! (`shaders/sd_reset.wgsl`) and the scene is drawn with the stencil test, or
+//! (`reset.wgsl`, [`reset`]) and the scene is drawn with the stencil test, or
 //! ([`SdMask::Discard`]) the map's fragment shader reads the mask and discards.
 //!
 //! S samples per pixel need a target with S samples. When the adapter cannot rasterise S samples
 //! into one target, S is made of several 4× or 8× maps with independent seeds ([`SdLayout`]).
+//! The AO passes read the map through `read.wgsl` (the source contract); [`unpack`] reads it back.
 
-use super::gbuffer::{draw_scene, scene_resources, CameraUniform, ScenePipeline};
-use super::gpu_scene::GpuScene;
-use super::sd_reset::{ResetScope, SdReset};
+mod reset;
+mod unpack;
+
+use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
+use crate::raster::gbuffer::{draw_scene, scene_resources, CameraUniform, ScenePipeline};
+use crate::raster::gpu_scene::GpuScene;
 use crate::settings::{SdMask, StochasticDepthSettings};
 use crate::view::FrameView;
 use crate::{shaders, Error};
+use reset::{ResetScope, SdReset};
 use wgpu::util::DeviceExt;
 
 /// Samples per map we rasterise in one target; larger counts are stacked (the mask table of 2^S
@@ -113,8 +119,8 @@ pub fn mask_table(samples: u32) -> Vec<u32> {
     table
 }
 
-/// The WGSL that binds a layout's maps for reading (group 0, binding 6 on) and `sd_load`, for
-/// `shaders/hidden/stochastic_depth.wgsl` and `shaders/sd_unpack.wgsl`.
+/// The WGSL that binds a layout's maps for reading (the source group from `SOURCE_SD_MAPS` on) and
+/// `sd_load`, for `read.wgsl` and `unpack.wgsl`.
 pub(crate) fn bindings_wgsl(layout: SdLayout) -> String {
     let (ty, index) = if layout.samples_per_map == 1 {
         ("texture_depth_2d", "0u")
@@ -126,7 +132,9 @@ pub(crate) fn bindings_wgsl(layout: SdLayout) -> String {
         layout.maps, layout.samples_per_map
     );
     for m in 0..layout.maps {
-        src += &format!("@group(0) @binding({}) var sd_map_{m}: {ty};\n", 6 + m);
+        src += &format!(
+            "@group(GROUP_SOURCE) @binding(SOURCE_SD_MAPS + {m}u) var sd_map_{m}: {ty};\n"
+        );
     }
     src += "fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32 {\n    switch map {\n";
     for m in 1..layout.maps {
@@ -139,7 +147,49 @@ pub(crate) fn bindings_wgsl(layout: SdLayout) -> String {
     src
 }
 
-/// `SdRaster` of stochastic_depth.wgsl.
+/// Source-group layout entries of a reader of maps laid out as `layout`.
+pub(crate) fn read_layout_entries(layout: SdLayout) -> Vec<wgpu::BindGroupLayoutEntry> {
+    std::iter::once(entry::uniform(SOURCE_SD_NEAR))
+        .chain(
+            (0..layout.maps)
+                .map(|m| entry::depth_texture(SOURCE_SD_MAPS + m, layout.samples_per_map > 1)),
+        )
+        .collect()
+}
+
+/// What the adapter allows for the map, for `obscura info` and messages.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SdCapabilities {
+    /// [`SD_FORMAT`], or "unavailable" on this device.
+    pub format: String,
+    /// Samples per pixel one map target can have.
+    pub map_sample_counts: Vec<u32>,
+    /// `stochastic_depth.samples` values accepted (larger ones as stacked maps).
+    pub sample_counts: Vec<u32>,
+    /// The same with their layouts: e.g. "1, 4, 8 (2 maps of 4), 16 (4 maps of 4)".
+    pub layouts: String,
+}
+
+impl SdCapabilities {
+    pub fn of(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Self {
+        let per_map = map_sample_counts(adapter, device);
+        Self {
+            format: if sd_format_available(device) {
+                format!("{SD_FORMAT:?}")
+            } else {
+                "unavailable".to_string()
+            },
+            sample_counts: crate::settings::SD_SAMPLE_COUNTS
+                .into_iter()
+                .filter(|&s| SdLayout::plan(s, &per_map).is_some())
+                .collect(),
+            layouts: SdLayout::describe_supported(&per_map),
+            map_sample_counts: per_map,
+        }
+    }
+}
+
+/// `SdRaster` of map.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct SdRaster {
@@ -192,8 +242,9 @@ impl StochasticDepthMap {
         let format = SD_FORMAT;
         if !sd_format_available(device) {
             return Err(Error::Input(format!(
-                "adapter '{}' has no {format:?} depth-stencil format (wgpu feature DEPTH32FLOAT_STENCIL8), which the stochastic depth map needs: use another --adapter or a technique without a stochastic depth map (vao, vao-dual, rt-vao, rt-svao)",
-                adapter.get_info().name
+                "adapter '{}' has no {format:?} depth-stencil format (wgpu feature DEPTH32FLOAT_STENCIL8), which the stochastic depth map needs: use another --adapter or a technique without a stochastic depth map ({})",
+                adapter.get_info().name,
+                crate::technique::names_where(|r| !r.needs().stochastic_depth_map)
             )));
         }
         let supported = map_sample_counts(adapter, device);
@@ -243,7 +294,7 @@ impl StochasticDepthMap {
             .collect();
         let source = shaders::with_common(
             &[shaders::MATERIAL, shaders::HASH, shaders::GBUFFER],
-            shaders::STOCHASTIC_DEPTH,
+            shaders::STOCHASTIC_DEPTH_MAP,
         );
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("stochastic depth"),
@@ -355,7 +406,7 @@ impl StochasticDepthMap {
                 alpha: self.settings.alpha,
                 separation: self.separation,
                 // Stacked maps: independent seeds.
-                seed: crate::reference::ground_truth::pcg_hash(
+                seed: crate::hash::pcg_hash(
                     self.settings.seed ^ (m as u32).wrapping_mul(0x9e37_79b9),
                 ),
                 samples: self.layout.samples_per_map,
@@ -412,14 +463,15 @@ impl StochasticDepthMap {
         }
     }
 
-    /// What a reader binds from binding 5 on: the uniform whose first float is `near`, then one
-    /// depth-only view per map (bindings 6…), matching [`bindings_wgsl`].
-    pub(crate) fn read_resources(&self) -> Vec<wgpu::BindingResource<'_>> {
-        std::iter::once(self.params[0].as_entire_binding())
+    /// What a reader binds in the source group: the uniform whose first float is `near`, then one
+    /// depth-only view per map, matching [`bindings_wgsl`] and [`read_layout_entries`].
+    pub(crate) fn read_resources(&self) -> Vec<(u32, wgpu::BindingResource<'_>)> {
+        std::iter::once((SOURCE_SD_NEAR, self.params[0].as_entire_binding()))
             .chain(
                 self.read_views
                     .iter()
-                    .map(wgpu::BindingResource::TextureView),
+                    .zip(SOURCE_SD_MAPS..)
+                    .map(|(v, b)| (b, wgpu::BindingResource::TextureView(v))),
             )
             .collect()
     }

@@ -1,8 +1,9 @@
-//! Reading the stochastic depth map back for debug images and tests (`shaders/sd_unpack.wgsl`):
-//! multisampled textures cannot be copied to a buffer, so a compute pass unpacks one sample layer
-//! at a time.
+//! Reading the stochastic depth map back for debug images and tests
+//! (`shaders/sources/stochastic_depth/unpack.wgsl`): multisampled textures cannot be copied to a
+//! buffer, so a compute pass unpacks one sample layer at a time.
 
-use super::stochastic_depth::{bindings_wgsl, StochasticDepthMap};
+use super::{bindings_wgsl, read_layout_entries, StochasticDepthMap};
+use crate::bindings::{self, entry, GROUP_SCHEDULE, GROUP_SOURCE, UNPACK_LAYER, UNPACK_OUT};
 use crate::{shaders, Error};
 use wgpu::util::DeviceExt;
 
@@ -11,20 +12,26 @@ impl StochasticDepthMap {
     /// and row-major: `layers[m * samples_per_map + s]` is sample `s` of map `m`. Waits for the GPU.
     pub fn read_layers(&self, gpu: &crate::Gpu) -> Result<Vec<Vec<f32>>, Error> {
         let device = &gpu.device;
-        let source = format!("{}\n{}", bindings_wgsl(self.layout()), shaders::SD_UNPACK);
-        let pipeline = crate::gpu::compute_pipeline_with(device, "sd unpack", &source, &[]);
-        // The readers' bindings start at 5 (after the VAO frame's 0–4).
-        let entries: Vec<_> = self
-            .read_resources()
-            .into_iter()
-            .zip(5..)
-            .map(|(resource, binding)| wgpu::BindGroupEntry { binding, resource })
-            .collect();
-        let group0 = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sd unpack"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        });
+        let wgsl = bindings_wgsl(self.layout());
+        let source = shaders::compose(&[&wgsl, shaders::STOCHASTIC_DEPTH_UNPACK]);
+        // The map binds as the source group (as the AO passes read it), the layer as group 3.
+        let map_layout = bindings::layout(device, "sd map", &read_layout_entries(self.layout()));
+        let layer_layout = bindings::layout(
+            device,
+            "sd unpack layer",
+            &[
+                entry::uniform(UNPACK_LAYER),
+                entry::storage(UNPACK_OUT, false),
+            ],
+        );
+        let pipeline = bindings::compute_pipeline(
+            device,
+            "sd unpack",
+            &source,
+            &[],
+            &bindings::by_group(&[(GROUP_SOURCE, &map_layout), (GROUP_SCHEDULE, &layer_layout)]),
+        );
+        let map_group = bindings::group(device, "sd map", &map_layout, &self.read_resources());
         let (w, h) = self.size();
         let size = u64::from(w) * u64::from(h) * 4;
         let mut layers = Vec::new();
@@ -47,18 +54,21 @@ impl StochasticDepthMap {
                     usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
                     mapped_at_creation: false,
                 });
-                let group1 = crate::gpu::bind_group(
+                let layer_group = bindings::group(
                     device,
                     "sd unpack layer",
-                    &pipeline.get_bind_group_layout(1),
-                    &[layer.as_entire_binding(), out.as_entire_binding()],
+                    &layer_layout,
+                    &[
+                        (UNPACK_LAYER, layer.as_entire_binding()),
+                        (UNPACK_OUT, out.as_entire_binding()),
+                    ],
                 );
                 let mut encoder = device.create_command_encoder(&Default::default());
                 {
                     let mut pass = encoder.begin_compute_pass(&Default::default());
                     pass.set_pipeline(&pipeline);
-                    pass.set_bind_group(0, &group0, &[]);
-                    pass.set_bind_group(1, &group1, &[]);
+                    pass.set_bind_group(GROUP_SOURCE, &map_group, &[]);
+                    pass.set_bind_group(GROUP_SCHEDULE, &layer_group, &[]);
                     pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
                 }
                 encoder.copy_buffer_to_buffer(&out, 0, &staging, 0, size);

@@ -1,0 +1,46 @@
+// The frame (bind group 0; binding names from src/bindings.rs): the screen geometry, the first
+// depth layer and normals every AO pass reads, and the AO image it writes. Also the first layer's
+// answer for one sample, which every depth-buffer source starts from.
+//
+// Needs common/view.wgsl and an estimator (shaders/estimators/) in front.
+
+@group(GROUP_FRAME) @binding(FRAME_VIEW) var<uniform> view: View;
+@group(GROUP_FRAME) @binding(FRAME_DEPTH) var depth_tex: texture_2d<f32>;
+@group(GROUP_FRAME) @binding(FRAME_NORMALS) var normal_tex: texture_2d<f32>;
+@group(GROUP_FRAME) @binding(FRAME_AO_OUT) var ao_out: texture_storage_2d<r32float, write>;
+
+// What a source knows about one sample after its first look: the estimator's value for it
+// (`value`, e.g. VAO's free column length), whether the source must still resolve it (`trace`:
+// a deeper surface could change the value), the framebuffer pixel coordinates it looked at (`px`,
+// a pixel centre) and, for rays, the ray parameter past which to look (`t_after`).
+struct DepthLookup {
+    value: f32,
+    trace: bool,
+    px: vec2<f32>,
+    t_after: f32,
+}
+
+// The first depth layer's answer for a sample, shared by the depth-buffer sources (first layer,
+// dual depth, stochastic depth): read at the pixel the sample falls in, clamped into the
+// framebuffer (guard band included) and snapped to its centre. A sample snapping to the shading
+// pixel itself, or to background, is unoccluded. `trace` is the estimator's "needs hidden
+// depth?" verdict on the surface found there.
+fn first_layer_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
+    var l: DepthLookup;
+    l.value = estimator_unoccluded(p, s);
+    l.trace = false;
+    l.t_after = 0.0;
+    let sample_pixel = vec2<u32>(clamp(estimator_sample_px(p, s), vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
+    l.px = vec2<f32>(sample_pixel) + 0.5;
+    if (all(sample_pixel == estimator_shading_pixel(p))) {
+        return l;
+    }
+    let z = textureLoad(depth_tex, sample_pixel, 0).r;
+    if (is_background(z)) {
+        return l;
+    }
+    let o = estimator_occluder(p, s, pixel_to_view(view, l.px, z));
+    l.value = o.value;
+    l.trace = o.hidden;
+    return l;
+}

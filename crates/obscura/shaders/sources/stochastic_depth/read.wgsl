@@ -1,0 +1,43 @@
+// Hidden-depth source "stochastic depth" (SD-VAO, seed 000 §3.7; seed-code-notes §1.2/1.3): as
+// dual_depth.wgsl, but a sample whose first surface may hide more reads every sample of the
+// stochastic depth map at the sample's pixel (seed 001 §3.1; made by stochastic_depth/map.wgsl) and
+// combines all of their values (VAO: the lowest visibility).
+//
+// Preceded by bindings generated in src/sources/stochastic_depth/mod.rs (WGSL cannot index an array
+// of multisampled textures): the SD_MAPS maps of SD_SAMPLES samples each, read by
+// `fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32` (reversed-Z: near / linear depth,
+// 0 = empty).
+
+// The projection's near plane (the first member of map.wgsl's SdRaster).
+@group(GROUP_SOURCE) @binding(SOURCE_SD_NEAR) var<uniform> sd_near: vec4<f32>;
+
+// `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
+// exactly these samples.
+fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
+    return first_layer_lookup(p, s);
+}
+
+// The value combined over the first surface (`l.value`) and every stored stochastic sample.
+fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> f32 {
+    let pixel = vec2<u32>(l.px);
+    var value = l.value;
+    for (var m = 0u; m < SD_MAPS; m++) {
+        for (var k = 0u; k < SD_SAMPLES; k++) {
+            let v = sd_load(m, pixel, k);
+            if (v > 0.0) {
+                let pos = pixel_to_view(view, l.px, sd_near.x / v);
+                value = estimator_combine(value, estimator_occluder(p, s, pos).value);
+            }
+        }
+    }
+    return value;
+}
+
+// Two-phase phase 1: mark the sample's pixel (not the shading pixel) so the map is rasterised there
+// (seed 000 §3.9). One u32 per framebuffer pixel; every writer stores 1.
+@group(GROUP_SOURCE) @binding(SOURCE_SD_REQUEST) var<storage, read_write> sd_request: array<u32>;
+
+fn source_request(l: DepthLookup) {
+    let pixel = vec2<u32>(l.px);
+    sd_request[pixel.y * view.full_size.x + pixel.x] = 1u;
+}

@@ -1,0 +1,266 @@
+//! The bind-group plan of the AO compute passes, shared by Rust and WGSL (docs/ARCHITECTURE.md):
+//! group 0 the frame, 1 the estimator, 2 the hidden-depth source, 3 the schedule (WebGPU's default
+//! limit is four groups). Every binding has a name here; [`wgsl_constants`] writes them as WGSL
+//! `const`s in front of every composed shader, which uses them in its attributes
+//! (`@group(GROUP_SOURCE) @binding(SOURCE_SD_NEAR)`), and every pipeline gets explicit layouts built
+//! from the same constants. A shader and its layout that disagree fail at pipeline creation, and
+//! the shader-validation test checks every technique row without a GPU.
+
+/// Bind group indices, one per axis.
+pub const GROUP_FRAME: u32 = 0;
+pub const GROUP_ESTIMATOR: u32 = 1;
+pub const GROUP_SOURCE: u32 = 2;
+pub const GROUP_SCHEDULE: u32 = 3;
+pub const GROUP_COUNT: usize = 4;
+
+/// Group 0, the frame (`shaders/frame/frame.wgsl`).
+pub const FRAME_VIEW: u32 = 0;
+pub const FRAME_DEPTH: u32 = 1;
+pub const FRAME_NORMALS: u32 = 2;
+pub const FRAME_AO_OUT: u32 = 3;
+
+/// Group 1, the estimator's parameters.
+pub const ESTIMATOR_PARAMS: u32 = 0;
+
+/// Group 2, the source. Each source uses its own bindings; a layout holds only one source's.
+pub const SOURCE_SECOND_DEPTH: u32 = 0;
+pub const SOURCE_RAY_CAMERA: u32 = 0;
+pub const SOURCE_STACK_OVERFLOWS: u32 = 1;
+/// The six bindings of `shaders/common/bvh.wgsl` start here.
+pub const SOURCE_BVH: u32 = 2;
+pub const SOURCE_SD_NEAR: u32 = 0;
+pub const SOURCE_SD_REQUEST: u32 = 1;
+/// One multisampled depth texture per stacked stochastic depth map from here on.
+pub const SOURCE_SD_MAPS: u32 = 2;
+
+/// Group 3, the two-phase schedule.
+pub const SCHEDULE_PIXELS: u32 = 0;
+pub const SCHEDULE_WORK_COUNT: u32 = 1;
+pub const SCHEDULE_WORK_LIST: u32 = 2;
+/// Group 0 of the two-phase schedule's indirect-arguments pass.
+pub const INDIRECT_WORK_COUNT: u32 = 0;
+pub const INDIRECT_DISPATCH: u32 = 1;
+/// Group 3 of the ground truth (its own parameters and output in the schedule's place).
+pub const REFERENCE_PARAMS: u32 = 0;
+pub const REFERENCE_OUT: u32 = 1;
+/// Group 3 of the stochastic depth map's read-back.
+pub const UNPACK_LAYER: u32 = 0;
+pub const UNPACK_OUT: u32 = 1;
+
+/// Every named binding, for [`wgsl_constants`].
+const NAMED: &[(&str, u32)] = &[
+    ("GROUP_FRAME", GROUP_FRAME),
+    ("GROUP_ESTIMATOR", GROUP_ESTIMATOR),
+    ("GROUP_SOURCE", GROUP_SOURCE),
+    ("GROUP_SCHEDULE", GROUP_SCHEDULE),
+    ("FRAME_VIEW", FRAME_VIEW),
+    ("FRAME_DEPTH", FRAME_DEPTH),
+    ("FRAME_NORMALS", FRAME_NORMALS),
+    ("FRAME_AO_OUT", FRAME_AO_OUT),
+    ("ESTIMATOR_PARAMS", ESTIMATOR_PARAMS),
+    ("SOURCE_SECOND_DEPTH", SOURCE_SECOND_DEPTH),
+    ("SOURCE_RAY_CAMERA", SOURCE_RAY_CAMERA),
+    ("SOURCE_STACK_OVERFLOWS", SOURCE_STACK_OVERFLOWS),
+    ("SOURCE_BVH", SOURCE_BVH),
+    ("SOURCE_SD_NEAR", SOURCE_SD_NEAR),
+    ("SOURCE_SD_REQUEST", SOURCE_SD_REQUEST),
+    ("SOURCE_SD_MAPS", SOURCE_SD_MAPS),
+    ("SCHEDULE_PIXELS", SCHEDULE_PIXELS),
+    ("SCHEDULE_WORK_COUNT", SCHEDULE_WORK_COUNT),
+    ("SCHEDULE_WORK_LIST", SCHEDULE_WORK_LIST),
+    ("INDIRECT_WORK_COUNT", INDIRECT_WORK_COUNT),
+    ("INDIRECT_DISPATCH", INDIRECT_DISPATCH),
+    ("REFERENCE_PARAMS", REFERENCE_PARAMS),
+    ("REFERENCE_OUT", REFERENCE_OUT),
+    ("UNPACK_LAYER", UNPACK_LAYER),
+    ("UNPACK_OUT", UNPACK_OUT),
+];
+
+/// The binding names as WGSL constants (`const SOURCE_BVH: u32 = 2u;`).
+pub fn wgsl_constants() -> String {
+    let mut out = String::from("// Binding names, generated from src/bindings.rs.\n");
+    for (name, value) in NAMED {
+        out += &format!("const {name}: u32 = {value}u;\n");
+    }
+    out
+}
+
+/// Layout entries, all visible to compute.
+pub mod entry {
+    fn compute(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
+        wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty,
+            count: None,
+        }
+    }
+
+    pub fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+        )
+    }
+
+    pub fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+        )
+    }
+
+    /// A float texture read with `textureLoad` (not filterable: R32Float needs no feature).
+    pub fn texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+        )
+    }
+
+    /// A float texture array (the scene's alpha-mask atlas).
+    pub fn texture_array(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+        )
+    }
+
+    /// A depth texture, multisampled or not.
+    pub fn depth_texture(binding: u32, multisampled: bool) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled,
+            },
+        )
+    }
+
+    /// A write-only `r32float` storage texture.
+    pub fn storage_texture_r32f(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format: wgpu::TextureFormat::R32Float,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+        )
+    }
+}
+
+/// A bind group layout from `entries`.
+pub fn layout(
+    device: &wgpu::Device,
+    label: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    })
+}
+
+/// A bind group from `(binding, resource)` pairs: every binding by name, never by position.
+pub fn group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[(u32, wgpu::BindingResource)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = resources
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: resource.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// The frame group's layout: view, depth and normals, and (`with_output`) the AO image.
+pub fn frame_layout(device: &wgpu::Device, with_output: bool) -> wgpu::BindGroupLayout {
+    let mut entries = vec![
+        entry::uniform(FRAME_VIEW),
+        entry::texture(FRAME_DEPTH),
+        entry::texture(FRAME_NORMALS),
+    ];
+    if with_output {
+        entries.push(entry::storage_texture_r32f(FRAME_AO_OUT));
+    }
+    layout(device, "frame", &entries)
+}
+
+/// The layouts of a pipeline, placed at their groups (`None` where a pass binds nothing).
+pub fn by_group<'a>(
+    layouts: &[(u32, &'a wgpu::BindGroupLayout)],
+) -> [Option<&'a wgpu::BindGroupLayout>; GROUP_COUNT] {
+    let mut out = [None; GROUP_COUNT];
+    for &(group, layout) in layouts {
+        out[group as usize] = Some(layout);
+    }
+    out
+}
+
+/// A compute pipeline with entry point `main` over explicit layouts, one per group (`None`: the
+/// pass binds nothing in that group).
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    constants: &[(&str, f64)],
+    layouts: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: layouts,
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            zero_initialize_workgroup_memory: false,
+        },
+        cache: None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn every_binding_name_is_unique() {
+        for (i, (a, _)) in super::NAMED.iter().enumerate() {
+            assert!(super::NAMED[i + 1..].iter().all(|(b, _)| a != b), "{a}");
+        }
+    }
+}

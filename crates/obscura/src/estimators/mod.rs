@@ -1,0 +1,61 @@
+//! Estimators: what turns depth samples into occlusion (the first axis of the technique table).
+//!
+//! An estimator is a WGSL file in `shaders/estimators/` implementing the estimator contract
+//! (docs/ARCHITECTURE.md: per-pixel setup, samples, the value of one sample against one depth, how
+//! values of several depths combine, "needs hidden depth?", the accumulated state and the finish)
+//! plus a Rust module here that makes its parameters (bind group 1) and pipeline constants. The
+//! schedules own the loops; the sources consult the estimator for each depth they find.
+
+pub mod vao;
+
+use crate::bindings::{self, entry, ESTIMATOR_PARAMS};
+use crate::settings::AoSettings;
+use crate::technique::Estimator;
+use wgpu::util::DeviceExt;
+
+/// An estimator as a pipeline sees it: its shader, its `override` constants and group 1.
+pub(crate) struct EstimatorPass {
+    pub name: &'static str,
+    pub wgsl: &'static str,
+    pub constants: Vec<(&'static str, f64)>,
+    pub layout: wgpu::BindGroupLayout,
+    pub group: wgpu::BindGroup,
+}
+
+impl EstimatorPass {
+    /// An estimator whose group 1 is one uniform buffer of `params`.
+    pub fn new(
+        device: &wgpu::Device,
+        name: &'static str,
+        params: &[u8],
+        wgsl: &'static str,
+        constants: Vec<(&'static str, f64)>,
+    ) -> Self {
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(name),
+            contents: params,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let layout = bindings::layout(device, name, &[entry::uniform(ESTIMATOR_PARAMS)]);
+        let group = bindings::group(
+            device,
+            name,
+            &layout,
+            &[(ESTIMATOR_PARAMS, buffer.as_entire_binding())],
+        );
+        Self {
+            name,
+            wgsl,
+            constants,
+            layout,
+            group,
+        }
+    }
+
+    /// The estimator of a technique row with its settings.
+    pub fn for_row(device: &wgpu::Device, estimator: Estimator, settings: &AoSettings) -> Self {
+        match estimator {
+            Estimator::Vao => vao::estimator(device, &settings.vao),
+        }
+    }
+}

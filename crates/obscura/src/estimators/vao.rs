@@ -1,0 +1,139 @@
+//! The Volumetric Ambient Occlusion estimator (seed 000 §3.1–3.5): the sample kernel, the per-pixel
+//! rotation pattern and the parameters of `shaders/estimators/vao.wgsl`. The same tables feed the
+//! CPU mirror in [`crate::reference::cpu_vao`].
+
+use crate::settings::{Normalization, VaoSettings};
+use glam::{Vec2, Vec3};
+use std::f32::consts::TAU;
+
+/// Base-2 van der Corput radical inverse of `i`.
+pub fn van_der_corput(i: u32) -> f32 {
+    (f64::from(i.reverse_bits()) / 4_294_967_296.0) as f32
+}
+
+/// Sample `i` of `n` before the per-pixel rotation: unit direction at angle 2πi/n and radius
+/// `sqrt(1 - ψ^(2/3))` with ψ = van der Corput(n + i) (seed 000 Eq. 4–5, §7.1; offset n "skips 0"
+/// as in the authors' code, giving 1/16, 9/16, 5/16, … for n = 8).
+pub fn kernel_sample(i: u32, n: u32) -> (Vec2, f32) {
+    let angle = TAU * i as f32 / n as f32;
+    let psi = van_der_corput(n + i);
+    let radius = (1.0 - psi.powf(2.0 / 3.0)).sqrt();
+    (Vec2::new(angle.cos(), angle.sin()), radius)
+}
+
+/// 4×4 ordered-dither (Bayer) matrix, row-major; pixel (x, y) rotates its samples by
+/// 2π·BAYER[x%4 + 4(y%4)]/16 (the 4×4 pattern of seed 000 §3.1; the values of the authors' 2024
+/// code, seed-code-notes §2.2).
+pub const BAYER_4X4: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
+
+/// (cos, sin) of the rotation of pixel (x, y) of the visible image.
+pub fn pixel_rotation(x: u32, y: u32) -> Vec2 {
+    let a = TAU * BAYER_4X4[((x % 4) + 4 * (y % 4)) as usize] as f32 / 16.0;
+    Vec2::new(a.cos(), a.sin())
+}
+
+/// Samples whose hemisphere-clipped column is shorter than this fraction of R are skipped
+/// (seed 000 §3.2 "a_i = 0"; the authors' 2022 code used an absolute 0.01 world units, which
+/// does not scale with the scene, so we make it relative to R).
+pub const MIN_COLUMN_FRACTION: f32 = 0.01;
+
+/// Orthonormal basis (t, b) perpendicular to unit `n`; Duff et al. 2017 (JCGT 6(1)), Listing 3.
+/// Mirrors `orthonormal_basis` in `shaders/common/basis.wgsl`.
+pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
+    let s = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x),
+        Vec3::new(b, s + n.y * n.y * a, -n.y),
+    )
+}
+
+/// GPU mirror of `VaoParams` in `shaders/estimators/vao.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VaoParams {
+    radius: f32,
+    thickness: f32,
+    exponent: f32,
+    _pad0: u32,
+    min_column: f32,
+    normalization: u32,
+    _pad: [u32; 2],
+    kernel: [[f32; 4]; 32],
+    rotations: [[f32; 4]; 16],
+}
+
+impl VaoParams {
+    pub fn new(s: &VaoSettings) -> Self {
+        let mut kernel = [[0.0; 4]; 32];
+        for (i, k) in kernel.iter_mut().enumerate().take(s.samples as usize) {
+            let (dir, r) = kernel_sample(i as u32, s.samples);
+            *k = [dir.x, dir.y, r, 0.0];
+        }
+        let mut rotations = [[0.0; 4]; 16];
+        for (i, rot) in rotations.iter_mut().enumerate() {
+            let c = pixel_rotation(i as u32 % 4, i as u32 / 4);
+            *rot = [c.x, c.y, 0.0, 0.0];
+        }
+        Self {
+            radius: s.radius,
+            thickness: s.thickness,
+            exponent: s.exponent,
+            _pad0: 0,
+            min_column: MIN_COLUMN_FRACTION * s.radius,
+            normalization: match s.normalization {
+                Normalization::Hemisphere => 0,
+                Normalization::Clipped => 1,
+            },
+            _pad: [0; 2],
+            kernel,
+            rotations,
+        }
+    }
+}
+
+/// The VAO estimator's GPU side: its parameters (group 1) and shader.
+pub(crate) fn estimator(device: &wgpu::Device, settings: &VaoSettings) -> super::EstimatorPass {
+    super::EstimatorPass::new(
+        device,
+        "vao",
+        bytemuck::bytes_of(&VaoParams::new(settings)),
+        crate::shaders::ESTIMATOR_VAO,
+        vec![("SAMPLE_COUNT", f64::from(settings.samples))],
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radii_match_the_authors_table() {
+        // seed-code-notes §1.3: sampleRadius[8] of the 2022 SVAO shader.
+        let table = [
+            0.917883, 0.564429, 0.734504, 0.359545, 0.820004, 0.470149, 0.650919, 0.205215,
+        ];
+        for (i, expected) in table.iter().enumerate() {
+            let (_, r) = kernel_sample(i as u32, 8);
+            assert!((r - expected).abs() < 1e-5, "sample {i}: {r} vs {expected}");
+        }
+        // 16 and 32 samples start at 0.949098… and 0.968246… (seed-code-notes §2.2).
+        assert!((kernel_sample(0, 16).1 - 0.949098).abs() < 1e-5);
+        assert!((kernel_sample(0, 32).1 - 0.968246).abs() < 1e-5);
+    }
+
+    #[test]
+    fn basis_is_orthonormal() {
+        for n in [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.3, -0.5, 0.8).normalize(),
+        ] {
+            let (t, b) = orthonormal_basis(n);
+            assert!((t.length() - 1.0).abs() < 1e-5 && (b.length() - 1.0).abs() < 1e-5);
+            assert!(t.dot(b).abs() < 1e-5 && t.dot(n).abs() < 1e-5 && b.dot(n).abs() < 1e-5);
+        }
+    }
+}

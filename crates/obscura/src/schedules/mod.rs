@@ -1,0 +1,192 @@
+//! Schedules: which passes run an estimator over a hidden-depth source (the third axis of the
+//! technique table). They own the sample loops (`shaders/schedules/`), for any estimator and
+//! source that implement their contracts, and decide when the source prepares its data.
+
+pub mod single;
+pub mod two_phase;
+
+use crate::bindings::{self, GROUP_ESTIMATOR, GROUP_FRAME, GROUP_SCHEDULE, GROUP_SOURCE};
+use crate::estimators::EstimatorPass;
+use crate::frame::FrameInputs;
+use crate::gpu::PassProfiler;
+use crate::shaders;
+use crate::sources::SourcePass;
+use crate::technique::Schedule;
+use crate::view::ScreenGeometry;
+use crate::Error;
+
+/// Which of the source's two group-2 layouts a pipeline binds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SourceGroup {
+    /// What `source_resolve` reads (single pass, phase 2).
+    Resolve,
+    /// What `source_request` writes (phase 1).
+    Request,
+}
+
+/// One compute pipeline of a schedule.
+pub(crate) struct Stage {
+    pub label: &'static str,
+    /// The schedule's WGSL files, after frame, estimator and source.
+    pub parts: Vec<&'static str>,
+    pub source_group: SourceGroup,
+    /// Group-3 layout entries (none: the stage binds no group 3).
+    pub schedule_entries: Vec<wgpu::BindGroupLayoutEntry>,
+    pub constants: Vec<(&'static str, f64)>,
+}
+
+/// The AO pipelines of a schedule, in the order they run.
+pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
+    match schedule {
+        Schedule::Single => vec![single::stage()],
+        Schedule::TwoPhase => two_phase::stages(true),
+        Schedule::TwoPhaseDense => two_phase::stages(false),
+    }
+}
+
+/// The whole WGSL of an AO pipeline: binding names, shared helpers, frame, estimator, source,
+/// schedule.
+pub(crate) fn compose(estimator: &str, source: &str, schedule: &[&str]) -> String {
+    let mut parts = vec![
+        shaders::VIEW,
+        shaders::BASIS,
+        shaders::FRAME,
+        estimator,
+        source,
+    ];
+    parts.extend_from_slice(schedule);
+    shaders::compose(&parts)
+}
+
+/// A stage's pipeline over the estimator and source it runs.
+pub(crate) fn pipeline(
+    device: &wgpu::Device,
+    stage: &Stage,
+    frame_layout: &wgpu::BindGroupLayout,
+    estimator: &EstimatorPass,
+    source: &SourcePass,
+    schedule_layout: Option<&wgpu::BindGroupLayout>,
+) -> wgpu::ComputePipeline {
+    let source_layout = match stage.source_group {
+        SourceGroup::Resolve => source.resolve_layout(),
+        SourceGroup::Request => source.request_layout(),
+    };
+    let mut layouts = vec![
+        (GROUP_FRAME, frame_layout),
+        (GROUP_ESTIMATOR, &estimator.layout),
+    ];
+    layouts.extend(source_layout.map(|l| (GROUP_SOURCE, l)));
+    layouts.extend(schedule_layout.map(|l| (GROUP_SCHEDULE, l)));
+    let mut constants = estimator.constants.clone();
+    constants.extend_from_slice(&stage.constants);
+    bindings::compute_pipeline(
+        device,
+        stage.label,
+        &compose(estimator.wgsl, &source.wgsl(), &stage.parts),
+        &constants,
+        &bindings::by_group(&layouts),
+    )
+}
+
+/// The groups every AO pass of a frame binds: frame, estimator, and the source's.
+pub(crate) struct FrameGroups<'a> {
+    pub frame: &'a wgpu::BindGroup,
+    pub estimator: &'a wgpu::BindGroup,
+    pub resolve: Option<&'a wgpu::BindGroup>,
+    pub request: Option<&'a wgpu::BindGroup>,
+}
+
+impl FrameGroups<'_> {
+    /// Sets groups 0–2 of a pass of `stage`'s kind.
+    pub fn set(&self, pass: &mut wgpu::ComputePass, source_group: SourceGroup) {
+        pass.set_bind_group(GROUP_FRAME, self.frame, &[]);
+        pass.set_bind_group(GROUP_ESTIMATOR, self.estimator, &[]);
+        let source = match source_group {
+            SourceGroup::Resolve => self.resolve,
+            SourceGroup::Request => self.request,
+        };
+        if let Some(group) = source {
+            pass.set_bind_group(GROUP_SOURCE, group, &[]);
+        }
+    }
+}
+
+/// A schedule as an [`crate::AmbientOcclusion`] holds it.
+pub(crate) enum SchedulePass {
+    Single(single::Single),
+    TwoPhase(two_phase::TwoPhase),
+}
+
+impl SchedulePass {
+    pub fn new(
+        device: &wgpu::Device,
+        schedule: Schedule,
+        name: &'static str,
+        frame_layout: &wgpu::BindGroupLayout,
+        estimator: &EstimatorPass,
+        source: &SourcePass,
+        screen: &ScreenGeometry,
+    ) -> Self {
+        match schedule {
+            Schedule::Single => SchedulePass::Single(single::Single::new(
+                device,
+                name,
+                frame_layout,
+                estimator,
+                source,
+            )),
+            Schedule::TwoPhase | Schedule::TwoPhaseDense => {
+                SchedulePass::TwoPhase(two_phase::TwoPhase::new(
+                    device,
+                    schedule == Schedule::TwoPhase,
+                    frame_layout,
+                    estimator,
+                    source,
+                    screen,
+                ))
+            }
+        }
+    }
+
+    /// Records the AO passes into `output`, with the source prepared where the schedule needs it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInputs,
+        frame_group: &wgpu::BindGroup,
+        estimator: &EstimatorPass,
+        source: &SourcePass,
+        profiler: Option<&mut PassProfiler>,
+    ) -> Result<(), Error> {
+        match self {
+            SchedulePass::Single(s) => s.encode(
+                device,
+                encoder,
+                frame,
+                frame_group,
+                estimator,
+                source,
+                profiler,
+            ),
+            SchedulePass::TwoPhase(s) => s.encode(
+                device,
+                encoder,
+                frame,
+                frame_group,
+                estimator,
+                source,
+                profiler,
+            ),
+        }
+    }
+
+    /// Two-phase: phase 1's per-pixel records (16 bytes each, the sample bit mask first).
+    pub fn phase1_records(&self) -> Option<&wgpu::Buffer> {
+        match self {
+            SchedulePass::Single(_) => None,
+            SchedulePass::TwoPhase(s) => Some(s.records()),
+        }
+    }
+}

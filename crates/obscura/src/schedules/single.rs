@@ -1,0 +1,74 @@
+//! Schedule "single pass" (`shaders/schedules/single.wgsl`): one compute pass, every sample of a
+//! pixel in one invocation, the source consulted inline; the source prepares before the pass.
+
+use super::{FrameGroups, SourceGroup, Stage};
+use crate::estimators::EstimatorPass;
+use crate::frame::{workgroups_32x8, FrameInputs};
+use crate::gpu::PassProfiler;
+use crate::shaders;
+use crate::sources::SourcePass;
+use crate::Error;
+
+pub(crate) fn stage() -> Stage {
+    Stage {
+        label: "single pass",
+        parts: vec![shaders::SCHEDULE_SINGLE, shaders::SCHEDULE_SINGLE_MAIN],
+        source_group: SourceGroup::Resolve,
+        schedule_entries: Vec::new(),
+        constants: Vec::new(),
+    }
+}
+
+pub(crate) struct Single {
+    pipeline: wgpu::ComputePipeline,
+    /// The pass's name in timings: the technique's.
+    name: &'static str,
+}
+
+impl Single {
+    pub fn new(
+        device: &wgpu::Device,
+        name: &'static str,
+        frame_layout: &wgpu::BindGroupLayout,
+        estimator: &EstimatorPass,
+        source: &SourcePass,
+    ) -> Self {
+        let stage = stage();
+        Self {
+            pipeline: super::pipeline(device, &stage, frame_layout, estimator, source, None),
+            name,
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInputs,
+        frame_group: &wgpu::BindGroup,
+        estimator: &EstimatorPass,
+        source: &SourcePass,
+        mut profiler: Option<&mut PassProfiler>,
+    ) -> Result<(), Error> {
+        source.begin_frame(encoder);
+        source.prepare(device, encoder, frame, profiler.as_deref_mut());
+        let resolve = source.resolve_group(device, frame)?;
+        let groups = FrameGroups {
+            frame: frame_group,
+            estimator: &estimator.group,
+            resolve: resolve.as_ref(),
+            request: None,
+        };
+        let timestamp_writes = profiler.map(|p| p.compute_pass(self.name));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(self.name),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        groups.set(&mut pass, SourceGroup::Resolve);
+        let (x, y, z) = workgroups_32x8(frame.screen.width, frame.screen.height);
+        pass.dispatch_workgroups(x, y, z);
+        Ok(())
+    }
+}

@@ -1,0 +1,94 @@
+//! Hidden-depth source "column rays" (seed 000 §3.6, Fig. 6): occluded and off-screen VAO samples
+//! trace their camera ray through the scene's BVH (`shaders/sources/column_rays.wgsl`, the tracing
+//! in `column_trace.wgsl`). It reads the VAO estimator's columns, so it is a VAO-only source (the
+//! technique table checks it). The ground truth traces the same columns from the near plane
+//! (`all_layers.wgsl`).
+
+use crate::bindings::{entry, SOURCE_BVH, SOURCE_RAY_CAMERA, SOURCE_STACK_OVERFLOWS};
+use crate::bvh::gpu::GpuBvh;
+use crate::raster::gpu_scene::GpuScene;
+
+/// GPU mirror of `RayCamera` in `shaders/sources/column_trace.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct RayCamera {
+    camera_to_world: [[f32; 4]; 4],
+    near: f32,
+    _pad: [f32; 3],
+}
+
+/// The WGSL in front of the source functions: the BVH traversal and the column tracing.
+pub(crate) fn trace_wgsl() -> [&'static str; 3] {
+    use crate::shaders;
+    [
+        shaders::MATERIAL,
+        shaders::BVH,
+        shaders::SOURCE_COLUMN_TRACE,
+    ]
+}
+
+/// Group-2 layout entries: camera, overflow counter, then the BVH.
+pub(crate) fn layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut entries = vec![
+        entry::uniform(SOURCE_RAY_CAMERA),
+        entry::storage(SOURCE_STACK_OVERFLOWS, false),
+    ];
+    entries.extend(GpuBvh::layout_entries(SOURCE_BVH));
+    entries
+}
+
+/// What the column rays bind: the camera, the overflow counter and the BVH.
+pub(crate) struct ColumnRays {
+    camera: wgpu::Buffer,
+    /// `stack_overflows` of column_trace.wgsl (cleared every frame).
+    pub stack_overflows: wgpu::Buffer,
+    group: wgpu::BindGroup,
+}
+
+impl ColumnRays {
+    pub fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        scene: &GpuScene,
+        bvh: &GpuBvh,
+    ) -> Self {
+        let camera = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ray camera"),
+            size: std::mem::size_of::<RayCamera>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let stack_overflows = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("stack overflows"),
+            size: 4,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let mut resources = vec![
+            (SOURCE_RAY_CAMERA, camera.as_entire_binding()),
+            (SOURCE_STACK_OVERFLOWS, stack_overflows.as_entire_binding()),
+        ];
+        resources.extend(bvh.resources(SOURCE_BVH, scene));
+        let group = crate::bindings::group(device, "column rays", layout, &resources);
+        Self {
+            camera,
+            stack_overflows,
+            group,
+        }
+    }
+
+    pub fn group(&self) -> &wgpu::BindGroup {
+        &self.group
+    }
+
+    pub fn set_camera(&self, queue: &wgpu::Queue, camera_to_world: glam::Mat4, near: f32) {
+        let camera = RayCamera {
+            camera_to_world: camera_to_world.to_cols_array_2d(),
+            near,
+            _pad: [0.0; 3],
+        };
+        queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
+    }
+}

@@ -1,0 +1,309 @@
+//! Hidden-depth sources: what answers "what lies behind the first surface here" (the second axis
+//! of the technique table). In WGSL a source is one file of `shaders/sources/` implementing the
+//! source contract (`source_lookup`, `source_resolve`, `source_request`; docs/ARCHITECTURE.md) for
+//! any estimator, except column rays, which reads VAO's columns. Here a source makes what it binds
+//! in group 2 and whatever it renders before the AO pass reads it (the stochastic depth map), and
+//! owns the data its debug read-backs return.
+//!
+//! Bound in group 2 twice over: the *resolve* layout (single pass, two-phase phase 2: what
+//! `source_resolve` reads) and the *request* layout (two-phase phase 1: what `source_request`
+//! writes; only the stochastic depth map's request mask so far).
+
+pub mod column_rays;
+pub mod stochastic_depth;
+
+use crate::bindings::{self, entry, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
+use crate::bvh::gpu::GpuBvh;
+use crate::frame::FrameInputs;
+use crate::gpu::{Gpu, PassProfiler};
+use crate::raster::gpu_scene::GpuScene;
+use crate::settings::AoSettings;
+use crate::shaders;
+use crate::technique::{Schedule, Source};
+use crate::view::{FrameView, ScreenGeometry};
+use crate::Error;
+use column_rays::ColumnRays;
+use stochastic_depth::{SdLayout, StochasticDepthMap};
+
+/// The scene data the scene-dependent sources need (the technique row's [`crate::technique::Needs`]).
+#[derive(Clone, Copy, Default)]
+pub struct SceneResources<'a> {
+    /// The scene's triangles on the GPU (column rays, stochastic depth map).
+    pub scene: Option<&'a GpuScene>,
+    /// A BVH over them (column rays).
+    pub bvh: Option<&'a GpuBvh>,
+}
+
+/// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
+/// depth maps are laid out (ignored by the other sources).
+pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
+    match source {
+        Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
+        Source::DualDepth => shaders::SOURCE_DUAL_DEPTH.to_string(),
+        Source::ColumnRays => {
+            let mut parts = column_rays::trace_wgsl().to_vec();
+            parts.push(shaders::SOURCE_COLUMN_RAYS);
+            parts.join("\n")
+        }
+        Source::StochasticDepth => format!(
+            "{}\n{}",
+            stochastic_depth::bindings_wgsl(sd_layout),
+            shaders::SOURCE_STOCHASTIC_DEPTH
+        ),
+    }
+}
+
+/// Group-2 layout entries of the resolving passes.
+pub(crate) fn resolve_entries(
+    source: Source,
+    sd_layout: SdLayout,
+) -> Vec<wgpu::BindGroupLayoutEntry> {
+    match source {
+        Source::FirstLayer => Vec::new(),
+        Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
+        Source::ColumnRays => column_rays::layout_entries(),
+        Source::StochasticDepth => stochastic_depth::read_layout_entries(sd_layout),
+    }
+}
+
+/// Group-2 layout entries of phase 1 of a two-phase schedule.
+pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
+    match source {
+        Source::StochasticDepth => vec![entry::storage(SOURCE_SD_REQUEST, false)],
+        Source::FirstLayer | Source::DualDepth | Source::ColumnRays => Vec::new(),
+    }
+}
+
+enum Held {
+    FirstLayer,
+    DualDepth,
+    ColumnRays(ColumnRays),
+    StochasticDepth(Box<StochasticDepthMap>),
+}
+
+/// A hidden-depth source as an [`crate::AmbientOcclusion`] holds it.
+pub(crate) struct SourcePass {
+    kind: Source,
+    held: Held,
+    sd_layout: SdLayout,
+    resolve_layout: Option<wgpu::BindGroupLayout>,
+    request_layout: Option<wgpu::BindGroupLayout>,
+    /// Two-phase stochastic depth: the SD-request mask, one u32 per framebuffer pixel (seed 000
+    /// §3.9), written by phase 1, read by the map's raster passes.
+    request: Option<wgpu::Buffer>,
+    request_group: Option<wgpu::BindGroup>,
+}
+
+fn missing(what: &str, source: Source) -> Error {
+    Error::Input(format!(
+        "the {} source needs the scene's {what}: pass it in SceneResources (Renderer does this for its own scenes)",
+        source.name()
+    ))
+}
+
+impl SourcePass {
+    pub fn new(
+        gpu: &Gpu,
+        kind: Source,
+        schedule: Schedule,
+        settings: &AoSettings,
+        screen: &ScreenGeometry,
+        scene: SceneResources,
+    ) -> Result<Self, Error> {
+        let device = &gpu.device;
+        let full = (screen.full_width(), screen.full_height());
+        let mut sd_layout = SdLayout {
+            maps: 1,
+            samples_per_map: 1,
+        };
+        let layout_of = |entries: Vec<wgpu::BindGroupLayoutEntry>, label| {
+            (!entries.is_empty()).then(|| bindings::layout(device, label, &entries))
+        };
+        let held = match kind {
+            Source::FirstLayer => Held::FirstLayer,
+            Source::DualDepth => Held::DualDepth,
+            Source::ColumnRays => {
+                let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
+                let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;
+                let layout = layout_of(resolve_entries(kind, sd_layout), "column rays")
+                    .expect("column rays bind their camera");
+                let rays = ColumnRays::new(device, &layout, scene_gpu, bvh);
+                return Ok(Self {
+                    kind,
+                    held: Held::ColumnRays(rays),
+                    sd_layout,
+                    resolve_layout: Some(layout),
+                    request_layout: None,
+                    request: None,
+                    request_group: None,
+                });
+            }
+            Source::StochasticDepth => {
+                let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
+                let map = StochasticDepthMap::new(
+                    &gpu.adapter,
+                    device,
+                    &settings.stochastic_depth,
+                    settings.peel_separation,
+                    full,
+                    scene_gpu,
+                    schedule
+                        .two_phase()
+                        .then_some(settings.stochastic_depth.mask),
+                )?;
+                sd_layout = map.layout();
+                Held::StochasticDepth(Box::new(map))
+            }
+        };
+        let request_layout = schedule
+            .two_phase()
+            .then(|| layout_of(request_entries(kind), "source request"))
+            .flatten();
+        let request = (kind == Source::StochasticDepth && schedule.two_phase()).then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("sd request"),
+                size: u64::from(full.0) * u64::from(full.1) * 4,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        });
+        let request_group = match (&request_layout, &request) {
+            (Some(layout), Some(buffer)) => Some(bindings::group(
+                device,
+                "sd request",
+                layout,
+                &[(SOURCE_SD_REQUEST, buffer.as_entire_binding())],
+            )),
+            _ => None,
+        };
+        Ok(Self {
+            kind,
+            held,
+            sd_layout,
+            resolve_layout: layout_of(resolve_entries(kind, sd_layout), "source"),
+            request_layout,
+            request,
+            request_group,
+        })
+    }
+
+    pub fn kind(&self) -> Source {
+        self.kind
+    }
+
+    pub fn wgsl(&self) -> String {
+        wgsl(self.kind, self.sd_layout)
+    }
+
+    pub fn resolve_layout(&self) -> Option<&wgpu::BindGroupLayout> {
+        self.resolve_layout.as_ref()
+    }
+
+    pub fn request_layout(&self) -> Option<&wgpu::BindGroupLayout> {
+        self.request_layout.as_ref()
+    }
+
+    /// The camera of the coming frame (rays and the map's rasterisation use it).
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        match &self.held {
+            Held::ColumnRays(rays) => {
+                rays.set_camera(queue, view.view_matrix().inverse(), view.near)
+            }
+            Held::StochasticDepth(map) => map.set_camera(queue, view),
+            Held::FirstLayer | Held::DualDepth => {}
+        }
+    }
+
+    /// Clears the per-frame counters and request marks before the schedule's first pass.
+    pub fn begin_frame(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Held::ColumnRays(rays) = &self.held {
+            encoder.clear_buffer(&rays.stack_overflows, 0, None);
+        }
+        if let Some(request) = &self.request {
+            encoder.clear_buffer(request, 0, None);
+        }
+    }
+
+    /// Renders what the resolving pass reads (the stochastic depth map; for a two-phase schedule
+    /// only where phase 1 requested it). Called by the schedule right before that pass.
+    pub fn prepare(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInputs,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        if let Held::StochasticDepth(map) = &self.held {
+            map.render(
+                device,
+                encoder,
+                frame.depth,
+                self.request.as_ref(),
+                profiler,
+            );
+        }
+    }
+
+    /// Group 2 of the resolving passes for this frame.
+    pub fn resolve_group(
+        &self,
+        device: &wgpu::Device,
+        frame: &FrameInputs,
+    ) -> Result<Option<wgpu::BindGroup>, Error> {
+        let Some(layout) = &self.resolve_layout else {
+            return Ok(None);
+        };
+        Ok(Some(match &self.held {
+            Held::FirstLayer => unreachable!("the first layer binds nothing"),
+            Held::DualDepth => {
+                let second = frame.second_layer.ok_or_else(|| {
+                    Error::Input(
+                        "the dual depth source needs the second depth layer: pass it to encode (FrameTextures::second_layer)"
+                            .into(),
+                    )
+                })?;
+                bindings::group(
+                    device,
+                    "dual depth",
+                    layout,
+                    &[(
+                        SOURCE_SECOND_DEPTH,
+                        wgpu::BindingResource::TextureView(second),
+                    )],
+                )
+            }
+            Held::ColumnRays(rays) => rays.group().clone(),
+            Held::StochasticDepth(map) => {
+                bindings::group(device, "stochastic depth", layout, &map.read_resources())
+            }
+        }))
+    }
+
+    /// Group 2 of phase 1 of a two-phase schedule.
+    pub fn request_group(&self) -> Option<&wgpu::BindGroup> {
+        self.request_group.as_ref()
+    }
+
+    /// Column rays: the counter of last frame's rays whose BVH traversal overflowed its stack.
+    pub fn stack_overflows(&self) -> Option<&wgpu::Buffer> {
+        match &self.held {
+            Held::ColumnRays(rays) => Some(&rays.stack_overflows),
+            _ => None,
+        }
+    }
+
+    /// The stochastic depth map, for read-backs.
+    pub fn stochastic_depth(&self) -> Option<&StochasticDepthMap> {
+        match &self.held {
+            Held::StochasticDepth(map) => Some(map),
+            _ => None,
+        }
+    }
+
+    /// Two-phase stochastic depth: the SD-request mask of the last frame.
+    pub fn requests(&self) -> Option<&wgpu::Buffer> {
+        self.request.as_ref()
+    }
+}
