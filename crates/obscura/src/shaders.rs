@@ -1,6 +1,7 @@
 //! WGSL sources and how they are composed. WGSL has no `#include`: a pass is the binding names of
 //! [`crate::bindings`], then the shared helpers it needs (`shaders/common/`), then its axis files
-//! joined in one string (module-scope declarations may come in any order). `wesl` was evaluated
+//! joined in one string (module-scope declarations may come in any order). Estimators keep their
+//! own WGSL in their module (`src/estimators/`). `wesl` was evaluated
 //! instead and not adopted; docs/ARCHITECTURE.md says why.
 
 pub const VIEW: &str = include_str!("../shaders/common/view.wgsl");
@@ -10,8 +11,6 @@ pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
-
-pub const ESTIMATOR_VAO: &str = include_str!("../shaders/estimators/vao.wgsl");
 
 pub const SOURCE_FIRST_LAYER: &str = include_str!("../shaders/sources/first_layer.wgsl");
 pub const SOURCE_DUAL_DEPTH: &str = include_str!("../shaders/sources/dual_depth.wgsl");

@@ -151,27 +151,33 @@ fn ambient_occlusion_rejects_mismatched_inputs() {
         guard_band: 8,
         tan_half_fov: glam::Vec2::new(0.6, 0.45),
     };
-    let ao = obscura::AmbientOcclusion::new(&gpu.device, &AoSettings::default(), screen).unwrap();
+    let ao = obscura::AmbientOcclusion::new(
+        &gpu,
+        &AoSettings::default(),
+        screen,
+        obscura::SceneResources::default(),
+    )
+    .unwrap();
     let usage = wgpu::TextureUsages::TEXTURE_BINDING;
     let tex = |w, h, f| obscura::gpu::texture_2d(&gpu.device, "input", w, h, f, usage);
     let normals = tex(80, 64, wgpu::TextureFormat::Rgba16Float);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     // Depth without the guard band.
     let small = tex(64, 48, wgpu::TextureFormat::R32Float);
-    let err = ao
-        .encode(&gpu.device, &mut encoder, &small, &normals, None)
-        .unwrap_err();
+    let frame = |depth| obscura::FrameTextures {
+        depth,
+        normals: &normals,
+        second_layer: None,
+    };
+    let err = ao.encode(&mut encoder, frame(&small), None).unwrap_err();
     assert!(err.to_string().contains("80x64"), "{err}");
     // Hardware depth instead of linear depth.
     let wrong = tex(80, 64, wgpu::TextureFormat::Rgba8Unorm);
-    let err = ao
-        .encode(&gpu.device, &mut encoder, &wrong, &normals, None)
-        .unwrap_err();
+    let err = ao.encode(&mut encoder, frame(&wrong), None).unwrap_err();
     assert!(err.to_string().contains("R32Float"), "{err}");
     // The right inputs encode.
     let depth = tex(80, 64, wgpu::TextureFormat::R32Float);
-    ao.encode(&gpu.device, &mut encoder, &depth, &normals, None)
-        .unwrap();
+    ao.encode(&mut encoder, frame(&depth), None).unwrap();
     gpu.queue.submit([encoder.finish()]);
     gpu.finish().unwrap();
 }

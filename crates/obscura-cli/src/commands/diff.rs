@@ -52,7 +52,7 @@ pub fn run(args: &DiffArgs) -> Result<()> {
         sum_abs / pixels as f64
     );
     if let Some(bound) = args.max_abs {
-        if !(max_abs <= bound) {
+        if max_abs > bound || bound.is_nan() {
             bail!("max |a-b| {max_abs:e} is over --max-abs {bound:e}");
         }
     }

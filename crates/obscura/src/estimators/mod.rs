@@ -15,7 +15,6 @@ use wgpu::util::DeviceExt;
 
 /// An estimator as a pipeline sees it: its shader, its `override` constants and group 1.
 pub(crate) struct EstimatorPass {
-    pub name: &'static str,
     pub wgsl: &'static str,
     pub constants: Vec<(&'static str, f64)>,
     pub layout: wgpu::BindGroupLayout,
@@ -44,7 +43,6 @@ impl EstimatorPass {
             &[(ESTIMATOR_PARAMS, buffer.as_entire_binding())],
         );
         Self {
-            name,
             wgsl,
             constants,
             layout,
@@ -54,8 +52,19 @@ impl EstimatorPass {
 
     /// The estimator of a technique row with its settings.
     pub fn for_row(device: &wgpu::Device, estimator: Estimator, settings: &AoSettings) -> Self {
-        match estimator {
-            Estimator::Vao => vao::estimator(device, &settings.vao),
-        }
+        let (wgsl, names) = wgsl(estimator);
+        let (params, values) = match estimator {
+            Estimator::Vao => vao::params(&settings.vao),
+        };
+        let constants = names.iter().copied().zip(values).collect();
+        Self::new(device, estimator.name(), &params, wgsl, constants)
+    }
+}
+
+/// An estimator's WGSL and the names of its pipeline constants (also for composing shaders without
+/// a device: the shader validation test).
+pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static str]) {
+    match estimator {
+        Estimator::Vao => (vao::WGSL, vao::CONSTANTS),
     }
 }

@@ -93,14 +93,16 @@ impl VaoParams {
     }
 }
 
-/// The VAO estimator's GPU side: its parameters (group 1) and shader.
-pub(crate) fn estimator(device: &wgpu::Device, settings: &VaoSettings) -> super::EstimatorPass {
-    super::EstimatorPass::new(
-        device,
-        "vao",
-        bytemuck::bytes_of(&VaoParams::new(settings)),
-        crate::shaders::ESTIMATOR_VAO,
-        vec![("SAMPLE_COUNT", f64::from(settings.samples))],
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
+pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/vao.wgsl");
+/// Its `override` constants: the sample count (the loop unrolls).
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
+pub(crate) fn params(settings: &VaoSettings) -> (Vec<u8>, Vec<f64>) {
+    (
+        bytemuck::bytes_of(&VaoParams::new(settings)).to_vec(),
+        vec![f64::from(settings.samples)],
     )
 }
 

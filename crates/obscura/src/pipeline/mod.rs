@@ -10,6 +10,8 @@
 //! without touching the estimators.
 
 pub mod renderer;
+#[cfg(test)]
+mod shader_check;
 
 use crate::bindings;
 use crate::estimators::EstimatorPass;

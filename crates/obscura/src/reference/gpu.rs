@@ -37,7 +37,14 @@ pub fn render_reference_gpu(
     let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
     let gpu_bvh = GpuBvh::new(device, bvh, scene);
     // The VAO estimator through the single-pass loop over the all-layers source (reference.wgsl).
-    let estimator = crate::estimators::vao::estimator(device, &settings.vao);
+    let estimator = crate::estimators::EstimatorPass::for_row(
+        device,
+        crate::technique::Estimator::Vao,
+        &crate::AoSettings {
+            vao: settings.vao,
+            ..Default::default()
+        },
+    );
     let mut parts = vec![
         shaders::VIEW,
         shaders::BASIS,

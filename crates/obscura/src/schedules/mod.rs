@@ -127,10 +127,12 @@ impl SchedulePass {
         source: &SourcePass,
         screen: &ScreenGeometry,
     ) -> Self {
+        let stages = stages(schedule);
         match schedule {
             Schedule::Single => SchedulePass::Single(single::Single::new(
                 device,
                 name,
+                &stages,
                 frame_layout,
                 estimator,
                 source,
@@ -139,6 +141,7 @@ impl SchedulePass {
                 SchedulePass::TwoPhase(two_phase::TwoPhase::new(
                     device,
                     schedule == Schedule::TwoPhase,
+                    &stages,
                     frame_layout,
                     estimator,
                     source,
@@ -148,7 +151,8 @@ impl SchedulePass {
         }
     }
 
-    /// Records the AO passes into `output`, with the source prepared where the schedule needs it.
+    /// Records the AO passes into the frame's output, with the source prepared where the
+    /// schedule needs it.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,

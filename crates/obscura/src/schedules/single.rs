@@ -26,16 +26,17 @@ pub(crate) struct Single {
 }
 
 impl Single {
+    /// `stages`: [`stage`]'s one stage.
     pub fn new(
         device: &wgpu::Device,
         name: &'static str,
+        stages: &[Stage],
         frame_layout: &wgpu::BindGroupLayout,
         estimator: &EstimatorPass,
         source: &SourcePass,
     ) -> Self {
-        let stage = stage();
         Self {
-            pipeline: super::pipeline(device, &stage, frame_layout, estimator, source, None),
+            pipeline: super::pipeline(device, &stages[0], frame_layout, estimator, source, None),
             name,
         }
     }

@@ -87,35 +87,25 @@ pub(crate) struct TwoPhase {
 }
 
 impl TwoPhase {
+    /// `stages`: [`stages`]`(compact)`, phase 1 then phase 2.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         device: &wgpu::Device,
         compact: bool,
+        stages: &[Stage],
         frame_layout: &wgpu::BindGroupLayout,
         estimator: &EstimatorPass,
         source: &SourcePass,
         screen: &ScreenGeometry,
     ) -> Self {
-        let [phase1_stage, phase2_stage]: [Stage; 2] = stages(compact)
-            .try_into()
-            .unwrap_or_else(|_| unreachable!("two stages"));
-        let layouts = [&phase1_stage, &phase2_stage]
-            .map(|s| bindings::layout(device, s.label, &s.schedule_entries));
-        let phase1 = super::pipeline(
-            device,
-            &phase1_stage,
-            frame_layout,
-            estimator,
-            source,
-            Some(&layouts[0]),
-        );
-        let phase2 = super::pipeline(
-            device,
-            &phase2_stage,
-            frame_layout,
-            estimator,
-            source,
-            Some(&layouts[1]),
-        );
+        let layouts: Vec<_> = stages
+            .iter()
+            .map(|s| bindings::layout(device, s.label, &s.schedule_entries))
+            .collect();
+        let [phase1, phase2] = [0, 1].map(|i| {
+            let layout = Some(&layouts[i]);
+            super::pipeline(device, &stages[i], frame_layout, estimator, source, layout)
+        });
         let (indirect_source, indirect_entries) = indirect_stage();
         let indirect_layout = bindings::layout(device, "two-phase indirect", &indirect_entries);
         let indirect = bindings::compute_pipeline(

@@ -189,10 +189,6 @@ impl SourcePass {
         })
     }
 
-    pub fn kind(&self) -> Source {
-        self.kind
-    }
-
     pub fn wgsl(&self) -> String {
         wgsl(self.kind, self.sd_layout)
     }

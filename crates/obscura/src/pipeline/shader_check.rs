@@ -1,0 +1,256 @@
+//! Every technique row's AO pipelines composed and validated without a GPU (naga), as vello's
+//! build step checks its shader permutations: a broken combination of estimator, source and
+//! schedule fails here even if no lavapipe test renders it. Each resource a shader declares must
+//! be in the explicit layout the pipeline is built with, with the same kind of binding, and every
+//! pipeline constant must exist.
+//!
+//! Also a stub estimator (`STUB`, this file only) run through every source and schedule: the
+//! contracts accept a new estimator with no edit to sources or schedules.
+
+use crate::bindings::{self, entry, GROUP_ESTIMATOR, GROUP_FRAME, GROUP_SCHEDULE, GROUP_SOURCE};
+use crate::schedules::{self, SourceGroup};
+use crate::sources::{self, stochastic_depth::SdLayout};
+use crate::technique::{Schedule, Source, TABLE};
+
+/// Every layout the stochastic depth map can take: single-sample, one 4× or 8× target, stacked.
+const SD_LAYOUTS: [(u32, u32); 6] = [(1, 1), (1, 2), (1, 4), (1, 8), (2, 4), (4, 4)];
+
+/// A minimal estimator implementing the contract: eight samples on a ring of 2 px, each
+/// occluded (value 0) when its depth is nearer than the pixel's. Not a technique; it only shows
+/// what a new estimator has to provide.
+const STUB: &str = r#"
+struct StubParams { radius_px: f32, _pad0: f32, _pad1: f32, _pad2: f32 }
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: StubParams;
+override SAMPLE_COUNT: u32 = 8u;
+struct EstimatorPixel { pixel: vec2<u32>, depth: f32, valid: bool }
+struct EstimatorSample { px: vec2<f32>, on: bool }
+struct EstimatorAccum { open: f32, count: f32, _pad: f32 }
+struct Occluder { value: f32, hidden: bool }
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let pixel = id + vec2<u32>(view.guard_band);
+    let z = textureLoad(depth_tex, pixel, 0).r;
+    return EstimatorPixel(pixel, z, !is_background(z));
+}
+fn estimator_pixel_valid(p: EstimatorPixel) -> bool { return p.valid; }
+fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> { return p.pixel; }
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    let a = 6.2831853 * f32(i) / f32(SAMPLE_COUNT);
+    return EstimatorSample(vec2<f32>(p.pixel) + 0.5 + params.radius_px * vec2<f32>(cos(a), sin(a)), true);
+}
+fn estimator_sample_active(s: EstimatorSample) -> bool { return s.on; }
+fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> { return s.px; }
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> f32 { return 1.0; }
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let occluded = -pos.z < p.depth;
+    return Occluder(select(1.0, 0.0, occluded), occluded);
+}
+fn estimator_combine(a: f32, b: f32) -> f32 { return min(a, b); }
+fn estimator_accum_init() -> EstimatorAccum { return EstimatorAccum(0.0, 0.0, 0.0); }
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    return EstimatorAccum(acc.open, acc.count + 1.0, 0.0);
+}
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
+    return EstimatorAccum(acc.open + value, acc.count, 0.0);
+}
+fn estimator_finish(acc: EstimatorAccum) -> f32 { return select(1.0, acc.open / acc.count, acc.count > 0.0); }
+"#;
+
+/// Parse and validate `source`; then hold every global its entry point uses to `layouts` (per
+/// group) and check `constants` are overrides of the module.
+fn check(
+    label: &str,
+    source: &str,
+    layouts: &[(u32, Vec<wgpu::BindGroupLayoutEntry>)],
+    constants: &[&str],
+) {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
+    assert_eq!(module.entry_points.len(), 1, "{label}: one entry point");
+    let used = info.get_entry_point(0);
+    for (handle, global) in module.global_variables.iter() {
+        // Only what the entry point uses must be bound (as wgpu requires).
+        let Some(binding) = global.binding.as_ref().filter(|_| !used[handle].is_empty()) else {
+            continue;
+        };
+        let name = global.name.as_deref().unwrap_or("?");
+        let entry = layouts
+            .iter()
+            .filter(|(group, _)| *group == binding.group)
+            .flat_map(|(_, entries)| entries)
+            .find(|e| e.binding == binding.binding)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{label}: `{name}` at group {} binding {} is in no layout",
+                    binding.group, binding.binding
+                )
+            });
+        let kind_matches = match (global.space, entry.ty) {
+            (naga::AddressSpace::Uniform, wgpu::BindingType::Buffer { ty, .. }) => {
+                ty == wgpu::BufferBindingType::Uniform
+            }
+            (
+                naga::AddressSpace::Storage { access },
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only },
+                    ..
+                },
+            ) => read_only != access.contains(naga::StorageAccess::STORE),
+            (
+                naga::AddressSpace::Handle,
+                wgpu::BindingType::Texture { .. } | wgpu::BindingType::StorageTexture { .. },
+            ) => true,
+            _ => false,
+        };
+        assert!(
+            kind_matches,
+            "{label}: `{name}` ({:?}) does not match its layout entry {:?}",
+            global.space, entry.ty
+        );
+    }
+    for constant in constants {
+        assert!(
+            module
+                .overrides
+                .iter()
+                .any(|(_, o)| o.name.as_deref() == Some(constant)),
+            "{label}: no override `{constant}`"
+        );
+    }
+}
+
+fn frame_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    vec![
+        entry::uniform(bindings::FRAME_VIEW),
+        entry::texture(bindings::FRAME_DEPTH),
+        entry::texture(bindings::FRAME_NORMALS),
+        entry::storage_texture_r32f(bindings::FRAME_AO_OUT),
+    ]
+}
+
+/// The stochastic depth layouts to compose a source with (one dummy for the other sources).
+fn sd_layouts(source: Source) -> Vec<SdLayout> {
+    let all: &[(u32, u32)] = if source == Source::StochasticDepth {
+        &SD_LAYOUTS
+    } else {
+        &[(1, 1)]
+    };
+    all.iter()
+        .map(|&(maps, samples_per_map)| SdLayout {
+            maps,
+            samples_per_map,
+        })
+        .collect()
+}
+
+/// One pipeline of a schedule, composed and checked against the layouts it is built with.
+fn check_stage(
+    label: &str,
+    (estimator, constants): (&str, &[&str]),
+    source: Source,
+    sd: SdLayout,
+    stage: schedules::Stage,
+) {
+    let wgsl = schedules::compose(estimator, &sources::wgsl(source, sd), &stage.parts);
+    let source_entries = match stage.source_group {
+        SourceGroup::Resolve => sources::resolve_entries(source, sd),
+        SourceGroup::Request => sources::request_entries(source),
+    };
+    let mut all_constants = constants.to_vec();
+    all_constants.extend(stage.constants.iter().map(|(n, _)| *n));
+    check(
+        &format!("{label} / {source:?} ({sd:?}) / {}", stage.label),
+        &wgsl,
+        &[
+            (GROUP_FRAME, frame_entries()),
+            (
+                GROUP_ESTIMATOR,
+                vec![entry::uniform(bindings::ESTIMATOR_PARAMS)],
+            ),
+            (GROUP_SOURCE, source_entries),
+            (GROUP_SCHEDULE, stage.schedule_entries),
+        ],
+        &all_constants,
+    );
+}
+
+/// Every pipeline of `estimator` × `source` × every schedule.
+fn check_all_schedules(label: &str, estimator: (&str, &[&str]), source: Source) {
+    for sd in sd_layouts(source) {
+        for schedule in [
+            Schedule::Single,
+            Schedule::TwoPhase,
+            Schedule::TwoPhaseDense,
+        ] {
+            for stage in schedules::stages(schedule) {
+                check_stage(label, estimator, source, sd, stage);
+            }
+        }
+    }
+}
+
+#[test]
+fn every_row_composes_and_validates() {
+    for row in TABLE {
+        for sd in sd_layouts(row.source) {
+            for stage in schedules::stages(row.schedule) {
+                let estimator = crate::estimators::wgsl(row.estimator);
+                check_stage(row.name, estimator, row.source, sd, stage);
+            }
+        }
+    }
+    let (indirect, entries) = schedules::two_phase::indirect_stage();
+    check("two-phase indirect", &indirect, &[(0, entries)], &[]);
+}
+
+#[test]
+fn every_estimator_runs_over_every_source_it_supports() {
+    for estimator in TABLE.iter().map(|r| r.estimator) {
+        for source in [
+            Source::FirstLayer,
+            Source::DualDepth,
+            Source::ColumnRays,
+            Source::StochasticDepth,
+        ] {
+            if source.supports(estimator) {
+                check_all_schedules(estimator.name(), crate::estimators::wgsl(estimator), source);
+            }
+        }
+    }
+}
+
+#[test]
+fn a_new_estimator_needs_no_source_or_schedule_edit() {
+    for source in [
+        Source::FirstLayer,
+        Source::DualDepth,
+        Source::StochasticDepth,
+    ] {
+        check_all_schedules("stub estimator", (STUB, &["SAMPLE_COUNT"]), source);
+    }
+}
+
+#[test]
+fn a_broken_combination_fails_the_check() {
+    // The check itself can fail: a source without the contract's functions, and a shader whose
+    // binding is not in its layout.
+    let (estimator, _) = crate::estimators::wgsl(crate::technique::Estimator::Vao);
+    let stage = schedules::single::stage();
+    let missing = schedules::compose(estimator, "", &stage.parts);
+    assert!(std::panic::catch_unwind(|| check("missing source", &missing, &[], &[])).is_err());
+    let wgsl = schedules::compose(estimator, crate::shaders::SOURCE_FIRST_LAYER, &stage.parts);
+    let no_frame = std::panic::catch_unwind(|| {
+        check(
+            "no frame layout",
+            &wgsl,
+            &[(GROUP_ESTIMATOR, vec![entry::uniform(0)])],
+            &[],
+        )
+    });
+    assert!(no_frame.is_err());
+}
