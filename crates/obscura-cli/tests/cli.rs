@@ -305,13 +305,18 @@ fn bench_reports_every_pass() {
         );
     }
     assert!(r["total_ms"].as_f64().is_some_and(|t| t > 0.0));
-    assert!(r.get("sd_samples").is_none(), "vao has no SD settings: {r}");
-    // A stochastic-depth technique records its settings and times its raster passes.
+    // Every record holds the whole settings struct, as a settings file would.
+    assert_eq!(r["settings"]["technique"], "vao");
+    assert_eq!(r["settings"]["vao"]["samples"].as_u64(), Some(8));
+    assert_eq!(r["settings"]["blur"]["radius"].as_u64(), Some(4));
+    assert!(r.get("layout").is_none(), "vao has no SD map: {r}");
+    // A stochastic-depth technique records its settings and layout and times its raster passes.
     let r = &v["results"][1];
     assert_eq!(r["technique"], "sd-svao");
+    let sd = &r["settings"]["stochastic_depth"];
     assert_eq!(
-        (r["sd_samples"].as_u64(), r["sd_alpha"].as_f64()),
-        (Some(4), Some(0.2))
+        (sd["samples"].as_u64(), sd["alpha"].as_f64(), sd["mask"].as_str()),
+        (Some(4), Some(0.2), Some("stencil"))
     );
     let layout = &r["layout"];
     assert_eq!(
