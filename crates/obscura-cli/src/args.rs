@@ -367,7 +367,10 @@ mod tests {
                 continue; // --technique / --techniques, per command
             }
             let flag = flag_for_field(field).unwrap_or_else(|| panic!("{field} has no flag"));
-            assert!(flags.iter().any(|f| f == flag), "{field}: {flag} is no flag");
+            assert!(
+                flags.iter().any(|f| f == flag),
+                "{field}: {flag} is no flag"
+            );
         }
         for (field, _) in FIELD_FLAGS {
             assert!(fields.iter().any(|f| f == field), "{field} is no field");
@@ -426,7 +429,9 @@ mod tests {
         let ultra = AoSettings::preset(t, Preset::Ultra);
         assert_eq!(ao(&["--preset", "ultra"]).settings(t).unwrap(), ultra);
         // The file over the preset: its fields win, the others stay the preset's.
-        let s = ao(&["--preset", "ultra", "--settings", f]).settings(t).unwrap();
+        let s = ao(&["--preset", "ultra", "--settings", f])
+            .settings(t)
+            .unwrap();
         let mut want = ultra;
         want.vao.samples = 16;
         want.vao.radius = 0.75;
@@ -467,17 +472,24 @@ mod tests {
 
     #[test]
     fn errors_name_flags_for_flags_and_fields_for_files() {
-        let e = ao(&["--radius", "-1"]).settings(Technique::Vao).unwrap_err();
+        let e = ao(&["--radius", "-1"])
+            .settings(Technique::Vao)
+            .unwrap_err();
         assert_eq!(
             e.to_string(),
             "invalid --radius -1: must be a positive number of world units, e.g. 0.5"
         );
-        let e = ao(&["--sd-alpha", "2"]).settings(Technique::SdVao).unwrap_err();
+        let e = ao(&["--sd-alpha", "2"])
+            .settings(Technique::SdVao)
+            .unwrap_err();
         assert!(e.to_string().starts_with("invalid --sd-alpha 2:"), "{e}");
         let e = ao(&["--normalization", "flat"])
             .settings(Technique::Vao)
             .unwrap_err();
-        assert!(e.to_string().starts_with("invalid --normalization flat:"), "{e}");
+        assert!(
+            e.to_string().starts_with("invalid --normalization flat:"),
+            "{e}"
+        );
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("bad.toml");
         std::fs::write(&file, "[blur]\nradius = 40\n").unwrap();

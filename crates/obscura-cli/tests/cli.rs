@@ -315,7 +315,11 @@ fn bench_reports_every_pass() {
     assert_eq!(r["technique"], "sd-svao");
     let sd = &r["settings"]["stochastic_depth"];
     assert_eq!(
-        (sd["samples"].as_u64(), sd["alpha"].as_f64(), sd["mask"].as_str()),
+        (
+            sd["samples"].as_u64(),
+            sd["alpha"].as_f64(),
+            sd["mask"].as_str()
+        ),
         (Some(4), Some(0.2), Some("stencil"))
     );
     let layout = &r["layout"];

@@ -2,8 +2,8 @@
 //! authors'; [`Preset`]s are per technique; settings files are JSON or TOML
 //! ([`AoSettings::from_file`]); `docs/SETTINGS.md` documents every field.
 
-pub use crate::technique::{Technique, UnknownTechnique};
 use crate::technique::{Estimator, Source};
+pub use crate::technique::{Technique, UnknownTechnique};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -526,10 +526,7 @@ fn parse<T: serde::de::DeserializeOwned>(
             }
         }),
         SettingsFormat::Toml => toml::from_str(text).map_err(|e| {
-            let (line, column) = e
-                .span()
-                .map(|span| line_column(text, span.start))
-                .unzip();
+            let (line, column) = e.span().map(|span| line_column(text, span.start)).unzip();
             ParseFailure {
                 line,
                 column,
@@ -731,7 +728,10 @@ mod tests {
             &["flat", "clipped"],
         );
         check(&file(d, "syntax.toml", "[vao\n"), &["line 1"]);
-        check(&file(d, "syntax.json", "{\"vao\": {\"radius\": }}"), &["line 1"]);
+        check(
+            &file(d, "syntax.json", "{\"vao\": {\"radius\": }}"),
+            &["line 1"],
+        );
         // Valid syntax, invalid value: the field and the rule, no CLI flag.
         let e = check(
             &file(d, "neg.toml", "[vao]\nradius = -1\n"),
@@ -783,7 +783,11 @@ mod tests {
         assert_eq!(vao(Preset::Ultra), (32, 6, sd_default));
         let sd = |p| {
             let s = AoSettings::preset(Technique::SdSvao, p);
-            (s.vao.samples, s.stochastic_depth.samples, s.stochastic_depth.alpha)
+            (
+                s.vao.samples,
+                s.stochastic_depth.samples,
+                s.stochastic_depth.alpha,
+            )
         };
         assert_eq!(sd(Preset::Low), (8, 2, 0.2));
         assert_eq!(sd(Preset::Medium), (8, 4, 0.2));
