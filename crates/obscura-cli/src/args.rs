@@ -1,11 +1,13 @@
 //! Parsers and shared option groups for the subcommands.
 
 use anyhow::{anyhow, bail, Result};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Scene};
-use obscura::settings::{AoSettings, Normalization};
+use obscura::settings::{AoSettings, Normalization, Preset, SdMask, SettingsError};
 use obscura::Technique;
+use std::path::PathBuf;
 
 /// `WxH`, both positive.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -112,86 +114,201 @@ impl SceneArgs {
     }
 }
 
-/// Technique parameters.
+/// Each [`AoSettings`] field with the `AoArgs` flag that sets it (every field but `technique`,
+/// which `--technique`/`--techniques` choose). Library errors name fields; the CLI names flags.
+const FIELD_FLAGS: &[(&str, &str)] = &[
+    ("vao.radius", "--radius"),
+    ("vao.thickness", "--thickness"),
+    ("vao.exponent", "--exponent"),
+    ("vao.samples", "--samples"),
+    ("vao.normalization", "--normalization"),
+    ("blur.enabled", "--no-blur"),
+    ("blur.radius", "--blur-radius"),
+    ("blur.sharpness", "--blur-sharpness"),
+    ("peel_separation", "--peel-separation"),
+    ("stochastic_depth.samples", "--sd-samples"),
+    ("stochastic_depth.alpha", "--sd-alpha"),
+    ("stochastic_depth.seed", "--sd-seed"),
+    ("stochastic_depth.mask", "--sd-mask"),
+];
+
+/// The flag that sets a settings field: `flag_for_field("vao.radius") == Some("--radius")`.
+pub fn flag_for_field(field: &str) -> Option<&'static str> {
+    FIELD_FLAGS
+        .iter()
+        .find(|(f, _)| *f == field)
+        .map(|(_, flag)| *flag)
+}
+
+/// A settings error as the CLI says it: an invalid field named by its flag.
+fn with_flags(e: SettingsError) -> anyhow::Error {
+    match e {
+        SettingsError::Invalid { field, value, rule } => match flag_for_field(field) {
+            Some(flag) => anyhow!("invalid {flag} {value}: {rule}"),
+            None => SettingsError::Invalid { field, value, rule }.into(),
+        },
+        e => e.into(),
+    }
+}
+
+/// Help text ending in the field's default, as [`AoSettings::default`] has it (no second copy
+/// of the defaults here; a test checks that passing the stated defaults changes nothing).
+fn help(text: &str, field: &str) -> String {
+    let mut value = serde_json::to_value(AoSettings::default()).expect("settings serialise");
+    for key in field.split('.') {
+        value = value[key].take();
+    }
+    let shown = match &value {
+        serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::Number(n) if n.is_u64() => n.to_string(),
+        // Through f32, so that 1.3 reads 1.3 (the field is an f32).
+        serde_json::Value::Number(n) => (n.as_f64().unwrap_or(f64::NAN) as f32).to_string(),
+        other => other.to_string(),
+    };
+    format!("{} [default: {shown}]", text.trim_end_matches('.'))
+}
+
+/// Technique parameters. Precedence: defaults < `--preset` < `--settings FILE` < the other flags
+/// (only the flags given are applied).
 #[derive(Args, Clone, Debug)]
 pub struct AoArgs {
-    /// VAO sphere radius R in world units.
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
-    pub radius: f32,
-    /// VAO thickness τ (constant occluded area above the column, in units of R).
-    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
-    pub thickness: f32,
-    /// Power applied to the final AO.
-    #[arg(long, default_value_t = 1.3, allow_hyphen_values = true)]
-    pub exponent: f32,
-    /// Samples per pixel: 8, 16 or 32.
-    #[arg(long, default_value_t = 8)]
-    pub samples: u32,
-    /// VAO normalisation: clipped (exact 1 on planes) or hemisphere (the paper's 2/N).
-    #[arg(long, default_value = "clipped")]
-    pub normalization: String,
-    /// Skip the bilateral blur.
+    /// Quality preset for each technique (docs/SETTINGS.md lists what each sets; medium = the
+    /// defaults).
+    #[arg(long, value_parser = PossibleValuesParser::new(Preset::ALL.map(Preset::name))
+        .map(|s| s.parse::<Preset>().expect("a listed preset")))]
+    pub preset: Option<Preset>,
+    /// Settings file, .toml or .json (docs/SETTINGS.md): applied over the preset; the flags
+    /// below override it.
+    #[arg(long, value_name = "FILE")]
+    pub settings: Option<PathBuf>,
+    // Help texts name the defaults of AoSettings::default() (`help`).
+    #[arg(long, allow_hyphen_values = true, help = help("VAO sphere radius R in world units.", "vao.radius"))]
+    pub radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "VAO thickness τ (constant occluded area above the column, in units of R).",
+        "vao.thickness"
+    ))]
+    pub thickness: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("Power applied to the final AO.", "vao.exponent"))]
+    pub exponent: Option<f32>,
+    #[arg(long, help = help("Samples per pixel: 8, 16 or 32.", "vao.samples"))]
+    pub samples: Option<u32>,
+    #[arg(long, help = help(
+        "VAO normalisation: clipped (exact 1 on planes) or hemisphere (the paper's 2/N).",
+        "vao.normalization"
+    ))]
+    pub normalization: Option<String>,
+    /// Skip the bilateral blur (blurred by default).
     #[arg(long)]
     pub no_blur: bool,
-    /// Bilateral blur taps on each side (1..16).
-    #[arg(long, default_value_t = 4)]
-    pub blur_radius: u32,
-    /// Bilateral blur depth sharpness (per world unit of depth difference).
-    #[arg(long, default_value_t = 16.0, allow_hyphen_values = true)]
-    pub blur_sharpness: f32,
-    /// vao-dual, sd-vao, sd-svao: hidden layers start this many world units behind the first.
-    #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
-    pub peel_separation: f32,
-    /// sd-vao, sd-svao: stochastic depth samples per pixel (1, 2, 4, 8 or 16; counts one target
-    /// cannot hold on this adapter are stacked maps; `obscura info` lists them).
-    #[arg(long, default_value_t = 4)]
-    pub sd_samples: u32,
-    /// sd-vao, sd-svao: global transparency α in (0, 1]; a hidden fragment is kept in
-    /// ⌊αS + ξ⌋ samples. 0.2 is the authors' 2022 value, their 2024 code used 1.5/S.
-    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
-    pub sd_alpha: f32,
-    /// sd-vao, sd-svao: seed of the stochastic depth map's hash.
-    #[arg(long, default_value_t = 0)]
-    pub sd_seed: u32,
-    /// sd-svao: limit the map to the requested pixels by 'stencil' (the paper's full-screen
-    /// copy into the stencil, then the stencil test) or 'discard' (the map's fragment shader
-    /// reads the request mask; no copy pass).
-    #[arg(long, default_value = "stencil")]
-    pub sd_mask: obscura::settings::SdMask,
+    #[arg(long, help = help("Bilateral blur taps on each side (1..16).", "blur.radius"))]
+    pub blur_radius: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "Bilateral blur depth sharpness (per world unit of depth difference).",
+        "blur.sharpness"
+    ))]
+    pub blur_sharpness: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "vao-dual, sd-vao, sd-svao: hidden layers start this many world units behind the first.",
+        "peel_separation"
+    ))]
+    pub peel_separation: Option<f32>,
+    #[arg(long, help = help(
+        "sd-vao, sd-svao: stochastic depth samples per pixel (1, 2, 4, 8 or 16; counts one \
+         target cannot hold on this adapter are stacked maps; `obscura info` lists them).",
+        "stochastic_depth.samples"
+    ))]
+    pub sd_samples: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "sd-vao, sd-svao: global transparency α in (0, 1]; a hidden fragment is kept in \
+         ⌊αS + ξ⌋ samples. 0.2 is the authors' 2022 value, their 2024 code used 1.5/S.",
+        "stochastic_depth.alpha"
+    ))]
+    pub sd_alpha: Option<f32>,
+    #[arg(long, help = help(
+        "sd-vao, sd-svao: seed of the stochastic depth map's hash.",
+        "stochastic_depth.seed"
+    ))]
+    pub sd_seed: Option<u32>,
+    #[arg(long, help = help(
+        "sd-svao: limit the map to the requested pixels by 'stencil' (the paper's full-screen \
+         copy into the stencil, then the stencil test) or 'discard' (the map's fragment shader \
+         reads the request mask; no copy pass).",
+        "stochastic_depth.mask"
+    ))]
+    pub sd_mask: Option<String>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
 }
 
 impl AoArgs {
+    /// The settings of `technique`: its preset (or the defaults), the settings file over it,
+    /// then the flags given; validated, errors naming the flag (or the file's field).
     pub fn settings(&self, technique: Technique) -> Result<AoSettings> {
-        let mut settings = AoSettings {
-            technique,
-            ..Default::default()
+        let mut s = match self.preset {
+            Some(preset) => AoSettings::preset(technique, preset),
+            None => AoSettings {
+                technique,
+                ..AoSettings::default()
+            },
         };
-        settings.vao.radius = self.radius;
-        settings.vao.thickness = self.thickness;
-        settings.vao.exponent = self.exponent;
-        settings.vao.samples = self.samples;
-        settings.vao.normalization = self.normalization.parse::<Normalization>()?;
-        settings.blur.enabled = !self.no_blur;
-        settings.blur.radius = self.blur_radius;
-        settings.blur.sharpness = self.blur_sharpness;
-        settings.peel_separation = self.peel_separation;
-        settings.stochastic_depth = obscura::settings::StochasticDepthSettings {
-            samples: self.sd_samples,
-            alpha: self.sd_alpha,
-            seed: self.sd_seed,
-            mask: self.sd_mask,
-        };
-        settings.validate()?;
-        Ok(settings)
+        if let Some(path) = &self.settings {
+            s = s.with_file(path)?;
+            if s.technique != technique {
+                warn_once(format!(
+                    "warning: settings file '{}' sets technique \"{}\", which is not used: the \
+                     command line chooses techniques (--technique/--techniques); this run uses \
+                     {technique}",
+                    path.display(),
+                    s.technique
+                ));
+                s.technique = technique;
+            }
+        }
+        let v = &mut s.vao;
+        set(&mut v.radius, self.radius);
+        set(&mut v.thickness, self.thickness);
+        set(&mut v.exponent, self.exponent);
+        set(&mut v.samples, self.samples);
+        if let Some(n) = &self.normalization {
+            v.normalization = n.parse::<Normalization>().map_err(with_flags)?;
+        }
+        let b = &mut s.blur;
+        if self.no_blur {
+            b.enabled = false;
+        }
+        set(&mut b.radius, self.blur_radius);
+        set(&mut b.sharpness, self.blur_sharpness);
+        set(&mut s.peel_separation, self.peel_separation);
+        let sd = &mut s.stochastic_depth;
+        set(&mut sd.samples, self.sd_samples);
+        set(&mut sd.alpha, self.sd_alpha);
+        set(&mut sd.seed, self.sd_seed);
+        if let Some(m) = &self.sd_mask {
+            sd.mask = m.parse::<SdMask>().map_err(with_flags)?;
+        }
+        // The preset and the file were valid: anything invalid now came from a flag.
+        s.validate().map_err(with_flags)?;
+        Ok(s)
     }
 
     pub fn guard_band(&self, height: u32) -> u32 {
         self.guard_band
             .unwrap_or_else(|| obscura::default_guard_band(height))
     }
+}
+
+fn set<T>(slot: &mut T, flag: Option<T>) {
+    if let Some(v) = flag {
+        *slot = v;
+    }
+}
+
+/// `message` on stderr, once per run (settings are resolved once per technique).
+fn warn_once(message: String) {
+    static SAID: std::sync::Once = std::sync::Once::new();
+    SAID.call_once(|| eprintln!("{message}"));
 }
 
 /// Comma-separated technique names, at least one.
@@ -219,4 +336,179 @@ pub fn warn_stack_overflows(renderer: &obscura::Renderer) -> Result<()> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::{CommandFactory, Parser};
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        ao: AoArgs,
+    }
+
+    fn ao(args: &[&str]) -> AoArgs {
+        Cli::try_parse_from(std::iter::once("obscura").chain(args.iter().copied()))
+            .unwrap_or_else(|e| panic!("{args:?}: {e}"))
+            .ao
+    }
+
+    /// `--flag` → its help text.
+    fn helps() -> Vec<(String, String)> {
+        Cli::command()
+            .get_arguments()
+            .filter_map(|a| {
+                let long = a.get_long()?;
+                Some((format!("--{long}"), a.get_help()?.to_string()))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_settings_field_has_an_existing_flag() {
+        let flags: Vec<String> = helps().into_iter().map(|(f, _)| f).collect();
+        let fields = AoSettings::field_paths();
+        for field in &fields {
+            if field == "technique" {
+                continue; // --technique / --techniques, per command
+            }
+            let flag = flag_for_field(field).unwrap_or_else(|| panic!("{field} has no flag"));
+            assert!(
+                flags.iter().any(|f| f == flag),
+                "{field}: {flag} is no flag"
+            );
+        }
+        for (field, _) in FIELD_FLAGS {
+            assert!(fields.iter().any(|f| f == field), "{field} is no field");
+        }
+        assert_eq!(flag_for_field("vao.radius"), Some("--radius"));
+        assert_eq!(flag_for_field("stochastic_depth.alpha"), Some("--sd-alpha"));
+    }
+
+    #[test]
+    fn the_defaults_the_help_states_are_the_library_defaults() {
+        let mut stated = 0;
+        for (flag, help) in helps() {
+            let Some((_, rest)) = help.split_once("[default: ") else {
+                continue;
+            };
+            let value = rest.trim_end_matches(']');
+            if flag == "--guard-band" {
+                continue;
+            }
+            assert!(
+                FIELD_FLAGS.iter().any(|(_, f)| *f == flag),
+                "{flag} states a default but sets no field"
+            );
+            stated += 1;
+            // Passing the stated default explicitly changes nothing, for every technique.
+            let a = ao(&[&flag, value]);
+            for t in Technique::all() {
+                let want = AoSettings {
+                    technique: t,
+                    ..AoSettings::default()
+                };
+                assert_eq!(a.settings(t).unwrap(), want, "{flag} {value}");
+            }
+        }
+        // Every field but blur.enabled (the --no-blur switch).
+        assert_eq!(stated, FIELD_FLAGS.len() - 1);
+        for t in Technique::all() {
+            assert_eq!(
+                ao(&[]).settings(t).unwrap(),
+                AoSettings::preset(t, Preset::Medium)
+            );
+        }
+    }
+
+    #[test]
+    fn preset_then_file_then_flags() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("s.toml");
+        std::fs::write(
+            &file,
+            "[vao]\nsamples = 16\nradius = 0.75\n[stochastic_depth]\nalpha = 0.5\n",
+        )
+        .unwrap();
+        let f = file.to_str().unwrap();
+        let t = Technique::SdSvao;
+        let ultra = AoSettings::preset(t, Preset::Ultra);
+        assert_eq!(ao(&["--preset", "ultra"]).settings(t).unwrap(), ultra);
+        // The file over the preset: its fields win, the others stay the preset's.
+        let s = ao(&["--preset", "ultra", "--settings", f])
+            .settings(t)
+            .unwrap();
+        let mut want = ultra;
+        want.vao.samples = 16;
+        want.vao.radius = 0.75;
+        want.stochastic_depth.alpha = 0.5;
+        assert_eq!(s, want);
+        // Flags over the file.
+        let s = ao(&[
+            "--settings",
+            f,
+            "--preset",
+            "ultra",
+            "--samples",
+            "8",
+            "--blur-radius",
+            "3",
+            "--sd-mask",
+            "discard",
+            "--no-blur",
+        ])
+        .settings(t)
+        .unwrap();
+        want.vao.samples = 8;
+        want.blur.radius = 3;
+        want.blur.enabled = false;
+        want.stochastic_depth.mask = SdMask::Discard;
+        assert_eq!(s, want);
+        // No preset: the file over the defaults.
+        let s = ao(&["--settings", f]).settings(Technique::Vao).unwrap();
+        assert_eq!((s.vao.samples, s.vao.radius, s.blur.radius), (16, 0.75, 4));
+        // The command line chooses the technique, not the file.
+        let other = dir.path().join("t.json");
+        std::fs::write(&other, r#"{"technique": "rt-vao"}"#).unwrap();
+        let s = ao(&["--settings", other.to_str().unwrap()])
+            .settings(Technique::Vao)
+            .unwrap();
+        assert_eq!(s.technique, Technique::Vao);
+    }
+
+    #[test]
+    fn errors_name_flags_for_flags_and_fields_for_files() {
+        let e = ao(&["--radius", "-1"])
+            .settings(Technique::Vao)
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid --radius -1: must be a positive number of world units, e.g. 0.5"
+        );
+        let e = ao(&["--sd-alpha", "2"])
+            .settings(Technique::SdVao)
+            .unwrap_err();
+        assert!(e.to_string().starts_with("invalid --sd-alpha 2:"), "{e}");
+        let e = ao(&["--normalization", "flat"])
+            .settings(Technique::Vao)
+            .unwrap_err();
+        assert!(
+            e.to_string().starts_with("invalid --normalization flat:"),
+            "{e}"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("bad.toml");
+        std::fs::write(&file, "[blur]\nradius = 40\n").unwrap();
+        let e = ao(&["--settings", file.to_str().unwrap()])
+            .settings(Technique::Vao)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("bad.toml") && e.contains("blur.radius 40") && !e.contains("--"),
+            "{e}"
+        );
+        assert!(Cli::try_parse_from(["obscura", "--preset", "max"]).is_err());
+    }
 }

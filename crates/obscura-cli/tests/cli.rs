@@ -305,13 +305,22 @@ fn bench_reports_every_pass() {
         );
     }
     assert!(r["total_ms"].as_f64().is_some_and(|t| t > 0.0));
-    assert!(r.get("sd_samples").is_none(), "vao has no SD settings: {r}");
-    // A stochastic-depth technique records its settings and times its raster passes.
+    // Every record holds the whole settings struct, as a settings file would.
+    assert_eq!(r["settings"]["technique"], "vao");
+    assert_eq!(r["settings"]["vao"]["samples"].as_u64(), Some(8));
+    assert_eq!(r["settings"]["blur"]["radius"].as_u64(), Some(4));
+    assert!(r.get("layout").is_none(), "vao has no SD map: {r}");
+    // A stochastic-depth technique records its settings and layout and times its raster passes.
     let r = &v["results"][1];
     assert_eq!(r["technique"], "sd-svao");
+    let sd = &r["settings"]["stochastic_depth"];
     assert_eq!(
-        (r["sd_samples"].as_u64(), r["sd_alpha"].as_f64()),
-        (Some(4), Some(0.2))
+        (
+            sd["samples"].as_u64(),
+            sd["alpha"].as_f64(),
+            sd["mask"].as_str()
+        ),
+        (Some(4), Some(0.2), Some("stencil"))
     );
     let layout = &r["layout"];
     assert_eq!(
@@ -783,4 +792,87 @@ fn debug_out_shows_the_stochastic_depth_map() {
         full["stored_samples"].as_u64() >= stats["stored_samples"].as_u64(),
         "sd-vao {full} vs sd-svao {stats}"
     );
+}
+
+/// `obscura render` of the stairs close-up at 64x48 with `extra` into `dir/name`; its grey levels.
+fn render_grey(dir: &Path, name: &str, extra: &[&str]) -> Vec<u8> {
+    let out = dir.join(name);
+    let mut args = vec!["render", "--size", "64x48", "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = obscura(&args);
+    assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+    grey(&out).2
+}
+
+#[test]
+fn settings_files_and_presets_change_the_image_and_flags_win() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let toml = write(d, "wide.toml", b"# a larger sphere\n[vao]\nradius = 1.5\n");
+    let json = write(d, "wide.json", br#"{"vao": {"radius": 1.5}}"#);
+    let default = render_grey(d, "default.png", &[]);
+    let flag = render_grey(d, "flag.png", &["--radius", "1.5"]);
+    assert_ne!(default, flag, "--radius 1.5 changes the image");
+    let from_toml = render_grey(d, "toml.png", &["--settings", toml.to_str().unwrap()]);
+    assert_eq!(from_toml, flag, "the file's radius is --radius 1.5");
+    let from_json = render_grey(d, "json.png", &["--settings", json.to_str().unwrap()]);
+    assert_eq!(from_json, flag);
+    // An explicit flag beats the file.
+    let both = render_grey(
+        d,
+        "both.png",
+        &["--settings", toml.to_str().unwrap(), "--radius", "0.5"],
+    );
+    assert_eq!(both, default, "--radius 0.5 over the file's 1.5");
+    // Presets: medium is the defaults; high (16 samples) is another image, the same as the flag.
+    let medium = render_grey(d, "medium.png", &["--preset", "medium"]);
+    assert_eq!(medium, default);
+    let high = render_grey(d, "high.png", &["--preset", "high"]);
+    assert_ne!(high, default);
+    assert_eq!(high, render_grey(d, "16.png", &["--samples", "16"]));
+}
+
+#[test]
+fn bad_settings_files_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let one_line = |err: &str| {
+        let ours = err
+            .trim()
+            .lines()
+            .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
+            .count();
+        assert_eq!(ours, 1, "one message: {err}");
+    };
+    let typo = write(d, "typo.toml", b"[vao]\nradius = 1.0\nsampels = 16\n");
+    let err = assert_render_fails(
+        &["--settings", typo.to_str().unwrap()],
+        &["typo.toml", "line 3", "sampels"],
+    );
+    one_line(&err);
+    let syntax = write(d, "syntax.json", b"{\"vao\": {\"radius\": 1.0,}}");
+    one_line(&assert_render_fails(
+        &["--settings", syntax.to_str().unwrap()],
+        &["syntax.json", "line 1"],
+    ));
+    // A valid file with an invalid value names the file and the field (not a flag).
+    let invalid = write(d, "invalid.toml", b"[stochastic_depth]\nalpha = 1.5\n");
+    let err = assert_render_fails(
+        &["--settings", invalid.to_str().unwrap()],
+        &["invalid.toml", "stochastic_depth.alpha", "(0, 1]"],
+    );
+    one_line(&err);
+    let missing = d.join("missing.toml");
+    one_line(&assert_render_fails(
+        &["--settings", missing.to_str().unwrap()],
+        &["missing.toml", "cannot read"],
+    ));
+    let yaml = write(d, "s.yaml", b"vao: {}\n");
+    one_line(&assert_render_fails(
+        &["--settings", yaml.to_str().unwrap()],
+        &["s.yaml", ".toml", ".json"],
+    ));
+    // A flag's invalid value names the flag.
+    let err = assert_render_fails(&["--blur-radius", "0"], &["--blur-radius 0", "1 and 16"]);
+    one_line(&err);
 }

@@ -1,23 +1,76 @@
-//! What a user chooses: the technique and its parameters. Defaults are the papers' / authors'.
+//! What a user chooses: the technique and its parameters, as data. Defaults are the papers' /
+//! authors'; [`Preset`]s are per technique; settings files are JSON or TOML
+//! ([`AoSettings::from_file`]); `docs/SETTINGS.md` documents every field.
 
+use crate::technique::{Estimator, Source};
 pub use crate::technique::{Technique, UnknownTechnique};
+use serde::{Deserialize, Serialize};
 use std::fmt;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
+/// What can be wrong with settings. Messages name settings *fields* by their path in a settings
+/// file (`vao.radius`, `stochastic_depth.alpha`), never a command-line flag: the CLI maps fields
+/// to its flags itself.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingsError {
     #[error(transparent)]
     UnknownTechnique(#[from] UnknownTechnique),
-    #[error("invalid {name} {value}: {rule}")]
+    /// A value no kernel can use.
+    #[error("invalid {field} {value}: {rule}")]
     Invalid {
-        name: &'static str,
+        /// The field's path, as in a settings file: `vao.radius`, `blur.radius`,
+        /// `stochastic_depth.alpha`, `peel_separation`, … (one of [`AoSettings::field_paths`]).
+        field: &'static str,
         value: String,
+        /// What a valid value is, with an example; no command-line flags.
         rule: &'static str,
+    },
+    /// A preset name that is not one of [`Preset::ALL`].
+    #[error("unknown preset '{0}': use low, medium, high or ultra")]
+    UnknownPreset(String),
+    /// A settings file whose extension says neither JSON nor TOML.
+    #[error(
+        "settings file '{}' is neither .json nor .toml: name it *.toml or *.json (the format is \
+         chosen by the extension)",
+        path.display()
+    )]
+    UnknownFormat { path: PathBuf },
+    /// A settings file that cannot be read.
+    #[error("cannot read settings file '{}': {message}: check the path", path.display())]
+    Read { path: PathBuf, message: String },
+    /// A settings file that is not valid JSON/TOML, has a value of the wrong type or names a
+    /// field that does not exist (`line`/`column` where the parser says, 1-based).
+    #[error(
+        "settings file '{}'{}: {message} (fix the file; its fields are listed in docs/SETTINGS.md)",
+        path.display(),
+        at(*line, *column)
+    )]
+    Parse {
+        path: PathBuf,
+        line: Option<usize>,
+        column: Option<usize>,
+        message: String,
+    },
+    /// A settings file that parses but whose values do not validate.
+    #[error("settings file '{}': {source}", path.display())]
+    InFile {
+        path: PathBuf,
+        source: Box<SettingsError>,
     },
 }
 
+fn at(line: Option<usize>, column: Option<usize>) -> String {
+    match (line, column) {
+        (Some(l), Some(c)) => format!(", line {l}, column {c}"),
+        (Some(l), None) => format!(", line {l}"),
+        _ => String::new(),
+    }
+}
+
 /// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, seed-code-notes §1.2).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct VaoSettings {
     /// Sphere radius R in world units.
     pub radius: f32,
@@ -30,11 +83,14 @@ pub struct VaoSettings {
     pub normalization: Normalization,
 }
 
-/// How VAO turns the free column lengths into AO (see `shaders/vao.wgsl`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How VAO turns the free column lengths into AO (see `shaders/vao.wgsl`). In files:
+/// `"clipped"` or `"hemisphere"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Normalization {
     /// Seed 000 Eq. 7 with the hemisphere factor 2: `2/N Σ free/2h`. Exactly 1 on an unoccluded
     /// plane only on average over the 4×4 rotation pattern.
+    #[serde(alias = "paper")]
     Hemisphere,
     /// `Σ free/2h / Σ clipped/2h`: the same limit, exactly 1 on every unoccluded plane.
     #[default]
@@ -48,7 +104,7 @@ impl FromStr for Normalization {
             "hemisphere" | "paper" => Ok(Normalization::Hemisphere),
             "clipped" => Ok(Normalization::Clipped),
             _ => Err(invalid(
-                "normalization",
+                "vao.normalization",
                 s,
                 "must be 'clipped' (default) or 'hemisphere' (the paper's 2/N)",
             )),
@@ -69,7 +125,8 @@ impl Default for VaoSettings {
 }
 
 /// Depth-aware separable blur (seed 000 §3.4, HBAO+ weights).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct BlurSettings {
     pub enabled: bool,
     /// Taps on each side.
@@ -92,8 +149,10 @@ impl Default for BlurSettings {
 ///
 /// Defaults are the authors' 2022 values (S = 4, α = 0.2: seed 000 §4.1 and its scripts,
 /// seed-code-notes §1.5). Their 2024 code used α = 1.5/S instead (0.375 for S = 4,
-/// seed-code-notes §2.2); pass `--sd-alpha 0.375` for that.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// seed-code-notes §2.2); set `alpha = 0.375` (`--sd-alpha 0.375`) for that, or use
+/// [`Preset::High`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct StochasticDepthSettings {
     /// Depth samples per pixel, S: 1, 2, 4, 8 or 16. Counts the adapter cannot rasterise in one
     /// multisampled target are made of several maps stacked (each with its own seed).
@@ -106,8 +165,10 @@ pub struct StochasticDepthSettings {
     pub mask: SdMask,
 }
 
-/// How `sd-svao` rasterises its stochastic depth map only where phase 1 asked for it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How `sd-svao` rasterises its stochastic depth map only where phase 1 asked for it. In files:
+/// `"stencil"` or `"discard"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum SdMask {
     /// The paper's way (seed 000 §3.9): a full-screen pass copies the request mask into the
     /// map's stencil, then the scene is drawn with the stencil test.
@@ -125,11 +186,20 @@ impl FromStr for SdMask {
             "stencil" => Ok(SdMask::Stencil),
             "discard" => Ok(SdMask::Discard),
             _ => Err(invalid(
-                "sd mask",
+                "stochastic_depth.mask",
                 s,
                 "must be 'stencil' (default, the paper's) or 'discard'",
             )),
         }
+    }
+}
+
+impl fmt::Display for Normalization {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Normalization::Hemisphere => "hemisphere",
+            Normalization::Clipped => "clipped",
+        })
     }
 }
 
@@ -156,7 +226,12 @@ impl Default for StochasticDepthSettings {
 /// Depth samples per pixel the stochastic depth map accepts (before the adapter's own limits).
 pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Everything a technique's kernels read, as data: every field has a default (the papers' /
+/// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
+/// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
+/// an unknown field is an error. `docs/SETTINGS.md` lists every field.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct AoSettings {
     pub technique: Technique,
     pub vao: VaoSettings,
@@ -181,75 +256,605 @@ impl Default for AoSettings {
     }
 }
 
-fn invalid(name: &'static str, value: impl fmt::Display, rule: &'static str) -> SettingsError {
+fn invalid(field: &'static str, value: impl fmt::Display, rule: &'static str) -> SettingsError {
     SettingsError::Invalid {
-        name,
+        field,
         value: value.to_string(),
         rule,
     }
 }
 
 impl AoSettings {
-    /// Reject values no kernel can use; every message names the setting and the valid range.
+    /// Reject values no kernel can use; every message names the field (`vao.radius`) and the
+    /// valid range. Every rule is about one field alone.
     pub fn validate(&self) -> Result<(), SettingsError> {
         let v = &self.vao;
         if !(v.radius.is_finite() && v.radius > 0.0) {
             return Err(invalid(
-                "radius",
+                "vao.radius",
                 v.radius,
-                "must be a positive number of world units (e.g. --radius 0.5)",
+                "must be a positive number of world units, e.g. 0.5",
             ));
         }
         if !(v.thickness.is_finite() && v.thickness >= 0.0) {
             return Err(invalid(
-                "thickness",
+                "vao.thickness",
                 v.thickness,
-                "must be zero or positive (e.g. --thickness 0.5)",
+                "must be zero or positive, e.g. 0.5",
             ));
         }
         if !(v.exponent.is_finite() && v.exponent > 0.0) {
             return Err(invalid(
-                "exponent",
+                "vao.exponent",
                 v.exponent,
-                "must be positive (e.g. --exponent 1.3)",
+                "must be positive, e.g. 1.3",
             ));
         }
         if ![8, 16, 32].contains(&v.samples) {
-            return Err(invalid("sample count", v.samples, "must be 8, 16 or 32"));
+            return Err(invalid("vao.samples", v.samples, "must be 8, 16 or 32"));
         }
         if !(self.peel_separation.is_finite() && self.peel_separation >= 0.0) {
             return Err(invalid(
-                "peel separation",
+                "peel_separation",
                 self.peel_separation,
-                "must be zero or positive (e.g. --peel-separation 0.01)",
+                "must be zero or positive (world units), e.g. 0.01",
             ));
         }
         let sd = &self.stochastic_depth;
         if !SD_SAMPLE_COUNTS.contains(&sd.samples) {
             return Err(invalid(
-                "stochastic depth sample count",
+                "stochastic_depth.samples",
                 sd.samples,
-                "must be 1, 2, 4, 8 or 16 (e.g. --sd-samples 4)",
+                "must be 1, 2, 4, 8 or 16, e.g. 4",
             ));
         }
         if !(sd.alpha > 0.0 && sd.alpha <= 1.0) {
             return Err(invalid(
-                "stochastic depth alpha",
+                "stochastic_depth.alpha",
                 sd.alpha,
-                "must be in (0, 1] (e.g. --sd-alpha 0.2)",
+                "must be in (0, 1], e.g. 0.2",
             ));
         }
         let b = &self.blur;
         if b.radius == 0 || b.radius > 16 {
-            return Err(invalid("blur radius", b.radius, "must be between 1 and 16"));
+            return Err(invalid("blur.radius", b.radius, "must be between 1 and 16"));
         }
         if !(b.sharpness.is_finite() && b.sharpness >= 0.0) {
             return Err(invalid(
-                "blur sharpness",
+                "blur.sharpness",
                 b.sharpness,
                 "must be zero or positive",
             ));
         }
         Ok(())
+    }
+
+    /// The path of every field, as settings files and [`SettingsError::Invalid`] name them
+    /// (`technique`, `vao.radius`, …, `stochastic_depth.mask`), sorted.
+    pub fn field_paths() -> Vec<String> {
+        fn walk(prefix: &str, value: &serde_json::Value, out: &mut Vec<String>) {
+            match value {
+                serde_json::Value::Object(map) => {
+                    for (key, v) in map {
+                        let path = if prefix.is_empty() {
+                            key.clone()
+                        } else {
+                            format!("{prefix}.{key}")
+                        };
+                        walk(&path, v, out);
+                    }
+                }
+                _ => out.push(prefix.to_string()),
+            }
+        }
+        let mut out = Vec::new();
+        walk("", &to_value(&AoSettings::default()), &mut out);
+        out
+    }
+}
+
+fn to_value(settings: &AoSettings) -> serde_json::Value {
+    serde_json::to_value(settings).expect("AoSettings serialises to JSON")
+}
+
+// ------------------------------------------------------------------------------------ presets
+
+/// A quality level: [`AoSettings::preset`] says per technique what each sets.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    Low,
+    /// The defaults ([`AoSettings::default`]) for every technique.
+    #[default]
+    Medium,
+    High,
+    Ultra,
+}
+
+impl Preset {
+    pub const ALL: [Preset; 4] = [Preset::Low, Preset::Medium, Preset::High, Preset::Ultra];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Low => "low",
+            Preset::Medium => "medium",
+            Preset::High => "high",
+            Preset::Ultra => "ultra",
+        }
+    }
+}
+
+impl fmt::Display for Preset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Preset {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let wanted = s.trim().to_ascii_lowercase();
+        Preset::ALL
+            .into_iter()
+            .find(|p| p.name() == wanted)
+            .ok_or_else(|| SettingsError::UnknownPreset(s.to_string()))
+    }
+}
+
+/// α of the authors' 2024 code (seed-code-notes §2.2): 1.5/S, so that a hidden fragment is kept
+/// in 1.5 of its pixel's S samples on average whatever S is (at most 1).
+pub fn sd_alpha_2024(samples: u32) -> f32 {
+    (1.5 / samples as f32).min(1.0)
+}
+
+impl AoSettings {
+    /// The settings of `technique` at a quality level: [`AoSettings::default`] with the fields
+    /// below changed, chosen by the axes of the technique's row (estimator, hidden-depth source;
+    /// the schedule changes nothing: a two-phase technique gets the settings of its single-pass
+    /// twin, so that both give the same image). Every other field keeps its default: a preset
+    /// never changes the scene-dependent radius, thickness, exponent, normalisation, peel
+    /// separation or blur sharpness, nor the seed or `sd-svao`'s mask (and the guard band is not
+    /// a setting at all). `Medium` is exactly [`AoSettings::default`] for every technique.
+    ///
+    /// | preset | VAO estimator: `vao.samples`, `blur.radius` | stochastic-depth source: `stochastic_depth.samples` S, `.alpha` α |
+    /// |---|---|---|
+    /// | low | 8, 2 | 2, 0.2 |
+    /// | medium | 8, 4 (the defaults) | 4, 0.2 (the defaults, the authors' 2022 values) |
+    /// | high | 16, 4 | 4, 0.375 (1.5/S, the authors' 2024 rule) |
+    /// | ultra | 32, 6 | 8, 0.1875 (1.5/S) |
+    ///
+    /// S = 2 needs 2× multisampled depth, which some adapters (lavapipe) lack: there `low` with a
+    /// stochastic-depth technique is refused when the map is made (set S to 4 to go on).
+    pub fn preset(technique: Technique, preset: Preset) -> AoSettings {
+        let row = technique.row();
+        let mut s = AoSettings {
+            technique,
+            ..AoSettings::default()
+        };
+        match row.estimator {
+            Estimator::Vao => match preset {
+                Preset::Low => {
+                    s.vao.samples = 8;
+                    s.blur.radius = 2;
+                }
+                Preset::Medium => {}
+                Preset::High => s.vao.samples = 16,
+                Preset::Ultra => {
+                    s.vao.samples = 32;
+                    s.blur.radius = 6;
+                }
+            },
+        }
+        match row.source {
+            Source::StochasticDepth => {
+                let sd = &mut s.stochastic_depth;
+                match preset {
+                    Preset::Low => sd.samples = 2,
+                    Preset::Medium => {}
+                    Preset::High => {
+                        sd.samples = 4;
+                        sd.alpha = sd_alpha_2024(4);
+                    }
+                    Preset::Ultra => {
+                        sd.samples = 8;
+                        sd.alpha = sd_alpha_2024(8);
+                    }
+                }
+            }
+            Source::FirstLayer | Source::DualDepth | Source::ColumnRays => {}
+        }
+        s
+    }
+}
+
+// ------------------------------------------------------------------------------------- files
+
+/// The format of a settings file, chosen by its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SettingsFormat {
+    /// `.json`
+    Json,
+    /// `.toml`
+    Toml,
+}
+
+impl SettingsFormat {
+    /// `.json` or `.toml` (any case); anything else is [`SettingsError::UnknownFormat`].
+    pub fn of(path: &Path) -> Result<SettingsFormat, SettingsError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("json") => Ok(SettingsFormat::Json),
+            Some("toml") => Ok(SettingsFormat::Toml),
+            _ => Err(SettingsError::UnknownFormat {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
+}
+
+/// Where a parser says it failed, 1-based.
+struct ParseFailure {
+    line: Option<usize>,
+    column: Option<usize>,
+    message: String,
+}
+
+/// One line, 1-based column, of byte `offset` in `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+fn parse<T: serde::de::DeserializeOwned>(
+    text: &str,
+    format: SettingsFormat,
+) -> Result<T, ParseFailure> {
+    match format {
+        SettingsFormat::Json => serde_json::from_str(text).map_err(|e| {
+            let full = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
+            let message = full.strip_suffix(&suffix).unwrap_or(&full).to_string();
+            ParseFailure {
+                line: (e.line() > 0).then_some(e.line()),
+                column: (e.line() > 0).then_some(e.column()),
+                message,
+            }
+        }),
+        SettingsFormat::Toml => toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map(|span| line_column(text, span.start)).unzip();
+            ParseFailure {
+                line,
+                column,
+                message: e.message().trim().replace('\n', "; "),
+            }
+        }),
+    }
+}
+
+/// `top`'s fields written over `base`'s, recursively.
+fn merge(base: &mut serde_json::Value, top: serde_json::Value) {
+    match (base, top) {
+        (serde_json::Value::Object(base), serde_json::Value::Object(top)) => {
+            for (key, value) in top {
+                match base.get_mut(&key) {
+                    Some(slot) => merge(slot, value),
+                    None => {
+                        base.insert(key, value);
+                    }
+                }
+            }
+        }
+        (slot, value) => *slot = value,
+    }
+}
+
+impl AoSettings {
+    /// A settings file (`.json` or `.toml`, by extension) over the defaults, validated. The file
+    /// may give any subset of the fields ([`AoSettings::field_paths`]); an unknown field, a value
+    /// of the wrong type or one [`AoSettings::validate`] rejects is an error naming the file (and
+    /// the line where the parser can tell).
+    pub fn from_file(path: impl AsRef<Path>) -> Result<AoSettings, SettingsError> {
+        AoSettings::default().with_file(path)
+    }
+
+    /// `self` with the fields a settings file gives replaced by the file's, validated: how a
+    /// file goes over a [`Preset`] (fields the file leaves out keep `self`'s values, not the
+    /// defaults). Errors as [`AoSettings::from_file`].
+    pub fn with_file(&self, path: impl AsRef<Path>) -> Result<AoSettings, SettingsError> {
+        let path = path.as_ref();
+        let format = SettingsFormat::of(path)?;
+        let text = std::fs::read_to_string(path).map_err(|e| SettingsError::Read {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        let parse_error = |f: ParseFailure| SettingsError::Parse {
+            path: path.to_path_buf(),
+            line: f.line,
+            column: f.column,
+            message: f.message,
+        };
+        // Typed first, for the parser's positions on unknown fields and wrong types ...
+        parse::<AoSettings>(&text, format).map_err(parse_error)?;
+        // ... then as a tree, to keep the fields the file leaves out.
+        let file: serde_json::Value = parse(&text, format).map_err(parse_error)?;
+        let mut merged = to_value(self);
+        merge(&mut merged, file);
+        let settings: AoSettings =
+            serde_json::from_value(merged).map_err(|e| SettingsError::Parse {
+                path: path.to_path_buf(),
+                line: None,
+                column: None,
+                message: e.to_string(),
+            })?;
+        settings.validate().map_err(|e| SettingsError::InFile {
+            path: path.to_path_buf(),
+            source: Box::new(e),
+        })?;
+        Ok(settings)
+    }
+
+    /// Every field as TOML (what a `.toml` settings file holds).
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string(self).expect("AoSettings serialises to TOML")
+    }
+
+    /// Every field as pretty-printed JSON (what a `.json` settings file holds).
+    pub fn to_json_string(&self) -> String {
+        serde_json::to_string_pretty(self).expect("AoSettings serialises to JSON")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    fn odd() -> AoSettings {
+        let mut s = AoSettings::preset(Technique::SdSvao, Preset::Ultra);
+        s.vao.radius = 0.7;
+        s.vao.exponent = 1.1;
+        s.vao.normalization = Normalization::Hemisphere;
+        s.blur.enabled = false;
+        s.blur.sharpness = 3.25;
+        s.peel_separation = 0.05;
+        s.stochastic_depth.seed = 17;
+        s.stochastic_depth.mask = SdMask::Discard;
+        s
+    }
+
+    #[test]
+    fn toml_and_json_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        for s in [AoSettings::default(), odd()] {
+            let toml_text = s.to_toml_string();
+            assert_eq!(toml::from_str::<AoSettings>(&toml_text).unwrap(), s);
+            let json_text = s.to_json_string();
+            assert_eq!(serde_json::from_str::<AoSettings>(&json_text).unwrap(), s);
+            let t = file(dir.path(), "s.toml", &toml_text);
+            assert_eq!(AoSettings::from_file(&t).unwrap(), s, "{toml_text}");
+            let j = file(dir.path(), "s.JSON", &json_text);
+            assert_eq!(AoSettings::from_file(&j).unwrap(), s, "{json_text}");
+        }
+        // Enums by their lowercase names, numbers as written.
+        let text = odd().to_toml_string();
+        for needle in [
+            "technique = \"sd-svao\"",
+            "normalization = \"hemisphere\"",
+            "mask = \"discard\"",
+            "radius = 0.7",
+        ] {
+            assert!(text.contains(needle), "{needle} not in\n{text}");
+        }
+        let json = AoSettings::default().to_json_string();
+        assert!(json.contains("\"normalization\": \"clipped\""), "{json}");
+        assert!(json.contains("\"mask\": \"stencil\""), "{json}");
+    }
+
+    #[test]
+    fn a_partial_file_changes_only_its_fields() {
+        let dir = tempfile::tempdir().unwrap();
+        let t = file(dir.path(), "r.toml", "[vao]\nradius = 1.25\n");
+        let mut want = AoSettings::default();
+        want.vao.radius = 1.25;
+        assert_eq!(AoSettings::from_file(&t).unwrap(), want);
+        // Over a preset, the fields the file leaves out keep the preset's values.
+        let base = AoSettings::preset(Technique::SdVao, Preset::Ultra);
+        let mut want = base;
+        want.vao.radius = 1.25;
+        assert_eq!(base.with_file(&t).unwrap(), want);
+        let j = file(
+            dir.path(),
+            "sd.json",
+            r#"{"stochastic_depth": {"alpha": 0.5}, "peel_separation": 0}"#,
+        );
+        let mut want = base;
+        want.stochastic_depth.alpha = 0.5;
+        want.peel_separation = 0.0;
+        assert_eq!(base.with_file(&j).unwrap(), want);
+        let empty = file(dir.path(), "empty.toml", "");
+        assert_eq!(base.with_file(&empty).unwrap(), base);
+        let whole = file(dir.path(), "t.toml", "technique = \"rt-vao\"\n");
+        assert_eq!(
+            AoSettings::from_file(&whole).unwrap().technique,
+            Technique::RtVao
+        );
+    }
+
+    #[test]
+    fn bad_files_are_one_clear_error_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let check = |path: &Path, needles: &[&str]| {
+            let e = AoSettings::from_file(path).unwrap_err();
+            let msg = e.to_string();
+            assert!(!msg.contains('\n'), "one line: {msg}");
+            let name = path.file_name().unwrap().to_str().unwrap();
+            for n in [name].iter().chain(needles) {
+                assert!(msg.contains(n), "'{n}' not in: {msg}");
+            }
+            e
+        };
+        // Unknown fields, top level and nested, with the line.
+        let e = check(
+            &file(d, "typo.toml", "# comment\n[vao]\nradiu = 1.0\n"),
+            &["radiu", "line 3", "radius"],
+        );
+        assert!(matches!(e, SettingsError::Parse { .. }), "{e:?}");
+        check(
+            &file(d, "typo.json", "{\n  \"peel_seperation\": 0.1\n}"),
+            &["peel_seperation", "line 2"],
+        );
+        // Wrong types, unknown names, syntax errors.
+        check(
+            &file(d, "type.toml", "[vao]\nsamples = \"many\"\n"),
+            &["line 2", "many"],
+        );
+        check(
+            &file(d, "tech.toml", "technique = \"hbao\"\n"),
+            &["hbao", "sd-svao"],
+        );
+        check(
+            &file(d, "norm.toml", "[vao]\nnormalization = \"flat\"\n"),
+            &["flat", "clipped"],
+        );
+        check(&file(d, "syntax.toml", "[vao\n"), &["line 1"]);
+        check(
+            &file(d, "syntax.json", "{\"vao\": {\"radius\": }}"),
+            &["line 1"],
+        );
+        // Valid syntax, invalid value: the field and the rule, no CLI flag.
+        let e = check(
+            &file(d, "neg.toml", "[vao]\nradius = -1\n"),
+            &["vao.radius", "-1", "positive"],
+        );
+        assert!(!e.to_string().contains("--"), "{e}");
+        // Unreadable, and a format the extension does not say.
+        let e = check(&d.join("missing.toml"), &["cannot read", "check the path"]);
+        assert!(matches!(e, SettingsError::Read { .. }));
+        let e = check(&file(d, "s.yaml", "vao: {}"), &[".toml", ".json"]);
+        assert!(matches!(e, SettingsError::UnknownFormat { .. }));
+        check(&file(d, "noext", "[vao]"), &[".toml"]);
+    }
+
+    #[test]
+    fn presets_validate_and_medium_is_the_default() {
+        for technique in Technique::all() {
+            for preset in Preset::ALL {
+                let s = AoSettings::preset(technique, preset);
+                s.validate()
+                    .unwrap_or_else(|e| panic!("{technique} {preset}: {e}"));
+                assert_eq!(s.technique, technique);
+                // Never the scene-dependent or technique-independent fields.
+                let d = AoSettings::default();
+                assert_eq!(
+                    (s.vao.radius, s.vao.thickness, s.vao.exponent),
+                    (d.vao.radius, d.vao.thickness, d.vao.exponent)
+                );
+                assert_eq!(s.peel_separation, d.peel_separation);
+                assert_eq!(s.blur.sharpness, d.blur.sharpness);
+                assert_eq!(s.blur.enabled, d.blur.enabled);
+            }
+            assert_eq!(
+                AoSettings::preset(technique, Preset::Medium),
+                AoSettings {
+                    technique,
+                    ..AoSettings::default()
+                }
+            );
+        }
+        // The documented table.
+        let vao = |p| {
+            let s = AoSettings::preset(Technique::Vao, p);
+            (s.vao.samples, s.blur.radius, s.stochastic_depth)
+        };
+        let sd_default = StochasticDepthSettings::default();
+        assert_eq!(vao(Preset::Low), (8, 2, sd_default));
+        assert_eq!(vao(Preset::High), (16, 4, sd_default));
+        assert_eq!(vao(Preset::Ultra), (32, 6, sd_default));
+        let sd = |p| {
+            let s = AoSettings::preset(Technique::SdSvao, p);
+            (
+                s.vao.samples,
+                s.stochastic_depth.samples,
+                s.stochastic_depth.alpha,
+            )
+        };
+        assert_eq!(sd(Preset::Low), (8, 2, 0.2));
+        assert_eq!(sd(Preset::Medium), (8, 4, 0.2));
+        assert_eq!(sd(Preset::High), (16, 4, 0.375));
+        assert_eq!(sd(Preset::Ultra), (32, 8, 0.1875));
+        // A two-phase technique gets its single-pass twin's settings.
+        for p in Preset::ALL {
+            let (a, b) = (
+                AoSettings::preset(Technique::SdVao, p),
+                AoSettings::preset(Technique::SdSvao, p),
+            );
+            assert_eq!(
+                AoSettings {
+                    technique: b.technique,
+                    ..a
+                },
+                b
+            );
+        }
+        assert_eq!("ULTRA".parse::<Preset>().unwrap(), Preset::Ultra);
+        let e = "max".parse::<Preset>().unwrap_err().to_string();
+        assert!(e.contains("max") && e.contains("medium"), "{e}");
+    }
+
+    #[test]
+    fn validation_names_fields_that_exist_and_no_flags() {
+        let paths = AoSettings::field_paths();
+        assert_eq!(paths.len(), 14, "{paths:?}");
+        let mut broken: Vec<AoSettings> = Vec::new();
+        let mut push = |f: &dyn Fn(&mut AoSettings)| {
+            let mut s = AoSettings::default();
+            f(&mut s);
+            broken.push(s);
+        };
+        push(&|s| s.vao.radius = 0.0);
+        push(&|s| s.vao.thickness = -1.0);
+        push(&|s| s.vao.exponent = f32::NAN);
+        push(&|s| s.vao.samples = 12);
+        push(&|s| s.peel_separation = -0.1);
+        push(&|s| s.stochastic_depth.samples = 3);
+        push(&|s| s.stochastic_depth.alpha = 1.5);
+        push(&|s| s.blur.radius = 0);
+        push(&|s| s.blur.sharpness = -2.0);
+        let mut reported = Vec::new();
+        for s in &broken {
+            match s.validate() {
+                Err(SettingsError::Invalid { field, rule, .. }) => {
+                    assert!(paths.iter().any(|p| p == field), "{field} not in {paths:?}");
+                    assert!(!rule.contains("--"), "{field}: '{rule}' names a flag");
+                    reported.push(field);
+                }
+                other => panic!("{s:?}: {other:?}"),
+            }
+        }
+        reported.dedup();
+        assert_eq!(reported.len(), broken.len(), "{reported:?}");
+        for (text, field) in [
+            ("flat".parse::<Normalization>().err(), "vao.normalization"),
+            ("both".parse::<SdMask>().err(), "stochastic_depth.mask"),
+        ] {
+            match text {
+                Some(SettingsError::Invalid { field: f, .. }) => {
+                    assert_eq!(f, field);
+                    assert!(paths.iter().any(|p| p == f));
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
 }

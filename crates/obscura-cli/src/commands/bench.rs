@@ -5,7 +5,7 @@ use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
-use obscura::{output, PassProfiler, Renderer};
+use obscura::{output, AoSettings, PassProfiler, Renderer};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -41,16 +41,13 @@ struct BenchResult {
     height: u32,
     guard_band: u32,
     frames: u32,
-    /// `sd-vao`, `sd-svao`: stochastic depth samples per pixel S, α and how S is laid out.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    sd_samples: Option<u32>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    sd_alpha: Option<f32>,
+    /// Everything the technique ran with (as a settings file holds it; `settings.technique`
+    /// repeats `technique`).
+    settings: AoSettings,
+    /// Stochastic-depth techniques: how S samples were laid out on this adapter
+    /// (`scripts/device-bench-sd.sh` reads it).
     #[serde(skip_serializing_if = "Option::is_none")]
     layout: Option<Layout>,
-    /// `sd-svao`: how the map is limited to the requested pixels (`stencil` or `discard`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    sd_mask: Option<String>,
     passes: BTreeMap<String, f64>,
     total_ms: f64,
 }
@@ -149,11 +146,6 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             }
             totals.push(frame.values().sum());
         }
-        let row = technique.row();
-        let sd = row
-            .needs()
-            .stochastic_depth_map
-            .then_some(settings.stochastic_depth);
         let layout = renderer
             .ambient_occlusion()
             .and_then(|ao| ao.stochastic_depth_layout())
@@ -163,11 +155,8 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             });
         results.push(BenchResult {
             technique: technique.name().into(),
-            sd_samples: sd.map(|sd| sd.samples),
-            sd_alpha: sd.map(|sd| sd.alpha),
+            settings,
             layout,
-            sd_mask: (sd.is_some() && row.schedule.two_phase())
-                .then(|| settings.stochastic_depth.mask.to_string()),
             scene: scene.name.clone(),
             camera: camera_name.clone(),
             width,
@@ -190,19 +179,21 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         report.adapter, report.backend, report.driver
     );
     for r in &report.results {
-        let sd = match (r.sd_samples, r.sd_alpha, &r.layout) {
-            (Some(s), Some(alpha), Some(l)) => {
+        let sd = match &r.layout {
+            Some(l) => {
+                let sd = &r.settings.stochastic_depth;
                 let maps = match l.maps {
                     1 => "one map".to_string(),
                     n => format!("{n} maps of {}", l.samples_per_map),
                 };
-                let mask = r
-                    .sd_mask
-                    .as_ref()
-                    .map_or(String::new(), |m| format!(", mask {m}"));
-                format!(", S = {s} ({maps}), α = {alpha}{mask}")
+                let mask = if r.settings.technique.schedule().two_phase() {
+                    format!(", mask {}", sd.mask)
+                } else {
+                    String::new()
+                };
+                format!(", S = {} ({maps}), α = {}{mask}", sd.samples, sd.alpha)
             }
-            _ => String::new(),
+            None => String::new(),
         };
         println!(
             "{} on {} ({}) {}x{} +{} guard band{sd}, median of {} frames:",

@@ -106,6 +106,8 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
     }
     progress.finish_and_clear();
     table.push_str("</table>");
+    // What the techniques ran with (preset, settings file and flags applied).
+    let shown = args.ao.settings(Technique::Vao)?;
     let html = format!(
         "<!doctype html><meta charset=utf-8><title>obscura demo</title>\
          <style>body{{font-family:sans-serif;background:#222;color:#eee}}.row{{display:flex;gap:8px;flex-wrap:wrap}}\
@@ -119,11 +121,11 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
         img = width.min(420),
         adapter = gpu.summary.name,
         backend = gpu.summary.backend,
-        r = args.ao.radius,
-        t = args.ao.thickness,
-        e = args.ao.exponent,
-        s = args.ao.samples,
-        br = args.ao.blur_radius,
+        r = shown.vao.radius,
+        t = shown.vao.thickness,
+        e = shown.vao.exponent,
+        s = shown.vao.samples,
+        br = shown.blur.radius,
     );
     let index = args.out.join("index.html");
     output::write_atomically(&index, |tmp| {

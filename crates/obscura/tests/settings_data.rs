@@ -1,0 +1,108 @@
+//! Settings as data: docs/SETTINGS.md stays equal to what the library does (the default file,
+//! every field, the preset table), and the public file API from outside the crate.
+
+use obscura::settings::{AoSettings, Preset, SettingsError, StochasticDepthSettings};
+use obscura::technique::{Estimator, Source};
+use obscura::Technique;
+
+fn doc() -> String {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/SETTINGS.md");
+    std::fs::read_to_string(path).expect("docs/SETTINGS.md")
+}
+
+/// The preset table of docs/SETTINGS.md, made by calling `AoSettings::preset`.
+fn preset_table() -> String {
+    let vao = Technique::all()
+        .find(|t| t.estimator() == Estimator::Vao)
+        .unwrap();
+    let sd = Technique::all()
+        .find(|t| t.source() == Source::StochasticDepth)
+        .unwrap();
+    let mut out = String::from(
+        "| preset | `vao.samples` | `blur.radius` | `stochastic_depth.samples` (S) | `stochastic_depth.alpha` (α) |\n|---|---|---|---|---|\n",
+    );
+    for p in Preset::ALL {
+        let (v, s) = (AoSettings::preset(vao, p), AoSettings::preset(sd, p));
+        out += &format!(
+            "| `{p}` | {} | {} | {} | {} |\n",
+            v.vao.samples, v.blur.radius, s.stochastic_depth.samples, s.stochastic_depth.alpha
+        );
+    }
+    out
+}
+
+#[test]
+fn the_preset_table_is_the_whole_story() {
+    let text = doc();
+    let table = preset_table();
+    assert!(
+        text.contains(&table),
+        "docs/SETTINGS.md must contain this preset table:\n{table}"
+    );
+    // The table holds for every technique: the VAO columns for every VAO-estimator technique,
+    // the stochastic-depth ones for every technique with that source (the others keep the
+    // defaults), and nothing else changes.
+    let vao = Technique::all()
+        .find(|t| t.estimator() == Estimator::Vao)
+        .unwrap();
+    let sd = Technique::all()
+        .find(|t| t.source() == Source::StochasticDepth)
+        .unwrap();
+    for t in Technique::all() {
+        for p in Preset::ALL {
+            let s = AoSettings::preset(t, p);
+            let mut want = AoSettings {
+                technique: t,
+                ..AoSettings::default()
+            };
+            if t.estimator() == Estimator::Vao {
+                let v = AoSettings::preset(vao, p);
+                want.vao.samples = v.vao.samples;
+                want.blur.radius = v.blur.radius;
+            }
+            want.stochastic_depth = if t.source() == Source::StochasticDepth {
+                AoSettings::preset(sd, p).stochastic_depth
+            } else {
+                StochasticDepthSettings::default()
+            };
+            assert_eq!(s, want, "{t} {p}");
+        }
+    }
+}
+
+#[test]
+fn the_documented_default_file_is_the_default() {
+    let text = doc();
+    let toml = AoSettings::default().to_toml_string();
+    assert!(
+        text.contains(&format!("```toml\n{toml}```")),
+        "docs/SETTINGS.md must show the default file:\n{toml}"
+    );
+    for field in AoSettings::field_paths() {
+        assert!(
+            text.contains(&format!("| `{field}` |")),
+            "docs/SETTINGS.md has no row for {field}"
+        );
+    }
+}
+
+#[test]
+fn files_from_outside_the_crate() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("high-sd.toml");
+    let mut s = AoSettings::preset(Technique::SdVao, Preset::High);
+    s.vao.radius = 0.8;
+    std::fs::write(&t, s.to_toml_string()).unwrap();
+    assert_eq!(AoSettings::from_file(&t).unwrap(), s);
+    let j = dir.path().join("high-sd.json");
+    std::fs::write(&j, s.to_json_string()).unwrap();
+    assert_eq!(AoSettings::from_file(&j).unwrap(), s);
+    // Unknown fields are errors that name them.
+    std::fs::write(&t, "[stochastic_depth]\nalfa = 0.5\n").unwrap();
+    let e = AoSettings::from_file(&t).unwrap_err();
+    assert!(
+        matches!(e, SettingsError::Parse { line: Some(2), .. }),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("alfa"), "{e}");
+}
