@@ -418,13 +418,13 @@ impl AoSettings {
     ///
     /// | preset | VAO estimator: `vao.samples`, `blur.radius` | stochastic-depth source: `stochastic_depth.samples` S, `.alpha` α |
     /// |---|---|---|
-    /// | low | 8, 2 | 2, 0.2 |
+    /// | low | 8, 2 | 1, 1 (1.5/S at most 1: the nearest hidden surface) |
     /// | medium | 8, 4 (the defaults) | 4, 0.2 (the defaults, the authors' 2022 values) |
     /// | high | 16, 4 | 4, 0.375 (1.5/S, the authors' 2024 rule) |
     /// | ultra | 32, 6 | 8, 0.1875 (1.5/S) |
     ///
-    /// S = 2 needs 2× multisampled depth, which some adapters (lavapipe) lack: there `low` with a
-    /// stochastic-depth technique is refused when the map is made (set S to 4 to go on).
+    /// `low` keeps to one sample per pixel, which every adapter with the map's format rasterises
+    /// (WebGPU guarantees 1× and 4× multisampling only).
     pub fn preset(technique: Technique, preset: Preset) -> AoSettings {
         let row = technique.row();
         let mut s = AoSettings {
@@ -449,7 +449,12 @@ impl AoSettings {
             Source::StochasticDepth => {
                 let sd = &mut s.stochastic_depth;
                 match preset {
-                    Preset::Low => sd.samples = 2,
+                    // One sample: every adapter with the format rasterises it (WebGPU
+                    // guarantees 1× and 4× only).
+                    Preset::Low => {
+                        sd.samples = 1;
+                        sd.alpha = sd_alpha_2024(1);
+                    }
                     Preset::Medium => {}
                     Preset::High => {
                         sd.samples = 4;

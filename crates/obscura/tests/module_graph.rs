@@ -76,17 +76,35 @@ fn modules_import_no_circle() {
     for node in edges.keys() {
         visit(node, &edges, &mut Vec::new(), &mut done);
     }
-    assert!(edges.contains_key("pipeline"), "the scan found the modules: {edges:?}");
+    assert!(
+        edges.contains_key("pipeline"),
+        "the scan found the modules: {edges:?}"
+    );
 }
 
 #[test]
 fn lower_layers_do_not_import_upward() {
     let edges = edges();
     let forbidden = [
-        ("gpu", ["sources", "technique", "estimators", "schedules", "pipeline"]),
+        (
+            "gpu",
+            [
+                "sources",
+                "technique",
+                "estimators",
+                "schedules",
+                "pipeline",
+            ],
+        ),
         ("filter", ["sources", "estimators", "schedules", "pipeline"]),
-        ("technique", ["sources", "estimators", "schedules", "pipeline"]),
-        ("estimators", ["sources", "schedules", "pipeline", "reference"]),
+        (
+            "technique",
+            ["sources", "estimators", "schedules", "pipeline"],
+        ),
+        (
+            "estimators",
+            ["sources", "schedules", "pipeline", "reference"],
+        ),
     ];
     for (module, above) in forbidden {
         for other in above {
