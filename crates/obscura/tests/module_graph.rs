@@ -85,10 +85,10 @@ fn modules_import_no_circle() {
 #[test]
 fn lower_layers_do_not_import_upward() {
     let edges = edges();
-    let forbidden = [
+    let forbidden: [(&str, &[&str]); 4] = [
         (
             "gpu",
-            [
+            &[
                 "sources",
                 "technique",
                 "estimators",
@@ -96,14 +96,17 @@ fn lower_layers_do_not_import_upward() {
                 "pipeline",
             ],
         ),
-        ("filter", ["sources", "estimators", "schedules", "pipeline"]),
+        (
+            "filter",
+            &["sources", "estimators", "schedules", "pipeline"],
+        ),
         (
             "technique",
-            ["sources", "estimators", "schedules", "pipeline"],
+            &["sources", "estimators", "schedules", "pipeline"],
         ),
         (
             "estimators",
-            ["sources", "schedules", "pipeline", "reference"],
+            &["sources", "schedules", "pipeline", "reference"],
         ),
     ];
     for (module, above) in forbidden {
