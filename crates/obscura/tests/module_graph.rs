@@ -112,7 +112,7 @@ fn lower_layers_do_not_import_upward() {
     for (module, above) in forbidden {
         for other in above {
             assert!(
-                !edges.get(module).is_some_and(|e| e.contains(other)),
+                !edges.get(module).is_some_and(|e| e.contains(*other)),
                 "{module} imports {other}"
             );
         }
