@@ -140,14 +140,44 @@ pub fn flag_for_field(field: &str) -> Option<&'static str> {
         .map(|(_, flag)| *flag)
 }
 
-/// A settings error as the CLI says it: an invalid field named by its flag.
+/// A settings error as the CLI says it: an invalid or unsupported field named by its flag.
 fn with_flags(e: SettingsError) -> anyhow::Error {
     match e {
         SettingsError::Invalid { field, value, rule } => match flag_for_field(field) {
             Some(flag) => anyhow!("invalid {flag} {value}: {rule}"),
             None => SettingsError::Invalid { field, value, rule }.into(),
         },
+        SettingsError::Unsupported {
+            field,
+            value,
+            adapter,
+            reason,
+        } => match flag_for_field(field) {
+            Some(flag) => {
+                anyhow!("{flag} {value} is not supported on adapter '{adapter}': {reason}")
+            }
+            None => SettingsError::Unsupported {
+                field,
+                value,
+                adapter,
+                reason,
+            }
+            .into(),
+        },
         e => e.into(),
+    }
+}
+
+/// Any error on its way to the user: a library settings error (from wherever it came, e.g. the
+/// adapter refusing a sample count when the map is made) names the flag instead of the field.
+pub fn for_user(e: anyhow::Error) -> anyhow::Error {
+    match e.downcast::<obscura::Error>() {
+        Ok(obscura::Error::Settings(s)) => with_flags(s),
+        Ok(other) => other.into(),
+        Err(e) => match e.downcast::<SettingsError>() {
+            Ok(s) => with_flags(s),
+            Err(e) => e,
+        },
     }
 }
 

@@ -26,6 +26,17 @@ pub enum SettingsError {
         /// What a valid value is, with an example; no command-line flags.
         rule: &'static str,
     },
+    /// A valid value the adapter cannot do (e.g. a stochastic depth sample count it cannot
+    /// rasterise), with what it can do.
+    #[error("{field} {value} is not supported on adapter '{adapter}': {reason}")]
+    Unsupported {
+        /// The field's path, as for [`SettingsError::Invalid`].
+        field: &'static str,
+        value: String,
+        adapter: String,
+        /// Why, and the values that work here.
+        reason: String,
+    },
     /// A preset name that is not one of [`Preset::ALL`].
     #[error("unknown preset '{0}': use low, medium, high or ultra")]
     UnknownPreset(String),

@@ -367,7 +367,10 @@ fn unsupported_settings_are_clear_errors() {
         // lavapipe: 2× depth is not offered and 2 cannot be stacked from 4× maps.
         let err = try_render(&settings(Technique::SdVao, 2, 0.2)).unwrap_err();
         let msg = err.to_string();
-        assert!(msg.contains("--sd-samples 2 is not supported"), "{msg}");
+        assert!(
+            msg.contains("stochastic_depth.samples 2 is not supported"),
+            "{msg}"
+        );
         assert!(msg.contains("8 (2 maps of 4)"), "{msg}");
     }
     for (samples, alpha, expected) in [
