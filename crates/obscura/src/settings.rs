@@ -805,7 +805,7 @@ mod tests {
                 s.stochastic_depth.alpha,
             )
         };
-        assert_eq!(sd(Preset::Low), (8, 2, 0.2));
+        assert_eq!(sd(Preset::Low), (8, 1, 1.0));
         assert_eq!(sd(Preset::Medium), (8, 4, 0.2));
         assert_eq!(sd(Preset::High), (16, 4, 0.375));
         assert_eq!(sd(Preset::Ultra), (32, 8, 0.1875));
