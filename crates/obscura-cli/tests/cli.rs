@@ -617,18 +617,19 @@ fn info_json() -> serde_json::Value {
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
+/// Ours is one line; Mesa's Vulkan WSI adds its own when XDG_RUNTIME_DIR is unset (the README
+/// test command may run without it), which is not our message.
+fn one_line(err: &str) {
+    let ours = err
+        .trim()
+        .lines()
+        .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
+        .count();
+    assert_eq!(ours, 1, "one message: {err}");
+}
+
 #[test]
 fn stochastic_depth_options_are_clear_errors() {
-    // Ours is one line; Mesa's Vulkan WSI adds its own when XDG_RUNTIME_DIR is unset (the README
-    // test command may run without it), which is not our message.
-    let one_line = |err: &str| {
-        let ours = err
-            .trim()
-            .lines()
-            .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
-            .count();
-        assert_eq!(ours, 1, "one message: {err}");
-    };
     let sd = ["--technique", "sd-vao"];
     let err = assert_render_fails(
         &[&sd[..], &["--sd-samples", "3"]].concat(),
@@ -836,14 +837,6 @@ fn settings_files_and_presets_change_the_image_and_flags_win() {
 fn bad_settings_files_are_one_line_errors() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let one_line = |err: &str| {
-        let ours = err
-            .trim()
-            .lines()
-            .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
-            .count();
-        assert_eq!(ours, 1, "one message: {err}");
-    };
     let typo = write(d, "typo.toml", b"[vao]\nradius = 1.0\nsampels = 16\n");
     let err = assert_render_fails(
         &["--settings", typo.to_str().unwrap()],

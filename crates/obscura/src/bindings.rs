@@ -186,18 +186,7 @@ pub fn group(
     layout: &wgpu::BindGroupLayout,
     resources: &[(u32, wgpu::BindingResource)],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout,
-        entries: &entries,
-    })
+    crate::gpu::bind_group_at(device, label, layout, resources)
 }
 
 /// The frame group's layout: view, depth and normals, and (`with_output`) the AO image.
@@ -242,17 +231,7 @@ pub fn compute_pipeline(
         bind_group_layouts: layouts,
         immediate_size: 0,
     });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&layout),
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants,
-            zero_initialize_workgroup_memory: false,
-        },
-        cache: None,
-    })
+    crate::gpu::pipeline_from_module(device, label, &module, constants, Some(&layout))
 }
 
 #[cfg(test)]

@@ -242,7 +242,7 @@ pub fn compute_pipeline_with(
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     });
-    pipeline_from_module(device, label, &module, constants)
+    pipeline_from_module(device, label, &module, constants, None)
 }
 
 /// [`compute_pipeline_with`] without the bounds checks wgpu adds to every array and texture access.
@@ -264,18 +264,20 @@ pub unsafe fn compute_pipeline_unchecked(
     let module = unsafe {
         device.create_shader_module_trusted(desc, wgpu::ShaderRuntimeChecks::unchecked())
     };
-    pipeline_from_module(device, label, &module, constants)
+    pipeline_from_module(device, label, &module, constants, None)
 }
 
-fn pipeline_from_module(
+/// A compute pipeline with entry point `main` from `module`: with `layout`, or an automatic one.
+pub(crate) fn pipeline_from_module(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,
     constants: &[(&str, f64)],
+    layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
-        layout: None,
+        layout,
         module,
         entry_point: Some("main"),
         compilation_options: wgpu::PipelineCompilationOptions {
@@ -287,18 +289,30 @@ fn pipeline_from_module(
     })
 }
 
-/// A bind group for group 0 of `pipeline` with `resources` at bindings 0, 1, 2, … in order.
+/// A bind group for group 0 of `pipeline` with `resources` at bindings 0, 1, 2, … in order
+/// (the raster, blur and query passes, whose layouts are automatic; the AO passes name their
+/// bindings: [`crate::bindings::group`]).
 pub fn bind_group(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource],
 ) -> wgpu::BindGroup {
+    let numbered: Vec<_> = (0..).zip(resources.iter().cloned()).collect();
+    bind_group_at(device, label, layout, &numbered)
+}
+
+/// A bind group from `(binding, resource)` pairs.
+pub fn bind_group_at(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[(u32, wgpu::BindingResource)],
+) -> wgpu::BindGroup {
     let entries: Vec<wgpu::BindGroupEntry> = resources
         .iter()
-        .enumerate()
         .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: binding as u32,
+            binding: *binding,
             resource: resource.clone(),
         })
         .collect();

@@ -18,7 +18,7 @@ use crate::estimators::EstimatorPass;
 use crate::filter::{bilateral::BilateralBlur, AoFilter};
 use crate::frame::FrameInputs;
 use crate::gpu::{Gpu, PassProfiler};
-use crate::schedules::SchedulePass;
+use crate::schedules::{FrameContext, SchedulePass};
 use crate::settings::AoSettings;
 use crate::sources::stochastic_depth::{SdLayout, StochasticDepthMap};
 use crate::sources::{SceneResources, SourcePass};
@@ -200,15 +200,15 @@ impl AmbientOcclusion {
         };
         let raw = self.raw.create_view(&Default::default());
         let frame_group = frame.group(device, &self.frame_layout, &raw);
-        self.schedule.encode(
+        let ctx = FrameContext {
             device,
-            encoder,
-            &frame,
-            &frame_group,
-            &self.estimator,
-            &self.source,
-            profiler.as_deref_mut(),
-        )?;
+            frame: &frame,
+            frame_group: &frame_group,
+            estimator: &self.estimator,
+            source: &self.source,
+        };
+        self.schedule
+            .encode(&ctx, encoder, profiler.as_deref_mut())?;
         let mut input = raw;
         for stage in &self.filters {
             let output = stage.output.create_view(&Default::default());

@@ -88,6 +88,16 @@ pub(crate) fn pipeline(
     )
 }
 
+/// What a schedule records one frame with: the device, the frame's inputs and group 0, and the
+/// row's estimator and source.
+pub(crate) struct FrameContext<'a> {
+    pub device: &'a wgpu::Device,
+    pub frame: &'a FrameInputs<'a>,
+    pub frame_group: &'a wgpu::BindGroup,
+    pub estimator: &'a EstimatorPass,
+    pub source: &'a SourcePass,
+}
+
 /// The groups every AO pass of a frame binds: frame, estimator, and the source's.
 pub(crate) struct FrameGroups<'a> {
     pub frame: &'a wgpu::BindGroup,
@@ -97,7 +107,7 @@ pub(crate) struct FrameGroups<'a> {
 }
 
 impl FrameGroups<'_> {
-    /// Sets groups 0–2 of a pass of `stage`'s kind.
+    /// Sets groups 0–2 of a pass of `source_group`'s kind.
     pub fn set(&self, pass: &mut wgpu::ComputePass, source_group: SourceGroup) {
         pass.set_bind_group(GROUP_FRAME, self.frame, &[]);
         pass.set_bind_group(GROUP_ESTIMATOR, self.estimator, &[]);
@@ -153,36 +163,15 @@ impl SchedulePass {
 
     /// Records the AO passes into the frame's output, with the source prepared where the
     /// schedule needs it.
-    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        ctx: &FrameContext,
         encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameInputs,
-        frame_group: &wgpu::BindGroup,
-        estimator: &EstimatorPass,
-        source: &SourcePass,
         profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         match self {
-            SchedulePass::Single(s) => s.encode(
-                device,
-                encoder,
-                frame,
-                frame_group,
-                estimator,
-                source,
-                profiler,
-            ),
-            SchedulePass::TwoPhase(s) => s.encode(
-                device,
-                encoder,
-                frame,
-                frame_group,
-                estimator,
-                source,
-                profiler,
-            ),
+            SchedulePass::Single(s) => s.encode(ctx, encoder, profiler),
+            SchedulePass::TwoPhase(s) => s.encode(ctx, encoder, profiler),
         }
     }
 

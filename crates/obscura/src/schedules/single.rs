@@ -1,9 +1,9 @@
 //! Schedule "single pass" (`shaders/schedules/single.wgsl`): one compute pass, every sample of a
 //! pixel in one invocation, the source consulted inline; the source prepares before the pass.
 
-use super::{FrameGroups, SourceGroup, Stage};
+use super::{FrameContext, FrameGroups, SourceGroup, Stage};
 use crate::estimators::EstimatorPass;
-use crate::frame::{workgroups_32x8, FrameInputs};
+use crate::frame::workgroups_32x8;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
@@ -41,23 +41,19 @@ impl Single {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        ctx: &FrameContext,
         encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameInputs,
-        frame_group: &wgpu::BindGroup,
-        estimator: &EstimatorPass,
-        source: &SourcePass,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
+        let source = ctx.source;
         source.begin_frame(encoder);
-        source.prepare(device, encoder, frame, profiler.as_deref_mut());
-        let resolve = source.resolve_group(device, frame)?;
+        source.prepare(ctx.device, encoder, ctx.frame, profiler.as_deref_mut());
+        let resolve = source.resolve_group(ctx.device, ctx.frame)?;
         let groups = FrameGroups {
-            frame: frame_group,
-            estimator: &estimator.group,
+            frame: ctx.frame_group,
+            estimator: &ctx.estimator.group,
             resolve: resolve.as_ref(),
             request: None,
         };
@@ -68,7 +64,7 @@ impl Single {
         });
         pass.set_pipeline(&self.pipeline);
         groups.set(&mut pass, SourceGroup::Resolve);
-        let (x, y, z) = workgroups_32x8(frame.screen.width, frame.screen.height);
+        let (x, y, z) = workgroups_32x8(ctx.frame.screen.width, ctx.frame.screen.height);
         pass.dispatch_workgroups(x, y, z);
         Ok(())
     }

@@ -8,13 +8,13 @@
 //! pass, so it gives the same image (`shaders/schedules/two_phase*.wgsl`). Any estimator with at
 //! most 32 samples (one mask bit each) runs in it.
 
-use super::{FrameGroups, SourceGroup, Stage};
+use super::{FrameContext, FrameGroups, SourceGroup, Stage};
 use crate::bindings::{
     self, entry, GROUP_SCHEDULE, INDIRECT_DISPATCH, INDIRECT_WORK_COUNT, SCHEDULE_PIXELS,
     SCHEDULE_WORK_COUNT, SCHEDULE_WORK_LIST,
 };
 use crate::estimators::EstimatorPass;
-use crate::frame::{workgroups_32x8, FrameInputs};
+use crate::frame::workgroups_32x8;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
@@ -180,17 +180,19 @@ impl TwoPhase {
         &self.pixels
     }
 
-    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        ctx: &FrameContext,
         encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameInputs,
-        frame_group: &wgpu::BindGroup,
-        estimator: &EstimatorPass,
-        source: &SourcePass,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
+        let FrameContext {
+            device,
+            frame,
+            frame_group,
+            estimator,
+            source,
+        } = *ctx;
         encoder.clear_buffer(&self.work_count, 0, None);
         source.begin_frame(encoder);
         let mut groups = FrameGroups {
