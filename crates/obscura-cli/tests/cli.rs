@@ -390,6 +390,11 @@ fn compare_writes_a_report_and_reuses_the_reference() {
     for key in ["mse", "mae", "psnr", "ssim", "halo_bright", "halo_dark"] {
         assert!(results[0].get(key).is_some(), "{key} missing");
     }
+    // The settings it was rendered with, as the settings struct serialises them.
+    let settings: obscura::AoSettings =
+        serde_json::from_value(results[0]["settings"].clone()).expect("settings in report.json");
+    assert_eq!(settings.technique, obscura::Technique::Vao);
+    assert_eq!(settings.vao, obscura::AoSettings::default().vao);
     let mse = results[0]["mse"].as_f64().unwrap();
     assert!((0.0..0.1).contains(&mse), "mse {mse}");
     for f in [

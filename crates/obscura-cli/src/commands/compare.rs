@@ -64,7 +64,11 @@ pub fn compare(
         let settings = ao.settings(technique)?;
         let mut renderer = Renderer::new(gpu, c.scene, &settings, c.width, c.height, c.guard_band)?;
         renderer.render(&c.camera, None)?;
-        images.push((technique.name(), renderer.read_ao()?));
+        images.push((
+            technique.name(),
+            renderer.read_ao()?,
+            serde_json::to_value(settings)?,
+        ));
         crate::args::warn_stack_overflows(&renderer)?;
         gbuffer = Some(renderer.read_gbuffer()?);
         on_render(technique, &renderer)?;
@@ -106,7 +110,11 @@ pub fn compare(
         depth: &depth,
         techniques: images
             .iter()
-            .map(|(name, ao)| TechniqueImage { name, ao })
+            .map(|(name, ao, settings)| TechniqueImage {
+                name,
+                ao,
+                settings: Some(settings),
+            })
             .collect(),
         halo_radius_px: 4,
         halo_relative_jump: 0.1,

@@ -75,6 +75,9 @@ pub struct TechniqueImage<'a> {
     pub name: &'a str,
     /// AO values, nominally in `[0, 1]` (1 = unoccluded); must be finite.
     pub ao: &'a [f32],
+    /// The settings it was rendered with, as data (`compare` passes the serialised
+    /// [`crate::AoSettings`]); written to `report.json` as they are.
+    pub settings: Option<&'a serde_json::Value>,
 }
 
 /// Everything a report is made of. Every image is the `width × height`
@@ -137,6 +140,9 @@ pub struct TechniqueResult {
     /// Mean negative error over the halo band (≤ 0).
     #[serde(with = "json::finite_or_null")]
     pub halo_dark: f64,
+    /// The settings it was rendered with ([`TechniqueImage::settings`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settings: Option<serde_json::Value>,
 }
 
 /// How the reference image was computed.
@@ -242,6 +248,7 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
                 ssim: s.ssim,
                 halo_bright: s.halo_bright,
                 halo_dark: s.halo_dark,
+                settings: t.settings.cloned(),
             })
         })
         .collect::<Result<Vec<_>, ReportError>>()?;

@@ -70,14 +70,17 @@ impl Fixture {
                 TechniqueImage {
                     name: "same",
                     ao: &self.same,
+                    settings: None,
                 },
                 TechniqueImage {
                     name: "offset",
                     ao: &self.offset,
+                    settings: None,
                 },
                 TechniqueImage {
                     name: "halo",
                     ao: &self.halo,
+                    settings: None,
                 },
             ],
             halo_radius_px: 4,
@@ -299,6 +302,7 @@ fn json_null_rule_for_every_metric() {
         ssim: f64::NEG_INFINITY,
         halo_bright: 0.25,
         halo_dark: -0.125,
+        settings: None,
     };
     let text = serde_json::to_string(&r).unwrap();
     assert_eq!(
