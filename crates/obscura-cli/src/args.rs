@@ -130,6 +130,11 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.alpha", "--sd-alpha"),
     ("stochastic_depth.seed", "--sd-seed"),
     ("stochastic_depth.mask", "--sd-mask"),
+    ("hbao_plus.radius", "--hbao-radius"),
+    ("hbao_plus.bias", "--hbao-bias"),
+    ("hbao_plus.exponent", "--hbao-exponent"),
+    ("hbao_plus.directions", "--hbao-directions"),
+    ("hbao_plus.steps", "--hbao-steps"),
 ];
 
 /// The flag that sets a settings field: `flag_for_field("vao.radius") == Some("--radius")`.
@@ -214,6 +219,19 @@ pub struct AoArgs {
     // Help texts name the defaults of AoSettings::default() (`help`).
     #[arg(long, allow_hyphen_values = true, help = help("VAO sphere radius R in world units.", "vao.radius"))]
     pub radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("HBAO+ radius R in world units.", "hbao_plus.radius"))]
+    pub hbao_radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "HBAO+ angle bias: a sample occludes by saturate(N·V/|V| − bias).",
+        "hbao_plus.bias"
+    ))]
+    pub hbao_bias: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("HBAO+ power applied to the final AO.", "hbao_plus.exponent"))]
+    pub hbao_exponent: Option<f32>,
+    #[arg(long, help = help("HBAO+ directions per pixel (directions × steps ≤ 32).", "hbao_plus.directions"))]
+    pub hbao_directions: Option<u32>,
+    #[arg(long, help = help("HBAO+ steps per direction.", "hbao_plus.steps"))]
+    pub hbao_steps: Option<u32>,
     #[arg(long, allow_hyphen_values = true, help = help(
         "VAO thickness τ (constant occluded area above the column, in units of R).",
         "vao.thickness"
@@ -304,6 +322,12 @@ impl AoArgs {
         if let Some(n) = &self.normalization {
             v.normalization = n.parse::<Normalization>().map_err(with_flags)?;
         }
+        let h = &mut s.hbao_plus;
+        set(&mut h.radius, self.hbao_radius);
+        set(&mut h.bias, self.hbao_bias);
+        set(&mut h.exponent, self.hbao_exponent);
+        set(&mut h.directions, self.hbao_directions);
+        set(&mut h.steps, self.hbao_steps);
         let b = &mut s.blur;
         if self.no_blur {
             b.enabled = false;

@@ -135,6 +135,35 @@ impl Default for VaoSettings {
     }
 }
 
+/// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
+/// (seed-code-notes §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HbaoPlusSettings {
+    /// Radius R in world units: samples up to R on screen, falloff 1 − d²/R².
+    pub radius: f32,
+    /// Angle bias: a sample occludes by `saturate(N·V/|V| − bias)`.
+    pub bias: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Directions per pixel.
+    pub directions: u32,
+    /// Steps per direction; directions × steps ≤ 32 (one bit each in the two-phase mask).
+    pub steps: u32,
+}
+
+impl Default for HbaoPlusSettings {
+    fn default() -> Self {
+        Self {
+            radius: 1.0,
+            bias: 0.1,
+            exponent: 2.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
 /// Depth-aware separable blur (seed 000 §3.4, HBAO+ weights).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -253,12 +282,15 @@ pub struct AoSettings {
     /// depth map (`sd-vao`, `sd-svao`).
     pub peel_separation: f32,
     pub stochastic_depth: StochasticDepthSettings,
+    /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
+    pub hbao_plus: HbaoPlusSettings,
 }
 
 impl Default for AoSettings {
     fn default() -> Self {
         Self {
             technique: Technique::default(),
+            hbao_plus: HbaoPlusSettings::default(),
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
             peel_separation: 0.01,
@@ -324,6 +356,42 @@ impl AoSettings {
                 "stochastic_depth.alpha",
                 sd.alpha,
                 "must be in (0, 1], e.g. 0.2",
+            ));
+        }
+        let h = &self.hbao_plus;
+        if !(h.radius.is_finite() && h.radius > 0.0) {
+            return Err(invalid(
+                "hbao_plus.radius",
+                h.radius,
+                "must be a positive number of world units, e.g. 1.0",
+            ));
+        }
+        if !(h.bias.is_finite() && (0.0..1.0).contains(&h.bias)) {
+            return Err(invalid(
+                "hbao_plus.bias",
+                h.bias,
+                "must be in [0, 1), e.g. 0.1",
+            ));
+        }
+        if !(h.exponent.is_finite() && h.exponent > 0.0) {
+            return Err(invalid(
+                "hbao_plus.exponent",
+                h.exponent,
+                "must be positive, e.g. 2",
+            ));
+        }
+        if !(1..=32).contains(&h.directions) {
+            return Err(invalid(
+                "hbao_plus.directions",
+                h.directions,
+                "must be 1 to 32, e.g. 8",
+            ));
+        }
+        if h.steps == 0 || h.directions * h.steps > 32 {
+            return Err(invalid(
+                "hbao_plus.steps",
+                h.steps,
+                "must be at least 1 with directions × steps ≤ 32 (one bit per sample), e.g. 4",
             ));
         }
         let b = &self.blur;
@@ -454,6 +522,15 @@ impl AoSettings {
                     s.vao.samples = 32;
                     s.blur.radius = 6;
                 }
+            },
+            // 8 × 4 = 32 samples is already the most the two-phase mask holds.
+            Estimator::HbaoPlus => match preset {
+                Preset::Low => {
+                    s.hbao_plus.directions = 4;
+                    s.blur.radius = 2;
+                }
+                Preset::Medium | Preset::High => {}
+                Preset::Ultra => s.blur.radius = 6,
             },
         }
         match row.source {

@@ -27,13 +27,26 @@ macro_rules! techniques {
     };
 }
 
-techniques!(Vao, VaoDual, RtVao, RtSvao, RtSvaoDense, SdVao, SdSvao);
+techniques!(
+    Vao,
+    VaoDual,
+    RtVao,
+    RtSvao,
+    RtSvaoDense,
+    SdVao,
+    SdSvao,
+    HbaoPlus,
+    HbaoPlusDual
+);
 
 /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Estimator {
     /// Volumetric AO, seed 000 §3.1–3.5.
     Vao,
+    /// NVIDIA-style per-sample horizon AO, the seed authors' baseline (seed 000 §2.1,
+    /// seed-code-notes §1.7).
+    HbaoPlus,
 }
 
 /// What answers "what lies behind the first surface here" (`src/sources/`, `shaders/sources/`).
@@ -142,6 +155,24 @@ pub const TABLE: &[TechniqueRow] = &[
         source: Source::StochasticDepth,
         schedule: Schedule::TwoPhase,
     },
+    TechniqueRow {
+        technique: Technique::HbaoPlus,
+        name: "hbao+",
+        summary: "HBAO+: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline)",
+        paper: "seed 000 §2.1, seed 001 §3.2",
+        estimator: Estimator::HbaoPlus,
+        source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::HbaoPlusDual,
+        name: "hbao+-dual",
+        summary: "HBAO+; samples behind a too-near first surface also read the second layer",
+        paper: "seed 000 §2.1, seed-code-notes §1.7",
+        estimator: Estimator::HbaoPlus,
+        source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
 ];
 
 /// What a technique needs from the caller beyond depth and normals.
@@ -214,6 +245,7 @@ impl Estimator {
     pub fn name(self) -> &'static str {
         match self {
             Estimator::Vao => "vao",
+            Estimator::HbaoPlus => "hbao+",
         }
     }
 }

@@ -15,17 +15,30 @@ fn preset_table() -> String {
     let vao = Technique::all()
         .find(|t| t.estimator() == Estimator::Vao)
         .unwrap();
+    let hbao = Technique::all()
+        .find(|t| t.estimator() == Estimator::HbaoPlus)
+        .unwrap();
     let sd = Technique::all()
         .find(|t| t.source() == Source::StochasticDepth)
         .unwrap();
     let mut out = String::from(
-        "| preset | `vao.samples` | `blur.radius` | `stochastic_depth.samples` (S) | `stochastic_depth.alpha` (α) |\n|---|---|---|---|---|\n",
+        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|\n",
     );
     for p in Preset::ALL {
-        let (v, s) = (AoSettings::preset(vao, p), AoSettings::preset(sd, p));
+        let (v, h, s) = (
+            AoSettings::preset(vao, p),
+            AoSettings::preset(hbao, p),
+            AoSettings::preset(sd, p),
+        );
         out += &format!(
-            "| `{p}` | {} | {} | {} | {} |\n",
-            v.vao.samples, v.blur.radius, s.stochastic_depth.samples, s.stochastic_depth.alpha
+            "| `{p}` | {}, {} | {} × {}, {} | {}, {} |\n",
+            v.vao.samples,
+            v.blur.radius,
+            h.hbao_plus.directions,
+            h.hbao_plus.steps,
+            h.blur.radius,
+            s.stochastic_depth.samples,
+            s.stochastic_depth.alpha
         );
     }
     out
@@ -48,6 +61,9 @@ fn the_preset_table_is_the_whole_story() {
     let sd = Technique::all()
         .find(|t| t.source() == Source::StochasticDepth)
         .unwrap();
+    let hbao = Technique::all()
+        .find(|t| t.estimator() == Estimator::HbaoPlus)
+        .unwrap();
     for t in Technique::all() {
         for p in Preset::ALL {
             let s = AoSettings::preset(t, p);
@@ -55,10 +71,17 @@ fn the_preset_table_is_the_whole_story() {
                 technique: t,
                 ..AoSettings::default()
             };
-            if t.estimator() == Estimator::Vao {
-                let v = AoSettings::preset(vao, p);
-                want.vao.samples = v.vao.samples;
-                want.blur.radius = v.blur.radius;
+            match t.estimator() {
+                Estimator::Vao => {
+                    let v = AoSettings::preset(vao, p);
+                    want.vao.samples = v.vao.samples;
+                    want.blur.radius = v.blur.radius;
+                }
+                Estimator::HbaoPlus => {
+                    let h = AoSettings::preset(hbao, p);
+                    want.hbao_plus = h.hbao_plus;
+                    want.blur.radius = h.blur.radius;
+                }
             }
             want.stochastic_depth = if t.source() == Source::StochasticDepth {
                 AoSettings::preset(sd, p).stochastic_depth

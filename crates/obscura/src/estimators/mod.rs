@@ -6,6 +6,7 @@
 //! plus a Rust module here that makes its parameters (bind group 1) and pipeline constants. The
 //! schedules own the loops; the sources consult the estimator for each depth they find.
 
+pub mod hbao_plus;
 pub mod vao;
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS};
@@ -55,6 +56,7 @@ impl EstimatorPass {
         let (wgsl, names) = wgsl(estimator);
         let (params, values) = match estimator {
             Estimator::Vao => vao::params(&settings.vao),
+            Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
         };
         let constants = names.iter().copied().zip(values).collect();
         Self::new(device, estimator.name(), &params, wgsl, constants)
@@ -66,5 +68,6 @@ impl EstimatorPass {
 pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static str]) {
     match estimator {
         Estimator::Vao => (vao::WGSL, vao::CONSTANTS),
+        Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
     }
 }

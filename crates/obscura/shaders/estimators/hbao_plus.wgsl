@@ -1,0 +1,157 @@
+// HBAO+ estimator: NVIDIA-style per-sample horizon AO, as the seed authors ran it for their
+// baseline (seed 000 §2.1; their shader as recorded in seed-code-notes §1.7): D directions in
+// screen space, S steps each, every sample occluding by
+//     saturate(N·V/|V| − bias) · saturate(1 − |V|²/R²)
+// (V from the shading point to the sample's surface), AO = saturate(1 − 2·mean)^exponent. Steps
+// are (R_px)/(S + 1) pixels apart from a jittered start of at least one pixel; a pixel whose
+// radius covers less than one pixel is unoccluded. Implements the estimator contract
+// (docs/ARCHITECTURE.md): a sample's value is its occlusion, several depths for one sample combine
+// by the maximum (seed 001 §3.2), and a depth can hide more when the sample lies in the positive
+// hemisphere but beyond R (the authors' SD rule, seed-code-notes §1.7).
+//
+// Ours: the per-pixel direction rotation and start jitter come from the 4×4 Bayer matrix (rotation
+// 2π·B/16/D, jitter from the transposed matrix) instead of the authors' 16 random vectors of the
+// 4×4 interleaved slices; the bilateral blur's 4-pixel radius averages them alike. Interleaved
+// rendering is not built yet; this is the single-pass, full-resolution HBAO+.
+
+struct HbaoPlusParams {
+    radius: f32,
+    // -1 / R².
+    neg_inv_r2: f32,
+    bias: f32,
+    exponent: f32,
+    directions: u32,
+    steps: u32,
+    _pad0: u32,
+    _pad1: u32,
+    // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the direction rotation, z the start jitter in
+    // [0, 1).
+    pattern: array<vec4<f32>, 16>,
+}
+
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: HbaoPlusParams;
+
+// directions × steps, at most 32 (one bit per sample in the two-phase mask).
+override SAMPLE_COUNT: u32 = 32u;
+
+struct EstimatorPixel {
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    // Framebuffer pixel of the shading point.
+    pixel: vec2<u32>,
+    rotation: vec2<f32>,
+    // Pixels between steps, and the first step's distance; 0 when the radius covers < 1 px.
+    step_px: f32,
+    start_px: f32,
+    valid: bool,
+}
+
+struct EstimatorSample {
+    px: vec2<f32>,
+    on: bool,
+}
+
+struct EstimatorAccum {
+    occlusion: f32,
+    count: f32,
+    _pad: f32,
+}
+
+struct Occluder {
+    value: f32,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    var p: EstimatorPixel;
+    p.pixel = id + vec2<u32>(view.guard_band);
+    let z = textureLoad(depth_tex, p.pixel, 0).r;
+    p.valid = !is_background(z);
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
+    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
+    let pattern = params.pattern[(id.x % 4u) + 4u * (id.y % 4u)];
+    p.rotation = pattern.xy;
+    // Pixels per world unit at depth z (square pixels: projection_scale.x == .y).
+    let radius_px = params.radius * view.projection_scale.y / z;
+    p.step_px = select(0.0, radius_px / f32(params.steps + 1u), radius_px >= 1.0);
+    p.start_px = pattern.z * p.step_px + 1.0;
+    return p;
+}
+
+fn estimator_pixel_valid(p: EstimatorPixel) -> bool {
+    return p.valid;
+}
+
+fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> {
+    return p.pixel;
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.step_px > 0.0;
+    let d = i / params.steps;
+    let step = i % params.steps;
+    let angle = 6.283185307179586 * f32(d) / f32(params.directions);
+    let base = vec2<f32>(cos(angle), sin(angle));
+    let r = p.rotation;
+    let dir = vec2<f32>(base.x * r.x - base.y * r.y, base.x * r.y + base.y * r.x);
+    let distance = p.start_px + f32(step) * p.step_px;
+    // Screen y runs down, view y up: the direction is a screen direction either way.
+    s.px = vec2<f32>(p.pixel) + 0.5 + dir * distance;
+    return s;
+}
+
+fn estimator_sample_active(s: EstimatorSample) -> bool {
+    return s.on;
+}
+
+fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
+    return s.px;
+}
+
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> f32 {
+    return 0.0;
+}
+
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let v = pos - p.pos;
+    let v_dot_v = max(dot(v, v), 1e-20);
+    let angle_term = saturate(dot(p.normal, v) * inverseSqrt(v_dot_v) - params.bias);
+    let distance_term = saturate(v_dot_v * params.neg_inv_r2 + 1.0);
+    var o: Occluder;
+    o.value = angle_term * distance_term;
+    // In the positive hemisphere but beyond R: a surface behind it could be within R.
+    o.hidden = angle_term > 0.0 && distance_term <= 0.0;
+    return o;
+}
+
+// Several depths for one sample: the largest occlusion (seed 001 §3.2).
+fn estimator_combine(a: f32, b: f32) -> f32 {
+    return max(a, b);
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    return EstimatorAccum(0.0, 0.0, 0.0);
+}
+
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    var a = acc;
+    a.count += 1.0;
+    return a;
+}
+
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
+    var a = acc;
+    a.occlusion += value;
+    return a;
+}
+
+fn estimator_finish(acc: EstimatorAccum) -> f32 {
+    if (acc.count == 0.0) {
+        return 1.0;
+    }
+    return pow(saturate(1.0 - 2.0 * acc.occlusion / acc.count), params.exponent);
+}

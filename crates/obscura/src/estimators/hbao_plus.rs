@@ -1,0 +1,59 @@
+//! The HBAO+ estimator (`shaders/estimators/hbao_plus.wgsl`): NVIDIA-style per-sample horizon AO
+//! as the seed authors' baseline (seed 000 §2.1, seed-code-notes §1.7). Its per-pixel pattern is
+//! here so the CPU mirror in the tests uses the same numbers.
+
+use super::vao::BAYER_4X4;
+use crate::settings::HbaoPlusSettings;
+use std::f32::consts::TAU;
+
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
+pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/hbao_plus.wgsl");
+/// Its `override` constants: the sample count, directions × steps.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+
+/// Pixel (x, y) of the visible image: (cos, sin) of its direction rotation, 2π·B/16/D with B the
+/// Bayer value of (x % 4, y % 4), and its start jitter in [0, 1) from the transposed Bayer
+/// matrix, `(B(y % 4, x % 4) + 0.5) / 16`.
+pub fn pixel_pattern(x: u32, y: u32, directions: u32) -> (f32, f32, f32) {
+    let (i, j) = ((x % 4) as usize, (y % 4) as usize);
+    let angle = TAU * BAYER_4X4[i + 4 * j] as f32 / 16.0 / directions as f32;
+    let jitter = (BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
+    (angle.cos(), angle.sin(), jitter)
+}
+
+/// GPU mirror of `HbaoPlusParams` in the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct HbaoPlusParams {
+    radius: f32,
+    neg_inv_r2: f32,
+    bias: f32,
+    exponent: f32,
+    directions: u32,
+    steps: u32,
+    _pad: [u32; 2],
+    pattern: [[f32; 4]; 16],
+}
+
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
+pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
+    let mut pattern = [[0.0; 4]; 16];
+    for (i, p) in pattern.iter_mut().enumerate() {
+        let (c, sn, jitter) = pixel_pattern(i as u32 % 4, i as u32 / 4, s.directions);
+        *p = [c, sn, jitter, 0.0];
+    }
+    let params = HbaoPlusParams {
+        radius: s.radius,
+        neg_inv_r2: -1.0 / (s.radius * s.radius),
+        bias: s.bias,
+        exponent: s.exponent,
+        directions: s.directions,
+        steps: s.steps,
+        _pad: [0; 2],
+        pattern,
+    };
+    (
+        bytemuck::bytes_of(&params).to_vec(),
+        vec![f64::from(s.directions * s.steps)],
+    )
+}

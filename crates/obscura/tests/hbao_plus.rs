@@ -1,0 +1,173 @@
+//! HBAO+ (the seed authors' baseline, seed-code-notes §1.7) against values derived without the
+//! GPU kernel: an unoccluded plane, a plain CPU implementation of the same estimator on a
+//! read-back G-buffer, and its dual-depth row on a scene with one layer.
+
+mod common;
+use common::*;
+use glam::{UVec2, Vec2, Vec3};
+use obscura::estimators::hbao_plus::pixel_pattern;
+use obscura::reference::cpu_vao::GBufferImage;
+use obscura::settings::{AoSettings, HbaoPlusSettings};
+use obscura::{scene, Renderer, ScreenGeometry, Technique};
+use std::f32::consts::TAU;
+
+fn settings(technique: Technique, blur: bool) -> AoSettings {
+    let mut s = AoSettings {
+        technique,
+        ..AoSettings::default()
+    };
+    s.blur.enabled = blur;
+    s
+}
+
+#[test]
+fn unoccluded_plane_is_one_everywhere() {
+    // On a plane every sample's V lies in the tangent plane: N·V/|V| = 0 < bias, no occlusion.
+    let gpu = gpu();
+    let scene = quads("floor", &[floor(100.0)]);
+    let camera = camera(Vec3::new(0.0, 2.0, 4.0), Vec3::new(0.0, 0.0, -1.0), 50.0);
+    for blur in [false, true] {
+        for (directions, steps) in [(8, 4), (4, 8), (32, 1)] {
+            let mut s = settings(Technique::HbaoPlus, blur);
+            s.hbao_plus.directions = directions;
+            s.hbao_plus.steps = steps;
+            let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
+            r.render(&camera, None).unwrap();
+            let ao = r.read_ao().unwrap();
+            let min = ao.iter().copied().fold(f32::MAX, f32::min);
+            assert!(
+                min > 1.0 - 1e-3,
+                "{directions}×{steps}, blur {blur}: min AO {min}"
+            );
+        }
+    }
+}
+
+/// HBAO+ as `shaders/estimators/hbao_plus.wgsl` states it, for every visible pixel, and whether
+/// some sample of the pixel lies within 1e-3 px of a pixel edge (where float rounding may snap
+/// the GPU and the CPU to different neighbours).
+fn cpu_hbao_plus(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    s: &HbaoPlusSettings,
+) -> (Vec<f32>, Vec<bool>) {
+    let uniform = screen.uniform();
+    let full = Vec2::new(g.width as f32, g.height as f32);
+    let neg_inv_r2 = -1.0 / (s.radius * s.radius);
+    let mut ao = Vec::new();
+    let mut ambiguous = Vec::new();
+    for y in 0..screen.height {
+        for x in 0..screen.width {
+            let pixel = UVec2::new(x, y) + screen.guard_band;
+            let z = g.depth_at(pixel);
+            let mut edge = false;
+            if !(z > 0.0) {
+                ao.push(1.0);
+                ambiguous.push(false);
+                continue;
+            }
+            let centre = pixel.as_vec2() + 0.5;
+            let pos = screen.pixel_to_view(centre, z);
+            let n = g.normals[(pixel.y * g.width + pixel.x) as usize].normalize();
+            let radius_px = s.radius * uniform.projection_scale[1] / z;
+            if radius_px < 1.0 {
+                ao.push(1.0);
+                ambiguous.push(false);
+                continue;
+            }
+            let step = radius_px / (s.steps + 1) as f32;
+            let (c, sn, jitter) = pixel_pattern(x, y, s.directions);
+            let start = jitter * step + 1.0;
+            let (mut occlusion, mut count) = (0.0f32, 0.0f32);
+            for i in 0..s.directions * s.steps {
+                let (d, k) = (i / s.steps, i % s.steps);
+                let angle = TAU * d as f32 / s.directions as f32;
+                let base = Vec2::new(angle.cos(), angle.sin());
+                let dir = Vec2::new(base.x * c - base.y * sn, base.x * sn + base.y * c);
+                let px = centre + dir * (start + k as f32 * step);
+                let f = px.fract();
+                edge |= f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
+                count += 1.0;
+                let cell = px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2();
+                if cell == pixel {
+                    continue;
+                }
+                let z2 = g.depth_at(cell);
+                if !(z2 > 0.0) {
+                    continue;
+                }
+                let v = screen.pixel_to_view(cell.as_vec2() + 0.5, z2) - pos;
+                let v_dot_v = v.dot(v).max(1e-20);
+                let angle_term = (n.dot(v) / v_dot_v.sqrt() - s.bias).clamp(0.0, 1.0);
+                let distance_term = (v_dot_v * neg_inv_r2 + 1.0).clamp(0.0, 1.0);
+                occlusion += angle_term * distance_term;
+            }
+            ao.push(
+                (1.0 - 2.0 * occlusion / count)
+                    .clamp(0.0, 1.0)
+                    .powf(s.exponent),
+            );
+            ambiguous.push(edge);
+        }
+    }
+    (ao, ambiguous)
+}
+
+#[test]
+fn gpu_matches_the_cpu_implementation() {
+    let gpu = gpu();
+    for name in ["stairs", "colonnade"] {
+        let scene = scene::builtin(name).unwrap();
+        let s = settings(Technique::HbaoPlus, false);
+        let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
+        r.render(&scene.cameras[0].camera, None).unwrap();
+        let gpu_ao = r.read_raw_ao().unwrap();
+        let (cpu_ao, ambiguous) = cpu_hbao_plus(
+            &r.read_gbuffer().unwrap(),
+            &r.view().unwrap().screen(),
+            &s.hbao_plus,
+        );
+        let (mut worst, mut mismatches) = (0.0f32, 0);
+        for (i, (&g, &c)) in gpu_ao.iter().zip(&cpu_ao).enumerate() {
+            let diff = (g - c).abs();
+            if diff > 1.0 / 255.0 {
+                assert!(ambiguous[i], "{name}: pixel {i} GPU {g} CPU {c}");
+                mismatches += 1;
+            } else {
+                worst = worst.max(diff);
+            }
+        }
+        println!("{name}: max |GPU − CPU| {worst:.2e}, {mismatches} edge-snapping mismatches");
+        assert!(mismatches <= gpu_ao.len() / 500, "{name}: {mismatches}");
+        let occluded = gpu_ao.iter().filter(|&&v| v < 0.9).count();
+        assert!(
+            occluded > gpu_ao.len() / 50,
+            "{name}: the view must show occlusion ({occluded} pixels)"
+        );
+    }
+}
+
+#[test]
+fn hbao_plus_dual_equals_hbao_plus_with_one_layer() {
+    // A height field seen from above has no second layer: the dual-depth source changes nothing.
+    let gpu = gpu();
+    let scene = height_field();
+    let mut cam = camera(Vec3::new(0.0, 7.0, 0.0), Vec3::ZERO, 30.0);
+    cam.up = Vec3::NEG_Z;
+    let render = |technique| {
+        let mut r = Renderer::new(&gpu, &scene, &settings(technique, false), 96, 64, 16).unwrap();
+        r.render(&cam, None).unwrap();
+        r.read_ao().unwrap()
+    };
+    let (single, dual) = (render(Technique::HbaoPlus), render(Technique::HbaoPlusDual));
+    let worst = single
+        .iter()
+        .zip(&dual)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(worst <= 1e-6, "max |hbao+ − hbao+-dual| {worst}");
+    assert!(
+        single.iter().any(|&v| v < 0.95),
+        "the view must have occlusion"
+    );
+}
