@@ -61,7 +61,7 @@ fn cpu_hbao_plus(
             let pixel = UVec2::new(x, y) + screen.guard_band;
             let z = g.depth_at(pixel);
             let mut edge = false;
-            if !(z > 0.0) {
+            if z.is_nan() || z <= 0.0 {
                 ao.push(1.0);
                 ambiguous.push(false);
                 continue;
@@ -93,7 +93,7 @@ fn cpu_hbao_plus(
                     continue;
                 }
                 let z2 = g.depth_at(cell);
-                if !(z2 > 0.0) {
+                if z2.is_nan() || z2 <= 0.0 {
                     continue;
                 }
                 let v = screen.pixel_to_view(cell.as_vec2() + 0.5, z2) - pos;
