@@ -5,11 +5,10 @@
 mod common;
 use common::*;
 use glam::{UVec2, Vec2, Vec3};
-use obscura::estimators::hbao_plus::pixel_pattern;
+use obscura::estimators::hbao_plus::{pixel_pattern, sample};
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::settings::{AoSettings, HbaoPlusSettings};
 use obscura::{scene, Renderer, ScreenGeometry, Technique};
-use std::f32::consts::TAU;
 
 fn settings(technique: Technique, blur: bool) -> AoSettings {
     let mut s = AoSettings {
@@ -80,9 +79,8 @@ fn cpu_hbao_plus(
             let start = jitter * step + 1.0;
             let (mut occlusion, mut count) = (0.0f32, 0.0f32);
             for i in 0..s.directions * s.steps {
-                let (d, k) = (i / s.steps, i % s.steps);
-                let angle = TAU * d as f32 / s.directions as f32;
-                let base = Vec2::new(angle.cos(), angle.sin());
+                let (bx, by, k) = sample(i, s.directions, s.steps);
+                let base = Vec2::new(bx, by);
                 let dir = Vec2::new(base.x * c - base.y * sn, base.x * sn + base.y * c);
                 let px = centre + dir * (start + k as f32 * step);
                 let f = px.fract();

@@ -27,6 +27,9 @@ struct HbaoPlusParams {
     // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the direction rotation, z the start jitter in
     // [0, 1).
     pattern: array<vec4<f32>, 16>,
+    // Sample i = direction i / steps, step i % steps: xy the unrotated unit direction, z the step
+    // (tabulated on the CPU: no trigonometry or integer division per sample).
+    samples: array<vec4<f32>, 32>,
 }
 
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: HbaoPlusParams;
@@ -92,13 +95,10 @@ fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> {
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
-    let d = i / params.steps;
-    let step = i % params.steps;
-    let angle = 6.283185307179586 * f32(d) / f32(params.directions);
-    let base = vec2<f32>(cos(angle), sin(angle));
+    let k = params.samples[i];
     let r = p.rotation;
-    let dir = vec2<f32>(base.x * r.x - base.y * r.y, base.x * r.y + base.y * r.x);
-    let distance = p.start_px + f32(step) * p.step_px;
+    let dir = vec2<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x);
+    let distance = p.start_px + k.z * p.step_px;
     // Screen y runs down, view y up: the direction is a screen direction either way.
     s.px = vec2<f32>(p.pixel) + 0.5 + dir * distance;
     return s;

@@ -21,6 +21,13 @@ pub fn pixel_pattern(x: u32, y: u32, directions: u32) -> (f32, f32, f32) {
     (angle.cos(), angle.sin(), jitter)
 }
 
+/// Sample `i` of `directions` × `steps`: the unrotated unit direction 2π·(i / steps)/directions
+/// and the step `i % steps`.
+pub fn sample(i: u32, directions: u32, steps: u32) -> (f32, f32, u32) {
+    let angle = TAU * (i / steps) as f32 / directions as f32;
+    (angle.cos(), angle.sin(), i % steps)
+}
+
 /// GPU mirror of `HbaoPlusParams` in the WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -33,6 +40,7 @@ struct HbaoPlusParams {
     steps: u32,
     _pad: [u32; 2],
     pattern: [[f32; 4]; 16],
+    samples: [[f32; 4]; 32],
 }
 
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
@@ -41,6 +49,15 @@ pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
     for (i, p) in pattern.iter_mut().enumerate() {
         let (c, sn, jitter) = pixel_pattern(i as u32 % 4, i as u32 / 4, s.directions);
         *p = [c, sn, jitter, 0.0];
+    }
+    let mut samples = [[0.0; 4]; 32];
+    for (i, k) in samples
+        .iter_mut()
+        .enumerate()
+        .take((s.directions * s.steps) as usize)
+    {
+        let (c, sn, step) = sample(i as u32, s.directions, s.steps);
+        *k = [c, sn, step as f32, 0.0];
     }
     let params = HbaoPlusParams {
         radius: s.radius,
@@ -51,6 +68,7 @@ pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
         steps: s.steps,
         _pad: [0; 2],
         pattern,
+        samples,
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
