@@ -5,7 +5,9 @@ use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Scene};
-use obscura::settings::{AoSettings, Normalization, Preset, SdMask, SettingsError};
+use obscura::settings::{
+    AoSettings, Normalization, Preset, SdMask, SectorActivation, SettingsError,
+};
 use obscura::Technique;
 use std::path::PathBuf;
 
@@ -135,6 +137,12 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("hbao_plus.exponent", "--hbao-exponent"),
     ("hbao_plus.directions", "--hbao-directions"),
     ("hbao_plus.steps", "--hbao-steps"),
+    ("gtao_vb.radius", "--vb-radius"),
+    ("gtao_vb.thickness", "--vb-thickness"),
+    ("gtao_vb.exponent", "--vb-exponent"),
+    ("gtao_vb.slices", "--vb-slices"),
+    ("gtao_vb.steps", "--vb-steps"),
+    ("gtao_vb.activation", "--vb-activation"),
 ];
 
 /// The flag that sets a settings field: `flag_for_field("vao.radius") == Some("--radius")`.
@@ -232,6 +240,27 @@ pub struct AoArgs {
     pub hbao_directions: Option<u32>,
     #[arg(long, help = help("HBAO+ steps per direction.", "hbao_plus.steps"))]
     pub hbao_steps: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("GTAO-VB search radius R in world units.", "gtao_vb.radius"))]
+    pub vb_radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "GTAO-VB constant thickness behind every depth sample, world units.",
+        "gtao_vb.thickness"
+    ))]
+    pub vb_thickness: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("GTAO-VB power applied to the final AO.", "gtao_vb.exponent"))]
+    pub vb_exponent: Option<f32>,
+    #[arg(long, help = help("GTAO-VB slices per pixel (1 to 3).", "gtao_vb.slices"))]
+    pub vb_slices: Option<u32>,
+    #[arg(long, help = help(
+        "GTAO-VB steps on each side of a slice (slices × 2 × steps ≤ 32).",
+        "gtao_vb.steps"
+    ))]
+    pub vb_steps: Option<u32>,
+    #[arg(long, help = help(
+        "GTAO-VB sector activation: ceil (touched), round (half covered) or floor (covered).",
+        "gtao_vb.activation"
+    ))]
+    pub vb_activation: Option<String>,
     #[arg(long, allow_hyphen_values = true, help = help(
         "VAO thickness τ (constant occluded area above the column, in units of R).",
         "vao.thickness"
@@ -328,6 +357,15 @@ impl AoArgs {
         set(&mut h.exponent, self.hbao_exponent);
         set(&mut h.directions, self.hbao_directions);
         set(&mut h.steps, self.hbao_steps);
+        let g = &mut s.gtao_vb;
+        set(&mut g.radius, self.vb_radius);
+        set(&mut g.thickness, self.vb_thickness);
+        set(&mut g.exponent, self.vb_exponent);
+        set(&mut g.slices, self.vb_slices);
+        set(&mut g.steps, self.vb_steps);
+        if let Some(a) = &self.vb_activation {
+            g.activation = a.parse::<SectorActivation>().map_err(with_flags)?;
+        }
         let b = &mut s.blur;
         if self.no_blur {
             b.enabled = false;

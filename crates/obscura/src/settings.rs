@@ -164,6 +164,67 @@ impl Default for HbaoPlusSettings {
     }
 }
 
+/// How a sample's angular span turns into sectors of the visibility bitmask (seed 003).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SectorActivation {
+    /// A sector the span touches.
+    #[default]
+    Ceil,
+    /// A sector the span covers at least half of.
+    Round,
+    /// A sector the span covers whole.
+    Floor,
+}
+
+impl FromStr for SectorActivation {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "ceil" => Ok(SectorActivation::Ceil),
+            "round" => Ok(SectorActivation::Round),
+            "floor" => Ok(SectorActivation::Floor),
+            _ => Err(invalid(
+                "gtao_vb.activation",
+                s,
+                "must be 'ceil' (default), 'round' or 'floor'",
+            )),
+        }
+    }
+}
+
+/// GTAO with visibility bitmasks (seed 003): slices × steps per side, 32 sectors per slice,
+/// constant thickness, no falloff.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GtaoVbSettings {
+    /// Screen-space search radius R in world units.
+    pub radius: f32,
+    /// Constant thickness of every surface behind its depth sample, world units (the default
+    /// is VAO's default thickness τ·R = 0.25: the same physical assumption).
+    pub thickness: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Slices (1 to 3: one 32-bit mask each in the estimator's three-word state).
+    pub slices: u32,
+    /// Steps on each side of a slice; slices × 2 × steps ≤ 32.
+    pub steps: u32,
+    pub activation: SectorActivation,
+}
+
+impl Default for GtaoVbSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            thickness: 0.25,
+            exponent: 1.0,
+            slices: 2,
+            steps: 2,
+            activation: SectorActivation::Ceil,
+        }
+    }
+}
+
 /// Depth-aware separable blur (seed 000 §3.4, HBAO+ weights).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -284,6 +345,8 @@ pub struct AoSettings {
     pub stochastic_depth: StochasticDepthSettings,
     /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
     pub hbao_plus: HbaoPlusSettings,
+    /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
+    pub gtao_vb: GtaoVbSettings,
 }
 
 impl Default for AoSettings {
@@ -291,6 +354,7 @@ impl Default for AoSettings {
         Self {
             technique: Technique::default(),
             hbao_plus: HbaoPlusSettings::default(),
+            gtao_vb: GtaoVbSettings::default(),
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
             peel_separation: 0.01,
@@ -392,6 +456,42 @@ impl AoSettings {
                 "hbao_plus.steps",
                 h.steps,
                 "must be at least 1 with directions × steps ≤ 32 (one bit per sample), e.g. 4",
+            ));
+        }
+        let g = &self.gtao_vb;
+        if !(g.radius.is_finite() && g.radius > 0.0) {
+            return Err(invalid(
+                "gtao_vb.radius",
+                g.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(g.thickness.is_finite() && g.thickness >= 0.0) {
+            return Err(invalid(
+                "gtao_vb.thickness",
+                g.thickness,
+                "must be zero or positive world units, e.g. 0.25",
+            ));
+        }
+        if !(g.exponent.is_finite() && g.exponent > 0.0) {
+            return Err(invalid(
+                "gtao_vb.exponent",
+                g.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=3).contains(&g.slices) {
+            return Err(invalid(
+                "gtao_vb.slices",
+                g.slices,
+                "must be 1, 2 or 3 (one 32-bit mask each), e.g. 2",
+            ));
+        }
+        if g.steps == 0 || g.slices * 2 * g.steps > 32 {
+            return Err(invalid(
+                "gtao_vb.steps",
+                g.steps,
+                "must be at least 1 with slices × 2 × steps ≤ 32 (one bit per sample), e.g. 2",
             ));
         }
         let b = &self.blur;
@@ -532,6 +632,18 @@ impl AoSettings {
                 Preset::Medium | Preset::High => {}
                 Preset::Ultra => s.blur.radius = 6,
             },
+            // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
+            // samples allow: ultra is 3 × 5 instead of 9 × 3.
+            Estimator::GtaoVb => {
+                let (slices, steps) = match preset {
+                    Preset::Low => (1, 2),
+                    Preset::Medium => (2, 2),
+                    Preset::High => (3, 3),
+                    Preset::Ultra => (3, 5),
+                };
+                s.gtao_vb.slices = slices;
+                s.gtao_vb.steps = steps;
+            }
         }
         match row.source {
             Source::StochasticDepth => {
@@ -908,7 +1020,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 14, "{paths:?}");
+        assert_eq!(paths.len(), 25, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -924,6 +1036,16 @@ mod tests {
         push(&|s| s.stochastic_depth.alpha = 1.5);
         push(&|s| s.blur.radius = 0);
         push(&|s| s.blur.sharpness = -2.0);
+        push(&|s| s.hbao_plus.radius = -1.0);
+        push(&|s| s.hbao_plus.bias = 1.0);
+        push(&|s| s.hbao_plus.exponent = 0.0);
+        push(&|s| s.hbao_plus.directions = 0);
+        push(&|s| s.hbao_plus.steps = 5);
+        push(&|s| s.gtao_vb.radius = f32::INFINITY);
+        push(&|s| s.gtao_vb.thickness = -0.5);
+        push(&|s| s.gtao_vb.exponent = -1.0);
+        push(&|s| s.gtao_vb.slices = 4);
+        push(&|s| s.gtao_vb.steps = 9);
         let mut reported = Vec::new();
         for s in &broken {
             match s.validate() {
@@ -940,6 +1062,10 @@ mod tests {
         for (text, field) in [
             ("flat".parse::<Normalization>().err(), "vao.normalization"),
             ("both".parse::<SdMask>().err(), "stochastic_depth.mask"),
+            (
+                "half".parse::<SectorActivation>().err(),
+                "gtao_vb.activation",
+            ),
         ] {
             match text {
                 Some(SettingsError::Invalid { field: f, .. }) => {

@@ -36,7 +36,9 @@ techniques!(
     SdVao,
     SdSvao,
     HbaoPlus,
-    HbaoPlusDual
+    HbaoPlusDual,
+    GtaoVb,
+    GtaoVbDual
 );
 
 /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
@@ -47,6 +49,8 @@ pub enum Estimator {
     /// NVIDIA-style per-sample horizon AO, the seed authors' baseline (seed 000 §2.1,
     /// seed-code-notes §1.7).
     HbaoPlus,
+    /// GTAO with a visibility bitmask of 32 sectors per slice (seed 003).
+    GtaoVb,
 }
 
 /// What answers "what lies behind the first surface here" (`src/sources/`, `shaders/sources/`).
@@ -173,6 +177,24 @@ pub const TABLE: &[TechniqueRow] = &[
         source: Source::DualDepth,
         schedule: Schedule::Single,
     },
+    TechniqueRow {
+        technique: Technique::GtaoVb,
+        name: "gtao-vb",
+        summary: "GTAO slices with a 32-sector visibility bitmask and constant thickness",
+        paper: "seed 003",
+        estimator: Estimator::GtaoVb,
+        source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::GtaoVbDual,
+        name: "gtao-vb-dual",
+        summary: "GTAO-VB; every sample also marks the sectors of the second depth layer",
+        paper: "seed 003, seed 000 §2.1",
+        estimator: Estimator::GtaoVb,
+        source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
 ];
 
 /// What a technique needs from the caller beyond depth and normals.
@@ -246,6 +268,7 @@ impl Estimator {
         match self {
             Estimator::Vao => "vao",
             Estimator::HbaoPlus => "hbao+",
+            Estimator::GtaoVb => "gtao-vb",
         }
     }
 }

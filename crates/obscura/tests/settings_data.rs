@@ -18,25 +18,31 @@ fn preset_table() -> String {
     let hbao = Technique::all()
         .find(|t| t.estimator() == Estimator::HbaoPlus)
         .unwrap();
+    let vb = Technique::all()
+        .find(|t| t.estimator() == Estimator::GtaoVb)
+        .unwrap();
     let sd = Technique::all()
         .find(|t| t.source() == Source::StochasticDepth)
         .unwrap();
     let mut out = String::from(
-        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|\n",
+        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO-VB: `gtao_vb.slices` × `.steps` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|\n",
     );
     for p in Preset::ALL {
-        let (v, h, s) = (
+        let (v, h, g, s) = (
             AoSettings::preset(vao, p),
             AoSettings::preset(hbao, p),
+            AoSettings::preset(vb, p),
             AoSettings::preset(sd, p),
         );
         out += &format!(
-            "| `{p}` | {}, {} | {} × {}, {} | {}, {} |\n",
+            "| `{p}` | {}, {} | {} × {}, {} | {} × {} | {}, {} |\n",
             v.vao.samples,
             v.blur.radius,
             h.hbao_plus.directions,
             h.hbao_plus.steps,
             h.blur.radius,
+            g.gtao_vb.slices,
+            g.gtao_vb.steps,
             s.stochastic_depth.samples,
             s.stochastic_depth.alpha
         );
@@ -81,6 +87,12 @@ fn the_preset_table_is_the_whole_story() {
                     let h = AoSettings::preset(hbao, p);
                     want.hbao_plus = h.hbao_plus;
                     want.blur.radius = h.blur.radius;
+                }
+                Estimator::GtaoVb => {
+                    let vb = Technique::all()
+                        .find(|t| t.estimator() == Estimator::GtaoVb)
+                        .unwrap();
+                    want.gtao_vb = AoSettings::preset(vb, p).gtao_vb;
                 }
             }
             want.stochastic_depth = if t.source() == Source::StochasticDepth {

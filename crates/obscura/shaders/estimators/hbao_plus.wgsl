@@ -54,6 +54,9 @@ struct EstimatorSample {
     on: bool,
 }
 
+// A sample's value: its occlusion.
+alias EstimatorValue = f32;
+
 struct EstimatorAccum {
     occlusion: f32,
     count: f32,

@@ -180,6 +180,8 @@ fn vao_finish(sum: f32, clipped_sum: f32) -> f32 {
 
 alias EstimatorPixel = VaoPixel;
 alias EstimatorSample = VaoSample;
+// A sample's value: its free column length.
+alias EstimatorValue = f32;
 
 // The partial sums a two-phase schedule carries between its phases (three 32-bit words, stored
 // next to the pixel's sample mask).

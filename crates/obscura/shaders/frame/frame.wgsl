@@ -10,11 +10,11 @@
 @group(GROUP_FRAME) @binding(FRAME_AO_OUT) var ao_out: texture_storage_2d<r32float, write>;
 
 // What a source knows about one sample after its first look: the estimator's value for it
-// (`value`, e.g. VAO's free column length), whether the source must still resolve it (`trace`:
+// (`value`, of the estimator's `EstimatorValue` type: e.g. VAO's free column length), whether the source must still resolve it (`trace`:
 // a deeper surface could change the value), the framebuffer pixel coordinates it looked at (`px`,
 // a pixel centre) and, for rays, the ray parameter past which to look (`t_after`).
 struct DepthLookup {
-    value: f32,
+    value: EstimatorValue,
     trace: bool,
     px: vec2<f32>,
     t_after: f32,

@@ -8,7 +8,7 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     return first_layer_lookup(p, s);
 }
 
-fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> f32 {
+fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let z2 = textureLoad(second_depth, vec2<u32>(l.px), 0).r;
     if (is_background(z2)) {
         return l.value;

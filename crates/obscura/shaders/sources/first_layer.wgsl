@@ -12,7 +12,7 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     return l;
 }
 
-fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> f32 {
+fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     return l.value;
 }
 

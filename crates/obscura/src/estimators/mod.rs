@@ -6,6 +6,7 @@
 //! plus a Rust module here that makes its parameters (bind group 1) and pipeline constants. The
 //! schedules own the loops; the sources consult the estimator for each depth they find.
 
+pub mod gtao_vb;
 pub mod hbao_plus;
 pub mod vao;
 
@@ -57,6 +58,7 @@ impl EstimatorPass {
         let (params, values) = match estimator {
             Estimator::Vao => vao::params(&settings.vao),
             Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
+            Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
         };
         let constants = names.iter().copied().zip(values).collect();
         Self::new(device, estimator.name(), &params, wgsl, constants)
@@ -69,5 +71,6 @@ pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static st
     match estimator {
         Estimator::Vao => (vao::WGSL, vao::CONSTANTS),
         Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
+        Estimator::GtaoVb => (gtao_vb::WGSL, gtao_vb::CONSTANTS),
     }
 }

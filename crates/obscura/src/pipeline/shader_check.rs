@@ -24,6 +24,7 @@ struct StubParams { radius_px: f32, _pad0: f32, _pad1: f32, _pad2: f32 }
 override SAMPLE_COUNT: u32 = 8u;
 struct EstimatorPixel { pixel: vec2<u32>, depth: f32, valid: bool }
 struct EstimatorSample { px: vec2<f32>, on: bool }
+alias EstimatorValue = f32;
 struct EstimatorAccum { open: f32, count: f32, _pad: f32 }
 struct Occluder { value: f32, hidden: bool }
 fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {

@@ -18,7 +18,7 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
 }
 
 // The value combined over the first surface (`l.value`) and every stored stochastic sample.
-fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> f32 {
+fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let pixel = vec2<u32>(l.px);
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {

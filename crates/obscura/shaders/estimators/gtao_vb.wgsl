@@ -1,0 +1,202 @@
+// GTAO with visibility bitmasks (Therrien, Levesque, Gilet, "Screen Space Indirect Lighting with
+// Visibility Bitmask", seed 003): per slice through the view vector, a 32-sector bit field over the
+// hemisphere around the normal projected onto the slice replaces GTAO's two horizon angles. Every
+// sample marks the sectors between its front face and its back face, the front pushed away from
+// the camera by a constant thickness, so light passes behind thin surfaces; no falloff. AO = the
+// mean over slices of 1 − occluded sectors / 32 (uniform sectors; seed 003 leaves out the cosine
+// weight too).
+//
+// Per-sample form of the estimator contract (docs/ARCHITECTURE.md): sample i belongs to slice
+// i / (2·steps), side ±1 and step i % steps; its value is its slice's sector bits (`u32`), values
+// of several depths combine by OR (every stochastic-depth sample marks its own span), and the
+// accumulator ORs each sample into its slice's mask, one 32-bit word per slice (so at most three
+// slices: the two-phase schedule carries three words). The order of samples never matters, as
+// the two-phase schedule needs.
+//
+// Ours, where seed 003 (a blog post on Unity's GTAO) is silent or engine-specific:
+// - angles are measured with atan2 in the slice plane (basis V and the slice direction made
+//   orthogonal to V), both sides alike, instead of GTAO's acos with a side-dependent sign;
+// - a sample whose front face lies on or below the shading point's tangent plane (within 1e-3 rad)
+//   marks nothing: geometrically its span lies below the hemisphere, and without the rule float
+//   rounding and the half-float normals made every unoccluded plane occlude itself a little;
+// - the per-pixel slice rotation and step jitter come from the 4×4 Bayer matrix (as our HBAO+).
+
+struct GtaoVbParams {
+    radius: f32,
+    thickness: f32,
+    exponent: f32,
+    // 0 ceil, 1 round, 2 floor (seed 003: touch, half, whole sector).
+    activation: u32,
+    slices: u32,
+    steps: u32,
+    _pad0: u32,
+    _pad1: u32,
+    // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the slice rotation, z the step jitter in [0, 1).
+    pattern: array<vec4<f32>, 16>,
+    // Sample i: xy the unrotated slice direction (view space), z the side (±1), w the step.
+    samples: array<vec4<f32>, 32>,
+}
+
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: GtaoVbParams;
+
+// slices × 2 × steps, at most 32.
+override SAMPLE_COUNT: u32 = 8u;
+
+struct EstimatorPixel {
+    pos: vec3<f32>,
+    // Unit vector to the camera.
+    v: vec3<f32>,
+    normal: vec3<f32>,
+    pixel: vec2<u32>,
+    rotation: vec2<f32>,
+    jitter: f32,
+    step_px: f32,
+    valid: bool,
+}
+
+struct EstimatorSample {
+    px: vec2<f32>,
+    slice: u32,
+    // The slice plane: its tangent (⟂ V, towards the slice direction), and the projected normal's
+    // angle from V towards that tangent.
+    tangent: vec3<f32>,
+    normal_angle: f32,
+    on: bool,
+}
+
+// A sample's value: the sectors of its slice it occludes.
+alias EstimatorValue = u32;
+
+struct EstimatorAccum {
+    masks: array<u32, 3>,
+}
+
+struct Occluder {
+    value: u32,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    var p: EstimatorPixel;
+    p.pixel = id + vec2<u32>(view.guard_band);
+    let z = textureLoad(depth_tex, p.pixel, 0).r;
+    p.valid = !is_background(z);
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
+    p.v = normalize(-p.pos);
+    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
+    let pattern = params.pattern[(id.x % 4u) + 4u * (id.y % 4u)];
+    p.rotation = pattern.xy;
+    p.jitter = pattern.z;
+    let radius_px = params.radius * view.projection_scale.y / z;
+    p.step_px = select(0.0, radius_px / f32(params.steps), radius_px >= 1.0);
+    return p;
+}
+
+fn estimator_pixel_valid(p: EstimatorPixel) -> bool {
+    return p.valid;
+}
+
+fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> {
+    return p.pixel;
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.step_px > 0.0;
+    let k = params.samples[i];
+    let r = p.rotation;
+    let dir = vec2<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x);
+    s.slice = i / (2u * params.steps);
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + k.z * vec2<f32>(dir.x, -dir.y) * ((p.jitter + 1.0 + k.w) * p.step_px);
+    let d = vec3<f32>(dir, 0.0);
+    s.tangent = normalize(d - p.v * dot(d, p.v));
+    let slice_normal = cross(s.tangent, p.v);
+    let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
+    s.normal_angle = atan2(dot(projected, s.tangent), dot(projected, p.v));
+    return s;
+}
+
+fn estimator_sample_active(s: EstimatorSample) -> bool {
+    return s.on;
+}
+
+fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
+    return s.px;
+}
+
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> u32 {
+    return 0u;
+}
+
+// Position in the hemisphere around the projected normal, 0 to 1, of slice-plane vector `w`.
+fn hemisphere_position(p: EstimatorPixel, s: EstimatorSample, w: vec3<f32>) -> f32 {
+    let angle = atan2(dot(w, s.tangent), dot(w, p.v));
+    return saturate((angle - s.normal_angle + 1.5707963267948966) / 3.141592653589793);
+}
+
+// The sectors between hemisphere positions a and b (seed 003's UpdateSectors).
+fn sector_bits(a: f32, b: f32) -> u32 {
+    let lo = min(a, b);
+    let width = (max(a, b) - lo) * 32.0;
+    var count: f32;
+    switch params.activation {
+        case 1u: { count = round(width); }
+        case 2u: { count = floor(width); }
+        default: { count = ceil(width); }
+    }
+    let start = min(u32(lo * 32.0), 32u);
+    let n = min(u32(max(count, 0.0)), 32u - start);
+    if (n == 0u) {
+        return 0u;
+    }
+    return (0xffffffffu >> (32u - n)) << start;
+}
+
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let front = pos - p.pos;
+    var o: Occluder;
+    // A front face on or below the tangent plane occludes nothing (its back face lies lower
+    // still), nor can a deeper surface at that pixel (it lies lower along the view ray). The
+    // margin, 1e-3 rad, absorbs the G-buffer's half-float normals (~5e-4 rad).
+    if (dot(front, p.normal) <= 1e-3 * length(front)) {
+        o.value = 0u;
+        o.hidden = false;
+        return o;
+    }
+    let back = front - p.v * params.thickness;
+    o.value = sector_bits(hemisphere_position(p, s, front), hemisphere_position(p, s, back));
+    // Any deeper surface may cover sectors this one leaves free.
+    o.hidden = true;
+    return o;
+}
+
+// Several depths for one sample: every one marks its own sectors.
+fn estimator_combine(a: u32, b: u32) -> u32 {
+    return a | b;
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    return EstimatorAccum(array<u32, 3>(0u, 0u, 0u));
+}
+
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    return acc;
+}
+
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: u32) -> EstimatorAccum {
+    var a = acc;
+    a.masks[s.slice] |= value;
+    return a;
+}
+
+fn estimator_finish(acc: EstimatorAccum) -> f32 {
+    var visible = 0.0;
+    for (var j = 0u; j < params.slices; j++) {
+        visible += 1.0 - f32(countOneBits(acc.masks[j])) / 32.0;
+    }
+    return pow(saturate(visible / f32(params.slices)), params.exponent);
+}

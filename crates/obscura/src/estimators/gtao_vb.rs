@@ -1,0 +1,78 @@
+//! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
+//! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
+
+use super::vao::BAYER_4X4;
+use crate::settings::{GtaoVbSettings, SectorActivation};
+use std::f32::consts::{PI, TAU};
+
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
+pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/gtao_vb.wgsl");
+/// Its `override` constants: the sample count, slices × 2 × steps.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+
+/// Pixel (x, y) of the visible image: (cos, sin) of its slice rotation, π·B/16/slices with B the
+/// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) from the transposed matrix.
+pub fn pixel_pattern(x: u32, y: u32, slices: u32) -> (f32, f32, f32) {
+    let (i, j) = ((x % 4) as usize, (y % 4) as usize);
+    let angle = PI * BAYER_4X4[i + 4 * j] as f32 / 16.0 / slices as f32;
+    let jitter = (BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
+    (angle.cos(), angle.sin(), jitter)
+}
+
+/// Sample `i`: the unrotated slice direction (angle π·slice/slices), the side (±1) and the step.
+pub fn sample(i: u32, slices: u32, steps: u32) -> (f32, f32, f32, u32) {
+    let slice = i / (2 * steps);
+    let side = if (i / steps).is_multiple_of(2) {
+        1.0
+    } else {
+        -1.0
+    };
+    let angle = TAU * 0.5 * slice as f32 / slices as f32;
+    (angle.cos(), angle.sin(), side, i % steps)
+}
+
+/// GPU mirror of `GtaoVbParams` in the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GtaoVbParams {
+    radius: f32,
+    thickness: f32,
+    exponent: f32,
+    activation: u32,
+    slices: u32,
+    steps: u32,
+    _pad: [u32; 2],
+    pattern: [[f32; 4]; 16],
+    samples: [[f32; 4]; 32],
+}
+
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
+pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
+    let mut pattern = [[0.0; 4]; 16];
+    for (i, p) in pattern.iter_mut().enumerate() {
+        let (c, sn, jitter) = pixel_pattern(i as u32 % 4, i as u32 / 4, s.slices);
+        *p = [c, sn, jitter, 0.0];
+    }
+    let count = s.slices * 2 * s.steps;
+    let mut samples = [[0.0; 4]; 32];
+    for (i, k) in samples.iter_mut().enumerate().take(count as usize) {
+        let (c, sn, side, step) = sample(i as u32, s.slices, s.steps);
+        *k = [c, sn, side, step as f32];
+    }
+    let params = GtaoVbParams {
+        radius: s.radius,
+        thickness: s.thickness,
+        exponent: s.exponent,
+        activation: match s.activation {
+            SectorActivation::Ceil => 0,
+            SectorActivation::Round => 1,
+            SectorActivation::Floor => 2,
+        },
+        slices: s.slices,
+        steps: s.steps,
+        _pad: [0; 2],
+        pattern,
+        samples,
+    };
+    (bytemuck::bytes_of(&params).to_vec(), vec![f64::from(count)])
+}
