@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The horizon-family estimators against VAO on the device GPU (BENCHMARKS.md, issue 10): every
-# technique of TECHNIQUES (default: vao and every hbao row) on Crytek Sponza, stairs and colonnade
+# technique of TECHNIQUES (default: vao and every hbao and gtao row) on Crytek Sponza, stairs and colonnade
 # at 1920x1080 + 64, one run. Run from the repo root on the device machine with .devbin/ and .gl/
 # carried (../shared/tools/prepare-device.sh crytek-sponza); results go to $OUT.
 set -uo pipefail
@@ -14,7 +14,7 @@ out=${OUT:-/tmp/out}
 mkdir -p "$out"
 $bin info | tee "$out/info.txt"
 all=$($bin info --techniques)
-techniques=${TECHNIQUES:-vao,$(echo "$all" | tr ',' '\n' | grep hbao | paste -sd,)}
+techniques=${TECHNIQUES:-vao,$(echo "$all" | tr ',' '\n' | grep -E "hbao|gtao" | paste -sd,)}
 sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
 $bin bench "${sponza[@]}" --size 1920x1080 --techniques "$techniques" --frames 200 --warmup 20 \
   --json "$out/sponza.json" 2>&1 | tee -a "$out/bench.txt"
