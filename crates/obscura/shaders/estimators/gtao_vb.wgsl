@@ -51,16 +51,16 @@ struct EstimatorPixel {
     rotation: vec2<f32>,
     jitter: f32,
     step_px: f32,
+    // Per slice (made once per pixel, shared by its 2 × steps samples): the slice plane's tangent
+    // (⟂ V, towards the slice direction) and the projected normal's angle from V towards it.
+    tangents: array<vec3<f32>, 3>,
+    normal_angles: array<f32, 3>,
     valid: bool,
 }
 
 struct EstimatorSample {
     px: vec2<f32>,
     slice: u32,
-    // The slice plane: its tangent (⟂ V, towards the slice direction), and the projected normal's
-    // angle from V towards that tangent.
-    tangent: vec3<f32>,
-    normal_angle: f32,
     on: bool,
 }
 
@@ -92,6 +92,16 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.jitter = pattern.z;
     let radius_px = params.radius * view.projection_scale.y / z;
     p.step_px = select(0.0, radius_px / f32(params.steps), radius_px >= 1.0);
+    for (var j = 0u; j < params.slices; j++) {
+        let k = params.samples[j * 2u * params.steps];
+        let r = p.rotation;
+        let d = vec3<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x, 0.0);
+        let tangent = normalize(d - p.v * dot(d, p.v));
+        let slice_normal = cross(tangent, p.v);
+        let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
+        p.tangents[j] = tangent;
+        p.normal_angles[j] = atan2(dot(projected, tangent), dot(projected, p.v));
+    }
     return p;
 }
 
@@ -112,11 +122,6 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     s.slice = i / (2u * params.steps);
     // View y is up, framebuffer y down.
     s.px = vec2<f32>(p.pixel) + 0.5 + k.z * vec2<f32>(dir.x, -dir.y) * ((p.jitter + 1.0 + k.w) * p.step_px);
-    let d = vec3<f32>(dir, 0.0);
-    s.tangent = normalize(d - p.v * dot(d, p.v));
-    let slice_normal = cross(s.tangent, p.v);
-    let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
-    s.normal_angle = atan2(dot(projected, s.tangent), dot(projected, p.v));
     return s;
 }
 
@@ -134,8 +139,8 @@ fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> u32 {
 
 // Position in the hemisphere around the projected normal, 0 to 1, of slice-plane vector `w`.
 fn hemisphere_position(p: EstimatorPixel, s: EstimatorSample, w: vec3<f32>) -> f32 {
-    let angle = atan2(dot(w, s.tangent), dot(w, p.v));
-    return saturate((angle - s.normal_angle + 1.5707963267948966) / 3.141592653589793);
+    let angle = atan2(dot(w, p.tangents[s.slice]), dot(w, p.v));
+    return saturate((angle - p.normal_angles[s.slice] + 1.5707963267948966) / 3.141592653589793);
 }
 
 // The sectors between hemisphere positions a and b (seed 003's UpdateSectors).
