@@ -44,8 +44,8 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
     let progress = bar(names.len() as u64, "demo");
     let mut sections = String::new();
     let mut table = String::from(
-        "<table><tr><th>scene</th><th>technique</th><th>MSE</th><th>PSNR (dB)</th><th>SSIM</th>\
-         <th>bright halo</th><th>dark halo</th></tr>",
+        "<table><tr><th>scene</th><th>technique</th><th>estimator</th><th>MSE</th><th>PSNR (dB)</th>\
+         <th>SSIM</th><th>bright halo</th><th>dark halo</th></tr>",
     );
     for name in names {
         let scene = scene::builtin(name)?;
@@ -91,9 +91,10 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
                  <figure><img src=\"{name}/{t}.diff.png\"><figcaption>{t} − reference</figcaption></figure>\
                  <figure><img src=\"{name}/{t}.composite.png\"><figcaption>{t} × colour</figcaption></figure>"
             );
+            let estimator = t.parse::<Technique>().map_or("?", |t| t.estimator().name());
             let _ = write!(
                 table,
-                "<tr><td>{name}</td><td>{t}</td><td>{:.3e}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr><td>{name}</td><td>{t}</td><td>{estimator}</td><td>{:.3e}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 r.mse,
                 fmt(r.psnr),
                 fmt(r.ssim),
@@ -115,8 +116,10 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
          table{{border-collapse:collapse}}td,th{{padding:2px 8px;border-bottom:1px solid #555;text-align:right}}</style>\
          <h1>obscura demo</h1><p>{adapter} ({backend}), {width}×{height} + {guard_band} px guard band, \
          R {r}, τ {t}, exponent {e}, {s} samples, blur radius {br}. Errors against the ray-traced \
-         <code>vao</code> reference (the quantity VAO estimates with nothing hidden, blurred the same way); \
-         heat maps: blue = darker, red = brighter than the reference. Bright halo: mean positive error \
+         <code>vao</code> reference (the quantity VAO estimates with nothing hidden, blurred the same way). \
+         The horizon estimators (hbao+, gtao-vb) estimate another quantity, so their errors here include \
+         the difference of the models; compare them with <code>obscura compare --reference-model \
+         hemisphere</code>. Heat maps: blue = darker, red = brighter than the reference. Bright halo: mean positive error \
          within 4 px of depth discontinuities.</p>{table}{sections}",
         img = width.min(420),
         adapter = gpu.summary.name,
