@@ -94,7 +94,7 @@ pub struct VaoSettings {
     pub normalization: Normalization,
 }
 
-/// How VAO turns the free column lengths into AO (see `shaders/vao.wgsl`). In files:
+/// How VAO turns the free column lengths into AO (see `shaders/estimators/vao.wgsl`). In files:
 /// `"clipped"` or `"hemisphere"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -1,6 +1,6 @@
 //! GTAO with visibility bitmasks (seed 003) against values derived without the GPU kernel: an
-//! unoccluded plane, a plain CPU implementation on a read-back G-buffer, its dual-depth row on a
-//! scene with one layer, and the hemisphere ground truth on thin geometry.
+//! unoccluded plane, a plain CPU implementation on a read-back G-buffer, and the hemisphere
+//! ground truth on thin geometry (its dual-depth row: tests/source_twins.rs).
 
 mod common;
 use common::*;
@@ -184,30 +184,6 @@ fn gpu_matches_the_cpu_implementation() {
             );
         }
     }
-}
-
-#[test]
-fn gtao_vb_dual_equals_gtao_vb_with_one_layer() {
-    let gpu = gpu();
-    let scene = height_field();
-    let mut cam = camera(Vec3::new(0.0, 7.0, 0.0), Vec3::ZERO, 30.0);
-    cam.up = Vec3::NEG_Z;
-    let render = |technique| {
-        let mut r = Renderer::new(&gpu, &scene, &settings(technique, false), 96, 64, 16).unwrap();
-        r.render(&cam, None).unwrap();
-        r.read_ao().unwrap()
-    };
-    let (single, dual) = (render(Technique::GtaoVb), render(Technique::GtaoVbDual));
-    let worst = single
-        .iter()
-        .zip(&dual)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
-    assert!(worst <= 1e-6, "max |gtao-vb − gtao-vb-dual| {worst}");
-    assert!(
-        single.iter().any(|&v| v < 0.95),
-        "the view must have occlusion"
-    );
 }
 
 #[test]

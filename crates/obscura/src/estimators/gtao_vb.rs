@@ -1,9 +1,8 @@
 //! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
 //! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
 
-use super::vao::BAYER_4X4;
 use crate::settings::{GtaoVbSettings, SectorActivation};
-use std::f32::consts::{PI, TAU};
+use std::f32::consts::PI;
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
 pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/gtao_vb.wgsl");
@@ -11,12 +10,9 @@ pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/gtao_vb.wgs
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its slice rotation, π·B/16/slices with B the
-/// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) from the transposed matrix.
+/// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) ([`super::bayer_pattern`]).
 pub fn pixel_pattern(x: u32, y: u32, slices: u32) -> (f32, f32, f32) {
-    let (i, j) = ((x % 4) as usize, (y % 4) as usize);
-    let angle = PI * BAYER_4X4[i + 4 * j] as f32 / 16.0 / slices as f32;
-    let jitter = (BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
-    (angle.cos(), angle.sin(), jitter)
+    super::bayer_pattern(x, y, PI / slices as f32)
 }
 
 /// Sample `i`: the unrotated slice direction (angle π·slice/slices), the side (±1) and the step.
@@ -27,7 +23,7 @@ pub fn sample(i: u32, slices: u32, steps: u32) -> (f32, f32, f32, u32) {
     } else {
         -1.0
     };
-    let angle = TAU * 0.5 * slice as f32 / slices as f32;
+    let angle = PI * slice as f32 / slices as f32;
     (angle.cos(), angle.sin(), side, i % steps)
 }
 
@@ -48,11 +44,7 @@ struct GtaoVbParams {
 
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
 pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
-    let mut pattern = [[0.0; 4]; 16];
-    for (i, p) in pattern.iter_mut().enumerate() {
-        let (c, sn, jitter) = pixel_pattern(i as u32 % 4, i as u32 / 4, s.slices);
-        *p = [c, sn, jitter, 0.0];
-    }
+    let pattern = super::bayer_table(PI / s.slices as f32);
     let count = s.slices * 2 * s.steps;
     let mut samples = [[0.0; 4]; 32];
     for (i, k) in samples.iter_mut().enumerate().take(count as usize) {

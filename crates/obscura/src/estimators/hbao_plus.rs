@@ -2,7 +2,6 @@
 //! as the seed authors' baseline (seed 000 §2.1, seed-code-notes §1.7). Its per-pixel pattern is
 //! here so the CPU mirror in the tests uses the same numbers.
 
-use super::vao::BAYER_4X4;
 use crate::settings::HbaoPlusSettings;
 use std::f32::consts::TAU;
 
@@ -12,13 +11,9 @@ pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/hbao_plus.w
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its direction rotation, 2π·B/16/D with B the
-/// Bayer value of (x % 4, y % 4), and its start jitter in [0, 1) from the transposed Bayer
-/// matrix, `(B(y % 4, x % 4) + 0.5) / 16`.
+/// Bayer value of (x % 4, y % 4), and its start jitter in [0, 1) ([`super::bayer_pattern`]).
 pub fn pixel_pattern(x: u32, y: u32, directions: u32) -> (f32, f32, f32) {
-    let (i, j) = ((x % 4) as usize, (y % 4) as usize);
-    let angle = TAU * BAYER_4X4[i + 4 * j] as f32 / 16.0 / directions as f32;
-    let jitter = (BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
-    (angle.cos(), angle.sin(), jitter)
+    super::bayer_pattern(x, y, TAU / directions as f32)
 }
 
 /// Sample `i` of `directions` × `steps`: the unrotated unit direction 2π·(i / steps)/directions
@@ -45,11 +40,7 @@ struct HbaoPlusParams {
 
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
 pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
-    let mut pattern = [[0.0; 4]; 16];
-    for (i, p) in pattern.iter_mut().enumerate() {
-        let (c, sn, jitter) = pixel_pattern(i as u32 % 4, i as u32 / 4, s.directions);
-        *p = [c, sn, jitter, 0.0];
-    }
+    let pattern = super::bayer_table(TAU / s.directions as f32);
     let mut samples = [[0.0; 4]; 32];
     for (i, k) in samples
         .iter_mut()

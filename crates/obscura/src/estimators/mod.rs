@@ -65,6 +65,26 @@ impl EstimatorPass {
     }
 }
 
+/// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO+, GTAO-VB): (cos, sin) of
+/// `period`·B/16 with B the 4×4 Bayer value of (x % 4, y % 4) (the pattern VAO rotates by), and a
+/// jitter in [0, 1) from the transposed matrix, (B(y % 4, x % 4) + 0.5)/16, so angle and jitter
+/// do not repeat together; the blur's 4-pixel radius averages both.
+pub fn bayer_pattern(x: u32, y: u32, period: f32) -> (f32, f32, f32) {
+    let (i, j) = ((x % 4) as usize, (y % 4) as usize);
+    let angle = period * vao::BAYER_4X4[i + 4 * j] as f32 / 16.0;
+    let jitter = (vao::BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
+    (angle.cos(), angle.sin(), jitter)
+}
+
+/// [`bayer_pattern`] for the 16 pixels of the 4×4 tile, indexed x % 4 + 4 (y % 4), as the
+/// estimators' uniform tables hold it (xy rotation, z jitter).
+pub(crate) fn bayer_table(period: f32) -> [[f32; 4]; 16] {
+    std::array::from_fn(|i| {
+        let (c, s, jitter) = bayer_pattern(i as u32 % 4, i as u32 / 4, period);
+        [c, s, jitter, 0.0]
+    })
+}
+
 /// An estimator's WGSL and the names of its pipeline constants (also for composing shaders without
 /// a device: the shader validation test).
 pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static str]) {

@@ -1,4 +1,4 @@
-//! The VAO kernel of `shaders/vao.wgsl` written again, plainly, on the CPU: a test oracle for the
+//! The VAO kernel of `shaders/estimators/vao.wgsl` written again, plainly, on the CPU: a test oracle for the
 //! GPU pass on a read-back G-buffer (seed 000 §3.1–3.5).
 
 use super::vao_model::{column_visibility, kernel, snap, Accumulator, PixelFrame};

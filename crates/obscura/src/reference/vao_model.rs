@@ -1,6 +1,6 @@
 //! The VAO sample geometry of seed 000 §3.1–3.3 on the CPU, shared by the kernel's CPU mirror
 //! ([`super::cpu_vao`], occluders from a depth buffer) and the ray-traced `vao` reference
-//! ([`super::ground_truth`], occluders from every ray hit). It mirrors `shaders/vao.wgsl`.
+//! ([`super::ground_truth`], occluders from every ray hit). It mirrors `shaders/estimators/vao.wgsl`.
 
 use crate::estimators::vao::{
     kernel_sample, orthonormal_basis, pixel_rotation, MIN_COLUMN_FRACTION,
