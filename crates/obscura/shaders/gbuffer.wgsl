@@ -1,5 +1,5 @@
-// G-buffer (raster): linear view depth, camera-facing geometric face normals in view space and
-// base colour, for the guard-banded framebuffer. Vertices are pulled from storage buffers so the
+// G-buffer (raster): linear view depth and camera-facing geometric face normals in view space for
+// the guard-banded framebuffer, and base colour on request. Vertices are pulled from storage buffers so the
 // face normal comes from the triangle itself (the authors' AO uses face normals, seed-code-notes
 // §1.1) and the same buffers serve ray tracing. Alpha test: `material_passes_alpha`
 // (common/material.wgsl), the lookup the ray tracer and the CPU use too.
@@ -50,21 +50,13 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
 struct GBufferOut {
     @location(0) depth: f32,
     @location(1) normal: vec4<f32>,
-    @location(2) albedo: vec4<f32>,
 }
 
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
     return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> GBufferOut {
-    let material = materials[in.material];
-    if (!material_passes_alpha(material, textures, in.uv)) {
-        discard;
-    }
-    let t = material_texel(material, textures, in.uv);
-    let color = material.base_color * vec4<f32>(srgb_to_linear(t.rgb), t.a);
+fn gbuffer_out(in: VertexOut) -> GBufferOut {
     var n = in.normal;
     let len = length(n);
     n = select(-normalize(in.view_pos), n / len, len > 0.0);
@@ -75,6 +67,35 @@ fn fs_main(in: VertexOut) -> GBufferOut {
     var out: GBufferOut;
     out.depth = -in.view_pos.z;
     out.normal = vec4<f32>(n, 0.0);
-    out.albedo = vec4<f32>(color.rgb, 1.0);
     return out;
+}
+
+// Materials without an alpha test (every back-face-culled triangle: alpha-tested materials keep
+// their back faces, src/raster/gpu_scene.rs): no `discard`, so the hardware may test depth before
+// shading.
+@fragment
+fn fs_opaque(in: VertexOut) -> GBufferOut {
+    return gbuffer_out(in);
+}
+
+// Triangles that may be alpha-tested.
+@fragment
+fn fs_main(in: VertexOut) -> GBufferOut {
+    if (!material_passes_alpha(materials[in.material], textures, in.uv)) {
+        discard;
+    }
+    return gbuffer_out(in);
+}
+
+// Base colour (linear; the target is sRGB), drawn only when asked for (composites), with the same
+// draws and depth test as the G-buffer so the same fragments win.
+@fragment
+fn fs_albedo(in: VertexOut) -> @location(0) vec4<f32> {
+    let material = materials[in.material];
+    if (!material_passes_alpha(material, textures, in.uv)) {
+        discard;
+    }
+    let t = material_texel(material, textures, in.uv);
+    let color = material.base_color * vec4<f32>(srgb_to_linear(t.rgb), t.a);
+    return vec4<f32>(color.rgb, 1.0);
 }

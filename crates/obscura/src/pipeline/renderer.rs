@@ -210,8 +210,14 @@ impl Renderer {
         })
     }
 
-    /// Base colour (sRGB-encoded RGBA8) of the visible image.
+    /// Base colour (sRGB-encoded RGBA8) of the visible image of the last frame (rendered now, by
+    /// its own pass: the frame itself does not write it).
     pub fn read_albedo(&self) -> Result<Vec<[u8; 4]>, Error> {
+        self.last_ao()?;
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        self.gbuffer
+            .render_albedo(&self.gpu.device, &mut encoder, &self.scene);
+        self.gpu.queue.submit([encoder.finish()]);
         let full = read_texture_rgba8(&self.gpu, &self.gbuffer.albedo)?;
         let fw = self.gbuffer.albedo.width() as usize;
         let g = self.guard_band as usize;

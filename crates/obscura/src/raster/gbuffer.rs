@@ -1,7 +1,12 @@
-//! The G-buffer pass (`shaders/gbuffer.wgsl`): linear depth (`R32Float`), camera-facing view-space
-//! face normals (`Rgba16Float`) and base colour (`Rgba8UnormSrgb`) over the guard-banded
-//! framebuffer, with a reversed-Z `Depth32Float` buffer for visibility; and, when asked for, a
-//! second depth layer by depth peeling (`shaders/depth_peel.wgsl`, seed 000 §2.1).
+//! The G-buffer pass (`shaders/gbuffer.wgsl`): linear depth (`R32Float`) and camera-facing
+//! view-space face normals (`Rgba16Float`) over the guard-banded framebuffer, with a reversed-Z
+//! `Depth32Float` buffer for visibility; when asked for, a second depth layer by depth peeling
+//! (`shaders/depth_peel.wgsl`, seed 000 §2.1); and base colour (`Rgba8UnormSrgb`) only on request
+//! ([`GBuffer::render_albedo`], for composites), by its own pass with the same draws.
+//!
+//! The back-face-culled triangles (never alpha-tested: alpha-tested materials keep their back
+//! faces) are drawn first with a fragment shader without `discard`, so the hardware may test their
+//! depth before shading them; the others may discard.
 
 use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
@@ -44,8 +49,10 @@ pub struct GBuffer {
     pub normals: wgpu::Texture,
     pub albedo: wgpu::Texture,
     z: wgpu::Texture,
-    /// Back faces culled / kept (double-sided and alpha-tested materials).
+    /// Back faces culled (no alpha test) / kept (double-sided and alpha-tested materials).
     pipelines: [wgpu::RenderPipeline; 2],
+    /// The base-colour pass, the same way.
+    albedo_pipelines: [wgpu::RenderPipeline; 2],
     camera: wgpu::Buffer,
     peel: Option<Peel>,
 }
@@ -85,8 +92,13 @@ impl GBuffer {
             stencil: Default::default(),
             bias: Default::default(),
         };
-        let pipeline = |cull_mode, fragment: &str, targets: &[Option<wgpu::ColorTargetState>]| {
+        let scene_layout = scene_layout(device);
+        let pipeline = |cull_mode,
+                        fragment: &str,
+                        targets: &[Option<wgpu::ColorTargetState>],
+                        layout: Option<&wgpu::PipelineLayout>| {
             ScenePipeline {
+                layout,
                 module: &module,
                 cull_mode,
                 depth_stencil: depth.clone(),
@@ -96,12 +108,13 @@ impl GBuffer {
             }
             .create(device)
         };
-        let gbuffer_targets = [DEPTH_FORMAT, NORMAL_FORMAT, ALBEDO_FORMAT].map(|f| Some(f.into()));
+        let gbuffer_targets = [DEPTH_FORMAT, NORMAL_FORMAT].map(|f| Some(f.into()));
+        let albedo_targets = [Some(ALBEDO_FORMAT.into())];
         let peel = peel_separation.map(|separation| {
             let targets = [Some(DEPTH_FORMAT.into())];
             Peel {
                 pipelines: [Some(wgpu::Face::Back), None]
-                    .map(|cull| pipeline(cull, "fs_peel", &targets)),
+                    .map(|cull| pipeline(cull, "fs_peel", &targets, None)),
                 params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("peel params"),
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
@@ -115,8 +128,17 @@ impl GBuffer {
             normals: target("normals", NORMAL_FORMAT),
             albedo: target("albedo", ALBEDO_FORMAT),
             z: target("z", Z_FORMAT),
-            pipelines: [Some(wgpu::Face::Back), None]
-                .map(|cull| pipeline(cull, "fs_main", &gbuffer_targets)),
+            pipelines: [
+                pipeline(
+                    Some(wgpu::Face::Back),
+                    "fs_opaque",
+                    &gbuffer_targets,
+                    Some(&scene_layout),
+                ),
+                pipeline(None, "fs_main", &gbuffer_targets, Some(&scene_layout)),
+            ],
+            albedo_pipelines: [Some(wgpu::Face::Back), None]
+                .map(|cull| pipeline(cull, "fs_albedo", &albedo_targets, Some(&scene_layout))),
             camera: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gbuffer camera"),
                 size: std::mem::size_of::<CameraUniform>() as u64,
@@ -147,7 +169,6 @@ impl GBuffer {
         let targets = [
             (&self.depth, wgpu::Color::TRANSPARENT),
             (&self.normals, wgpu::Color::TRANSPARENT),
-            (&self.albedo, wgpu::Color::WHITE),
         ];
         let resources = scene_resources(&self.camera, scene, Vec::new());
         self.draw(
@@ -182,6 +203,28 @@ impl GBuffer {
                 profiler,
             );
         }
+    }
+
+    /// Base colour of the last [`GBuffer::render`]'s view into [`GBuffer::albedo`] (white where
+    /// nothing is): the same draws and depth test, so the same fragments win.
+    pub fn render_albedo(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+    ) {
+        let resources = scene_resources(&self.camera, scene, Vec::new());
+        let targets = [(&self.albedo, wgpu::Color::WHITE)];
+        self.draw(
+            device,
+            encoder,
+            scene,
+            &self.albedo_pipelines,
+            &resources,
+            &targets,
+            "albedo",
+            None,
+        );
     }
 
     /// One raster pass of the whole scene: culled triangles, then the ones that keep back faces.
@@ -280,8 +323,62 @@ pub(crate) fn scene_resources<'a>(
     r
 }
 
+/// The explicit layout of gbuffer.wgsl's group 0 (camera and scene, bindings 0–5, the order of
+/// [`scene_resources`]): the G-buffer's fragment shaders use different subsets of it, which
+/// automatic layouts would leave out.
+pub(crate) fn scene_layout(device: &wgpu::Device) -> wgpu::PipelineLayout {
+    let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    let storage = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: stages,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    let entries = [
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: stages,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+        storage(1),
+        storage(2),
+        storage(3),
+        storage(4),
+        wgpu::BindGroupLayoutEntry {
+            binding: 5,
+            visibility: stages,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+    ];
+    let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("scene"),
+        entries: &entries,
+    });
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("scene"),
+        bind_group_layouts: &[Some(&group)],
+        immediate_size: 0,
+    })
+}
+
 /// A raster pipeline over the scene's vertices (`vs_main` of gbuffer.wgsl, pulled from storage).
 pub(crate) struct ScenePipeline<'a> {
+    /// `None`: an automatic layout (passes that bind more than the scene).
+    pub layout: Option<&'a wgpu::PipelineLayout>,
     pub module: &'a wgpu::ShaderModule,
     pub cull_mode: Option<wgpu::Face>,
     pub depth_stencil: wgpu::DepthStencilState,
@@ -294,7 +391,7 @@ impl ScenePipeline<'_> {
     pub fn create(self, device: &wgpu::Device) -> wgpu::RenderPipeline {
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(self.fragment),
-            layout: None,
+            layout: self.layout,
             vertex: wgpu::VertexState {
                 module: self.module,
                 entry_point: Some("vs_main"),

@@ -326,6 +326,7 @@ impl StochasticDepthMap {
         };
         let pipelines = [Some(wgpu::Face::Back), None].map(|cull_mode| {
             ScenePipeline {
+                layout: None,
                 module: &module,
                 cull_mode,
                 depth_stencil: wgpu::DepthStencilState {

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The G-buffer against the build before a change and against a real engine's prepass (issue 16),
+# in one device call on one card: `obscura bench --techniques vao` on Sponza at 1920x1080 with the
+# guard band 0 and 64, alternating .devbin/obscura-old and .devbin/obscura three times, then the
+# peer benchmark (Bevy 0.19 depth + normal prepass and SSAO high, ../shared/tools/peers/README.md).
+# Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza, plus the old binary) and .gl.
+set -uo pipefail
+for f in .gl/*.deb; do dpkg -x "$f" / 2>/dev/null; done; ldconfig
+export OBSCURA_BACKEND=vulkan
+new=./.devbin/obscura old=./.devbin/obscura-old
+if ! $new info >/dev/null 2>&1 || ! $new info | grep -qi nvidia; then
+  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+fi
+out=${OUT:-/tmp/out}
+mkdir -p "$out"
+$new info | tee "$out/info.txt"
+sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
+for round in 1 2 3; do
+  for side in old new; do
+    bin=$new; [ "$side" = old ] && bin=$old
+    for band in 0 64; do
+      $bin bench "${sponza[@]}" --size 1920x1080 --guard-band $band --techniques vao --frames 200 \
+        --warmup 20 --json "$out/gbuffer-$side-$band-$round.json" >> "$out/bench.txt" 2>&1
+    done
+  done
+done
+if [ -f .devbin/bevy_ssao_bench.xz ]; then
+  xz -dc .devbin/bevy_ssao_bench.xz > /tmp/bevy && chmod +x /tmp/bevy
+  /tmp/bevy .devbin/scenes/crytek-sponza/sponza.glb --size 1920x1080 --quality high --frames 200 \
+    --warmup 30 --json "$out/bevy_high.json" > "$out/bevy.txt" 2>&1
+fi
