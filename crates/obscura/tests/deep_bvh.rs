@@ -32,7 +32,7 @@ fn chain(count: u32) -> obscura::scene::Scene {
 #[test]
 fn stack_overflow_is_reported() {
     let scene = chain(210);
-    let bvh = Bvh::build(&scene);
+    let bvh = Bvh::build_unbounded(&scene);
     println!("chain BVH depth {}", bvh.max_depth());
     assert!(
         bvh.max_depth() > obscura::bvh::gpu::STACK_SIZE,
@@ -61,4 +61,67 @@ fn stack_overflow_is_reported() {
     };
     let result = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &[short], QueryMode::AllHits).unwrap();
     assert_eq!((result[0].stack_overflow, result[0].hit_count), (0, 1));
+}
+
+#[test]
+fn a_polygon_fan_traces_without_overflow() {
+    // One OBJ face of 5000 vertices, fanned into 4998 triangles sharing a vertex: its SAH tree is
+    // about 1300 levels deep and rays through it overflowed the GPU stack (wrong AO). The build
+    // bounds the depth now; the unbounded tree shows the defect was real.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fan.obj");
+    let mut obj = String::new();
+    for k in 0..5000 {
+        let a = std::f32::consts::TAU * k as f32 / 5000.0;
+        obj += &format!("v {} {} -3\n", a.cos(), a.sin());
+    }
+    obj += "f";
+    for k in 1..=5000 {
+        obj += &format!(" {k}");
+    }
+    obj += "\n";
+    std::fs::write(&path, obj).unwrap();
+    let scene = obscura::scene::load(path.to_str().unwrap()).unwrap();
+    assert!(
+        scene.triangles.len() >= 4990,
+        "{} triangles",
+        scene.triangles.len()
+    );
+    let gpu = gpu();
+    let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
+    // Rays through the disc at many points, every hit wanted.
+    let rays: Vec<QueryRay> = (0..64)
+        .map(|k| {
+            let a = std::f32::consts::TAU * k as f32 / 64.0;
+            let r = 0.9 * (k as f32 / 64.0);
+            QueryRay {
+                origin: [r * a.cos(), r * a.sin(), 0.0],
+                t_min: 0.0,
+                dir: [0.0, 0.0, -1.0],
+                t_max: f32::MAX,
+            }
+        })
+        .collect();
+    // (rays that overflowed, rays that found no hit)
+    let trace = |bvh: &Bvh| {
+        let gpu_bvh = GpuBvh::new(&gpu.device, bvh, &scene);
+        let results = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &rays, QueryMode::AllHits).unwrap();
+        (
+            results.iter().filter(|r| r.stack_overflow != 0).count(),
+            results.iter().filter(|r| r.hit_count == 0).count(),
+        )
+    };
+    let unbounded = Bvh::build_unbounded(&scene);
+    let bounded = Bvh::build(&scene);
+    println!(
+        "fan: depth {} unbounded, {} bounded",
+        unbounded.max_depth(),
+        bounded.max_depth()
+    );
+    let (overflowed, missed) = trace(&unbounded);
+    println!("unbounded: {overflowed} of 64 rays overflowed, {missed} found no hit");
+    assert!(overflowed > 0, "the unbounded tree must show the defect");
+    assert!(bounded.max_depth() <= obscura::bvh::build::MAX_DEPTH);
+    // Every ray through the disc hits it, and none overflows.
+    assert_eq!(trace(&bounded), (0, 0));
 }

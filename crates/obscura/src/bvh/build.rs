@@ -56,7 +56,98 @@ pub(super) fn triangle_vertices(scene: &Scene, i: usize) -> Option<[Vec3A; 3]> {
     Some([p(0)?, p(1)?, p(2)?])
 }
 
-pub(super) fn build(scene: &Scene) -> Bvh {
+/// Deepest tree [`build`] keeps from the SAH builder by default: well inside the GPU traversal's
+/// 64-entry stack (`gpu::STACK_SIZE`). SAH cannot separate triangles whose centroids coincide or
+/// line up far apart (a polygon fan, duplicated geometry, exponentially spaced parts) and then
+/// builds a chain about as deep as the triangle count.
+pub const MAX_DEPTH: usize = 48;
+
+/// The tree a builder made, before flattening: inner nodes' children at `first` and `first + 1`,
+/// leaves' primitives at `primitive_indices[first .. first + count]` (positions in the box list).
+struct Tree {
+    /// (is leaf, first, count).
+    nodes: Vec<(bool, u32, u32)>,
+    primitive_indices: Vec<u32>,
+}
+
+impl Tree {
+    fn from_obvhs(tree: &obvhs::bvh2::Bvh2) -> Self {
+        Self {
+            nodes: tree
+                .nodes
+                .iter()
+                .map(|n| (n.is_leaf(), n.first_index, n.prim_count))
+                .collect(),
+            primitive_indices: tree.primitive_indices.clone(),
+        }
+    }
+
+    fn depth(&self) -> usize {
+        let mut deepest = 0;
+        let mut stack = vec![(0usize, 0usize)];
+        while let Some((i, depth)) = stack.pop() {
+            deepest = deepest.max(depth);
+            let (leaf, first, _) = self.nodes[i];
+            if !leaf {
+                stack.extend([(first as usize, depth + 1), (first as usize + 1, depth + 1)]);
+            }
+        }
+        deepest
+    }
+
+    /// Median splits: the primitives sorted along the longest axis of their centroids' box and
+    /// halved (by count where the centroids coincide), leaves of at most 2. Depth ⌈log₂(n/2)⌉ for
+    /// any input; written here because it is the fallback for the inputs SAH fails on, where
+    /// balance matters and quality does not.
+    fn median(aabbs: &[Aabb]) -> Self {
+        let centre = |i: u32| {
+            let b = &aabbs[i as usize];
+            (b.min + b.max) * 0.5
+        };
+        let mut order: Vec<u32> = (0..aabbs.len() as u32).collect();
+        let mut nodes = vec![(true, 0, 0)];
+        // (node, range of `order`)
+        let mut stack = vec![(0usize, 0usize, order.len())];
+        while let Some((node, lo, hi)) = stack.pop() {
+            if hi - lo <= 2 {
+                nodes[node] = (true, lo as u32, (hi - lo) as u32);
+                continue;
+            }
+            let (cmin, cmax) = order[lo..hi]
+                .iter()
+                .fold((Vec3A::INFINITY, Vec3A::NEG_INFINITY), |(a, b), &i| {
+                    (a.min(centre(i)), b.max(centre(i)))
+                });
+            let extent = cmax - cmin;
+            let axis = if extent.x >= extent.y && extent.x >= extent.z {
+                0
+            } else if extent.y >= extent.z {
+                1
+            } else {
+                2
+            };
+            let mid = lo + (hi - lo) / 2;
+            if extent[axis] > 0.0 {
+                order[lo..hi].select_nth_unstable_by(mid - lo, |&a, &b| {
+                    centre(a)[axis].total_cmp(&centre(b)[axis])
+                });
+            }
+            let children = nodes.len();
+            nodes.extend([(true, 0, 0); 2]);
+            nodes[node] = (false, children as u32, 0);
+            stack.push((children + 1, mid, hi));
+            stack.push((children, lo, mid));
+        }
+        Self {
+            nodes,
+            primitive_indices: order,
+        }
+    }
+}
+
+/// [`Bvh::build`]: SAH (obvhs), replaced by median splits where its tree is deeper than
+/// `max_depth` (`None`: any depth, for tests of the traversal's overflow report).
+pub(super) fn build(scene: &Scene, max_depth: Option<usize>) -> Bvh {
     let start = Instant::now();
 
     // Only triangles that can be hit go into the BVH.
@@ -89,7 +180,17 @@ pub(super) fn build(scene: &Scene) -> Bvh {
 
     // obvhs's leaves refer to positions in `aabbs` (we pass identity indices), so leaf slot →
     // `ids[primitive_indices[slot]]` → scene triangle.
-    let tree = build_bvh2(&aabbs, PARAMS, &mut Duration::default());
+    let mut tree = Tree::from_obvhs(&build_bvh2(&aabbs, PARAMS, &mut Duration::default()));
+    if let Some(limit) = max_depth {
+        let depth = tree.depth();
+        if depth > limit {
+            log::warn!(
+                "BVH: the SAH tree is {depth} levels deep (over {limit}: triangles SAH cannot \
+                 separate, e.g. a polygon fan or duplicated geometry); rebuilt with median splits"
+            );
+            tree = Tree::median(&aabbs);
+        }
+    }
 
     // Depth-first flattening: (source node, destination slot, depth).
     // Root, then a pad so that every sibling pair starts at an even index (see `NodePair`). The pad
@@ -103,11 +204,11 @@ pub(super) fn build(scene: &Scene) -> Bvh {
     let mut nodes = vec![BvhNode::default(), PAD];
     let mut stack = vec![(0usize, 0usize, 0usize)];
     while let Some((src, dst, depth)) = stack.pop() {
-        let n = &tree.nodes[src];
+        let (leaf, first_index, prim_count) = tree.nodes[src];
         bvh.max_depth = bvh.max_depth.max(depth);
-        if n.is_leaf() {
+        if leaf {
             let first = bvh.primitive_indices.len();
-            for slot in n.first_index..n.first_index + n.prim_count {
+            for slot in first_index..first_index + prim_count {
                 let id = ids[tree.primitive_indices[slot as usize] as usize];
                 let p = triangle_vertices(scene, id as usize).expect("validated above");
                 bvh.primitive_indices.push(id);
@@ -115,7 +216,7 @@ pub(super) fn build(scene: &Scene) -> Bvh {
             }
             nodes[dst] = BvhNode {
                 first: first as u32,
-                count: n.prim_count,
+                count: prim_count,
                 ..BvhNode::default()
             };
         } else {
@@ -127,7 +228,7 @@ pub(super) fn build(scene: &Scene) -> Bvh {
                 ..BvhNode::default()
             };
             // Right pushed first so the left subtree is laid out right after this pair.
-            let c = n.first_index as usize;
+            let c = first_index as usize;
             stack.push((c + 1, children + 1, depth + 1));
             stack.push((c, children, depth + 1));
         }

@@ -53,7 +53,7 @@
 //! dependency line does not enable, so the build runs on one thread (about 2 s for 250k
 //! triangles in release); queries are `&self` and meant to be spread over rays with rayon.
 
-mod build;
+pub mod build;
 pub mod gpu;
 mod traverse;
 mod triangle;
@@ -178,9 +178,17 @@ impl std::fmt::Debug for Bvh {
 }
 
 impl Bvh {
-    /// Builds the BVH over `scene.triangles` (see the module documentation for what is left out).
+    /// Builds the BVH over `scene.triangles` (see the module documentation for what is left out),
+    /// at most [`build::MAX_DEPTH`] levels deep whatever the input, so no GPU traversal overflows
+    /// its stack.
     pub fn build(scene: &Scene) -> Bvh {
-        build::build(scene)
+        build::build(scene, Some(build::MAX_DEPTH))
+    }
+
+    /// [`Bvh::build`] without the depth bound: the SAH tree as it comes, however deep (to test
+    /// that a traversal reports a stack overflow).
+    pub fn build_unbounded(scene: &Scene) -> Bvh {
+        build::build(scene, None)
     }
 
     /// The flat node array (empty for a scene without valid triangles): the root at index 0, an

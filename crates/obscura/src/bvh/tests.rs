@@ -953,3 +953,107 @@ fn bvh_throughput() {
     };
     report("any-hit AO rays (length 2)", ao_rays, &ao_pass);
 }
+
+/// `all_hits` and `closest_hit` against brute force for rays through `scene`'s bounds.
+fn matches_brute_force(scene: &Scene, bvh: &Bvh, rays: usize, seed: u64) {
+    let mut rng = Pcg::new(seed);
+    let mut rej = Rejections::default();
+    let mut hit = 0;
+    for _ in 0..rays {
+        let ray = random_ray(&mut rng, scene);
+        let expected = brute_force(scene, &ray, 0.0, f32::MAX, &mut rej);
+        assert_eq!(
+            bvh.all_hits(scene, &ray, 0.0, f32::MAX),
+            expected,
+            "{ray:?}"
+        );
+        let closest = bvh.closest_hit(scene, &ray, 0.0, f32::MAX);
+        assert_eq!(closest.is_some(), !expected.is_empty(), "{ray:?}");
+        if let (Some(c), Some(e)) = (closest, expected.first()) {
+            assert!(rel_close(c.t, e.t, 1e-5), "closest t {c:?} vs {e:?}");
+        }
+        hit += usize::from(!expected.is_empty());
+    }
+    assert!(hit > 0, "some rays must hit");
+}
+
+/// One polygon of `n` vertices fanned from its first: every triangle shares that vertex, so SAH
+/// cannot separate them well (the defect seen with an OBJ `f` line of 5000 vertices).
+fn fan(n: usize) -> Scene {
+    let mut s = empty_test_scene("fan");
+    let centre = Vec3::new(0.0, 0.0, -3.0);
+    let corner = |k: usize| {
+        let a = std::f32::consts::TAU * k as f32 / n as f32;
+        centre + Vec3::new(a.cos(), a.sin(), 0.0)
+    };
+    for k in 1..n - 1 {
+        push_triangle(
+            &mut s,
+            [corner(0), corner(k), corner(k + 1)],
+            [Vec2::ZERO; 3],
+            0,
+        );
+    }
+    s
+}
+
+#[test]
+fn degenerate_inputs_stay_within_the_depth_bound() {
+    // A polygon fan, the same triangle many times over, and triangles spaced exponentially along
+    // a line: without the bound their SAH trees are chains hundreds of levels deep.
+    let mut identical = empty_test_scene("identical");
+    let mut chain = empty_test_scene("chain");
+    for k in 0..2000 {
+        push_triangle(
+            &mut identical,
+            [
+                Vec3::new(-1.0, -1.0, -2.0),
+                Vec3::new(1.0, -1.0, -2.0),
+                Vec3::new(0.0, 1.0, -2.0),
+            ],
+            [Vec2::ZERO; 3],
+            0,
+        );
+        if k < 300 {
+            let x = 1.1f32.powi(k);
+            push_triangle(
+                &mut chain,
+                [
+                    Vec3::new(x, -1.0, -1.0),
+                    Vec3::new(x, 1.0, -1.0),
+                    Vec3::new(x, 0.0, 1.0),
+                ],
+                [Vec2::ZERO; 3],
+                0,
+            );
+        }
+    }
+    for scene in [fan(5000), identical, chain] {
+        let unbounded = Bvh::build_unbounded(&scene).max_depth();
+        let bvh = Bvh::build(&scene);
+        println!(
+            "{}: {} triangles, SAH depth {unbounded}, bounded {}",
+            scene.name,
+            bvh.triangle_count(),
+            bvh.max_depth()
+        );
+        assert!(bvh.max_depth() <= super::build::MAX_DEPTH, "{}", scene.name);
+        assert_eq!(
+            bvh.triangle_count(),
+            scene.triangles.len(),
+            "{}",
+            scene.name
+        );
+        matches_brute_force(&scene, &bvh, 300, 7);
+    }
+}
+
+#[test]
+fn ordinary_scenes_keep_their_sah_tree() {
+    // The bound is a fallback: a random soup's SAH tree is far shallower and stays as it is.
+    let scene = random_soup(11, 5_000);
+    let (bounded, unbounded) = (Bvh::build(&scene), Bvh::build_unbounded(&scene));
+    assert_eq!(bounded.max_depth(), unbounded.max_depth());
+    assert!(bounded.max_depth() <= super::build::MAX_DEPTH);
+    assert_eq!(bounded.nodes(), unbounded.nodes());
+}
