@@ -103,6 +103,9 @@ impl SceneArgs {
 
     /// The camera these options describe, validated.
     pub fn camera(&self, scene: &Scene, aspect: f32) -> Result<Camera> {
+        // Coordinates too large for f32 are the scene's fault, not the (framed) camera's: say so
+        // first. A zero extent is only a warning, which the renderer logs.
+        scene.check_extent()?;
         let mut camera = match (&self.camera, self.eye, self.target) {
             (Some(name), _, _) => scene.camera(name)?,
             (None, Some(eye), Some(target)) => Camera::new(eye, target, self.fov.unwrap_or(60.0))?,

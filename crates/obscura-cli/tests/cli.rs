@@ -874,3 +874,37 @@ fn bad_settings_files_are_one_line_errors() {
     let err = assert_render_fails(&["--blur-radius", "0"], &["--blur-radius 0", "1 and 16"]);
     one_line(&err);
 }
+
+#[test]
+fn scenes_too_large_for_floats_or_of_zero_extent_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    // Coordinates of 1e30 (e.g. a node scaled by 1e30): the error names the scene's bounds, not
+    // the camera framed from them.
+    let huge = dir.path().join("huge.obj");
+    std::fs::write(&huge, "v 0 0 0\nv 1e30 0 0\nv 0 1e30 0\nf 1 2 3\n").unwrap();
+    let err = assert_render_fails(
+        &["--scene", huge.to_str().unwrap()],
+        &["spans", "scale the scene down"],
+    );
+    assert!(!err.contains("camera eye"), "{err}");
+    one_line(&err);
+    // Every vertex at one point (a scale of 0): rendered, with a warning.
+    let point = dir.path().join("point.obj");
+    std::fs::write(&point, "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n").unwrap();
+    let out = dir.path().join("point.png");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        point.to_str().unwrap(),
+        "--eye",
+        "0,0,5",
+        "--target",
+        "0,0,0",
+        "--size",
+        "32x32",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("zero extent"), "{}", stderr(&o));
+}

@@ -40,6 +40,12 @@ impl Renderer {
         guard_band: u32,
     ) -> Result<Self, Error> {
         settings.validate()?;
+        if let Some(warning) = scene
+            .check_extent()
+            .map_err(|e| Error::Input(e.to_string()))?
+        {
+            log::warn!("{warning}");
+        }
         if width == 0 || height == 0 {
             return Err(Error::Input(format!(
                 "image size {width}x{height} is empty: use e.g. --size 1280x720"

@@ -83,6 +83,30 @@ pub enum SceneError {
     },
 }
 
+/// Coordinates beyond which squared distances overflow 32-bit floats in cameras, depth and AO
+/// (f32::MAX ≈ 3.4e38 ≈ (1.8e19)²), with margin.
+pub const MAX_EXTENT: f32 = 1e18;
+
+/// A scene whose coordinates obscura cannot work with.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "scene '{name}' spans {} to {}: coordinates beyond ±{MAX_EXTENT:e} (or not finite) \
+     overflow the 32-bit floats of cameras, depth and AO; scale the scene down (e.g. its root \
+     node's scale) or fix the non-finite vertices",
+    point(*min),
+    point(*max)
+)]
+pub struct ExtentError {
+    pub name: String,
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+/// `(x, y, z)` in scientific notation, readable at any magnitude.
+fn point(p: Vec3) -> String {
+    format!("({:.3e}, {:.3e}, {:.3e})", p.x, p.y, p.z)
+}
+
 /// Why a camera is unusable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CameraError {

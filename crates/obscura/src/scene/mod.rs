@@ -23,7 +23,7 @@ mod real_scenes_tests;
 
 use std::path::{Path, PathBuf};
 
-pub use error::{CameraError, SceneError};
+pub use error::{CameraError, ExtentError, SceneError, MAX_EXTENT};
 pub use procedural::{builtin, builtin_names};
 pub use texture::MAX_TEXTURE_SIZE;
 

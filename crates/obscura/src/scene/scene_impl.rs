@@ -117,6 +117,35 @@ impl Scene {
         Bounds { min, max }
     }
 
+    /// Whether obscura can work with the scene's coordinates: an error naming the bounds when they
+    /// are not finite or too large for 32-bit floats ([`super::MAX_EXTENT`]), and a warning when
+    /// every vertex is at one point (nothing can occlude anything there: usually a scale of 0).
+    /// [`crate::Renderer::new`] checks this and logs the warning.
+    pub fn check_extent(&self) -> Result<Option<String>, super::error::ExtentError> {
+        let b = self.bounds();
+        let limit = super::error::MAX_EXTENT;
+        let inside = |v: Vec3| v.is_finite() && v.abs().max_element() <= limit;
+        let usable = self.positions.is_empty() || (inside(b.min) && inside(b.max));
+        if !usable {
+            return Err(super::error::ExtentError {
+                name: self.name.clone(),
+                min: b.min,
+                max: b.max,
+            });
+        }
+        if !self.triangles.is_empty() && b.min == b.max {
+            let warning = format!(
+                "scene '{}' has zero extent: all {} vertices are at {}, so nothing can occlude \
+                 anything; check the scene's scale",
+                self.name,
+                self.positions.len(),
+                b.min
+            );
+            return Ok(Some(warning));
+        }
+        Ok(None)
+    }
+
     /// The named camera `name`; an unknown name gives an error listing the available names.
     pub fn camera(&self, name: &str) -> Result<Camera, SceneError> {
         self.cameras
@@ -262,6 +291,25 @@ mod tests {
             "{err}"
         );
         assert_eq!(s.default_camera(1.0), cam);
+    }
+
+    #[test]
+    fn extent_checks_name_the_bounds() {
+        assert_eq!(tiny().check_extent(), Ok(None));
+        let mut huge = tiny();
+        huge.positions[1] = Vec3::new(1e30, 0.0, 0.0);
+        let err = huge.check_extent().unwrap_err().to_string();
+        assert!(
+            err.contains("1.000e30") && err.contains("scale the scene down"),
+            "{err}"
+        );
+        let mut nan = tiny();
+        nan.positions[2] = Vec3::new(f32::NAN, 0.0, 0.0);
+        assert!(nan.check_extent().is_err());
+        let mut point = tiny();
+        point.positions = vec![Vec3::ONE; 3];
+        let warning = point.check_extent().unwrap().expect("a warning");
+        assert!(warning.contains("zero extent"), "{warning}");
     }
 
     #[test]
