@@ -44,7 +44,33 @@ enum Command {
     Diff(commands::diff::DiffArgs),
 }
 
+/// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
+/// environment` when the variable is unset (headless machines, containers, CI), which reads as
+/// our error although obscura never opens a window. Give it a private directory (mode 0700, as
+/// the variable requires) when it is unset; a set one is left alone, and any real error still
+/// prints.
+fn quiet_headless_vulkan() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
+        return;
+    }
+    let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
+    let dir = std::env::temp_dir().join(format!("obscura-runtime-{user}"));
+    if std::fs::create_dir_all(&dir).is_err() {
+        return;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        if std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700)).is_err() {
+            return;
+        }
+    }
+    // SAFETY-free in edition 2021; done first thing in main, before any thread or GPU instance.
+    std::env::set_var("XDG_RUNTIME_DIR", &dir);
+}
+
 fn main() -> ExitCode {
+    quiet_headless_vulkan();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     // Ctrl-C: remove any output still being written, so nothing half-written is left behind.
     let _ = ctrlc::set_handler(|| {

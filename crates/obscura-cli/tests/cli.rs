@@ -908,3 +908,17 @@ fn scenes_too_large_for_floats_or_of_zero_extent_are_named() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("zero extent"), "{}", stderr(&o));
 }
+
+#[test]
+fn no_vulkan_window_system_noise_without_xdg_runtime_dir() {
+    // Mesa's WSI complains on stderr when XDG_RUNTIME_DIR is unset; obscura gives it a private
+    // directory, so a headless run prints only its own output.
+    let o = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(["render", "--scene", "cornell", "--size", "16x16", "--out"])
+        .arg(tempfile::tempdir().unwrap().path().join("a.png"))
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("XDG_RUNTIME_DIR"), "{}", stderr(&o));
+}
