@@ -32,7 +32,7 @@ enum Command {
     Scenes(commands::scenes::ScenesArgs),
     /// Render one AO image.
     Render(commands::render::RenderArgs),
-    /// Ray-trace the ground-truth AO of one view on the CPU.
+    /// Ray-trace the ground-truth AO of one view (on the GPU; --cpu for the CPU oracle).
     Reference(commands::reference::ReferenceCmdArgs),
     /// Compare techniques with the ground truth: report.json, report.md and index.html.
     Compare(commands::compare::CompareArgs),

@@ -111,6 +111,12 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         }
     });
     let gpu = obscura::Gpu::new(options)?;
+    if gpu.summary.device_type == "Cpu" {
+        eprintln!(
+            "warning: adapter '{}' is a CPU (software) device: these are not GPU timings; run on a GPU for numbers worth reporting",
+            gpu.summary.name
+        );
+    }
     let mut results = Vec::new();
     for technique in techniques {
         let settings = args.ao.settings(technique)?;

@@ -130,6 +130,12 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     for &t in &techniques {
         args.ao.settings(t)?;
     }
+    if args.out.is_file() {
+        anyhow::bail!(
+            "--out '{}' is a file: give a folder for the report (report.json, report.md, index.html and the images go into it)",
+            args.out.display()
+        );
+    }
     std::fs::create_dir_all(&args.out).with_context(|| {
         format!(
             "cannot create output folder '{}': check the path and permissions",

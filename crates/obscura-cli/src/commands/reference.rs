@@ -1,4 +1,4 @@
-//! `obscura reference`: the ray-traced ground truth of one view, on the CPU.
+//! `obscura reference`: the ray-traced ground truth of one view, on the GPU (or the CPU oracle).
 
 use crate::args::{parse_size, AoArgs, SceneArgs};
 use crate::progress::bar;

@@ -26,6 +26,14 @@ pub enum GpuError {
          install Mesa's software Vulkan driver (Debian/Ubuntu: `sudo apt-get install mesa-vulkan-drivers`)"
     )]
     NoAdapter { filter: String },
+    #[error(
+        "no GPU adapter matching '{filter}'; the adapters here are: {}: pick one by a part of its name",
+        available.join("; ")
+    )]
+    NoMatchingAdapter {
+        filter: String,
+        available: Vec<String>,
+    },
     #[error("unknown backend '{0}': use vulkan, metal, dx12 or gl")]
     UnknownBackend(String),
     #[error("could not create a device on '{adapter}': {source}")]
@@ -123,7 +131,20 @@ impl Gpu {
         }
         if let Some(filter) = &options.adapter {
             let needle = filter.to_ascii_lowercase();
+            let available: Vec<String> = adapters
+                .iter()
+                .map(|a| {
+                    let info = a.get_info();
+                    format!("{} ({:?})", info.name, info.backend)
+                })
+                .collect();
             adapters.retain(|a| a.get_info().name.to_ascii_lowercase().contains(&needle));
+            if adapters.is_empty() && !available.is_empty() {
+                return Err(GpuError::NoMatchingAdapter {
+                    filter: filter.clone(),
+                    available,
+                });
+            }
         }
         adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
         let Some(adapter) = adapters.into_iter().next() else {
