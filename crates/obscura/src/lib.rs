@@ -6,9 +6,9 @@
 //! run its [`estimators`] → [`filter`] (bilateral blur). [`AmbientOcclusion`] is the piece an
 //! engine embeds; [`Renderer`] renders our own scenes.
 //!
-//! The evidence: [`bvh`] (CPU SAH BVH), [`reference`] (ray-traced ground truth and CPU mirrors of
-//! the GPU passes), [`metrics`] (MSE, MAE, PSNR, SSIM, halo metric) and [`report`] (the
-//! `compare` report: JSON, Markdown, HTML with heat maps).
+//! The evidence: [`bvh`] (CPU SAH BVH), [`reference`](mod@reference) (ray-traced ground truth
+//! and CPU mirrors of the GPU passes), [`metrics`] (MSE, MAE, PSNR, SSIM, halo metric) and
+//! [`report`] (the `compare` report: JSON, Markdown, HTML with heat maps).
 //!
 //! Conventions: right-handed view space looking down −Z, linear depth = −z in world units,
 //! AO = 1 unoccluded / 0 fully occluded, exponent applied last.

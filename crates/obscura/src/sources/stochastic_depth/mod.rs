@@ -3,12 +3,12 @@
 //! a multisampled depth target in which every hidden fragment is kept in ⌊αS + ξ⌋ of the S
 //! samples of its pixel, nearest first. Optionally limited to the pixels of an SD-request mask
 //! (seed 000 §3.9): a full-screen pass copies the mask into the stencil
-//! (`reset.wgsl`, [`reset`]) and the scene is drawn with the stencil test, or
+//! (`reset.wgsl`, `reset.rs`) and the scene is drawn with the stencil test, or
 //! ([`SdMask::Discard`]) the map's fragment shader reads the mask and discards.
 //!
 //! S samples per pixel need a target with S samples. When the adapter cannot rasterise S samples
 //! into one target, S is made of several 4× or 8× maps with independent seeds ([`SdLayout`]).
-//! The AO passes read the map through `read.wgsl` (the source contract); [`unpack`] reads it back.
+//! The AO passes read the map through `read.wgsl` (the source contract); `unpack.rs` reads it back.
 
 mod reset;
 mod unpack;
