@@ -1,6 +1,6 @@
 //! Parsers and shared option groups for the subcommands.
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{anyhow, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
@@ -406,17 +406,30 @@ fn warn_once(message: String) {
     SAID.call_once(|| eprintln!("{message}"));
 }
 
-/// Comma-separated technique names, at least one.
-pub fn parse_techniques(list: &str) -> Result<Vec<Technique>> {
+/// Comma-separated technique names, at least one: `--techniques`.
+#[derive(Clone, Debug)]
+pub struct TechniqueList(pub Vec<Technique>);
+
+/// The value parser of `--techniques`: a bad name is a usage error (exit status 2), as it is for
+/// `--technique`.
+pub fn parse_technique_list(list: &str) -> Result<TechniqueList, String> {
     let techniques = list
         .split(',')
         .filter(|s| !s.trim().is_empty())
-        .map(|s| parse_technique(s).map_err(|e| anyhow!(e)))
-        .collect::<Result<Vec<_>>>()?;
+        .map(parse_technique)
+        .collect::<Result<Vec<_>, String>>()?;
     if techniques.is_empty() {
-        bail!("--techniques is empty: name at least one (e.g. --techniques vao)");
+        return Err("the list is empty: name at least one (e.g. --techniques vao)".into());
     }
-    Ok(techniques)
+    Ok(TechniqueList(techniques))
+}
+
+/// Help text of `--techniques`: every row of the technique table.
+pub fn techniques_help() -> String {
+    format!(
+        "Comma-separated techniques: {}",
+        obscura::technique::names_where(|_| true)
+    )
 }
 
 /// Say so when rays of the last frame overflowed the GPU traversal stack (their AO may be too

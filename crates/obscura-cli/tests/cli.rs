@@ -956,3 +956,36 @@ fn rough_edges_give_clear_messages() {
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(out.contains("on the GPU; --cpu"), "{out}");
 }
+
+#[test]
+fn exit_status_2_for_usage_errors_1_for_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("a.png");
+    let out = out.to_str().unwrap();
+    let code = |args: &[&str]| obscura(args).status.code();
+    // The command line cannot be parsed.
+    assert_eq!(
+        code(&["render", "--technique", "ssao", "--out", out]),
+        Some(2)
+    );
+    assert_eq!(
+        code(&["compare", "--techniques", "vao,foo", "--out", out]),
+        Some(2)
+    );
+    assert_eq!(
+        code(&["bench", "--techniques", ",", "--size", "8x8"]),
+        Some(2)
+    );
+    assert_eq!(
+        code(&["render", "--size", "100000x100000", "--out", out]),
+        Some(2)
+    );
+    assert_eq!(code(&["render", "--eye", "0,0,1", "--out", out]), Some(2));
+    // Parsed, but wrong.
+    assert_eq!(code(&["render", "--radius", "-1", "--out", out]), Some(1));
+    assert_eq!(
+        code(&["render", "--scene", "/no/such.obj", "--out", out]),
+        Some(1)
+    );
+    assert!(!dir.path().join("a.png").exists());
+}

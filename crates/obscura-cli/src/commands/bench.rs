@@ -1,7 +1,7 @@
 //! GPU timings per pass: warm-up frames, then timestamp queries around every pass for each
 //! frame, medians reported. No CPU clocks are involved.
 
-use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
+use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -16,9 +16,8 @@ pub struct BenchArgs {
     /// Visible image size WIDTHxHEIGHT (the guard band is extra).
     #[arg(long, value_parser = parse_size, default_value = "1920x1080")]
     size: (u32, u32),
-    /// Comma-separated techniques.
-    #[arg(long, default_value = "vao")]
-    techniques: String,
+    #[arg(long, default_value = "vao", value_parser = parse_technique_list, help = crate::args::techniques_help())]
+    techniques: TechniqueList,
     #[command(flatten)]
     ao: AoArgs,
     /// Timed frames.
@@ -95,7 +94,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             );
         }
     }
-    let techniques = parse_techniques(&args.techniques)?;
+    let techniques = args.techniques.0.clone();
     let (width, height) = args.size;
     let guard_band = args.ao.guard_band(height);
     let scene = args.scene.load()?;

@@ -1,7 +1,7 @@
 //! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
 
 use super::reference::{compute_or_load, ReferenceArgs};
-use crate::args::{parse_size, parse_techniques, AoArgs, SceneArgs};
+use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
 use obscura::reference::cpu_blur::cpu_blur;
@@ -18,9 +18,8 @@ pub struct CompareArgs {
     /// Visible image size WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "640x360")]
     size: (u32, u32),
-    /// Comma-separated techniques.
-    #[arg(long, default_value = "vao")]
-    techniques: String,
+    #[arg(long, default_value = "vao", value_parser = parse_technique_list, help = crate::args::techniques_help())]
+    techniques: TechniqueList,
     /// Ground-truth model: vao or hemisphere.
     #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
     reference_model: ReferenceModel,
@@ -125,7 +124,7 @@ pub fn compare(
 
 pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     // Check everything typed before the slow parts.
-    let techniques = parse_techniques(&args.techniques)?;
+    let techniques = args.techniques.0.clone();
     args.reference.settings(args.reference_model, &args.ao)?;
     for &t in &techniques {
         args.ao.settings(t)?;
