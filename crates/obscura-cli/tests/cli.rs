@@ -989,3 +989,37 @@ fn exit_status_2_for_usage_errors_1_for_the_rest() {
     );
     assert!(!dir.path().join("a.png").exists());
 }
+
+#[test]
+fn options_that_do_not_apply_are_refused() {
+    // The vao reference model traces every column exactly: hemisphere options make no sense.
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        vec!["demo", "--falloff", "--spp", "4"],
+        vec![
+            "reference",
+            "--model",
+            "vao",
+            "--spp",
+            "4",
+            "--out",
+            "x.exr",
+        ],
+        vec!["compare", "--reference-model", "vao", "--seed", "3"],
+    ] {
+        let mut args = args.clone();
+        let out = dir.path().join("out");
+        if args[0] != "reference" {
+            args.extend(["--out", out.to_str().unwrap()]);
+        }
+        let o = obscura(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("hemisphere"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        one_line(&stderr(&o));
+        assert!(!out.exists(), "{args:?} wrote output");
+    }
+}

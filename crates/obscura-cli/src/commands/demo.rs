@@ -35,6 +35,8 @@ fn fmt(v: f64) -> String {
 }
 
 pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
+    // Options that do not apply (the demo's reference is the vao model) are refused up front.
+    args.reference.settings(ReferenceModel::Vao, &args.ao)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create output folder '{}'", args.out.display()))?;
     let gpu = obscura::Gpu::new(options)?;

@@ -18,15 +18,15 @@ use std::time::Instant;
 /// Options shared by `reference` and `compare` for the reference model.
 #[derive(Args, Clone, Debug)]
 pub struct ReferenceArgs {
-    /// Hemisphere rays per pixel.
-    #[arg(long, default_value_t = 1024)]
-    pub spp: u32,
+    /// Hemisphere model: rays per pixel [default: 1024].
+    #[arg(long)]
+    pub spp: Option<u32>,
     /// Hemisphere model: weight hits by max(0, 1 - t/R) instead of counting them fully.
     #[arg(long)]
     pub falloff: bool,
-    /// Seed of the hemisphere model's per-pixel sample rotations.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// Hemisphere model: seed of the per-pixel sample rotations [default: 0].
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Recompute the reference even if the cache has it.
     #[arg(long)]
     pub no_cache: bool,
@@ -37,12 +37,22 @@ pub struct ReferenceArgs {
 
 impl ReferenceArgs {
     pub fn settings(&self, model: ReferenceModel, ao: &AoArgs) -> Result<ReferenceSettings> {
+        if model == ReferenceModel::Vao
+            && (self.spp.is_some() || self.falloff || self.seed.is_some())
+        {
+            bail!(
+                "--spp, --falloff and --seed apply to the hemisphere reference model only (the vao \
+                 model traces every sample column exactly): leave them out, or use the hemisphere \
+                 model"
+            );
+        }
+        let defaults = ReferenceSettings::default();
         let settings = ReferenceSettings {
             model,
             vao: ao.settings(Technique::Vao)?.vao,
-            spp: self.spp,
+            spp: self.spp.unwrap_or(defaults.spp),
             falloff: self.falloff,
-            seed: self.seed,
+            seed: self.seed.unwrap_or(defaults.seed),
         };
         if let Err(e) = settings.validate() {
             bail!(e);
