@@ -1023,3 +1023,26 @@ fn options_that_do_not_apply_are_refused() {
         assert!(!out.exists(), "{args:?} wrote output");
     }
 }
+
+#[test]
+fn the_reference_traces_on_the_cpu_when_the_adapter_is_software() {
+    let info = info_json();
+    let software = info["device_type"] == "Cpu";
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ref.exr");
+    let o = obscura(&[
+        "reference",
+        "--scene",
+        "cornell",
+        "--size",
+        "32x24",
+        "--no-cache",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    // Where it traced is said either way.
+    assert_eq!(err.contains("on the CPU"), software, "{err}");
+    assert_eq!(err.contains("on the GPU"), !software, "{err}");
+}

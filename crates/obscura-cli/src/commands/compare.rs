@@ -82,7 +82,7 @@ pub fn compare(
         obscura::near_plane(c.scene),
     );
     let mut reference_image = compute_or_load(
-        (!reference.cpu).then_some(gpu),
+        reference.tracer(Some(gpu)),
         c.scene_spec,
         c.scene,
         view,
