@@ -27,7 +27,7 @@ for scene in "${scenes[@]}"; do
         if [ ! -f "$out/a/$tag-$t.exr" ] &&
             ! "$old" render --scene "$scene" --technique "$t" --size 320x180 \
                 --out "$out/a/$tag-$t.exr" >/dev/null 2>"$out/a/$tag-$t.log"; then
-            echo "note: $old cannot render $t ($(tail -1 "$out/a/$tag-$t.log")); skipped" >&2
+            echo "note: $old cannot render $t ($(grep -m1 error "$out/a/$tag-$t.log")); skipped" >&2
             continue
         fi
         "$new" render --scene "$scene" --technique "$t" --size 320x180 --out "$out/b/$tag-$t.exr" >/dev/null
