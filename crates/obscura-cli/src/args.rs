@@ -207,11 +207,28 @@ fn help(text: &str, field: &str) -> String {
     let shown = match &value {
         serde_json::Value::String(s) => s.clone(),
         serde_json::Value::Number(n) if n.is_u64() => n.to_string(),
+        // An optional field left out: the library's rule (α: 1.5/S).
+        serde_json::Value::Null => "auto".into(),
         // Through f32, so that 1.3 reads 1.3 (the field is an f32).
         serde_json::Value::Number(n) => (n.as_f64().unwrap_or(f64::NAN) as f32).to_string(),
         other => other.to_string(),
     };
     format!("{} [default: {shown}]", text.trim_end_matches('.'))
+}
+
+/// `--sd-alpha`: a number, or `auto` for the library's 1.5/S.
+fn parse_alpha(text: &str) -> Result<Option<f32>, SettingsError> {
+    if text.trim().eq_ignore_ascii_case("auto") {
+        return Ok(None);
+    }
+    text.trim()
+        .parse::<f32>()
+        .map(Some)
+        .map_err(|_| SettingsError::Invalid {
+            field: "stochastic_depth.alpha",
+            value: text.to_string(),
+            rule: "must be a number in (0, 1], e.g. 0.375, or 'auto' for 1.5/S",
+        })
 }
 
 /// Technique parameters. Precedence: defaults < `--preset` < `--settings FILE` < the other flags
@@ -300,11 +317,11 @@ pub struct AoArgs {
     ))]
     pub sd_samples: Option<u32>,
     #[arg(long, allow_hyphen_values = true, help = help(
-        "sd-vao, sd-svao: global transparency α in (0, 1]; a hidden fragment is kept in \
-         ⌊αS + ξ⌋ samples. 0.2 is the authors' 2022 value, their 2024 code used 1.5/S.",
+        "sd-vao, sd-svao: global transparency α in (0, 1], or auto = 1.5/S (the authors' 2024 \
+         rule); a hidden fragment is kept in ⌊αS + ξ⌋ samples. 0.2 is the authors' 2022 value.",
         "stochastic_depth.alpha"
     ))]
-    pub sd_alpha: Option<f32>,
+    pub sd_alpha: Option<String>,
     #[arg(long, help = help(
         "sd-vao, sd-svao: seed of the stochastic depth map's hash.",
         "stochastic_depth.seed"
@@ -378,7 +395,9 @@ impl AoArgs {
         set(&mut s.peel_separation, self.peel_separation);
         let sd = &mut s.stochastic_depth;
         set(&mut sd.samples, self.sd_samples);
-        set(&mut sd.alpha, self.sd_alpha);
+        if let Some(alpha) = &self.sd_alpha {
+            sd.alpha = parse_alpha(alpha).map_err(with_flags)?;
+        }
         set(&mut sd.seed, self.sd_seed);
         if let Some(m) = &self.sd_mask {
             sd.mask = m.parse::<SdMask>().map_err(with_flags)?;
@@ -551,7 +570,7 @@ mod tests {
         let mut want = ultra;
         want.vao.samples = 16;
         want.vao.radius = 0.75;
-        want.stochastic_depth.alpha = 0.5;
+        want.stochastic_depth.alpha = Some(0.5);
         assert_eq!(s, want);
         // Flags over the file.
         let s = ao(&[

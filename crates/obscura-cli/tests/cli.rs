@@ -320,7 +320,8 @@ fn bench_reports_every_pass() {
             sd["alpha"].as_f64(),
             sd["mask"].as_str()
         ),
-        (Some(4), Some(0.2), Some("stencil"))
+        // α as it ran: the default 1.5/S written out.
+        (Some(4), Some(0.375), Some("stencil"))
     );
     let layout = &r["layout"];
     assert_eq!(
@@ -717,7 +718,7 @@ fn debug_out_shows_the_stochastic_depth_map() {
     let debug = dir.path().join("sd-svao");
     assert_eq!(
         (stats["sd_samples"].as_u64(), stats["sd_alpha"].as_f64()),
-        (Some(4), Some(0.2))
+        (Some(4), Some(0.375))
     );
     let layout = &stats["layout"];
     assert_eq!(

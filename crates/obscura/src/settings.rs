@@ -248,18 +248,21 @@ impl Default for BlurSettings {
 
 /// The stratified stochastic depth map (seed 001 §3.1, Alg. 1).
 ///
-/// Defaults are the authors' 2022 values (S = 4, α = 0.2: seed 000 §4.1 and its scripts,
-/// seed-code-notes §1.5). Their 2024 code used α = 1.5/S instead (0.375 for S = 4,
-/// seed-code-notes §2.2); set `alpha = 0.375` (`--sd-alpha 0.375`) for that, or use
-/// [`Preset::High`].
+/// Defaults: S = 4 and α = 1.5/S (0.375 at S = 4), the authors' 2024 rule (seed-code-notes
+/// §2.2; DESIGN.md). Held against an outside renderer's ground truth, α = 1.5/S gave a lower MSE
+/// than the authors' 2022 α = 0.2 on every view tried (1.04× to 7.6×), and 0.2 lost to depth
+/// peeling on one; 0.2 stays reachable (`alpha = 0.2`, `--sd-alpha 0.2`) to reproduce the 2022
+/// tables.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StochasticDepthSettings {
     /// Depth samples per pixel, S: 1, 2, 4, 8 or 16. Counts the adapter cannot rasterise in one
     /// multisampled target are made of several maps stacked (each with its own seed).
     pub samples: u32,
-    /// Global transparency α in (0, 1]: a hidden fragment is stored in ⌊αS + ξ⌋ samples.
-    pub alpha: f32,
+    /// Global transparency α in (0, 1]: a hidden fragment is stored in ⌊αS + ξ⌋ samples. `None`
+    /// (the default; a file that leaves it out, JSON `null`, `--sd-alpha auto`): 1.5/S, at most
+    /// 1 ([`StochasticDepthSettings::alpha`]).
+    pub alpha: Option<f32>,
     /// Seed of the per-fragment hash (ξ and the choice of samples).
     pub seed: u32,
     /// `sd-svao`: how the map is limited to the pixels phase 1 requested.
@@ -313,11 +316,28 @@ impl fmt::Display for SdMask {
     }
 }
 
+impl StochasticDepthSettings {
+    /// The α in use: the one given, else 1.5/S capped at 1.
+    pub fn alpha(&self) -> f32 {
+        self.alpha.unwrap_or_else(|| sd_alpha_2024(self.samples))
+    }
+}
+
+impl AoSettings {
+    /// These settings with every rule-derived value written out (α = 1.5/S as a number), for
+    /// records that must say what ran (bench and compare JSON).
+    pub fn resolved(&self) -> AoSettings {
+        let mut s = *self;
+        s.stochastic_depth.alpha = Some(s.stochastic_depth.alpha());
+        s
+    }
+}
+
 impl Default for StochasticDepthSettings {
     fn default() -> Self {
         Self {
             samples: 4,
-            alpha: 0.2,
+            alpha: None,
             seed: 0,
             mask: SdMask::Stencil,
         }
@@ -415,11 +435,11 @@ impl AoSettings {
                 "must be 1, 2, 4, 8 or 16, e.g. 4",
             ));
         }
-        if !(sd.alpha > 0.0 && sd.alpha <= 1.0) {
+        if let Some(alpha) = sd.alpha.filter(|a| !(*a > 0.0 && *a <= 1.0)) {
             return Err(invalid(
                 "stochastic_depth.alpha",
-                sd.alpha,
-                "must be in (0, 1], e.g. 0.2",
+                alpha,
+                "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
             ));
         }
         let h = &self.hbao_plus;
@@ -595,12 +615,11 @@ impl AoSettings {
     /// separation or blur sharpness, nor the seed or `sd-svao`'s mask (and the guard band is not
     /// a setting at all). `Medium` is exactly [`AoSettings::default`] for every technique.
     ///
-    /// | preset | VAO estimator: `vao.samples`, `blur.radius` | stochastic-depth source: `stochastic_depth.samples` S, `.alpha` α |
-    /// |---|---|---|
-    /// | low | 8, 2 | 1, 1 (1.5/S at most 1: the nearest hidden surface) |
-    /// | medium | 8, 4 (the defaults) | 4, 0.2 (the defaults, the authors' 2022 values) |
-    /// | high | 16, 4 | 4, 0.375 (1.5/S, the authors' 2024 rule) |
-    /// | ultra | 32, 6 | 8, 0.1875 (1.5/S) |
+    /// Per estimator and source (docs/SETTINGS.md has the table with every column): VAO
+    /// `vao.samples` 8, 8, 16, 32 and `blur.radius` 2, 4, 4, 6; HBAO+ 4 × 4 directions × steps
+    /// at low, else 8 × 4, `blur.radius` as VAO; GTAO-VB slices × steps 1×2, 2×2, 3×3, 3×5; the
+    /// stochastic depth map S = 1, 4, 4, 8 with α = 1.5/S throughout (at most 1: at S = 1 the
+    /// nearest hidden surface).
     ///
     /// `low` keeps to one sample per pixel, which every adapter with the map's format rasterises
     /// (WebGPU guarantees 1× and 4× multisampling only).
@@ -650,20 +669,10 @@ impl AoSettings {
                 let sd = &mut s.stochastic_depth;
                 match preset {
                     // One sample: every adapter with the format rasterises it (WebGPU
-                    // guarantees 1× and 4× only).
-                    Preset::Low => {
-                        sd.samples = 1;
-                        sd.alpha = sd_alpha_2024(1);
-                    }
-                    Preset::Medium => {}
-                    Preset::High => {
-                        sd.samples = 4;
-                        sd.alpha = sd_alpha_2024(4);
-                    }
-                    Preset::Ultra => {
-                        sd.samples = 8;
-                        sd.alpha = sd_alpha_2024(8);
-                    }
+                    // guarantees 1× and 4× only). α stays 1.5/S throughout.
+                    Preset::Low => sd.samples = 1,
+                    Preset::Medium | Preset::High => {}
+                    Preset::Ultra => sd.samples = 8,
                 }
             }
             Source::FirstLayer | Source::DualDepth | Source::ColumnRays => {}
@@ -883,7 +892,7 @@ mod tests {
             r#"{"stochastic_depth": {"alpha": 0.5}, "peel_separation": 0}"#,
         );
         let mut want = base;
-        want.stochastic_depth.alpha = 0.5;
+        want.stochastic_depth.alpha = Some(0.5);
         want.peel_separation = 0.0;
         assert_eq!(base.with_file(&j).unwrap(), want);
         let empty = file(dir.path(), "empty.toml", "");
@@ -991,11 +1000,11 @@ mod tests {
             (
                 s.vao.samples,
                 s.stochastic_depth.samples,
-                s.stochastic_depth.alpha,
+                s.stochastic_depth.alpha(),
             )
         };
         assert_eq!(sd(Preset::Low), (8, 1, 1.0));
-        assert_eq!(sd(Preset::Medium), (8, 4, 0.2));
+        assert_eq!(sd(Preset::Medium), (8, 4, 0.375));
         assert_eq!(sd(Preset::High), (16, 4, 0.375));
         assert_eq!(sd(Preset::Ultra), (32, 8, 0.1875));
         // A two-phase technique gets its single-pass twin's settings.
@@ -1033,7 +1042,7 @@ mod tests {
         push(&|s| s.vao.samples = 12);
         push(&|s| s.peel_separation = -0.1);
         push(&|s| s.stochastic_depth.samples = 3);
-        push(&|s| s.stochastic_depth.alpha = 1.5);
+        push(&|s| s.stochastic_depth.alpha = Some(1.5));
         push(&|s| s.blur.radius = 0);
         push(&|s| s.blur.sharpness = -2.0);
         push(&|s| s.hbao_plus.radius = -1.0);

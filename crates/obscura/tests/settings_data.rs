@@ -44,7 +44,7 @@ fn preset_table() -> String {
             g.gtao_vb.slices,
             g.gtao_vb.steps,
             s.stochastic_depth.samples,
-            s.stochastic_depth.alpha
+            s.stochastic_depth.alpha()
         );
     }
     out

@@ -18,7 +18,7 @@ fn settings(technique: Technique, samples: u32, alpha: f32) -> AoSettings {
         technique,
         stochastic_depth: StochasticDepthSettings {
             samples,
-            alpha,
+            alpha: Some(alpha),
             seed: 7,
             ..Default::default()
         },

@@ -33,7 +33,7 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
                     let mut settings = base;
                     settings.stochastic_depth = StochasticDepthSettings {
                         samples: s,
-                        alpha: 0.375,
+                        alpha: Some(0.375),
                         seed: 7,
                         mask,
                     };

@@ -160,7 +160,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             });
         results.push(BenchResult {
             technique: technique.name().into(),
-            settings,
+            settings: settings.resolved(),
             layout,
             scene: scene.name.clone(),
             camera: camera_name.clone(),
@@ -196,7 +196,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
                 } else {
                     String::new()
                 };
-                format!(", S = {} ({maps}), α = {}{mask}", sd.samples, sd.alpha)
+                format!(", S = {} ({maps}), α = {}{mask}", sd.samples, sd.alpha())
             }
             None => String::new(),
         };

@@ -66,7 +66,7 @@ pub fn compare(
         images.push((
             technique.name(),
             renderer.read_ao()?,
-            serde_json::to_value(settings)?,
+            serde_json::to_value(settings.resolved())?,
         ));
         crate::args::warn_stack_overflows(&renderer)?;
         gbuffer = Some(renderer.read_gbuffer()?);

@@ -220,7 +220,7 @@ fn write_sd_debug(
         "technique": settings.technique.name(),
         "sd_samples": sd.samples,
         // Through its shortest decimal form: 0.2, not 0.20000000298023224.
-        "sd_alpha": sd.alpha.to_string().parse::<f64>().ok(),
+        "sd_alpha": sd.alpha().to_string().parse::<f64>().ok(),
         "sd_seed": sd.seed,
         "layout": { "maps": layout.maps, "samples_per_map": layout.samples_per_map },
         "framebuffer_width": fw,

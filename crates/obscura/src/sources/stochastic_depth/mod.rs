@@ -260,10 +260,11 @@ impl StochasticDepthMap {
             }
         })?;
         // `AoSettings::validate` checked α already; this guards direct use of the map.
-        if !(settings.alpha > 0.0 && settings.alpha <= 1.0) {
+        let alpha = settings.alpha();
+        if !(alpha > 0.0 && alpha <= 1.0) {
             return Err(crate::SettingsError::Invalid {
                 field: "stochastic_depth.alpha",
-                value: settings.alpha.to_string(),
+                value: alpha.to_string(),
                 rule: "must be in (0, 1], e.g. 0.2",
             }
             .into());
@@ -409,7 +410,7 @@ impl StochasticDepthMap {
         for (m, buffer) in self.params.iter().enumerate() {
             let raster = SdRaster {
                 near: view.near,
-                alpha: self.settings.alpha,
+                alpha: self.settings.alpha(),
                 separation: self.separation,
                 // Stacked maps: independent seeds.
                 seed: crate::hash::pcg_hash(
