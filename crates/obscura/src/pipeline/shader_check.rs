@@ -114,6 +114,27 @@ fn check(
             global.space, entry.ty
         );
     }
+    // The two-phase schedule stores the estimator's state as three 32-bit words after the mask
+    // (16-byte records, `PIXEL_BYTES` in src/schedules/two_phase.rs).
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).expect("type layouts");
+    for (handle, ty) in module.types.iter() {
+        match ty.name.as_deref() {
+            Some("EstimatorAccum") => {
+                assert_eq!(
+                    layouter[handle].size, 12,
+                    "{label}: EstimatorAccum is three words"
+                )
+            }
+            Some("TwoPhasePixel") => {
+                assert_eq!(
+                    layouter[handle].size, 16,
+                    "{label}: TwoPhasePixel is 16 bytes"
+                )
+            }
+            _ => {}
+        }
+    }
     for constant in constants {
         assert!(
             module
