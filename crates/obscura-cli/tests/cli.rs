@@ -290,6 +290,24 @@ fn bench_reports_every_pass() {
     assert!(v["adapter"].is_string() && v["driver"].is_string());
     let r = &v["results"][0];
     assert_eq!(r["technique"], "vao");
+    // Raster passes count their fragments where the adapter can: the G-buffer shades every
+    // covered pixel at least once (the close-up covers most of the frame).
+    if info["pipeline_statistics"] == true {
+        let g = &r["fragments"]["gbuffer"];
+        let per_pixel = g["per_pixel"]
+            .as_f64()
+            .expect("fragments.gbuffer.per_pixel");
+        assert!(
+            g["invocations"].as_u64().unwrap() > 0 && per_pixel > 0.3,
+            "{r}"
+        );
+        assert!(
+            r["fragments"].get("vao").is_none(),
+            "compute passes have no fragments"
+        );
+    } else {
+        assert!(r.get("fragments").is_none(), "{r}");
+    }
     assert_eq!(
         (
             r["width"].as_u64(),

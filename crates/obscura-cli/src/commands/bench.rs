@@ -49,6 +49,16 @@ struct BenchResult {
     layout: Option<Layout>,
     passes: BTreeMap<String, f64>,
     total_ms: f64,
+    /// Raster passes: the median fragment-shader invocations per frame, and per framebuffer pixel
+    /// (overdraw); absent where the adapter has no pipeline statistics queries.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fragments: Option<BTreeMap<String, Fragments>>,
+}
+
+#[derive(serde::Serialize)]
+struct Fragments {
+    invocations: u64,
+    per_pixel: f64,
 }
 
 /// The stochastic depth map's layout (`obscura::sources::stochastic_depth::SdLayout`) as JSON.
@@ -135,6 +145,26 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         }
         progress.finish_and_clear();
         let frames = profiler.read(&gpu)?;
+        let pixels = f64::from(width + 2 * guard_band) * f64::from(height + 2 * guard_band);
+        let fragments = profiler.read_fragments(&gpu)?.map(|frames| {
+            let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+            for frame in &frames {
+                for (pass, &n) in frame {
+                    per_pass.entry(pass.clone()).or_default().push(n as f64);
+                }
+            }
+            per_pass
+                .into_iter()
+                .map(|(pass, counts)| {
+                    let invocations = median(counts);
+                    let counted = Fragments {
+                        invocations: invocations as u64,
+                        per_pixel: invocations / pixels,
+                    };
+                    (pass, counted)
+                })
+                .collect()
+        });
         let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
         let mut totals = Vec::new();
         for frame in &frames {
@@ -170,6 +200,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             frames: args.frames,
             passes: per_pass.into_iter().map(|(k, v)| (k, median(v))).collect(),
             total_ms: median(totals),
+            fragments,
         });
     }
     let s = &gpu.summary;
@@ -208,6 +239,12 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             println!("  {pass:<14} {ms:>9.4} ms");
         }
         println!("  {:<14} {:>9.4} ms", "total", r.total_ms);
+        for (pass, f) in r.fragments.iter().flatten() {
+            println!(
+                "  {pass:<14} {:>9} fragments ({:.2} per framebuffer pixel)",
+                f.invocations, f.per_pixel
+            );
+        }
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;

@@ -4,7 +4,7 @@
 mod profiler;
 mod readback;
 
-pub use profiler::{FrameTimings, PassProfiler};
+pub use profiler::{FrameFragments, FrameTimings, PassProfiler};
 pub use readback::{read_buffer, read_texture_bytes, read_texture_f32, read_texture_rgba8};
 
 use std::sync::{Arc, Mutex};
@@ -58,6 +58,8 @@ pub struct AdapterSummary {
     pub vendor: u32,
     pub device: u32,
     pub timestamp_queries: bool,
+    /// Pipeline statistics queries (bench counts the fragments of each raster pass).
+    pub pipeline_statistics: bool,
     pub max_texture_dimension_2d: u32,
     pub max_texture_array_layers: u32,
     pub max_storage_buffer_binding_size: u64,
@@ -163,6 +165,7 @@ impl Gpu {
     fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let wanted = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::PIPELINE_STATISTICS_QUERY
             | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
             | wgpu::Features::DEPTH32FLOAT_STENCIL8;
         let features = adapter.features() & wanted;
@@ -210,6 +213,7 @@ impl Gpu {
             vendor: info.vendor,
             device: info.device,
             timestamp_queries: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+            pipeline_statistics: features.contains(wgpu::Features::PIPELINE_STATISTICS_QUERY),
             max_texture_dimension_2d: limits.max_texture_dimension_2d,
             max_texture_array_layers: limits.max_texture_array_layers,
             max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,

@@ -1,4 +1,5 @@
-//! Per-pass GPU timings with timestamp queries.
+//! Per-pass GPU timings with timestamp queries, and, where the device has pipeline statistics
+//! queries, the fragment-shader invocations of each raster pass (overdraw made visible).
 //!
 //! Every pass that wants timing asks for its timestamp writes by name; each frame's queries are
 //! resolved into their own slot of one buffer, read back once at the end. Benchmarks take medians
@@ -14,7 +15,22 @@ const MAX_PASSES: u32 = (SLOT_BYTES / 16) as u32;
 /// Milliseconds per named pass for one frame.
 pub type FrameTimings = BTreeMap<String, f64>;
 
+/// Fragment-shader invocations per named raster pass for one frame.
+pub type FrameFragments = BTreeMap<String, u64>;
+
+/// The fragment counters: one pipeline-statistics query per raster pass, resolved per frame.
+struct FragmentQueries {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    pass_names: Vec<String>,
+    frame_passes: Vec<Vec<String>>,
+}
+
+/// Fragment queries per frame slot (8 bytes each).
+const MAX_RASTER_PASSES: u32 = (SLOT_BYTES / 8) as u32;
+
 pub struct PassProfiler {
+    fragments: Option<FragmentQueries>,
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     pass_names: Vec<String>,
@@ -44,7 +60,29 @@ impl PassProfiler {
             usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let fragments = gpu
+            .device
+            .features()
+            .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY)
+            .then(|| FragmentQueries {
+                queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                    label: Some("raster fragments"),
+                    ty: wgpu::QueryType::PipelineStatistics(
+                        wgpu::PipelineStatisticsTypes::FRAGMENT_SHADER_INVOCATIONS,
+                    ),
+                    count: MAX_RASTER_PASSES,
+                }),
+                resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("fragments resolve"),
+                    size: SLOT_BYTES * u64::from(max_frames.max(1)),
+                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: false,
+                }),
+                pass_names: Vec::new(),
+                frame_passes: Vec::new(),
+            });
         Ok(Self {
+            fragments,
             queries,
             resolve,
             pass_names: Vec::new(),
@@ -85,8 +123,37 @@ impl PassProfiler {
         }
     }
 
+    /// Starts counting the fragment-shader invocations of raster pass `name` (no-op without
+    /// pipeline statistics queries); [`PassProfiler::end_fragments`] before the pass ends.
+    pub fn begin_fragments(&mut self, pass: &mut wgpu::RenderPass, name: &str) {
+        if let Some(f) = &mut self.fragments {
+            let index = f.pass_names.len() as u32;
+            assert!(index < MAX_RASTER_PASSES, "too many counted raster passes");
+            f.pass_names.push(name.to_string());
+            pass.begin_pipeline_statistics_query(&f.queries, index);
+        }
+    }
+
+    pub fn end_fragments(&self, pass: &mut wgpu::RenderPass) {
+        if self.fragments.is_some() {
+            pass.end_pipeline_statistics_query();
+        }
+    }
+
     /// Resolve this frame's queries into its slot. Call once per frame after its passes.
     pub fn end_frame(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(f) = &mut self.fragments {
+            let count = f.pass_names.len() as u32;
+            if count > 0 {
+                encoder.resolve_query_set(
+                    &f.queries,
+                    0..count,
+                    &f.resolve,
+                    u64::from(self.frame) * SLOT_BYTES,
+                );
+            }
+            f.frame_passes.push(std::mem::take(&mut f.pass_names));
+        }
         let count = 2 * self.pass_names.len() as u32;
         if count > 0 {
             encoder.resolve_query_set(
@@ -98,6 +165,42 @@ impl PassProfiler {
         }
         self.frame_passes.push(std::mem::take(&mut self.pass_names));
         self.frame += 1;
+    }
+
+    /// Every recorded frame's fragment-shader invocations per raster pass (summed over passes of
+    /// one name), or `None` where the device has no pipeline statistics queries.
+    pub fn read_fragments(&self, gpu: &Gpu) -> Result<Option<Vec<FrameFragments>>, GpuError> {
+        let Some(f) = &self.fragments else {
+            return Ok(None);
+        };
+        let size = SLOT_BYTES * u64::from(self.frame);
+        if size == 0 {
+            return Ok(Some(Vec::new()));
+        }
+        let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("fragments readback"),
+            size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&f.resolve, 0, &staging, 0, size);
+        gpu.queue.submit([encoder.finish()]);
+        let counts: Vec<u64> = bytemuck::pod_collect_to_vec(&super::read_buffer(gpu, &staging)?);
+        let stride = (SLOT_BYTES / 8) as usize;
+        Ok(Some(
+            f.frame_passes
+                .iter()
+                .enumerate()
+                .map(|(frame, names)| {
+                    let mut out = FrameFragments::new();
+                    for (p, name) in names.iter().enumerate() {
+                        *out.entry(name.clone()).or_insert(0) += counts[frame * stride + p];
+                    }
+                    out
+                })
+                .collect(),
+        ))
     }
 
     /// Read every recorded frame's pass times (milliseconds).

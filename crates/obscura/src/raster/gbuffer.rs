@@ -263,7 +263,8 @@ impl GBuffer {
             })
             .collect();
         let z_view = self.z.create_view(&Default::default());
-        let timestamp_writes = profiler.map(|p| p.render_pass(name));
+        let mut profiler = profiler;
+        let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(name));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(name),
             color_attachments: &attachments,
@@ -279,7 +280,13 @@ impl GBuffer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        if let Some(p) = profiler.as_deref_mut() {
+            p.begin_fragments(&mut pass, name);
+        }
         draw_scene(&mut pass, scene, pipelines, &bind_groups);
+        if let Some(p) = profiler {
+            p.end_fragments(&mut pass);
+        }
     }
 }
 

@@ -466,7 +466,13 @@ impl StochasticDepthMap {
             let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_map"));
             let mut pass = begin(encoder, target, timestamp_writes);
             pass.set_stencil_reference(stencil_value);
+            if let Some(p) = profiler.as_deref_mut() {
+                p.begin_fragments(&mut pass, "sd_map");
+            }
             draw_scene(&mut pass, &self.scene, &self.pipelines, &bind_groups);
+            if let Some(p) = profiler.as_deref() {
+                p.end_fragments(&mut pass);
+            }
         }
     }
 
@@ -488,8 +494,8 @@ impl StochasticDepthMap {
 /// is emptied by [`SdReset`], not by a clear).
 pub(crate) fn begin<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
-    target: &'e wgpu::TextureView,
-    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'e>>,
+    target: &wgpu::TextureView,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
 ) -> wgpu::RenderPass<'e> {
     fn keep<V>() -> wgpu::Operations<V> {
         wgpu::Operations {

@@ -125,13 +125,20 @@ impl SdReset {
             }
             (ResetScope::All, _) => None,
         };
-        let timestamp_writes = profiler.map(|p| p.render_pass("sd_reset"));
+        let mut profiler = profiler;
+        let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_reset"));
         let mut pass = super::begin(encoder, target, timestamp_writes);
+        if let Some(p) = profiler.as_deref_mut() {
+            p.begin_fragments(&mut pass, "sd_reset");
+        }
         pass.set_pipeline(&self.pipeline);
         if let Some(bind_group) = &bind_group {
             pass.set_bind_group(0, bind_group, &[]);
         }
         pass.set_stencil_reference(stencil_value);
         pass.draw(0..3, 0..1);
+        if let Some(p) = profiler {
+            p.end_fragments(&mut pass);
+        }
     }
 }
