@@ -5,16 +5,9 @@
 # peer benchmark (Bevy 0.19 depth + normal prepass and SSAO high, ../shared/tools/peers/README.md).
 # Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza, plus the old binary) and .gl.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x "$f" / 2>/dev/null; done; ldconfig
-export OBSCURA_BACKEND=vulkan
-new=./.devbin/obscura old=./.devbin/obscura-old
-if ! $new info >/dev/null 2>&1 || ! $new info | grep -qi nvidia; then
-  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
-out=${OUT:-/tmp/out}
-mkdir -p "$out"
+source "$(dirname "$0")/device-env.sh"
+new=$bin old=./.devbin/obscura-old
 $new info | tee "$out/info.txt"
-sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
 for round in 1 2 3; do
   for side in old new; do
     bin=$new; [ "$side" = old ] && bin=$old

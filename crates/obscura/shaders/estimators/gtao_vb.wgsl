@@ -77,21 +77,20 @@ struct Occluder {
 }
 
 fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let base = screen_pixel(id, params.radius);
     var p: EstimatorPixel;
-    p.pixel = id + vec2<u32>(view.guard_band);
-    let z = textureLoad(depth_tex, p.pixel, 0).r;
-    p.valid = !is_background(z);
+    p.pixel = base.pixel;
+    p.valid = base.valid;
     if (!p.valid) {
         return p;
     }
-    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
+    p.pos = base.pos;
     p.v = normalize(-p.pos);
-    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
-    let pattern = params.pattern[(id.x % 4u) + 4u * (id.y % 4u)];
+    p.normal = base.normal;
+    let pattern = params.pattern[pattern_index(id)];
     p.rotation = pattern.xy;
     p.jitter = pattern.z;
-    let radius_px = params.radius * view.projection_scale.y / z;
-    p.step_px = select(0.0, radius_px / f32(params.steps), radius_px >= 1.0);
+    p.step_px = select(0.0, base.radius_px / f32(params.steps), base.radius_px >= 1.0);
     for (var j = 0u; j < params.slices; j++) {
         let k = params.samples[j * 2u * params.steps];
         let r = p.rotation;

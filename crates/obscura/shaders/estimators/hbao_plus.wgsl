@@ -69,20 +69,18 @@ struct Occluder {
 }
 
 fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let base = screen_pixel(id, params.radius);
     var p: EstimatorPixel;
-    p.pixel = id + vec2<u32>(view.guard_band);
-    let z = textureLoad(depth_tex, p.pixel, 0).r;
-    p.valid = !is_background(z);
+    p.pixel = base.pixel;
+    p.valid = base.valid;
     if (!p.valid) {
         return p;
     }
-    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
-    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
-    let pattern = params.pattern[(id.x % 4u) + 4u * (id.y % 4u)];
+    p.pos = base.pos;
+    p.normal = base.normal;
+    let pattern = params.pattern[pattern_index(id)];
     p.rotation = pattern.xy;
-    // Pixels per world unit at depth z (square pixels: projection_scale.x == .y).
-    let radius_px = params.radius * view.projection_scale.y / z;
-    p.step_px = select(0.0, radius_px / f32(params.steps + 1u), radius_px >= 1.0);
+    p.step_px = select(0.0, base.radius_px / f32(params.steps + 1u), base.radius_px >= 1.0);
     p.start_px = pattern.z * p.step_px + 1.0;
     return p;
 }

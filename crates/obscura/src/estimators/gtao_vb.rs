@@ -4,8 +4,12 @@
 use crate::settings::{GtaoVbSettings, SectorActivation};
 use std::f32::consts::PI;
 
-/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
-pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/gtao_vb.wgsl");
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
+/// screen-space pixel set-up.
+pub(crate) const WGSL: &str = concat!(
+    include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/gtao_vb.wgsl")
+);
 /// Its `override` constants: the sample count, slices × 2 × steps.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
 

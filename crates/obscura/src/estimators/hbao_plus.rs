@@ -5,8 +5,12 @@
 use crate::settings::HbaoPlusSettings;
 use std::f32::consts::TAU;
 
-/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md).
-pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/hbao_plus.wgsl");
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
+/// screen-space pixel set-up.
+pub(crate) const WGSL: &str = concat!(
+    include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/hbao_plus.wgsl")
+);
 /// Its `override` constants: the sample count, directions × steps.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
 

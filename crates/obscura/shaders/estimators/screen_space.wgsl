@@ -1,0 +1,33 @@
+// What the screen-space estimators (HBAO+, GTAO-VB) start a pixel from: the shading point and its
+// normal from the frame, the pixel's entry of the 4×4 rotation/jitter pattern
+// (src/estimators/mod.rs `bayer_pattern`) and the world radius in framebuffer pixels. Put in front
+// of such an estimator (its Rust module concatenates the two).
+
+struct ScreenPixel {
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    // Framebuffer pixel of the shading point.
+    pixel: vec2<u32>,
+    valid: bool,
+    // Pixels per `radius` world units at the point's depth (square pixels).
+    radius_px: f32,
+}
+
+// Index of visible pixel `id` in a 4×4 pattern table.
+fn pattern_index(id: vec2<u32>) -> u32 {
+    return (id.x % 4u) + 4u * (id.y % 4u);
+}
+
+fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
+    var p: ScreenPixel;
+    p.pixel = id + vec2<u32>(view.guard_band);
+    let z = textureLoad(depth_tex, p.pixel, 0).r;
+    p.valid = !is_background(z);
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
+    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
+    p.radius_px = radius * view.projection_scale.y / z;
+    return p;
+}

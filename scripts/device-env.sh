@@ -1,0 +1,17 @@
+# Sourced by the device scripts (scripts/device-bench*.sh): the Vulkan loader carried in .gl/
+# unpacked, the Vulkan backend, the NVIDIA driver's ICD where the loader does not find it, and
+# $bin, $out (created) and $sponza (the Crytek Sponza view of BENCHMARKS.md).
+# The loader only on the device (its NVIDIA driver is mounted there), never over a local system
+# where a script runs as a dry run.
+if [ -d /usr/local/nvidia ]; then
+  for f in .gl/*.deb; do dpkg -x "$f" / 2>/dev/null; done
+  ldconfig
+fi
+export OBSCURA_BACKEND=vulkan
+bin=${OBSCURA_BIN:-./.devbin/obscura}
+if ! $bin info >/dev/null 2>&1 || ! $bin info | grep -qi nvidia; then
+  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+fi
+out=${OUT:-/tmp/out}
+mkdir -p "$out"
+sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
