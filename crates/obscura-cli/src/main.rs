@@ -47,10 +47,11 @@ enum Command {
 /// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
 /// environment` when the variable is unset (headless machines, containers, CI), which reads as
 /// our error although obscura never opens a window. Give it a private directory (mode 0700, as
-/// the variable requires) when it is unset; a set one is left alone, and any real error still
-/// prints.
+/// the variable requires) when it is unset or empty; a set one is left alone, and any real error
+/// still prints.
 fn quiet_headless_vulkan() {
-    if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
+    // Set and not empty: the user's (an empty value is as invalid to Mesa as none).
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|v| !v.is_empty()) {
         return;
     }
     let user = std::env::var("USER").unwrap_or_else(|_| "user".into());

@@ -941,6 +941,14 @@ fn no_vulkan_window_system_noise_without_xdg_runtime_dir() {
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("XDG_RUNTIME_DIR"), "{}", stderr(&o));
+    // An empty value is as invalid to Mesa as none.
+    let o = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(["info"])
+        .env("XDG_RUNTIME_DIR", "")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("XDG_RUNTIME_DIR"), "{}", stderr(&o));
 }
 
 #[test]

@@ -11,7 +11,7 @@ use obscura::{Gpu, GpuOptions};
 pub fn gpu() -> Gpu {
     static QUIET: std::sync::Once = std::sync::Once::new();
     QUIET.call_once(|| {
-        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
             let dir = std::env::temp_dir().join("obscura-test-runtime");
             if std::fs::create_dir_all(&dir).is_ok() {
                 #[cfg(unix)]
