@@ -1073,3 +1073,47 @@ fn the_reference_traces_on_the_cpu_when_the_adapter_is_software() {
     assert_eq!(err.contains("on the CPU"), software, "{err}");
     assert_eq!(err.contains("on the GPU"), !software, "{err}");
 }
+
+#[test]
+fn the_malformed_input_corpus_gives_clean_outcomes() {
+    // tests/corpus (made by scripts/make-corpus.py; its README lists every file): broken and
+    // degenerate scene files as real ones are. Each either renders (with the warning named) or
+    // fails with one line naming the problem; never a panic, never an output file on failure.
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus");
+    let manifest: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(corpus.join("manifest.json")).unwrap())
+            .unwrap();
+    assert!(manifest.len() >= 30, "{} corpus files", manifest.len());
+    let dir = tempfile::tempdir().unwrap();
+    for case in &manifest {
+        let file = case["file"].as_str().unwrap();
+        let (outcome, needle) = (
+            case["outcome"].as_str().unwrap(),
+            case["needle"].as_str().unwrap(),
+        );
+        let out = dir.path().join(format!("{file}.png"));
+        let start = std::time::Instant::now();
+        let o = obscura(&[
+            "render",
+            "--scene",
+            corpus.join(file).to_str().unwrap(),
+            "--size",
+            "32x32",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let seconds = start.elapsed().as_secs_f64();
+        let err = stderr(&o);
+        assert!(!err.contains("panicked"), "{file}: {err}");
+        assert!(seconds < 10.0, "{file}: {seconds:.1} s");
+        assert!(err.contains(needle), "{file}: '{needle}' not in: {err}");
+        match outcome {
+            "ok" => assert!(o.status.success() && out.exists(), "{file}: {err}"),
+            _ => {
+                assert_eq!(o.status.code(), Some(1), "{file}: {err}");
+                one_line(&err);
+                assert!(!out.exists(), "{file}: output written");
+            }
+        }
+    }
+}
