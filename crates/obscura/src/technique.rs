@@ -172,7 +172,7 @@ pub const TABLE: &[TechniqueRow] = &[
         technique: Technique::HbaoPlusDual,
         name: "hbao+-dual",
         summary: "HBAO+; samples behind a too-near first surface also read the second layer",
-        paper: "seed 000 §2.1, seed-code-notes §1.7",
+        paper: "seed 000 §2.1",
         estimator: Estimator::HbaoPlus,
         source: Source::DualDepth,
         schedule: Schedule::Single,
