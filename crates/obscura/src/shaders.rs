@@ -6,6 +6,7 @@
 
 pub const VIEW: &str = include_str!("../shaders/common/view.wgsl");
 pub const BASIS: &str = include_str!("../shaders/common/basis.wgsl");
+pub const PATTERN: &str = include_str!("../shaders/common/pattern.wgsl");
 pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
 pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");

@@ -3,7 +3,8 @@
 
 use glam::{Vec2, Vec3};
 use obscura::scene::{Camera, Material, Scene};
-use obscura::{Gpu, GpuOptions};
+use obscura::settings::AoSettings;
+use obscura::{Gpu, GpuOptions, Renderer, Technique};
 
 /// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI). As the CLI does, gives
 /// Mesa's Vulkan window-system layer a runtime directory when XDG_RUNTIME_DIR is unset, so the
@@ -66,6 +67,26 @@ pub fn camera(eye: Vec3, target: Vec3, fov_y_deg: f32) -> Camera {
         up: Vec3::Y,
         fov_y_deg,
     }
+}
+
+/// `technique` with default settings, its bilateral blur on or off.
+pub fn technique_settings(technique: Technique, blur: bool) -> AoSettings {
+    let mut s = AoSettings {
+        technique,
+        ..AoSettings::default()
+    };
+    s.blur.enabled = blur;
+    s
+}
+
+/// AO (96×64 visible, guard band 16) of an unoccluded floor plane seen from a tilted view, at
+/// every angle from ~20° to ~60° below the horizon: every pixel should be 1.
+pub fn tilted_floor_ao(gpu: &Gpu, settings: &AoSettings) -> Vec<f32> {
+    let scene = quads("floor", &[floor(100.0)]);
+    let camera = camera(Vec3::new(0.0, 2.0, 4.0), Vec3::new(0.0, 0.0, -1.0), 50.0);
+    let mut r = Renderer::new(gpu, &scene, settings, 96, 64, 16).unwrap();
+    r.render(&camera, None).unwrap();
+    r.read_ao().unwrap()
 }
 
 /// A smooth height field seen from straight above: every camera ray meets one surface.

@@ -7,18 +7,9 @@ use common::*;
 use glam::{UVec2, Vec2, Vec3};
 use obscura::estimators::gtao_vb::{pixel_pattern, sample};
 use obscura::reference::cpu_vao::GBufferImage;
-use obscura::settings::{AoSettings, GtaoVbSettings, SectorActivation};
+use obscura::settings::{GtaoVbSettings, SectorActivation};
 use obscura::{scene, Renderer, ScreenGeometry, Technique};
 use std::f32::consts::{FRAC_PI_2, PI};
-
-fn settings(technique: Technique, blur: bool) -> AoSettings {
-    let mut s = AoSettings {
-        technique,
-        ..AoSettings::default()
-    };
-    s.blur.enabled = blur;
-    s
-}
 
 /// The sectors between hemisphere positions a and b, as the WGSL's `sector_bits`.
 fn sector_bits(a: f32, b: f32, activation: SectorActivation) -> u32 {
@@ -119,16 +110,12 @@ fn cpu_gtao_vb(
 #[test]
 fn unoccluded_plane_is_one_everywhere() {
     let gpu = gpu();
-    let scene = quads("floor", &[floor(100.0)]);
-    let camera = camera(Vec3::new(0.0, 2.0, 4.0), Vec3::new(0.0, 0.0, -1.0), 50.0);
     for blur in [false, true] {
         for (slices, steps) in [(1, 2), (2, 2), (3, 3), (3, 5)] {
-            let mut s = settings(Technique::GtaoVb, blur);
+            let mut s = technique_settings(Technique::GtaoVb, blur);
             s.gtao_vb.slices = slices;
             s.gtao_vb.steps = steps;
-            let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
-            r.render(&camera, None).unwrap();
-            let ao = r.read_ao().unwrap();
+            let ao = tilted_floor_ao(&gpu, &s);
             let min = ao.iter().copied().fold(f32::MAX, f32::min);
             assert!(
                 min > 1.0 - 1e-3,
@@ -144,7 +131,7 @@ fn gpu_matches_the_cpu_implementation() {
     for name in ["stairs", "colonnade"] {
         let scene = scene::builtin(name).unwrap();
         for activation in [SectorActivation::Ceil, SectorActivation::Round] {
-            let mut s = settings(Technique::GtaoVb, false);
+            let mut s = technique_settings(Technique::GtaoVb, false);
             s.gtao_vb.activation = activation;
             s.gtao_vb.slices = 3;
             s.gtao_vb.steps = 3;
@@ -197,7 +184,7 @@ fn closer_to_the_hemisphere_ground_truth_than_no_occlusion() {
     let gpu = gpu();
     for name in ["stairs", "colonnade", "grass", "tower"] {
         let scene = scene::builtin(name).unwrap();
-        let s = settings(Technique::GtaoVb, true);
+        let s = technique_settings(Technique::GtaoVb, true);
         let (w, h) = (128, 80);
         let mut r = Renderer::new(&gpu, &scene, &s, w, h, 16).unwrap();
         r.render(&scene.cameras[0].camera, None).unwrap();

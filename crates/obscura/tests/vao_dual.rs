@@ -6,16 +6,7 @@ use glam::Vec3;
 use obscura::bvh::Bvh;
 use obscura::metrics::{mse, Image};
 use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
-use obscura::{scene, AoSettings, Renderer, Technique};
-
-fn settings(technique: Technique) -> AoSettings {
-    let mut s = AoSettings {
-        technique,
-        ..Default::default()
-    };
-    s.blur.enabled = false;
-    s
-}
+use obscura::{scene, Renderer, Technique};
 
 #[test]
 fn depth_peeling_recovers_the_second_layer() {
@@ -31,7 +22,15 @@ fn depth_peeling_recovers_the_second_layer() {
     };
     let scene = quads("layers", &[quad(5.0, -3.0), quad(1.0, -2.0)]);
     let gpu = gpu();
-    let mut r = Renderer::new(&gpu, &scene, &settings(Technique::VaoDual), 64, 64, 0).unwrap();
+    let mut r = Renderer::new(
+        &gpu,
+        &scene,
+        &technique_settings(Technique::VaoDual, false),
+        64,
+        64,
+        0,
+    )
+    .unwrap();
     r.render(&camera(Vec3::ZERO, Vec3::NEG_Z, 90.0), None)
         .unwrap();
     let first = r.read_gbuffer().unwrap().depth;
@@ -59,7 +58,15 @@ fn vao_dual_equals_vao_with_one_layer() {
     let mut cam = camera(Vec3::new(0.0, 7.0, 0.0), Vec3::ZERO, 30.0);
     cam.up = Vec3::NEG_Z;
     let render = |technique| {
-        let mut r = Renderer::new(&gpu, &scene, &settings(technique), 96, 64, 32).unwrap();
+        let mut r = Renderer::new(
+            &gpu,
+            &scene,
+            &technique_settings(technique, false),
+            96,
+            64,
+            32,
+        )
+        .unwrap();
         r.render(&cam, None).unwrap();
         r.read_ao().unwrap()
     };
@@ -82,7 +89,15 @@ fn vao_dual_is_closer_to_the_ground_truth_than_vao() {
         let mut errors = Vec::new();
         let mut reference = Vec::new();
         for technique in [Technique::Vao, Technique::VaoDual] {
-            let mut r = Renderer::new(&gpu, &scene, &settings(technique), w, h, 16).unwrap();
+            let mut r = Renderer::new(
+                &gpu,
+                &scene,
+                &technique_settings(technique, false),
+                w,
+                h,
+                16,
+            )
+            .unwrap();
             r.render(&scene.cameras[0].camera, None).unwrap();
             if reference.is_empty() {
                 reference = render_reference(

@@ -93,8 +93,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.step_px = select(0.0, base.radius_px / f32(params.steps), base.radius_px >= 1.0);
     for (var j = 0u; j < params.slices; j++) {
         let k = params.samples[j * 2u * params.steps];
-        let r = p.rotation;
-        let d = vec3<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x, 0.0);
+        let d = vec3<f32>(rotate_by(k.xy, p.rotation), 0.0);
         let tangent = normalize(d - p.v * dot(d, p.v));
         let slice_normal = cross(tangent, p.v);
         let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
@@ -116,8 +115,7 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
     let k = params.samples[i];
-    let r = p.rotation;
-    let dir = vec2<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x);
+    let dir = rotate_by(k.xy, p.rotation);
     s.slice = i / (2u * params.steps);
     // View y is up, framebuffer y down.
     s.px = vec2<f32>(p.pixel) + 0.5 + k.z * vec2<f32>(dir.x, -dir.y) * ((p.jitter + 1.0 + k.w) * p.step_px);

@@ -97,8 +97,7 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
     let k = params.samples[i];
-    let r = p.rotation;
-    let dir = vec2<f32>(k.x * r.x - k.y * r.y, k.x * r.y + k.y * r.x);
+    let dir = rotate_by(k.xy, p.rotation);
     let distance = p.start_px + k.z * p.step_px;
     // Screen y runs down, view y up: the direction is a screen direction either way.
     s.px = vec2<f32>(p.pixel) + 0.5 + dir * distance;

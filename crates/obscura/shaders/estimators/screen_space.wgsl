@@ -1,7 +1,6 @@
 // What the screen-space estimators (HBAO+, GTAO-VB) start a pixel from: the shading point and its
-// normal from the frame, the pixel's entry of the 4×4 rotation/jitter pattern
-// (src/estimators/mod.rs `bayer_pattern`) and the world radius in framebuffer pixels. Put in front
-// of such an estimator (its Rust module concatenates the two).
+// normal from the frame, and the world radius in framebuffer pixels. Put in front of such an
+// estimator (its Rust module concatenates the two).
 
 struct ScreenPixel {
     pos: vec3<f32>,
@@ -11,11 +10,6 @@ struct ScreenPixel {
     valid: bool,
     // Pixels per `radius` world units at the point's depth (square pixels).
     radius_px: f32,
-}
-
-// Index of visible pixel `id` in a 4×4 pattern table.
-fn pattern_index(id: vec2<u32>) -> u32 {
-    return (id.x % 4u) + 4u * (id.y % 4u);
 }
 
 fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {

@@ -130,7 +130,7 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     p.frame.inv_n_z = 1.0 / n_z;
     p.frame.pixel = pixel;
     p.n_z_positive = n_local.z >= 0.0;
-    p.rotation = params.rotations[(id.x % 4u) + 4u * (id.y % 4u)].xy;
+    p.rotation = params.rotations[pattern_index(id)].xy;
     return p;
 }
 
@@ -143,8 +143,7 @@ struct VaoSample {
 
 fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     let k = params.kernel[i];
-    let rot = p.rotation;
-    let dir = vec2<f32>(k.x * rot.x - k.y * rot.y, k.x * rot.y + k.y * rot.x);
+    let dir = rotate_by(k.xy, p.rotation);
     let r = params.radius;
     var s: VaoSample;
     s.column.d = dir * (k.z * r);

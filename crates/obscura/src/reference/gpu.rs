@@ -45,12 +45,8 @@ pub fn render_reference_gpu(
             ..Default::default()
         },
     );
-    let mut parts = vec![
-        shaders::VIEW,
-        shaders::BASIS,
-        shaders::FRAME,
-        estimator.wgsl,
-    ];
+    let mut parts = crate::schedules::ESTIMATOR_PRELUDE.to_vec();
+    parts.push(estimator.wgsl);
     parts.extend(column_rays::trace_wgsl());
     parts.extend([
         shaders::SOURCE_ALL_LAYERS,

@@ -44,16 +44,19 @@ pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
     }
 }
 
+/// What every estimator is composed after: the shared helpers it may call and the frame.
+pub(crate) const ESTIMATOR_PRELUDE: [&str; 4] = [
+    shaders::VIEW,
+    shaders::BASIS,
+    shaders::PATTERN,
+    shaders::FRAME,
+];
+
 /// The whole WGSL of an AO pipeline: binding names, shared helpers, frame, estimator, source,
 /// schedule.
 pub(crate) fn compose(estimator: &str, source: &str, schedule: &[&str]) -> String {
-    let mut parts = vec![
-        shaders::VIEW,
-        shaders::BASIS,
-        shaders::FRAME,
-        estimator,
-        source,
-    ];
+    let mut parts = ESTIMATOR_PRELUDE.to_vec();
+    parts.extend([estimator, source]);
     parts.extend_from_slice(schedule);
     shaders::compose(&parts)
 }
