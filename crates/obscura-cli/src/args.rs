@@ -4,7 +4,7 @@ use anyhow::{anyhow, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
-use obscura::scene::{self, Camera, Scene};
+use obscura::scene::{self, Camera, Scene, Sidedness};
 use obscura::settings::{
     AoSettings, Normalization, Preset, SdMask, SectorActivation, SettingsError,
 };
@@ -82,11 +82,28 @@ pub struct SceneArgs {
     /// Vertical field of view of the visible image in degrees (default: the camera's, or 60).
     #[arg(long, allow_hyphen_values = true)]
     pub fov: Option<f32>,
+    /// Count both sides of every triangle (G-buffer, stochastic depth map and rays alike). The
+    /// default keeps what the file says: glTF's per-material doubleSided; OBJ is double-sided.
+    #[arg(long, conflicts_with = "cull_back_faces")]
+    pub double_sided: bool,
+    /// Cull back faces of every material that is not alpha-tested, whatever the file says.
+    #[arg(long)]
+    pub cull_back_faces: bool,
 }
 
 impl SceneArgs {
     pub fn load(&self) -> Result<Scene> {
-        Ok(scene::load(&self.scene)?)
+        let mut scene = scene::load(&self.scene)?;
+        scene.set_sidedness(self.sidedness());
+        Ok(scene)
+    }
+
+    fn sidedness(&self) -> Sidedness {
+        match (self.double_sided, self.cull_back_faces) {
+            (true, _) => Sidedness::DoubleSided,
+            (_, true) => Sidedness::CullBackFaces,
+            _ => Sidedness::AsAuthored,
+        }
     }
 
     /// The name reports use for the camera these options describe.

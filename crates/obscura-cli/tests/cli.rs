@@ -1117,3 +1117,49 @@ fn the_malformed_input_corpus_gives_clean_outcomes() {
         }
     }
 }
+
+#[test]
+fn obj_is_double_sided_unless_back_faces_are_culled() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A floor and, above it, a ceiling whose front faces up: the camera below sees its back face.
+    let obj = write(
+        d,
+        "open.obj",
+        b"v -20 0 20\nv 20 0 20\nv 20 0 -20\nv -20 0 -20\n\
+          v -5 0.5 -5\nv -5 0.5 3\nv 5 0.5 3\nv 5 0.5 -5\n\
+          f 1 2 3 4\nf 5 6 7 8\n",
+    );
+    let scene = ["--scene", obj.to_str().unwrap()];
+    let view = ["--eye", "0,0.3,2", "--target", "0,0,-1"];
+    let args = |extra: &[&'static str]| -> Vec<&str> {
+        let mut a = scene.to_vec();
+        a.extend(view);
+        a.extend(extra);
+        a
+    };
+    let default = render_grey(d, "default.png", &args(&[]));
+    let double = render_grey(d, "double.png", &args(&["--double-sided"]));
+    let culled = render_grey(d, "culled.png", &args(&["--cull-back-faces"]));
+    assert_eq!(default, double, "OBJ counts both sides by default");
+    let mean = |g: &[u8]| g.iter().map(|&v| f64::from(v)).sum::<f64>() / g.len() as f64;
+    assert!(
+        mean(&default) + 40.0 < mean(&culled),
+        "the back face darkens the floor: {} vs culled {}",
+        mean(&default),
+        mean(&culled)
+    );
+    let both = obscura(&[
+        "render",
+        "--double-sided",
+        "--cull-back-faces",
+        "--out",
+        d.join("x.png").to_str().unwrap(),
+    ]);
+    assert_eq!(both.status.code(), Some(2), "{}", stderr(&both));
+    assert!(
+        stderr(&both).contains("cannot be used with"),
+        "{}",
+        stderr(&both)
+    );
+}

@@ -34,7 +34,6 @@ pub struct CompareArgs {
 
 /// Everything `compare` needs about one view, also used by `demo`.
 pub struct Comparison<'a> {
-    pub scene_spec: &'a str,
     pub scene: &'a Scene,
     pub camera_name: &'a str,
     pub camera: obscura::scene::Camera,
@@ -83,7 +82,6 @@ pub fn compare(
     );
     let mut reference_image = compute_or_load(
         reference.tracer(Some(gpu)),
-        c.scene_spec,
         c.scene,
         view,
         &reference_settings,
@@ -153,7 +151,6 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     let camera_name = args.scene.camera_name(&scene);
     let gpu = Gpu::new(options)?;
     let comparison = Comparison {
-        scene_spec: &args.scene.scene,
         scene: &scene,
         camera_name: &camera_name,
         camera,

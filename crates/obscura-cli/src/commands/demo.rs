@@ -57,7 +57,6 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
         std::fs::create_dir_all(&dir)
             .with_context(|| format!("cannot create '{}'", dir.display()))?;
         let comparison = Comparison {
-            scene_spec: name,
             scene: &scene,
             camera_name,
             camera,

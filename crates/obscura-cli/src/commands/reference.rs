@@ -104,14 +104,13 @@ pub struct ReferenceCmdArgs {
 /// the CPU; reports rays/s when computed.
 pub fn compute_or_load(
     gpu: Option<&obscura::Gpu>,
-    scene_spec: &str,
     scene: &Scene,
     view: FrameView,
     settings: &ReferenceSettings,
     use_cache: bool,
 ) -> Result<Vec<f32>> {
     let dir = cache::cache_dir();
-    let key = cache::key(scene_spec, &view, settings);
+    let key = cache::key(scene, &view, settings);
     let pixels = (view.width * view.height) as usize;
     if use_cache {
         if let Some(image) = cache::load(&dir, &key, pixels) {
@@ -198,7 +197,6 @@ pub fn run(gpu_options: &obscura::GpuOptions, args: &ReferenceCmdArgs) -> Result
     };
     let image = compute_or_load(
         args.reference.tracer(gpu.as_ref()),
-        &args.scene.scene,
         &scene,
         view,
         &settings,

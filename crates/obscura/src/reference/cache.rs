@@ -4,15 +4,16 @@
 //! Entries live in `$OBSCURA_CACHE_DIR`, else `$XDG_CACHE_HOME/obscura/references`, else
 //! `~/.cache/obscura/references`. An entry is one file: the full key text on the first line, then
 //! the image as little-endian f32. The key is checked on load, so a hash collision or a stale
-//! format is a miss, never a wrong image. Scene files are keyed by path, size and modification
-//! time, so an edited file is recomputed.
+//! format is a miss, never a wrong image. Scenes are keyed by their content
+//! ([`Scene::fingerprint`]), so an edited file, or one loaded with other options, is recomputed.
 
 use super::ground_truth::ReferenceSettings;
+use crate::scene::Scene;
 use crate::view::FrameView;
 use std::path::{Path, PathBuf};
 
 /// Bumped whenever the reference computation changes its results.
-const FORMAT: &str = "obscura-reference-v1";
+const FORMAT: &str = "obscura-reference-v2";
 
 pub fn cache_dir() -> PathBuf {
     if let Some(dir) = std::env::var_os("OBSCURA_CACHE_DIR") {
@@ -25,28 +26,11 @@ pub fn cache_dir() -> PathBuf {
     base.join("obscura").join("references")
 }
 
-/// Identifies a scene: a built-in name, or a file by canonical path, size and modification time.
-pub fn scene_identity(spec: &str) -> String {
-    let path = Path::new(spec);
-    match std::fs::metadata(path) {
-        Ok(meta) => {
-            let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-            let modified = meta
-                .modified()
-                .ok()
-                .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
-                .map_or(0, |d| d.as_nanos());
-            format!("file:{}:{}:{}", canonical.display(), meta.len(), modified)
-        }
-        Err(_) => format!("builtin:{spec}"),
-    }
-}
-
 /// The full key of a reference image.
-pub fn key(scene: &str, view: &FrameView, settings: &ReferenceSettings) -> String {
+pub fn key(scene: &Scene, view: &FrameView, settings: &ReferenceSettings) -> String {
     format!(
-        "{FORMAT}|{}|{:?}|{}x{}+{}|near {}|{:?}",
-        scene_identity(scene),
+        "{FORMAT}|scene {:016x}|{:?}|{}x{}+{}|near {}|{:?}",
+        scene.fingerprint(),
         view.camera,
         view.width,
         view.height,
@@ -56,15 +40,11 @@ pub fn key(scene: &str, view: &FrameView, settings: &ReferenceSettings) -> Strin
     )
 }
 
-/// FNV-1a, 64 bit: a file name for a key (collisions are caught by the stored key).
-fn fnv1a(text: &str) -> u64 {
-    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
 fn entry_path(dir: &Path, key: &str) -> PathBuf {
-    dir.join(format!("{:016x}.ref", fnv1a(key)))
+    dir.join(format!(
+        "{:016x}.ref",
+        crate::hash::Fnv1a::of(key.as_bytes())
+    ))
 }
 
 /// The cached image for `key` with `pixels` values, if present and intact.
@@ -114,7 +94,8 @@ mod tests {
         };
         let view = FrameView::new(camera, 4, 2, 1, 1e-3);
         let settings = ReferenceSettings::default();
-        let k = key("stairs", &view, &settings);
+        let stairs = crate::scene::builtin("stairs").unwrap();
+        let k = key(&stairs, &view, &settings);
         let image = [0.0, 0.25, 0.5, 0.75, 1.0, 0.125, 0.375, 0.625];
         assert!(load(&dir, &k, 8).is_none());
         store(&dir, &k, &image).unwrap();
@@ -124,8 +105,12 @@ mod tests {
             spp: 64,
             ..settings
         };
-        assert_ne!(key("stairs", &view, &other), k);
-        assert_ne!(key("colonnade", &view, &settings), k);
+        assert_ne!(key(&stairs, &view, &other), k);
+        let colonnade = crate::scene::builtin("colonnade").unwrap();
+        assert_ne!(key(&colonnade, &view, &settings), k);
+        let mut culled = stairs.clone();
+        culled.set_sidedness(crate::scene::Sidedness::CullBackFaces);
+        assert_ne!(key(&culled, &view, &settings), k, "other sides, other scene");
         assert!(load(&dir, &k, 9).is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -25,8 +25,28 @@ pub struct Material {
     /// Index into [`Scene::textures`] of the base-colour texture (its alpha drives `Mask`).
     pub base_color_texture: Option<u32>,
     pub alpha_mode: AlphaMode,
-    /// Back faces are kept (rasteriser: no culling; rays: back-face hits count).
+    /// Back faces are kept (rasteriser: no culling; rays: back-face hits count). glTF's
+    /// `doubleSided`; true for every OBJ material (OBJ has no culling flag); see [`Sidedness`] for
+    /// overriding it scene-wide.
     pub double_sided: bool,
+}
+
+/// Which faces of a scene count, for the G-buffer, the stochastic depth map and every ray alike.
+///
+/// Renderers that produce ground-truth AO (Blender Cycles among them) count both sides of every
+/// triangle; real-time engines cull back faces where a material says it may. An open mesh, a leaf
+/// or a wall seen from behind occludes only if its back faces count, so the default keeps what the
+/// file says: glTF's per-material `doubleSided`, and double-sided for OBJ, which has no such flag.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sidedness {
+    /// Each material as its file says (glTF `doubleSided`; OBJ double-sided).
+    #[default]
+    AsAuthored,
+    /// Every material double-sided.
+    DoubleSided,
+    /// Back faces culled on every material that is not alpha-tested (alpha-tested materials keep
+    /// them, as in the authors' code, seed-code-notes §1.6: a foliage card is seen from both sides).
+    CullBackFaces,
 }
 
 impl Default for Material {

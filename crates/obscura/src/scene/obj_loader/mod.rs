@@ -2,7 +2,9 @@
 //!
 //! A missing or broken `.mtl` only costs the colours: every triangle then gets the default
 //! material, with a warning. Texture `v` is flipped (v' = 1 − v) so that all uvs follow glTF,
-//! where (0,0) is the top-left of the image.
+//! where (0,0) is the top-left of the image. Every material is double-sided: OBJ has no culling
+//! flag, and renderers of ground-truth AO count both sides of a triangle
+//! ([`Sidedness`](super::Sidedness) overrides it).
 //!
 //! Face indices are pre-scanned before `tobj` sees them: `tobj` 4.0.5 computes
 //! `count + index` and `2 * index` without overflow checks, which panics in debug builds for
@@ -107,7 +109,7 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
             } else {
                 AlphaMode::Opaque
             },
-            double_sided: false,
+            double_sided: true,
         });
     }
     let default_material = scene.materials.len() as u32;
@@ -165,7 +167,10 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         }
     }
     if used_default {
-        scene.materials.push(Material::default());
+        scene.materials.push(Material {
+            double_sided: true,
+            ..Material::default()
+        });
     }
     Ok(scene)
 }

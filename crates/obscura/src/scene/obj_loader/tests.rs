@@ -66,6 +66,8 @@ fn quad_and_triangle_with_materials_and_texture() {
     assert_eq!((s.textures[0].width, s.textures[0].height), (3, 2));
     assert_eq!(&s.textures[0].rgba8[..4], &[1, 2, 3, 4]);
     assert_eq!(&s.triangle_materials, &[0, 0, 1]);
+    // OBJ has no culling flag: both sides count.
+    assert!(s.materials.iter().all(|m| m.double_sided));
 
     // Positions read as given (Y up); v flipped to the glTF convention.
     let tri = s.triangles[2].map(|i| s.positions[i as usize]);
@@ -101,6 +103,7 @@ fn missing_or_broken_mtl_and_texture_are_tolerated() {
     assert_eq!(s.triangle_count(), 3);
     assert_eq!(s.materials.len(), 1);
     assert_eq!(s.materials[0].name, "default");
+    assert!(s.materials[0].double_sided);
     assert!(s.triangle_materials.iter().all(|&m| m == 0));
 
     let garbage: Vec<u8> = (0..500u32).map(|i| (i * 7919 % 251) as u8).collect();
