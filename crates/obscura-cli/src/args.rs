@@ -4,7 +4,7 @@ use anyhow::{anyhow, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
-use obscura::scene::{self, Camera, Scene, Sidedness};
+use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{
     AoSettings, Normalization, Preset, SdMask, SectorActivation, SettingsError,
 };
@@ -89,12 +89,18 @@ pub struct SceneArgs {
     /// Cull back faces of every material that is not alpha-tested, whatever the file says.
     #[arg(long)]
     pub cull_back_faces: bool,
+    /// The normal AO is computed around, in the G-buffer and the reference alike: 'face' (the
+    /// triangle's, as the papers do) or 'shading' (the file's vertex normals interpolated, as
+    /// engines and offline renderers do; face normals where a mesh has none).
+    #[arg(long, default_value = "face", value_parser = PossibleValuesParser::new(["face", "shading"]).map(|s| s.parse::<Normals>().expect("a listed value")))]
+    pub normals: Normals,
 }
 
 impl SceneArgs {
     pub fn load(&self) -> Result<Scene> {
         let mut scene = scene::load(&self.scene)?;
         scene.set_sidedness(self.sidedness());
+        scene.set_normals(self.normals);
         Ok(scene)
     }
 

@@ -1163,3 +1163,46 @@ fn obj_is_double_sided_unless_back_faces_are_culled() {
         stderr(&both)
     );
 }
+
+#[test]
+fn normals_shading_uses_the_file_s_vertex_normals() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A floor whose vertex normals lean 60° towards +x, and the same floor without them.
+    let floor = "v -9 0 9\nv 9 0 9\nv 9 0 -9\nv -9 0 -9\n";
+    let with = write(
+        d,
+        "lean.obj",
+        format!("{floor}vn 0.866 0.5 0\nf 1//1 2//1 3//1 4//1\n").as_bytes(),
+    );
+    let without = write(d, "flat.obj", format!("{floor}f 1 2 3 4\n").as_bytes());
+    let view = ["--eye", "0,2,3", "--target", "0,0,0", "--technique", "vao"];
+    let render = |name: &str, scene: &Path, extra: &[&str]| {
+        let mut a = vec!["--scene", scene.to_str().unwrap()];
+        a.extend(view);
+        a.extend(extra);
+        render_grey(d, name, &a)
+    };
+    let flat = render("flat.png", &without, &[]);
+    assert_eq!(
+        render("face.png", &with, &[]),
+        flat,
+        "face normals by default"
+    );
+    assert_eq!(
+        render("flat-shading.png", &without, &["--normals", "shading"]),
+        flat,
+        "no vertex normals: face normals"
+    );
+    let shading = render("shading.png", &with, &["--normals", "shading"]);
+    assert_ne!(shading, flat, "the leaning normals change the AO");
+    let bad = obscura(&[
+        "render",
+        "--normals",
+        "smooth",
+        "--out",
+        d.join("x.png").to_str().unwrap(),
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("face, shading"), "{}", stderr(&bad));
+}

@@ -1,8 +1,10 @@
-// G-buffer (raster): linear view depth and camera-facing geometric face normals in view space for
-// the guard-banded framebuffer, and base colour on request. Vertices are pulled from storage buffers so the
-// face normal comes from the triangle itself (the authors' AO uses face normals, seed-code-notes
-// §1.1) and the same buffers serve ray tracing. Alpha test: `material_passes_alpha`
-// (common/material.wgsl), the lookup the ray tracer and the CPU use too.
+// G-buffer (raster): linear view depth and camera-facing normals in view space for the
+// guard-banded framebuffer, and base colour on request. Vertices are pulled from storage buffers so
+// the face normal comes from the triangle itself (the authors' AO uses face normals,
+// seed-code-notes §1.1) and the same buffers serve ray tracing. With SHADING_NORMALS the vertex
+// normals are interpolated instead (common/vertex_normal.wgsl), turned to the face normal's side.
+// Alpha test: `material_passes_alpha` (common/material.wgsl), the lookup the ray tracer and the
+// CPU use too.
 
 struct Camera {
     view: mat4x4<f32>,
@@ -12,10 +14,15 @@ struct Camera {
 
 @group(0) @binding(0) var<uniform> camera: Camera;
 @group(0) @binding(1) var<storage, read> positions: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read> uvs: array<vec2<f32>>;
+// Per vertex (u, v, octahedral normal).
+@group(0) @binding(2) var<storage, read> attributes: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> triangles: array<vec4<u32>>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var textures: texture_2d_array<f32>;
+
+// Interpolate vertex normals (the scene's `Normals::Shading`); off: face normals, and the vertex
+// shader reads no normals.
+override SHADING_NORMALS: bool = false;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -25,6 +32,8 @@ struct VertexOut {
     @location(3) @interpolate(flat) material: u32,
     // Index of the triangle in `triangles` (the stochastic depth map hashes it).
     @location(4) @interpolate(flat) triangle: u32,
+    // The vertex normal in view space; zero without SHADING_NORMALS or where a corner lacks one.
+    @location(5) shading: vec3<f32>,
 }
 
 @vertex
@@ -40,10 +49,21 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
     var out: VertexOut;
     out.clip = camera.projection * vec4<f32>(view_pos, 1.0);
     out.view_pos = view_pos;
-    out.uv = uvs[index];
+    out.uv = attributes[index].xy;
     out.normal = (camera.view * vec4<f32>(cross(p1 - p0, p2 - p0), 0.0)).xyz;
     out.material = tri.w;
     out.triangle = vertex / 3u;
+    out.shading = vec3<f32>(0.0);
+    if (SHADING_NORMALS) {
+        let n0 = decode_vertex_normal(attributes[tri.x].zw);
+        let n1 = decode_vertex_normal(attributes[tri.y].zw);
+        let n2 = decode_vertex_normal(attributes[tri.z].zw);
+        // A triangle with a corner lacking a normal keeps its face normal (Scene::surface_normal).
+        if (all(vec3<f32>(dot(n0, n0), dot(n1, n1), dot(n2, n2)) > vec3<f32>(0.0))) {
+            let n = select(select(n2, n1, corner == 1u), n0, corner == 0u);
+            out.shading = (camera.view * vec4<f32>(n, 0.0)).xyz;
+        }
+    }
     return out;
 }
 
@@ -63,6 +83,9 @@ fn gbuffer_out(in: VertexOut) -> GBufferOut {
     // Face the camera (seed-code-notes §1.1: flipped when dot(posV, n) > 0).
     if (dot(in.view_pos, n) > 0.0) {
         n = -n;
+    }
+    if (SHADING_NORMALS) {
+        n = oriented_shading_normal(in.shading, n);
     }
     var out: GBufferOut;
     out.depth = -in.view_pos.z;

@@ -6,7 +6,7 @@
 // - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
 //   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
 //   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
-// Needs common/hash.wgsl in front. Its own parameters and output take the schedule group.
+// Needs common/hash.wgsl and common/vertex_normal.wgsl in front. Its own parameters and output take the schedule group.
 
 struct ReferenceParams {
     model: u32,
@@ -55,6 +55,14 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     n = select(vec3<f32>(0.0), normalize(n), length(n) > 0.0);
     if (dot(n, dir) > 0.0) {
         n = -n;
+    }
+    // Shading normals where the scene uses them (the attributes hold none otherwise): the rule of
+    // Scene::surface_normal.
+    let n0 = decode_vertex_normal(bvh_attributes[tri.x].zw);
+    let n1 = decode_vertex_normal(bvh_attributes[tri.y].zw);
+    let n2 = decode_vertex_normal(bvh_attributes[tri.z].zw);
+    if (length(n) > 0.0 && all(vec3<f32>(dot(n0, n0), dot(n1, n1), dot(n2, n2)) > vec3<f32>(0.0))) {
+        n = oriented_shading_normal(n0 * (1.0 - hit.u - hit.v) + n1 * hit.u + n2 * hit.v, n);
     }
     if (reference.model == 0u) {
         let to_view = transpose(mat3x3<f32>(

@@ -10,6 +10,7 @@ pub const PATTERN: &str = include_str!("../shaders/common/pattern.wgsl");
 pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
 pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
+pub const VERTEX_NORMAL: &str = include_str!("../shaders/common/vertex_normal.wgsl");
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
 

@@ -21,7 +21,8 @@ struct BvhNode {
 // Leaf order: (vertex 0, vertex 1, vertex 2, material).
 @group(BVH_GROUP) @binding(BVH_BINDING + 1u) var<storage, read> bvh_triangles: array<vec4<u32>>;
 @group(BVH_GROUP) @binding(BVH_BINDING + 2u) var<storage, read> bvh_positions: array<vec4<f32>>;
-@group(BVH_GROUP) @binding(BVH_BINDING + 3u) var<storage, read> bvh_uvs: array<vec2<f32>>;
+// Per vertex (u, v, octahedral normal): common/vertex_normal.wgsl.
+@group(BVH_GROUP) @binding(BVH_BINDING + 3u) var<storage, read> bvh_attributes: array<vec4<f32>>;
 @group(BVH_GROUP) @binding(BVH_BINDING + 4u) var<storage, read> bvh_materials: array<Material>;
 @group(BVH_GROUP) @binding(BVH_BINDING + 5u) var bvh_textures: texture_2d_array<f32>;
 
@@ -172,7 +173,8 @@ fn bvh_passes_rules(hit: BvhHit) -> bool {
     if (m.alpha_cutoff < 0.0) {
         return true;
     }
-    let uv = bvh_uvs[tri.x] * (1.0 - hit.u - hit.v) + bvh_uvs[tri.y] * hit.u + bvh_uvs[tri.z] * hit.v;
+    let uv = bvh_attributes[tri.x].xy * (1.0 - hit.u - hit.v) + bvh_attributes[tri.y].xy * hit.u
+        + bvh_attributes[tri.z].xy * hit.v;
     return material_passes_alpha(m, bvh_textures, uv);
 }
 

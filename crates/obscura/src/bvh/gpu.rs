@@ -1,6 +1,6 @@
 //! The BVH on the GPU: the flat nodes of [`Bvh::nodes`] and the triangles in leaf order, bound in
 //! every ray-tracing pass (`shaders/common/bvh.wgsl`, six bindings from the includer's
-//! `BVH_BINDING` in its `BVH_GROUP`) next to the scene's positions, uvs, materials and textures
+//! `BVH_BINDING` in its `BVH_GROUP`) next to the scene's positions, vertex attributes (uv, normal), materials and textures
 //! from [`GpuScene`].
 
 use super::Bvh;
@@ -83,7 +83,7 @@ impl GpuBvh {
         ]
     }
 
-    /// The resources of those bindings: nodes and triangles, then the scene's positions, uvs,
+    /// The resources of those bindings: nodes and triangles, then the scene's positions, vertex attributes,
     /// materials and alpha-mask atlas.
     pub fn resources<'a>(
         &'a self,
@@ -94,7 +94,7 @@ impl GpuBvh {
             (first, self.nodes.as_entire_binding()),
             (first + 1, self.triangles.as_entire_binding()),
             (first + 2, scene.positions.as_entire_binding()),
-            (first + 3, scene.uvs.as_entire_binding()),
+            (first + 3, scene.attributes.as_entire_binding()),
             (first + 4, scene.materials.as_entire_binding()),
             (
                 first + 5,

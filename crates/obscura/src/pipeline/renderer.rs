@@ -68,7 +68,13 @@ impl Renderer {
         let near = crate::view::near_plane(scene);
         let needs = settings.technique.needs();
         let peel = needs.second_layer.then_some(settings.peel_separation);
-        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel);
+        let gbuffer = GBuffer::new(
+            &gpu.device,
+            fw as u32,
+            fh as u32,
+            peel,
+            gpu_scene.shading_normals,
+        );
         let bvh = needs
             .bvh
             .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));

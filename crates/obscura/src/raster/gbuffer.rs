@@ -60,12 +60,14 @@ pub struct GBuffer {
 impl GBuffer {
     /// Targets for a framebuffer of `width`×`height` (guard band included). With
     /// `peel_separation`, a second depth layer is peeled too: the nearest surface more than that
-    /// many world units behind the first.
+    /// many world units behind the first. `shading_normals`: the normals target interpolates the
+    /// scene's vertex normals ([`GpuScene::shading_normals`]) instead of taking face normals.
     pub fn new(
         device: &wgpu::Device,
         width: u32,
         height: u32,
         peel_separation: Option<f32>,
+        shading_normals: bool,
     ) -> Self {
         let target = |label, format| {
             crate::gpu::texture_2d(
@@ -79,8 +81,10 @@ impl GBuffer {
                     | wgpu::TextureUsages::COPY_SRC,
             )
         };
-        let source =
-            shaders::with_common(&[shaders::MATERIAL, shaders::GBUFFER], shaders::DEPTH_PEEL);
+        let source = shaders::with_common(
+            &[shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER],
+            shaders::DEPTH_PEEL,
+        );
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -93,6 +97,7 @@ impl GBuffer {
             bias: Default::default(),
         };
         let scene_layout = scene_layout(device);
+        let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let pipeline = |cull_mode,
                         fragment: &str,
                         targets: &[Option<wgpu::ColorTargetState>],
@@ -105,6 +110,12 @@ impl GBuffer {
                 multisample: Default::default(),
                 fragment,
                 targets,
+                // Only the G-buffer's own fragments write normals.
+                constants: if fragment.starts_with("fs_peel") || fragment == "fs_albedo" {
+                    &[]
+                } else {
+                    &normal_constants
+                },
             }
             .create(device)
         };
@@ -321,7 +332,7 @@ pub(crate) fn scene_resources<'a>(
     let mut r = vec![
         camera.as_entire_binding(),
         scene.positions.as_entire_binding(),
-        scene.uvs.as_entire_binding(),
+        scene.attributes.as_entire_binding(),
         scene.triangles.as_entire_binding(),
         scene.materials.as_entire_binding(),
         wgpu::BindingResource::TextureView(&scene.textures),
@@ -392,6 +403,8 @@ pub(crate) struct ScenePipeline<'a> {
     pub multisample: wgpu::MultisampleState,
     pub fragment: &'a str,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
+    /// Pipeline-overridable constants of both stages (e.g. gbuffer.wgsl's `SHADING_NORMALS`).
+    pub constants: &'a [(&'a str, f64)],
 }
 
 impl ScenePipeline<'_> {
@@ -402,7 +415,10 @@ impl ScenePipeline<'_> {
             vertex: wgpu::VertexState {
                 module: self.module,
                 entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: self.constants,
+                    ..Default::default()
+                },
                 buffers: &[],
             },
             primitive: wgpu::PrimitiveState {
@@ -414,7 +430,10 @@ impl ScenePipeline<'_> {
             fragment: Some(wgpu::FragmentState {
                 module: self.module,
                 entry_point: Some(self.fragment),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: self.constants,
+                    ..Default::default()
+                },
                 targets: self.targets,
             }),
             multiview_mask: None,

@@ -4,6 +4,7 @@
 
 use crate::gpu::GpuError;
 use crate::scene::{AlphaMode, Scene};
+use glam::{Vec2, Vec3};
 use wgpu::util::DeviceExt;
 
 /// GPU mirror of `Material` in `shaders/gbuffer.wgsl`.
@@ -24,7 +25,11 @@ struct GpuMaterial {
 #[derive(Clone)]
 pub struct GpuScene {
     pub positions: wgpu::Buffer,
-    pub uvs: wgpu::Buffer,
+    /// Per vertex `(u, v, normal)`, the normal octahedral-encoded ([`encode_normal`]); "none"
+    /// everywhere unless the scene [uses shading normals](Scene::uses_shading_normals).
+    pub attributes: wgpu::Buffer,
+    /// The scene uses its vertex normals (the G-buffer interpolates them).
+    pub shading_normals: bool,
     /// `(i0, i1, i2, material)` per triangle; back-face-culled triangles come first.
     pub triangles: wgpu::Buffer,
     pub materials: wgpu::Buffer,
@@ -46,7 +51,16 @@ impl GpuScene {
             .iter()
             .map(|p| p.extend(1.0).to_array())
             .collect();
-        let uvs: Vec<[f32; 2]> = scene.uvs.iter().map(|u| u.to_array()).collect();
+        let shading_normals = scene.uses_shading_normals();
+        let attributes: Vec<[f32; 4]> = (0..scene.positions.len())
+            .map(|i| {
+                let normal = match shading_normals {
+                    true => encode_normal(scene.normals[i]),
+                    false => NO_NORMAL,
+                };
+                scene.uvs[i].extend(normal.x).extend(normal.y).to_array()
+            })
+            .collect();
         // Stable partition: culled triangles first, so each group is one contiguous draw.
         let keeps_back =
             |t: usize| scene.materials[scene.triangle_materials[t] as usize].keeps_back_faces();
@@ -156,12 +170,70 @@ impl GpuScene {
         };
         Ok(Self {
             positions: storage("positions", bytemuck::cast_slice(&positions)),
-            uvs: storage("uvs", bytemuck::cast_slice(&uvs)),
+            attributes: storage("vertex attributes", bytemuck::cast_slice(&attributes)),
+            shading_normals,
             triangles: storage("triangles", bytemuck::cast_slice(&triangles)),
             materials: storage("materials", bytemuck::cast_slice(&materials)),
             textures,
             culled_count,
             triangle_count: triangles.len() as u32,
         })
+    }
+}
+
+/// The encoding of "no normal at this vertex" (shaders/common/vertex_normal.wgsl: x > 1.5).
+const NO_NORMAL: Vec2 = Vec2::new(2.0, 2.0);
+
+/// Octahedral encoding of a unit vector (Cigolle et al., JCGT 3(2) 2014, §3.2): two floats in
+/// [−1, 1], decoded by `decode_vertex_normal` in shaders/common/vertex_normal.wgsl; the zero
+/// vector ("no normal") becomes [`NO_NORMAL`].
+pub(crate) fn encode_normal(n: Vec3) -> Vec2 {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    if l1.is_nan() || l1 <= 0.0 {
+        return NO_NORMAL;
+    }
+    let p = Vec2::new(n.x, n.y) / l1;
+    if n.z >= 0.0 {
+        return p;
+    }
+    // The lower half folds over the diagonals; a zero coordinate counts as positive.
+    let sign = Vec2::new(1f32.copysign(p.x), 1f32.copysign(p.y));
+    (Vec2::ONE - Vec2::new(p.y.abs(), p.x.abs())) * sign
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The WGSL decoder, written again here to check the encoding round-trips.
+    fn decode(e: Vec2) -> Vec3 {
+        let mut n = Vec3::new(e.x, e.y, 1.0 - e.x.abs() - e.y.abs());
+        let t = (-n.z).max(0.0);
+        n.x += if n.x >= 0.0 { -t } else { t };
+        n.y += if n.y >= 0.0 { -t } else { t };
+        n.normalize()
+    }
+
+    #[test]
+    fn octahedral_normals_round_trip() {
+        let mut worst = 0.0f32;
+        for i in 0..2000 {
+            // A spread over the sphere, poles and axes included.
+            let z = 1.0 - 2.0 * i as f32 / 1999.0;
+            let phi = i as f32 * 2.399_963;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            for n in [
+                Vec3::new(r * phi.cos(), r * phi.sin(), z),
+                Vec3::X,
+                Vec3::NEG_Y,
+                Vec3::NEG_Z,
+            ] {
+                let e = encode_normal(n);
+                assert!(e.abs().max_element() <= 1.0, "{n} -> {e}");
+                worst = worst.max(decode(e).angle_between(n));
+            }
+        }
+        assert!(worst < 1e-3, "worst round-trip error {worst} rad");
+        assert_eq!(encode_normal(Vec3::ZERO), NO_NORMAL);
     }
 }

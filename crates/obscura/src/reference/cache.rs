@@ -110,7 +110,11 @@ mod tests {
         assert_ne!(key(&colonnade, &view, &settings), k);
         let mut culled = stairs.clone();
         culled.set_sidedness(crate::scene::Sidedness::CullBackFaces);
-        assert_ne!(key(&culled, &view, &settings), k, "other sides, other scene");
+        assert_ne!(
+            key(&culled, &view, &settings),
+            k,
+            "other sides, other scene"
+        );
         assert!(load(&dir, &k, 9).is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -52,6 +52,7 @@ pub fn render_reference_gpu(
         shaders::SOURCE_ALL_LAYERS,
         shaders::SCHEDULE_SINGLE,
         shaders::HASH,
+        shaders::VERTEX_NORMAL,
         shaders::REFERENCE,
     ]);
     let frame_layout = bindings::layout(device, "reference view", &[entry::uniform(FRAME_VIEW)]);

@@ -123,7 +123,8 @@ pub struct Surface {
     /// Linear view depth (= the ray parameter for camera rays built by [`Tracer::camera_ray`]).
     pub depth: f32,
     pub world: Vec3,
-    /// Geometric face normal facing the ray origin, world space.
+    /// The normal AO is computed around ([`Scene::surface_normal`]: the face normal, or the shading
+    /// normal where the scene uses them) on the ray origin's side, world space.
     pub normal: Vec3,
 }
 
@@ -152,12 +153,9 @@ impl<'a> Tracer<'a> {
         let hit = self
             .bvh
             .closest_hit(self.scene, ray, self.view.near, f32::INFINITY)?;
-        let [a, b, c] =
-            self.scene.triangles[hit.triangle as usize].map(|i| self.scene.positions[i as usize]);
-        let mut normal = (b - a).cross(c - a).normalize_or_zero();
-        if normal.dot(ray.dir) > 0.0 {
-            normal = -normal;
-        }
+        let normal = self
+            .scene
+            .surface_normal(hit.triangle, hit.u, hit.v, -ray.dir);
         Some(Surface {
             depth: hit.t,
             world: ray.at(hit.t),

@@ -37,7 +37,7 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let scene = match ext.as_deref() {
+    let mut scene = match ext.as_deref() {
         Some("gltf") | Some("glb") => gltf_loader::load(path)?,
         Some("obj") => obj_loader::load(path)?,
         // No extension and no such file: most likely a mistyped built-in name.
@@ -52,6 +52,10 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
             })
         }
     };
+    // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
+    if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
+        scene.normals.clear();
+    }
     scene.validate()?;
     Ok(scene)
 }

@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 
-use super::{AlphaMode, Bounds, Camera, Scene, SceneError, Sidedness};
+use super::{AlphaMode, Bounds, Camera, Normals, Scene, SceneError, Sidedness};
 
 impl Scene {
     /// Checks everything downstream code relies on when it indexes the scene's arrays.
@@ -35,6 +35,19 @@ impl Scene {
                 "it has {} texture coordinates for {} vertices (must be one per vertex)",
                 self.uvs.len(),
                 self.positions.len()
+            ));
+        }
+        if !self.normals.is_empty() && self.normals.len() != self.positions.len() {
+            return fail(format!(
+                "it has {} vertex normals for {} positions (give one per position, or none)",
+                self.normals.len(),
+                self.positions.len()
+            ));
+        }
+        if let Some(i) = self.normals.iter().position(|n| !n.is_finite()) {
+            return fail(format!(
+                "vertex normal {i} is not finite ({}): use a zero vector for 'no normal'",
+                self.normals[i]
             ));
         }
         if let Some(i) = self.uvs.iter().position(|uv| !uv.is_finite()) {
@@ -184,8 +197,47 @@ impl Scene {
         }
     }
 
+    /// The normal AO is computed around at barycentric (`u`, `v`) of `triangle`, on the side
+    /// `toward` points to (e.g. the direction back to the camera): the face normal, or with
+    /// [`Normals::Shading`] the interpolated vertex normals, turned to the face normal's side
+    /// (a double-sided surface seen from behind). Zero for a zero-area triangle.
+    pub fn surface_normal(&self, triangle: u32, u: f32, v: f32, toward: Vec3) -> Vec3 {
+        let corners = self.triangles[triangle as usize];
+        let [a, b, c] = corners.map(|i| self.positions[i as usize]);
+        let mut face = (b - a).cross(c - a).normalize_or_zero();
+        if face.dot(toward) < 0.0 {
+            face = -face;
+        }
+        if self.normal_mode == Normals::Face || self.normals.is_empty() {
+            return face;
+        }
+        let [n0, n1, n2] = corners.map(|i| self.normals[i as usize]);
+        if [n0, n1, n2].contains(&Vec3::ZERO) {
+            return face;
+        }
+        let shading = (n0 * (1.0 - u - v) + n1 * u + n2 * v).normalize_or_zero();
+        if shading == Vec3::ZERO || face == Vec3::ZERO {
+            face
+        } else if shading.dot(face) < 0.0 {
+            -shading
+        } else {
+            shading
+        }
+    }
+
+    /// Chooses which normal AO is computed around ([`Normals`]).
+    pub fn set_normals(&mut self, normals: Normals) {
+        self.normal_mode = normals;
+    }
+
+    /// Whether rendering uses vertex normals: [`Normals::Shading`] and the scene has some.
+    pub fn uses_shading_normals(&self) -> bool {
+        self.normal_mode == Normals::Shading && !self.normals.is_empty()
+    }
+
     /// A 64-bit fingerprint of everything that decides AO: positions, uvs, triangles, their
-    /// materials (colour, alpha mode, sides) and texture texels; names and cameras are left out.
+    /// materials (colour, alpha mode, sides), texture texels and, where used, the vertex normals;
+    /// names and cameras are left out.
     /// Keys the reference cache, so a scene loaded with other options (e.g. [`Sidedness`]) or an
     /// edited file is a different scene.
     pub fn fingerprint(&self) -> u64 {
@@ -195,6 +247,10 @@ impl Scene {
         hash.bytes(bytemuck::cast_slice(&self.uvs));
         hash.bytes(bytemuck::cast_slice(&self.triangles));
         hash.bytes(bytemuck::cast_slice(&self.triangle_materials));
+        if self.uses_shading_normals() {
+            hash.bytes(b"shading normals");
+            hash.bytes(bytemuck::cast_slice(&self.normals));
+        }
         for m in &self.materials {
             hash.bytes(bytemuck::cast_slice(&m.base_color));
             hash.bytes(&m.base_color_texture.map_or(-1i64, i64::from).to_le_bytes());
@@ -232,6 +288,7 @@ mod tests {
             materials: vec![Material::default()],
             textures: vec![],
             cameras: vec![],
+            ..Default::default()
         }
     }
 
@@ -391,5 +448,45 @@ mod tests {
         let mut moved = tiny();
         moved.positions[1].x = 1.0 + f32::EPSILON;
         assert_ne!(moved.fingerprint(), tiny().fingerprint());
+    }
+
+    #[test]
+    fn surface_normal_faces_the_viewer_and_falls_back_to_the_face() {
+        // tiny() lies in z = 0 with face normal +z; its vertex normals lean towards +x.
+        let mut s = tiny();
+        let lean = Vec3::new(1.0, 0.0, 1.0).normalize();
+        s.normals = vec![lean; 3];
+        let (u, v) = (0.25, 0.25);
+        assert_eq!(
+            s.surface_normal(0, u, v, Vec3::Z),
+            Vec3::Z,
+            "face by default"
+        );
+        s.set_normals(Normals::Shading);
+        assert!(s.uses_shading_normals());
+        assert!(s.surface_normal(0, u, v, Vec3::Z).distance(lean) < 1e-6);
+        // Seen from behind (a double-sided surface): both turn to the viewer's side.
+        assert!(s.surface_normal(0, u, v, Vec3::NEG_Z).distance(-lean) < 1e-6);
+        // Interpolated, then normalised.
+        s.normals = vec![Vec3::Z, Vec3::X, Vec3::Z];
+        let expected = (Vec3::Z * 0.5 + Vec3::X * 0.5).normalize();
+        assert!(s.surface_normal(0, 0.5, 0.0, Vec3::Z).distance(expected) < 1e-6);
+        // A corner without a normal: the face normal.
+        s.normals[2] = Vec3::ZERO;
+        assert_eq!(s.surface_normal(0, u, v, Vec3::Z), Vec3::Z);
+        s.normals.clear();
+        assert!(!s.uses_shading_normals());
+        assert_eq!(s.surface_normal(0, u, v, Vec3::Z), Vec3::Z);
+    }
+
+    #[test]
+    fn vertex_normals_are_validated() {
+        let mut s = tiny();
+        s.normals = vec![Vec3::Z; 2];
+        assert!(problem(&s).contains("2 vertex normals for 3 positions"));
+        s.normals = vec![Vec3::Z, Vec3::NAN, Vec3::Z];
+        assert!(problem(&s).contains("vertex normal 1 is not finite"));
+        s.normals = vec![Vec3::Z, Vec3::ZERO, Vec3::Z];
+        s.validate().unwrap();
     }
 }

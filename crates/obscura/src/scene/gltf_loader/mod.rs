@@ -192,6 +192,33 @@ impl Loader<'_> {
             None => vec![Vec2::ZERO; n],
         };
 
+        // Vertex normals (glTF: unit length, or absent: then flat shading, which is our default).
+        let normals: Vec<Vec3> = match prim.get(&Semantic::Normals) {
+            Some(acc) => {
+                checks::accessor(&acc, Dimensions::Vec3, &[DataType::F32], "NORMAL")?;
+                let normals: Vec<Vec3> = reader
+                    .read_normals()
+                    .ok_or("its NORMAL data cannot be read")?
+                    .map(Vec3::from)
+                    .collect();
+                if normals.len() != n {
+                    return Err(format!(
+                        "it has {} NORMAL values for {n} positions",
+                        normals.len()
+                    ));
+                }
+                // Normals transform by the inverse transpose of the node's linear part; one
+                // that comes out non-finite or zero (a singular transform, a zero or NaN normal
+                // in the file) is "no normal" at that vertex.
+                let to_world = glam::Mat3::from_mat4(world).inverse().transpose();
+                normals
+                    .into_iter()
+                    .map(|v| (to_world * v).normalize_or_zero())
+                    .collect()
+            }
+            None => vec![Vec3::ZERO; n],
+        };
+
         let indices: Vec<u32> = match prim.indices() {
             Some(acc) => {
                 let types = [DataType::U8, DataType::U16, DataType::U32];
@@ -230,6 +257,7 @@ impl Loader<'_> {
                 .map(|&p| world.transform_point3(Vec3::from(p))),
         );
         self.scene.uvs.extend(uvs);
+        self.scene.normals.extend(normals);
         Ok(())
     }
 

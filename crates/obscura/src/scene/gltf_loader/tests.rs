@@ -569,3 +569,46 @@ fn fuzz_numbers(file: &Path, rounds: usize) {
         }
     }
 }
+
+/// One triangle in the z = 0 plane with vertex normals, placed by `node` (JSON fields).
+fn triangle_with_normals(dir: &Path, normals: [[f32; 3]; 3], node: &str) -> PathBuf {
+    let floats = TRI.iter().flatten().chain(normals.iter().flatten());
+    let bytes: Vec<u8> = floats.flat_map(|f| f.to_le_bytes()).collect();
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0 {node}}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "NORMAL": 1}}}}]}}],
+  "buffers": [{{"byteLength": 72, "uri": "data:application/octet-stream;base64,{}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}},
+                  {{"buffer": 0, "byteOffset": 36, "byteLength": 36}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"}}]}}"#,
+        base64(&bytes)
+    );
+    let path = dir.join("normals.gltf");
+    std::fs::write(&path, json).unwrap();
+    path
+}
+
+#[test]
+fn vertex_normals_follow_the_node_transform() {
+    let dir = temp_dir("normals");
+    let n = Vec3::new(1.0, 0.0, 1.0).normalize();
+    // Scaled 4× along x: normals transform by the inverse transpose, so the x component shrinks
+    // (the surface leans towards the yz plane), then are renormalised.
+    let path = triangle_with_normals(&dir, [n.to_array(); 3], r#", "scale": [4, 1, 1]"#);
+    let s = load_path(&path).unwrap();
+    let expected = Vec3::new(n.x / 4.0, 0.0, n.z).normalize();
+    assert_eq!(s.normals.len(), 3);
+    for got in &s.normals {
+        assert!(got.distance(expected) < 1e-6, "{got} vs {expected}");
+    }
+    // A zero or non-finite normal in the file is "none" at that vertex; a file whose every normal
+    // is none keeps no normals at all.
+    let path = triangle_with_normals(&dir, [[0.0; 3], [0.0, 0.0, 1.0], [0.0; 3]], "");
+    let s = load_path(&path).unwrap();
+    assert_eq!(s.normals, vec![Vec3::ZERO, Vec3::Z, Vec3::ZERO]);
+    let path = triangle_with_normals(&dir, [[0.0; 3]; 3], "");
+    assert!(load_path(&path).unwrap().normals.is_empty());
+}

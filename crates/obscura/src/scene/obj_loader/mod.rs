@@ -140,6 +140,16 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
                 .chunks_exact(3)
                 .map(|p| Vec3::new(p[0], p[1], p[2])),
         );
+        // Vertex normals (`vn`), where every vertex of the object has one (as for uvs below).
+        if mesh.normals.len() == 3 * n {
+            scene.normals.extend(
+                mesh.normals
+                    .chunks_exact(3)
+                    .map(|v| Vec3::new(v[0], v[1], v[2]).normalize_or_zero()),
+            );
+        } else {
+            scene.normals.extend(std::iter::repeat_n(Vec3::ZERO, n));
+        }
         // Vertices without `vt` leave `texcoords` shorter than `positions`; then no vertex can be
         // matched to its uv and all get zero.
         if mesh.texcoords.len() == 2 * n {

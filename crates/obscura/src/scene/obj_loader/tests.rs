@@ -214,3 +214,23 @@ fn bad_obj_files_give_errors_naming_the_file() {
         }
     }
 }
+
+#[test]
+fn vertex_normals_are_read_where_every_vertex_has_one() {
+    let dir = temp_dir("vn");
+    let with = write(
+        &dir,
+        "with.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 0 1 1\nf 1//1 2//1 3//2\n",
+    );
+    let s = load_path(&with).unwrap();
+    let lean = Vec3::new(0.0, 1.0, 1.0).normalize();
+    assert_eq!(s.normals.len(), s.positions.len());
+    // Normalised, and each vertex has the normal its face corner names.
+    for (p, n) in s.positions.iter().zip(&s.normals) {
+        let expected = if p.y == 1.0 { lean } else { Vec3::Z };
+        assert!(n.distance(expected) < 1e-6, "{p}: {n}");
+    }
+    let without = write(&dir, "without.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    assert!(load_path(&without).unwrap().normals.is_empty());
+}

@@ -299,7 +299,12 @@ impl StochasticDepthMap {
             })
             .collect();
         let source = shaders::with_common(
-            &[shaders::MATERIAL, shaders::HASH, shaders::GBUFFER],
+            &[
+                shaders::MATERIAL,
+                shaders::HASH,
+                shaders::VERTEX_NORMAL,
+                shaders::GBUFFER,
+            ],
             shaders::STOCHASTIC_DEPTH_MAP,
         );
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -327,6 +332,7 @@ impl StochasticDepthMap {
         };
         let pipelines = [Some(wgpu::Face::Back), None].map(|cull_mode| {
             ScenePipeline {
+                constants: &[],
                 layout: None,
                 module: &module,
                 cull_mode,
