@@ -123,6 +123,13 @@ fn render_writes_png_exr_and_composite() {
     );
     let composite = image::open(dir.path().join("ao.composite.png")).unwrap();
     assert_eq!((composite.width(), composite.height()), (80, 48));
+    // The background is transparent, the geometry opaque.
+    let alpha: Vec<u8> = img.to_luma_alpha8().pixels().map(|p| p[1]).collect();
+    assert!(
+        alpha.contains(&0) && alpha.contains(&255),
+        "background not marked"
+    );
+    assert!(alpha.iter().all(|&a| a == 0 || a == 255));
     let exr = dir.path().join("ao.exr");
     let o = obscura(&[
         "render",
@@ -134,8 +141,46 @@ fn render_writes_png_exr_and_composite() {
         exr.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let f = image::open(&exr).unwrap().to_rgb32f();
-    assert!(f.pixels().all(|p| (0.0..=1.0).contains(&p[0])));
+    // One float channel, Y.
+    let file = exr::prelude::read_first_flat_layer_from_file(&exr).unwrap();
+    let channels = &file.layer_data.channel_data.list;
+    assert_eq!(channels.len(), 1);
+    assert_eq!(channels[0].name.to_string(), "Y");
+    let back = obscura::output::read_ao(&exr).unwrap();
+    assert_eq!((back.width, back.height), (64, 64));
+    assert!(back.values.iter().all(|v| (0.0..=1.0).contains(v)));
+}
+
+#[test]
+fn lit_composite_shades_the_model_and_leaves_the_background_transparent() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("ao.png");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--size",
+        "80x48",
+        "--lit",
+        "--opaque-background",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(image::open(&png).unwrap().color(), image::ColorType::L8);
+    let lit = image::open(dir.path().join("ao.lit.png"))
+        .unwrap()
+        .to_rgba8();
+    let (covered, empty): (Vec<&image::Rgba<u8>>, Vec<_>) = lit.pixels().partition(|p| p[3] == 255);
+    assert!(
+        !covered.is_empty() && !empty.is_empty(),
+        "stairs close-up shows both"
+    );
+    assert!(empty.iter().all(|p| p[3] == 0));
+    // Lit surfaces are not flat: faces turned to the sun and away from it differ.
+    let lum = |p: &&image::Rgba<u8>| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]);
+    let (lo, hi) = (covered.iter().map(lum).min(), covered.iter().map(lum).max());
+    assert!(hi.unwrap() > lo.unwrap() + 150, "{lo:?}..{hi:?}");
 }
 
 #[test]
@@ -432,8 +477,16 @@ fn compare_writes_a_report_and_reuses_the_reference() {
         "{}",
         stderr(&o)
     );
-    let again: serde_json::Value =
+    let mut again: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    // Everything but the measured times, which vary from run to run.
+    let mut v = v.clone();
+    for report in [&mut again, &mut v] {
+        let timed = report["results"][0].as_object_mut().unwrap();
+        assert!(timed
+            .remove("gpu_ms")
+            .is_some_and(|ms| ms.as_f64() > Some(0.0)));
+    }
     assert_eq!(again, v, "a cached reference gives the same report");
 }
 
@@ -458,11 +511,11 @@ fn reference_writes_a_float_image() {
         &dir.path().join("cache"),
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let img = image::open(&exr).unwrap().to_rgb32f();
-    assert_eq!((img.width(), img.height()), (48, 32));
-    assert!(img.pixels().all(|p| (0.0..=1.0).contains(&p[0])));
+    let img = obscura::output::read_ao(&exr).unwrap();
+    assert_eq!((img.width, img.height), (48, 32));
+    assert!(img.values.iter().all(|v| (0.0..=1.0).contains(v)));
     assert!(
-        img.pixels().any(|p| p[0] < 0.9),
+        img.values.iter().any(|v| *v < 0.9),
         "the Cornell box has occluded corners"
     );
 }
@@ -1205,4 +1258,50 @@ fn normals_shading_uses_the_file_s_vertex_normals() {
     ]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(stderr(&bad).contains("face, shading"), "{}", stderr(&bad));
+}
+
+#[test]
+fn demo_page_is_a_grid_with_one_scale_timings_and_a_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("demo");
+    let o = obscura(&[
+        "demo",
+        "--size",
+        "64x48",
+        "--timing-frames",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let scenes = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().is_dir())
+        .count();
+    assert_eq!(scenes, 6, "every built-in scene");
+    let techniques = info_json()["techniques"].as_array().unwrap().len();
+    // One grid row per technique and one for the reference, per scene.
+    assert_eq!(
+        html.matches("<div class=label>").count(),
+        scenes * (techniques + 1),
+        "grid rows"
+    );
+    // One heat-map scale for the page, stated once; every scene's maps use it.
+    assert_eq!(html.matches("one scale for the whole page").count(), 1);
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let scene = entry.unwrap().path();
+        if scene.is_dir() {
+            let report: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(scene.join("report.json")).unwrap())
+                    .unwrap();
+            assert_eq!(report["diff_scale"], 0.2, "{}", scene.display());
+            assert!(report["results"][0]["gpu_ms"].is_f64());
+            assert!(scene.join("cost.svg").is_file());
+        }
+    }
+    assert!(!html.contains("-0.0000"), "negative zeros printed");
+    assert!(html.contains("Pareto front") || html.contains("both the fastest"));
+    // lavapipe is a CPU adapter: its times are marked.
+    assert!(html.contains("CPU"));
 }

@@ -108,8 +108,8 @@ pub struct AoImage {
     pub values: Vec<f32>,
 }
 
-/// Read an AO image written by [`write_ao`] (or any EXR/PNG): the first channel, as floats
-/// (PNG values scaled to [0, 1]).
+/// Read an AO image written by [`write_ao`] (or any EXR/PNG): its one channel (`Y`, else `R`,
+/// else the first; PNG grey, alpha dropped), as floats (PNG values scaled to [0, 1]).
 pub fn read_ao(path: &Path) -> Result<AoImage, Error> {
     let fail = |message: String| {
         Error::Input(format!("cannot read image '{}': {message}", path.display()))
@@ -126,49 +126,79 @@ pub fn read_ao(path: &Path) -> Result<AoImage, Error> {
             })
         }
         ImageFormat::Exr => {
-            let image = exr::prelude::read_first_rgba_layer_from_file(
-                path,
-                |resolution, _| {
-                    (
-                        resolution.width(),
-                        vec![0.0f32; resolution.width() * resolution.height()],
-                    )
-                },
-                |(width, values), position, (r, _g, _b, _a): (f32, f32, f32, f32)| {
-                    values[position.y() * *width + position.x()] = r;
-                },
-            )
-            .map_err(|e| fail(e.to_string()))?;
-            let (width, values) = image.layer_data.channel_data.pixels;
-            let height = values.len() / width.max(1);
+            let image = exr::prelude::read_first_flat_layer_from_file(path)
+                .map_err(|e| fail(e.to_string()))?;
+            let layer = image.layer_data;
+            let channels = &layer.channel_data.list;
+            let named = |name: &str| channels.iter().find(|c| c.name.to_string() == name);
+            let channel = named("Y")
+                .or_else(|| named("R"))
+                .or(channels.first())
+                .ok_or_else(|| fail("it has no channels".into()))?;
             Ok(AoImage {
-                width: width as u32,
-                height: height as u32,
-                values,
+                width: layer.size.width() as u32,
+                height: layer.size.height() as u32,
+                values: channel.sample_data.values_as_f32().collect(),
             })
         }
     }
 }
 
-/// A single-channel AO image (values in [0, 1]) as 8-bit PNG or float EXR.
+/// A single-channel AO image (values in [0, 1]): 8-bit grey PNG, or float EXR with one channel
+/// `Y`.
 pub fn write_ao(path: &Path, width: u32, height: u32, ao: &[f32]) -> Result<(), Error> {
+    write_ao_image(path, width, height, ao, None)
+}
+
+/// [`write_ao`] that marks the background (`covered[i]` false: no geometry at pixel `i`): alpha 0
+/// there in a PNG (grey + alpha), so an auto-framed model stands out from its white
+/// surroundings. EXR stays one channel (`Y`, background 1): its readers take AO as data.
+pub fn write_ao_covered(
+    path: &Path,
+    width: u32,
+    height: u32,
+    ao: &[f32],
+    covered: &[bool],
+) -> Result<(), Error> {
+    write_ao_image(path, width, height, ao, Some(covered))
+}
+
+fn write_ao_image(
+    path: &Path,
+    width: u32,
+    height: u32,
+    ao: &[f32],
+    covered: Option<&[bool]>,
+) -> Result<(), Error> {
+    let grey = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
     match ImageFormat::from_path(path)? {
         ImageFormat::Png => {
-            let bytes: Vec<u8> = ao
-                .iter()
-                .map(|&v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
-                .collect();
+            let (bytes, color): (Vec<u8>, _) = match covered {
+                None => (
+                    ao.iter().map(|&v| grey(v)).collect(),
+                    image::ExtendedColorType::L8,
+                ),
+                Some(covered) => (
+                    ao.iter()
+                        .zip(covered)
+                        .flat_map(|(&v, &c)| [grey(v), if c { 255 } else { 0 }])
+                        .collect(),
+                    image::ExtendedColorType::La8,
+                ),
+            };
             write_atomically(path, |tmp| {
-                image::save_buffer(tmp, &bytes, width, height, image::ExtendedColorType::L8)
-                    .map_err(|e| e.to_string())
+                image::save_buffer(tmp, &bytes, width, height, color).map_err(|e| e.to_string())
             })
         }
         ImageFormat::Exr => write_atomically(path, |tmp| {
-            exr::prelude::write_rgb_file(tmp, width as usize, height as usize, |x, y| {
-                let v = ao[y * width as usize + x];
-                (v, v, v)
-            })
-            .map_err(|e| e.to_string())
+            use exr::prelude::{Image, SpecificChannels, WritableImage};
+            let channels = SpecificChannels::build()
+                .with_channel("Y")
+                .with_pixel_fn(|p| (ao[p.y() * width as usize + p.x()],));
+            Image::from_channels((width as usize, height as usize), channels)
+                .write()
+                .to_file(tmp)
+                .map_err(|e| e.to_string())
         }),
     }
 }
@@ -202,15 +232,73 @@ pub fn write_composite(
         .zip(albedo)
         .map(|(&a, c)| [0, 1, 2].map(|i| srgb_to_linear(f32::from(c[i]) / 255.0) * a))
         .collect();
+    write_rgb(path, width, height, &linear, None)
+}
+
+/// A simple lit composite, so that AO reads on any model (a grey model under plain AO × colour
+/// is grey on grey): base colour × (sky light × AO + sun), written as sRGB PNG with the background
+/// transparent, or as linear RGB EXR.
+///
+/// `normals` are world-space unit normals of the visible pixels, zero where there is no geometry.
+/// The light is fixed and documented rather than physical: a hemisphere sky of radiance 1 above
+/// fading to 0.25 below (`0.625 + 0.375 n_y`, the irradiance of such a sky up to π), darkened by
+/// AO as ambient light is in engines, plus an unshadowed sun of strength 0.6 from
+/// `normalize(0.4, 1, 0.3)` (AO does not darken direct light). Total weights keep a white,
+/// unoccluded, sun-facing surface near 1.
+pub fn write_lit_composite(
+    path: &Path,
+    width: u32,
+    height: u32,
+    ao: &[f32],
+    albedo: &[[u8; 4]],
+    normals: &[glam::Vec3],
+) -> Result<(), Error> {
+    let sun = glam::Vec3::new(0.4, 1.0, 0.3).normalize();
+    let linear: Vec<[f32; 3]> = ao
+        .iter()
+        .zip(albedo)
+        .zip(normals)
+        .map(|((&a, c), n)| {
+            let sky = 0.625 + 0.375 * n.y;
+            let light = 0.55 * sky * a + 0.6 * n.dot(sun).max(0.0);
+            [0, 1, 2].map(|i| srgb_to_linear(f32::from(c[i]) / 255.0) * light)
+        })
+        .collect();
+    let covered: Vec<bool> = normals.iter().map(|n| *n != glam::Vec3::ZERO).collect();
+    write_rgb(path, width, height, &linear, Some(&covered))
+}
+
+/// Linear RGB as sRGB PNG (alpha 0 where `covered` is false) or linear EXR.
+fn write_rgb(
+    path: &Path,
+    width: u32,
+    height: u32,
+    linear: &[[f32; 3]],
+    covered: Option<&[bool]>,
+) -> Result<(), Error> {
+    let encode =
+        |c: &[f32; 3]| c.map(|v| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8);
     match ImageFormat::from_path(path)? {
         ImageFormat::Png => {
-            let bytes: Vec<u8> = linear
-                .iter()
-                .flat_map(|c| c.map(|v| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8))
-                .collect();
+            let (bytes, color): (Vec<u8>, _) = match covered {
+                None => (
+                    linear.iter().flat_map(encode).collect(),
+                    image::ExtendedColorType::Rgb8,
+                ),
+                Some(covered) => (
+                    linear
+                        .iter()
+                        .zip(covered)
+                        .flat_map(|(c, &k)| {
+                            let [r, g, b] = encode(c);
+                            [r, g, b, if k { 255 } else { 0 }]
+                        })
+                        .collect(),
+                    image::ExtendedColorType::Rgba8,
+                ),
+            };
             write_atomically(path, |tmp| {
-                image::save_buffer(tmp, &bytes, width, height, image::ExtendedColorType::Rgb8)
-                    .map_err(|e| e.to_string())
+                image::save_buffer(tmp, &bytes, width, height, color).map_err(|e| e.to_string())
             })
         }
         ImageFormat::Exr => write_atomically(path, |tmp| {
@@ -223,9 +311,19 @@ pub fn write_composite(
     }
 }
 
-/// The composite's file name next to an AO output: `ao.png` → `ao.composite.png`.
-pub fn composite_path(path: &Path) -> PathBuf {
+/// The lit composite's file name next to an AO output: `ao.png` → `ao.lit.png`.
+pub fn lit_path(path: &Path) -> PathBuf {
+    tagged_sibling(path, "lit")
+}
+
+/// `dir/stem.TAG.ext` for `dir/stem.ext`.
+fn tagged_sibling(path: &Path, tag: &str) -> PathBuf {
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("ao");
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("png");
-    path.with_file_name(format!("{stem}.composite.{ext}"))
+    path.with_file_name(format!("{stem}.{tag}.{ext}"))
+}
+
+/// The composite's file name next to an AO output: `ao.png` → `ao.composite.png`.
+pub fn composite_path(path: &Path) -> PathBuf {
+    tagged_sibling(path, "composite")
 }

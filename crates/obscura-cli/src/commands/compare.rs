@@ -8,7 +8,7 @@ use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::{write_report, Report, ReportInput, TechniqueImage};
 use obscura::scene::Scene;
-use obscura::{FrameView, Gpu, Renderer};
+use obscura::{FrameView, Gpu, PassProfiler, Renderer};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -30,6 +30,17 @@ pub struct CompareArgs {
     /// Output folder (created if missing): report.json, report.md, index.html and the images.
     #[arg(long)]
     out: PathBuf,
+    #[command(flatten)]
+    timing: TimingArgs,
+}
+
+/// How techniques are timed for the report's cost column and chart.
+#[derive(Args, Clone, Copy, Debug)]
+pub struct TimingArgs {
+    /// Frames timed per technique after its first (the median is reported; 0: no timings). On a
+    /// CPU adapter the times are marked as no GPU timings.
+    #[arg(long, default_value_t = 3)]
+    pub timing_frames: u32,
 }
 
 /// Everything `compare` needs about one view, also used by `demo`.
@@ -40,6 +51,10 @@ pub struct Comparison<'a> {
     pub width: u32,
     pub height: u32,
     pub guard_band: u32,
+    /// Frames timed per technique after the first (0: no timings).
+    pub timing_frames: u32,
+    /// The heat maps' scale; `None`: chosen from this comparison's differences.
+    pub diff_scale: Option<f64>,
 }
 
 /// Render every technique, get the reference (cached), write the report into `out`.
@@ -62,10 +77,12 @@ pub fn compare(
         let settings = ao.settings(technique)?;
         let mut renderer = Renderer::new(gpu, c.scene, &settings, c.width, c.height, c.guard_band)?;
         renderer.render(&c.camera, None)?;
+        let ms = gpu_ms(gpu, &mut renderer, &c.camera, c.timing_frames)?;
         images.push((
             technique.name(),
             renderer.read_ao()?,
             serde_json::to_value(settings.resolved())?,
+            ms,
         ));
         crate::args::warn_stack_overflows(&renderer)?;
         gbuffer = Some(renderer.read_gbuffer()?);
@@ -107,17 +124,58 @@ pub fn compare(
         depth: &depth,
         techniques: images
             .iter()
-            .map(|(name, ao, settings)| TechniqueImage {
+            .map(|(name, ao, settings, ms)| TechniqueImage {
                 name,
                 ao,
                 settings: Some(settings),
+                gpu_ms: *ms,
             })
             .collect(),
         halo_radius_px: 4,
         halo_relative_jump: 0.1,
         adapter: &gpu.summary.name,
+        software_adapter: gpu.summary.device_type == "Cpu",
+        diff_scale: c.diff_scale,
     };
     Ok(write_report(out, &input)?)
+}
+
+/// The median over `frames` frames (after the one already rendered, which warmed up) of the
+/// technique's GPU time: every pass but the G-buffer, which an engine has anyway. `None` when
+/// not asked for, or when the adapter cannot time passes (said once).
+fn gpu_ms(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    camera: &obscura::scene::Camera,
+    frames: u32,
+) -> Result<Option<f64>> {
+    if frames == 0 {
+        return Ok(None);
+    }
+    let mut profiler = match PassProfiler::new(gpu, frames) {
+        Ok(p) => p,
+        Err(e) => {
+            static SAID: std::sync::Once = std::sync::Once::new();
+            SAID.call_once(|| eprintln!("warning: no timings in the report: {e}"));
+            return Ok(None);
+        }
+    };
+    for _ in 0..frames {
+        renderer.render(camera, Some(&mut profiler))?;
+        gpu.finish()?;
+    }
+    let totals = profiler
+        .read(gpu)?
+        .iter()
+        .map(|frame| {
+            frame
+                .iter()
+                .filter(|(pass, _)| pass.as_str() != "gbuffer")
+                .map(|(_, ms)| ms)
+                .sum()
+        })
+        .collect();
+    Ok(Some(super::bench::median(totals)))
 }
 
 pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
@@ -157,6 +215,8 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         width,
         height,
         guard_band: args.ao.guard_band(height),
+        timing_frames: args.timing.timing_frames,
+        diff_scale: None,
     };
     let report = compare(
         &gpu,

@@ -22,6 +22,14 @@ pub struct RenderArgs {
     /// Also write AO × base colour next to it (NAME.composite.png/.exr).
     #[arg(long)]
     composite: bool,
+    /// Also write a lit composite next to it (NAME.lit.png/.exr): base colour × (sky light × AO +
+    /// sun), background transparent, so AO reads on any model.
+    #[arg(long)]
+    lit: bool,
+    /// Keep the background of a PNG output opaque (AO 1, white); by default it is transparent
+    /// (alpha 0), so an unoccluded surface and empty space look different.
+    #[arg(long)]
+    opaque_background: bool,
     /// Write the technique's intermediate images and statistics into this folder. Two-phase
     /// techniques: the per-pixel count of flagged samples (samples.png). Stochastic-depth
     /// techniques: one stochastic depth layer (sd_layer.png), the stored samples per pixel
@@ -58,7 +66,18 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     renderer.render(&camera, None)?;
     let ao = renderer.read_ao()?;
     crate::args::warn_stack_overflows(&renderer)?;
-    output::write_ao(&args.out, width, height, &ao)?;
+    let gbuffer = renderer.read_gbuffer()?;
+    let covered: Vec<bool> = gbuffer
+        .visible_depth(guard_band)
+        .iter()
+        .map(|&d| d > 0.0)
+        .collect();
+    if args.opaque_background {
+        output::write_ao(&args.out, width, height, &ao)?;
+    } else {
+        output::write_ao_covered(&args.out, width, height, &ao, &covered)?;
+    }
+    let mut written = vec![args.out.clone()];
     if let Some(dir) = &args.debug_out {
         if args.technique.needs().stochastic_depth_map {
             write_sd_debug(dir, &renderer, &settings, (width, height), guard_band)?
@@ -66,13 +85,40 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
             write_debug(dir, &renderer, width, height, settings.vao.samples)?
         }
     }
-    if args.composite {
-        let path = output::composite_path(&args.out);
-        output::write_composite(&path, width, height, &ao, &renderer.read_albedo()?)?;
-        eprintln!("wrote {} and {}", args.out.display(), path.display());
-    } else {
-        eprintln!("wrote {}", args.out.display());
+    if args.composite || args.lit {
+        let albedo = renderer.read_albedo()?;
+        if args.composite {
+            let path = output::composite_path(&args.out);
+            output::write_composite(&path, width, height, &ao, &albedo)?;
+            written.push(path);
+        }
+        if args.lit {
+            // View-space G-buffer normals of the visible pixels, to world space.
+            let to_world = renderer
+                .view()
+                .map(|v| v.view_matrix().inverse())
+                .unwrap_or_default();
+            let fw = gbuffer.width as usize;
+            let normals: Vec<glam::Vec3> = (0..height as usize)
+                .flat_map(|y| (0..width as usize).map(move |x| (x, y)))
+                .map(|(x, y)| {
+                    let i = (y + guard_band as usize) * fw + x + guard_band as usize;
+                    if gbuffer.depth[i] > 0.0 {
+                        to_world
+                            .transform_vector3(gbuffer.normals[i])
+                            .normalize_or_zero()
+                    } else {
+                        glam::Vec3::ZERO
+                    }
+                })
+                .collect();
+            let path = output::lit_path(&args.out);
+            output::write_lit_composite(&path, width, height, &ao, &albedo, &normals)?;
+            written.push(path);
+        }
     }
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    eprintln!("wrote {}", names.join(", "));
     Ok(())
 }
 

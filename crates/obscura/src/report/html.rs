@@ -142,12 +142,21 @@ fn write_page(page: &mut String, report: &Report, input: &ReportInput, scale: f6
             "<tr><td><a href=\"#t-{0}\"><code>{0}</code></a></td>",
             r.technique
         )?;
-        for cell in metric_cells(r) {
+        for cell in metric_cells(r, report.software_adapter) {
             write!(page, "<td class=\"num\">{cell}</td>")?;
         }
         writeln!(page, "</tr>")?;
     }
     writeln!(page, "</tbody>\n</table>")?;
+    if report.results.iter().any(|r| r.gpu_ms.is_some()) {
+        writeln!(page, "<h2>Quality against cost</h2>")?;
+        writeln!(page, "<p>{}</p>", escape(&super::verdict(report)))?;
+        writeln!(
+            page,
+            "<figure><img src=\"cost.svg\" alt=\"MSE against milliseconds per technique\" \
+             style=\"max-width: 640px\"></figure>"
+        )?;
+    }
     writeln!(page, "<ul>")?;
     writeln!(
         page,

@@ -48,10 +48,14 @@ fn write_md(md: &mut String, report: &Report, input: &ReportInput, scale: f64) -
             md,
             "| `{}` | {} |",
             r.technique,
-            metric_cells(r).join(" | ")
+            metric_cells(r, report.software_adapter).join(" | ")
         )?;
     }
     writeln!(md)?;
+    if report.results.iter().any(|r| r.gpu_ms.is_some()) {
+        writeln!(md, "{}", escape(&super::verdict(report)))?;
+        writeln!(md)?;
+    }
     writeln!(
         md,
         "Guard band {} px. GPU adapter: {}.",

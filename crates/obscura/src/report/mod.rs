@@ -12,7 +12,8 @@
 //! | `reference.png` | the reference AO, 8-bit grey |
 //! | `<technique>.png` | each technique's AO, 8-bit grey |
 //! | `<technique>.diff.png` | heat map of technique − reference (see [`heatmap_rgb`]) |
-//! | `index.html` | a self-contained page: metrics table, and per technique the reference, the technique and its heat map side by side with a colour legend |
+//! | `cost.svg` | MSE against time per technique with the Pareto front, when techniques were timed |
+//! | `index.html` | a self-contained page: metrics table, the quality-against-cost chart, and per technique the reference, the technique and its heat map side by side with a colour legend |
 //!
 //! # Images
 //! Grey PNGs hold the AO value clamped to `[0, 1]` times 255, rounded — the
@@ -53,6 +54,7 @@
 //! call did not reach stay as they were). Two concurrent calls on the same
 //! directory are not supported: they share the temporary names.
 
+mod chart;
 mod files;
 mod heatmap;
 mod html;
@@ -61,6 +63,7 @@ mod markdown;
 #[cfg(test)]
 mod tests;
 
+pub use self::chart::{cost_chart_svg, pareto_front};
 pub use self::heatmap::heatmap_rgb;
 
 use crate::metrics::{self, Image, MetricsError};
@@ -78,6 +81,9 @@ pub struct TechniqueImage<'a> {
     /// The settings it was rendered with, as data (`compare` passes the serialised
     /// [`crate::AoSettings`]); written to `report.json` as they are.
     pub settings: Option<&'a serde_json::Value>,
+    /// Its GPU time per frame in milliseconds (`compare`: the median over a few frames of every
+    /// pass but the G-buffer, which an engine has anyway), if measured.
+    pub gpu_ms: Option<f64>,
 }
 
 /// Everything a report is made of. Every image is the `width × height`
@@ -112,6 +118,11 @@ pub struct ReportInput<'a> {
     pub halo_relative_jump: f32,
     /// GPU adapter description, printed in the page.
     pub adapter: &'a str,
+    /// The adapter is a CPU (software) device: timings are marked as no GPU timings.
+    pub software_adapter: bool,
+    /// The heat maps' scale `±s`; `None`: chosen from the differences (see the module docs).
+    /// A page comparing several reports passes one scale to all of them.
+    pub diff_scale: Option<f64>,
 }
 
 /// The metrics of one technique against the reference.
@@ -143,6 +154,9 @@ pub struct TechniqueResult {
     /// The settings it was rendered with ([`TechniqueImage::settings`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub settings: Option<serde_json::Value>,
+    /// GPU milliseconds per frame ([`TechniqueImage::gpu_ms`]), if measured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu_ms: Option<f64>,
 }
 
 /// How the reference image was computed.
@@ -169,6 +183,15 @@ pub struct Report {
     pub guard_band: u32,
     /// How the reference was computed.
     pub reference: ReferenceInfo,
+    /// The adapter that rendered the techniques.
+    #[serde(default)]
+    pub adapter: String,
+    /// The adapter is a CPU (software) device, so `gpu_ms` are no GPU timings.
+    #[serde(default)]
+    pub software_adapter: bool,
+    /// The heat maps' scale `±s` (technique − reference).
+    #[serde(default)]
+    pub diff_scale: f64,
     /// One entry per technique, in input order.
     pub results: Vec<TechniqueResult>,
 }
@@ -249,6 +272,7 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
                 halo_bright: s.halo_bright,
                 halo_dark: s.halo_dark,
                 settings: t.settings.cloned(),
+                gpu_ms: t.gpu_ms,
             })
         })
         .collect::<Result<Vec<_>, ReportError>>()?;
@@ -262,6 +286,11 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
             model: input.reference_model.to_owned(),
             spp: input.spp,
         },
+        adapter: input.adapter.to_owned(),
+        software_adapter: input.software_adapter,
+        diff_scale: input.diff_scale.unwrap_or_else(|| {
+            heatmap::diff_scale(input.reference, input.techniques.iter().map(|t| t.ao))
+        }),
         results,
     })
 }
@@ -288,7 +317,7 @@ pub fn write_report(dir: &Path, input: &ReportInput) -> Result<Report, ReportErr
         });
     }
     let report = build_report(input)?;
-    let scale = heatmap::diff_scale(input.reference, input.techniques.iter().map(|t| t.ao));
+    let scale = report.diff_scale;
     let (w, h) = (input.width, input.height);
 
     let mut staging = files::Staging::new(dir);
@@ -320,6 +349,11 @@ pub fn write_report(dir: &Path, input: &ReportInput) -> Result<Report, ReportErr
         serde_json::to_writer_pretty(&mut *out, &report).map_err(|e| e.to_string())?;
         out.write_all(b"\n").map_err(|e| e.to_string())
     })?;
+    if let Some(svg) = chart::cost_chart_svg(&report) {
+        staging.stage("cost.svg", |out| {
+            out.write_all(svg.as_bytes()).map_err(|e| e.to_string())
+        })?;
+    }
     let md = markdown::render(&report, input, scale);
     staging.stage("report.md", |out| {
         out.write_all(md.as_bytes()).map_err(|e| e.to_string())
@@ -464,24 +498,21 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
     Ok(())
 }
 
-/// The six metric cells of a table row, shared by the Markdown and HTML
-/// tables so that both print the same numbers. The JSON keeps full
-/// precision; these are for reading.
-fn metric_cells(r: &TechniqueResult) -> [String; 6] {
-    // -0.0 would print as "-0.0000".
-    let fixed = |v: f64| {
-        if v.is_nan() {
-            "n/a".to_owned()
-        } else {
-            format!("{:.4}", if v == 0.0 { 0.0 } else { v })
-        }
-    };
+/// The metric cells of a table row, shared by the Markdown and HTML tables (and the demo page)
+/// so that all print the same numbers. The JSON keeps full precision; these are for reading.
+pub fn metric_cells(r: &TechniqueResult, software_adapter: bool) -> [String; 7] {
     let psnr = if r.psnr == f64::INFINITY {
         "∞".to_owned()
     } else if r.psnr.is_nan() {
         "n/a".to_owned()
     } else {
         format!("{:.2}", r.psnr)
+    };
+    let ms = match r.gpu_ms {
+        // A CPU adapter's time says nothing about a GPU: shown, but marked.
+        Some(ms) if software_adapter => format!("({ms:.1} CPU)"),
+        Some(ms) => format!("{ms:.3}"),
+        None => "–".to_owned(),
     };
     [
         // MSE spans orders of magnitude between techniques: scientific
@@ -491,22 +522,71 @@ fn metric_cells(r: &TechniqueResult) -> [String; 6] {
         } else {
             format!("{:.3e}", r.mse)
         },
-        fixed(r.mae),
+        fixed4(r.mae),
         psnr,
-        fixed(r.ssim),
-        fixed(r.halo_bright),
-        fixed(r.halo_dark),
+        fixed4(r.ssim),
+        fixed4(r.halo_bright),
+        fixed4(r.halo_dark),
+        ms,
     ]
 }
 
+/// One sentence naming the techniques on the Pareto front of MSE against time ([`pareto_front`]),
+/// and what the times are.
+pub fn verdict(report: &Report) -> String {
+    let front = pareto_front(&report.results);
+    let times = if report.software_adapter {
+        "the times come from a CPU (software) adapter and say nothing about a GPU"
+    } else {
+        "GPU time per frame without the G-buffer, median of the measured frames"
+    };
+    match front.as_slice() {
+        [] => format!("No technique was timed ({times})."),
+        [one] => format!(
+            "{one} is both the fastest and the most accurate of these techniques ({times})."
+        ),
+        _ => format!(
+            "Pareto front (no other technique is both faster and more accurate), fastest first: \
+             {} ({times}).",
+            front_by_time(report, &front).join(", ")
+        ),
+    }
+}
+
+/// `front` sorted by time, fastest first.
+fn front_by_time<'a>(report: &Report, front: &[&'a str]) -> Vec<&'a str> {
+    let ms = |name: &str| {
+        report
+            .results
+            .iter()
+            .find(|r| r.technique == name)
+            .and_then(|r| r.gpu_ms)
+            .unwrap_or(f64::INFINITY)
+    };
+    let mut sorted = front.to_vec();
+    sorted.sort_by(|a, b| ms(a).total_cmp(&ms(b)));
+    sorted
+}
+
+/// Four decimals; a value that rounds to zero prints as `0.0000`, never `-0.0000`.
+pub fn fixed4(v: f64) -> String {
+    if v.is_nan() {
+        return "n/a".to_owned();
+    }
+    let rounded = (v * 1e4).round() / 1e4;
+    // `+ 0.0` turns −0 into +0.
+    format!("{:.4}", rounded + 0.0)
+}
+
 /// Column headers matching [`metric_cells`].
-const METRIC_HEADERS: [&str; 6] = [
+pub const METRIC_HEADERS: [&str; 7] = [
     "MSE",
     "MAE",
     "PSNR (dB)",
     "SSIM",
     "bright halo",
     "dark halo",
+    "GPU ms",
 ];
 
 /// `"vao"` or `"hemisphere, 256 rays per pixel"`.

@@ -71,21 +71,26 @@ impl Fixture {
                     name: "same",
                     ao: &self.same,
                     settings: None,
+                    gpu_ms: None,
                 },
                 TechniqueImage {
                     name: "offset",
                     ao: &self.offset,
                     settings: None,
+                    gpu_ms: None,
                 },
                 TechniqueImage {
                     name: "halo",
                     ao: &self.halo,
                     settings: None,
+                    gpu_ms: None,
                 },
             ],
             halo_radius_px: 4,
             halo_relative_jump: 0.1,
             adapter: "Test Adapter <CPU & friends>",
+            software_adapter: false,
+            diff_scale: None,
         }
     }
 }
@@ -303,6 +308,7 @@ fn json_null_rule_for_every_metric() {
         halo_bright: 0.25,
         halo_dark: -0.125,
         settings: None,
+        gpu_ms: None,
     };
     let text = serde_json::to_string(&r).unwrap();
     assert_eq!(
@@ -416,9 +422,9 @@ fn report_md_has_header_and_one_row_per_technique() {
     );
     assert_eq!(
         lines[2],
-        "| technique | MSE | MAE | PSNR (dB) | SSIM | bright halo | dark halo |"
+        "| technique | MSE | MAE | PSNR (dB) | SSIM | bright halo | dark halo | GPU ms |"
     );
-    assert_eq!(lines[3], "|:--|--:|--:|--:|--:|--:|--:|");
+    assert_eq!(lines[3], "|:--|--:|--:|--:|--:|--:|--:|--:|");
     assert!(lines[4].starts_with("| `same` | 0.000e0 | 0.0000 | ∞ | 1.0000 |"));
     assert!(lines[5].starts_with("| `offset` | 1.000e-2 | 0.1000 | 20.00 |"));
     assert!(lines[6].starts_with("| `halo` |"));
@@ -819,4 +825,94 @@ fn errors_implement_std_error_and_display() {
     assert!(e
         .to_string()
         .starts_with("could not compute the report metrics: image is empty"));
+}
+
+// ------------------------------------------------------------- cost and time
+
+fn timed(name: &str, mse: f64, ms: Option<f64>) -> TechniqueResult {
+    TechniqueResult {
+        technique: name.into(),
+        mse,
+        mae: 0.0,
+        psnr: 0.0,
+        ssim: 1.0,
+        halo_bright: 0.0,
+        halo_dark: 0.0,
+        settings: None,
+        gpu_ms: ms,
+    }
+}
+
+#[test]
+fn pareto_front_keeps_what_nothing_beats_on_both_counts() {
+    let results = [
+        timed("fast", 0.01, Some(1.0)),
+        timed("slow-worse", 0.02, Some(2.0)),
+        timed("slow-better", 0.001, Some(3.0)),
+        timed("tie-fast", 0.01, Some(1.0)),
+        timed("untimed", 0.0, None),
+        timed("dominated", 0.01, Some(1.5)),
+    ];
+    // Equal on both counts: neither beats the other.
+    assert_eq!(
+        super::pareto_front(&results),
+        vec!["fast", "slow-better", "tie-fast"]
+    );
+    assert!(super::pareto_front(&results[4..5]).is_empty());
+}
+
+#[test]
+fn fixed_point_cells_never_print_negative_zero() {
+    assert_eq!(super::fixed4(-0.00001), "0.0000");
+    assert_eq!(super::fixed4(-0.0), "0.0000");
+    assert_eq!(super::fixed4(0.00004), "0.0000");
+    assert_eq!(super::fixed4(-0.00006), "-0.0001");
+    assert_eq!(super::fixed4(0.25), "0.2500");
+    assert_eq!(super::fixed4(f64::NAN), "n/a");
+    let r = timed("x", 1e-3, Some(0.1234));
+    assert_eq!(super::metric_cells(&r, false)[6], "0.123");
+    assert_eq!(super::metric_cells(&r, true)[6], "(0.1 CPU)");
+    assert_eq!(super::metric_cells(&timed("x", 1e-3, None), false)[6], "–");
+}
+
+#[test]
+fn timed_reports_get_a_cost_chart_and_a_verdict() {
+    let f = Fixture::new();
+    let dir = tempfile::tempdir().unwrap();
+    let mut input = f.input();
+    for (t, ms) in input.techniques.iter_mut().zip([0.5, 0.2, 0.1]) {
+        t.gpu_ms = Some(ms);
+    }
+    // A scale given by the caller (a page of several reports) is used as it is.
+    input.diff_scale = Some(0.5);
+    let report = write_report(dir.path(), &input).unwrap();
+    assert_eq!(report.diff_scale, 0.5);
+    assert_eq!(result(&report, "offset").gpu_ms, Some(0.2));
+    let svg = fs::read_to_string(dir.path().join("cost.svg")).unwrap();
+    for name in ["same", "offset", "halo"] {
+        assert!(
+            svg.contains(&format!(">{name}</text>")),
+            "{name} not labelled"
+        );
+    }
+    assert_eq!(svg.matches("<circle").count(), 3);
+    let html = fs::read_to_string(dir.path().join("index.html")).unwrap();
+    assert!(html.contains("src=\"cost.svg\""));
+    assert!(html.contains("±0.5"), "the given scale is stated");
+    // "same" equals the reference (MSE 0) but is the slowest; "halo" is the fastest.
+    let verdict = super::verdict(&report);
+    assert!(
+        verdict.contains("halo") && verdict.contains("same"),
+        "{verdict}"
+    );
+    let md = fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(md.contains("Pareto front"), "{md}");
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    assert_eq!(json["results"][1]["gpu_ms"], 0.2);
+    assert_eq!(json["diff_scale"], 0.5);
+    // Untimed: no chart.
+    let dir = tempfile::tempdir().unwrap();
+    write_report(dir.path(), &f.input()).unwrap();
+    assert!(!dir.path().join("cost.svg").exists());
 }
