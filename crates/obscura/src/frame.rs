@@ -3,6 +3,7 @@
 
 use crate::bindings::{self, FRAME_AO_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_VIEW};
 use crate::view::ScreenGeometry;
+use crate::Error;
 
 /// The frame inputs of one encode. Textures cover the whole guard-banded framebuffer.
 pub struct FrameInputs<'a> {
@@ -47,4 +48,82 @@ impl FrameInputs<'_> {
 /// pixel, 32×8 groups 0.013 ms (fewer workgroup launches).
 pub(crate) fn workgroups_32x8(width: u32, height: u32) -> (u32, u32, u32) {
     (width.div_ceil(32), height.div_ceil(8), 1)
+}
+
+/// The checks every texture handed to obscura passes: 2D, single-sampled, the framebuffer's size,
+/// `TEXTURE_BINDING` usage, and one of `formats`. Errors name the texture and the fix.
+pub(crate) fn check_texture(
+    screen: &ScreenGeometry,
+    what: &str,
+    texture: &wgpu::Texture,
+    formats: &[wgpu::TextureFormat],
+) -> Result<(), Error> {
+    check_shape(screen, what, texture)?;
+    if !formats.contains(&texture.format()) {
+        return Err(Error::Input(format!(
+            "{what} texture is {:?}: use one of {formats:?}",
+            texture.format()
+        )));
+    }
+    Ok(())
+}
+
+/// [`check_texture`] for a texture read as floats (any format with a float sample type).
+pub(crate) fn check_float_texture(
+    screen: &ScreenGeometry,
+    what: &str,
+    texture: &wgpu::Texture,
+) -> Result<(), Error> {
+    check_shape(screen, what, texture)?;
+    let float = matches!(
+        texture.format().sample_type(None, None),
+        Some(wgpu::TextureSampleType::Float { .. })
+    );
+    if !float {
+        return Err(Error::Input(format!(
+            "{what} texture is {:?}, which is not read as floats: use a float or unorm format \
+             (e.g. Rgba16Float, Rgba8Unorm)",
+            texture.format()
+        )));
+    }
+    Ok(())
+}
+
+fn check_shape(screen: &ScreenGeometry, what: &str, texture: &wgpu::Texture) -> Result<(), Error> {
+    if !texture
+        .usage()
+        .contains(wgpu::TextureUsages::TEXTURE_BINDING)
+    {
+        return Err(Error::Input(format!(
+            "{what} texture lacks the TEXTURE_BINDING usage (it has {:?}): create it with \
+             TextureUsages::TEXTURE_BINDING",
+            texture.usage()
+        )));
+    }
+    if texture.sample_count() != 1 {
+        return Err(Error::Input(format!(
+            "{what} texture has {} samples: resolve it to a single-sampled texture first",
+            texture.sample_count()
+        )));
+    }
+    if texture.dimension() != wgpu::TextureDimension::D2 || texture.depth_or_array_layers() != 1 {
+        return Err(Error::Input(format!(
+            "{what} texture must be one 2D layer (it is {:?} with {} layers)",
+            texture.dimension(),
+            texture.depth_or_array_layers()
+        )));
+    }
+    let (fw, fh) = (screen.full_width(), screen.full_height());
+    if (texture.width(), texture.height()) != (fw, fh) {
+        return Err(Error::Input(format!(
+            "{what} texture is {}x{}, but the screen geometry ({}x{} visible + {} px guard band) \
+             needs {fw}x{fh}",
+            texture.width(),
+            texture.height(),
+            screen.width,
+            screen.height,
+            screen.guard_band
+        )));
+    }
+    Ok(())
 }

@@ -40,6 +40,8 @@ pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
 pub const REFERENCE: &str = include_str!("../shaders/reference.wgsl");
+pub const ENGINE_DEPTH: &str = include_str!("../shaders/engine_input/depth.wgsl");
+pub const ENGINE_NORMALS: &str = include_str!("../shaders/engine_input/normals.wgsl");
 
 /// A pass's source with the shared helpers it names in front (raster and utility passes, which
 /// use no binding names).

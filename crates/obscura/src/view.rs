@@ -91,6 +91,7 @@ impl FrameView {
             height: self.height,
             guard_band: self.guard_band,
             tan_half_fov: self.tan_half_fov,
+            orthographic: false,
         }
     }
 }
@@ -103,11 +104,74 @@ pub struct ScreenGeometry {
     pub width: u32,
     pub height: u32,
     pub guard_band: u32,
-    /// `tan` of half the field of view of the whole framebuffer, guard band included (x, y).
+    /// `tan` of half the field of view of the whole framebuffer, guard band included (x, y); for
+    /// an orthographic projection, half the framebuffer's extent in world units.
     pub tan_half_fov: Vec2,
+    /// Parallel view rays along −Z (an orthographic camera). Screen-space techniques only: the
+    /// hidden-depth sources that trace or rasterise from a camera need a perspective one.
+    pub orthographic: bool,
 }
 
 impl ScreenGeometry {
+    /// The geometry of an engine's projection matrix (OpenGL/Vulkan/D3D conventions alike: clip
+    /// space from a right-handed view space looking down −Z, any depth range, reversed-Z or not,
+    /// finite or infinite far plane), perspective or orthographic, for a framebuffer of
+    /// `width + 2·guard_band` × `height + 2·guard_band` pixels.
+    ///
+    /// The frustum must be centred: an off-centre shift of up to 2 pixels (TAA jitter) is
+    /// ignored (AO does not need sub-pixel registration); a larger one is an error, as is a
+    /// matrix that is neither a perspective nor an orthographic projection.
+    pub fn from_projection(
+        projection: glam::Mat4,
+        width: u32,
+        height: u32,
+        guard_band: u32,
+    ) -> Result<Self, crate::Error> {
+        let p = projection;
+        let bad = |why: &str| {
+            Err(crate::Error::Input(format!(
+                "projection matrix {p:?} {why}: pass the camera's projection (clip from view \
+                 space, the camera looking down -Z)"
+            )))
+        };
+        if !p.is_finite() || p.x_axis.x == 0.0 || p.y_axis.y == 0.0 {
+            return bad("is not finite or has a zero x or y scale");
+        }
+        // Perspective: clip w = −z_view; orthographic: clip w = 1.
+        let orthographic = match (p.z_axis.w, p.w_axis.w) {
+            (w_z, w_1) if (w_z + 1.0).abs() < 1e-6 && w_1.abs() < 1e-6 => false,
+            (w_z, w_1) if w_z.abs() < 1e-6 && (w_1 - 1.0).abs() < 1e-6 => true,
+            _ => return bad("is neither perspective (w = -z) nor orthographic (w = 1)"),
+        };
+        let offset = if orthographic {
+            Vec2::new(p.w_axis.x, p.w_axis.y)
+        } else {
+            Vec2::new(p.z_axis.x, p.z_axis.y)
+        };
+        let (fw, fh) = (
+            (width + 2 * guard_band) as f32,
+            (height + 2 * guard_band) as f32,
+        );
+        let pixels = offset.abs() * Vec2::new(fw, fh) * 0.5;
+        if pixels.max_element() > 2.0 {
+            return bad(&format!(
+                "is off-centre by {pixels} pixels (asymmetric frusta are not supported; up to \
+                 2 px of jitter is ignored)"
+            ));
+        }
+        let y_sign = p.y_axis.y.signum();
+        if y_sign < 0.0 {
+            return bad("flips y (a negative y scale): pass the projection before any y flip");
+        }
+        Ok(Self {
+            width,
+            height,
+            guard_band,
+            tan_half_fov: Vec2::new(1.0 / p.x_axis.x.abs(), 1.0 / p.y_axis.y),
+            orthographic,
+        })
+    }
+
     pub fn full_width(&self) -> u32 {
         self.width + 2 * self.guard_band
     }
@@ -124,13 +188,15 @@ impl ScreenGeometry {
             px.x * u.ndc_per_pixel[0] - 1.0,
             1.0 - px.y * u.ndc_per_pixel[1],
         );
-        (ndc * self.tan_half_fov * z).extend(-z)
+        let scale = if self.orthographic { 1.0 } else { z };
+        (ndc * self.tan_half_fov * scale).extend(-z)
     }
 
     /// Framebuffer pixel coordinates of a view-space point. Mirrors `view_to_pixel` in WGSL.
     pub fn view_to_pixel(&self, p: Vec3) -> Vec2 {
         let u = self.uniform();
-        let s = p.truncate() * (Vec2::from(u.projection_scale) / -p.z);
+        let depth = if self.orthographic { 1.0 } else { -p.z };
+        let s = p.truncate() * (Vec2::from(u.projection_scale) / depth);
         let half = 0.5 * Vec2::new(self.full_width() as f32, self.full_height() as f32);
         Vec2::new(half.x + s.x, half.y - s.y)
     }
@@ -143,7 +209,7 @@ impl ScreenGeometry {
             visible_size: [self.width, self.height],
             tan_half_fov: self.tan_half_fov.to_array(),
             guard_band: self.guard_band,
-            _pad: 0,
+            orthographic: u32::from(self.orthographic),
             ndc_per_pixel: (2.0 / size).to_array(),
             projection_scale: (0.5 * size / self.tan_half_fov).to_array(),
         }
@@ -158,7 +224,7 @@ pub struct ViewUniform {
     pub visible_size: [u32; 2],
     pub tan_half_fov: [f32; 2],
     pub guard_band: u32,
-    pub _pad: u32,
+    pub orthographic: u32,
     pub ndc_per_pixel: [f32; 2],
     pub projection_scale: [f32; 2],
 }

@@ -150,6 +150,7 @@ fn ambient_occlusion_rejects_mismatched_inputs() {
         height: 48,
         guard_band: 8,
         tan_half_fov: glam::Vec2::new(0.6, 0.45),
+        orthographic: false,
     };
     let ao = obscura::AmbientOcclusion::new(
         &gpu,

@@ -139,6 +139,7 @@ fn ray_traced_techniques_need_the_scene() {
         height: 32,
         guard_band: 0,
         tan_half_fov: glam::Vec2::ONE,
+        orthographic: false,
     };
     let err =
         obscura::AmbientOcclusion::new(&gpu, &settings, screen, obscura::SceneResources::default())

@@ -5,9 +5,11 @@
 struct View {
     full_size: vec2<u32>,
     visible_size: vec2<u32>,
+    // Perspective: tan of half the field of view; orthographic: half the extent in world units.
     tan_half_fov: vec2<f32>,
     guard_band: u32,
-    _pad: u32,
+    // 1: orthographic projection (parallel view rays along -Z).
+    orthographic: u32,
     // 2 / full_size: normalised device coordinates per pixel.
     ndc_per_pixel: vec2<f32>,
     // 0.5 * full_size / tan_half_fov: pixels per unit of x/z (y/z) from the image centre.
@@ -17,14 +19,24 @@ struct View {
 // View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at depth `z`.
 fn pixel_to_view(v: View, px: vec2<f32>, z: f32) -> vec3<f32> {
     let ndc = vec2<f32>(px.x * v.ndc_per_pixel.x - 1.0, 1.0 - px.y * v.ndc_per_pixel.y);
-    return vec3<f32>(ndc * v.tan_half_fov * z, -z);
+    return vec3<f32>(ndc * v.tan_half_fov * select(z, 1.0, v.orthographic != 0u), -z);
 }
 
 // Framebuffer pixel coordinates of a view-space point.
 fn view_to_pixel(v: View, p: vec3<f32>) -> vec2<f32> {
-    let s = p.xy * (v.projection_scale / -p.z);
+    let s = p.xy * (v.projection_scale / select(-p.z, 1.0, v.orthographic != 0u));
     let half_size = 0.5 * vec2<f32>(v.full_size);
     return vec2<f32>(half_size.x + s.x, half_size.y - s.y);
+}
+
+// Pixels per world unit across the view at linear depth `z`.
+fn pixels_per_unit(v: View, z: f32) -> vec2<f32> {
+    return v.projection_scale / select(z, 1.0, v.orthographic != 0u);
+}
+
+// Unit vector from view-space point `p` towards the camera (along +Z when orthographic).
+fn toward_camera(v: View, p: vec3<f32>) -> vec3<f32> {
+    return select(normalize(-p), vec3<f32>(0.0, 0.0, 1.0), v.orthographic != 0u);
 }
 
 // Background (no geometry) is stored as linear depth 0 in the G-buffer.

@@ -85,7 +85,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
         return p;
     }
     p.pos = base.pos;
-    p.v = normalize(-p.pos);
+    p.v = toward_camera(view, p.pos);
     p.normal = base.normal;
     let pattern = params.pattern[pattern_index(id)];
     p.rotation = pattern.xy;

@@ -22,6 +22,6 @@ fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
     }
     p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
     p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
-    p.radius_px = radius * view.projection_scale.y / z;
+    p.radius_px = radius * pixels_per_unit(view, z).y;
     return p;
 }

@@ -117,7 +117,7 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     let pixel = id + vec2<u32>(view.guard_band);
     let n = normalize(normal);
     // Sample frame perpendicular to the view ray: `axis` points to the camera.
-    let axis = -normalize(pos);
+    let axis = toward_camera(view, pos);
     let basis = orthonormal_basis(axis);
     let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
     // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).

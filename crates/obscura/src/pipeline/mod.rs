@@ -16,7 +16,7 @@ mod shader_check;
 use crate::bindings;
 use crate::estimators::EstimatorPass;
 use crate::filter::{bilateral::BilateralBlur, AoFilter};
-use crate::frame::FrameInputs;
+use crate::frame::{check_float_texture, check_texture, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::schedules::{FrameContext, SchedulePass};
 use crate::settings::AoSettings;
@@ -27,7 +27,9 @@ use crate::Error;
 use wgpu::util::DeviceExt;
 
 /// The textures of one frame, as the engine has them. All cover the guard-banded framebuffer:
-/// `(width + 2g) × (height + 2g)` of the [`ScreenGeometry`].
+/// `(width + 2g) × (height + 2g)` of the [`ScreenGeometry`], are single-sampled and have the
+/// `TEXTURE_BINDING` usage. An engine with a hardware depth buffer and a projection matrix gets
+/// them from [`crate::EngineInput`].
 #[derive(Clone, Copy)]
 pub struct FrameTextures<'a> {
     /// Linear view depth, `R32Float`, world units, 0 = background.
@@ -77,6 +79,15 @@ impl AmbientOcclusion {
         settings.validate()?;
         let device = &gpu.device;
         let row = settings.technique.row();
+        let needs = settings.technique.needs();
+        if screen.orthographic && (needs.triangles || needs.bvh) {
+            return Err(Error::Input(format!(
+                "technique '{}' traces or rasterises hidden depth from a perspective camera; with \
+                 an orthographic projection use a screen-space technique ({})",
+                settings.technique,
+                crate::technique::names_where(|t| !t.needs().triangles && !t.needs().bvh)
+            )));
+        }
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
@@ -163,30 +174,12 @@ impl AmbientOcclusion {
                 self.settings.technique
             )));
         }
-        let (fw, fh) = (self.screen.full_width(), self.screen.full_height());
         let second_layer = textures.second_layer.filter(|_| needs_second);
-        let layers = [
-            ("depth", Some(textures.depth)),
-            ("normals", Some(textures.normals)),
-            ("second depth layer", second_layer),
-        ];
-        for (what, texture) in layers.into_iter().filter_map(|(w, t)| t.map(|t| (w, t))) {
-            if (texture.width(), texture.height()) != (fw, fh) {
-                return Err(Error::Input(format!(
-                    "AO {what} texture is {}x{}, but the screen geometry ({}x{} visible + {} px guard band) needs {fw}x{fh}",
-                    texture.width(),
-                    texture.height(),
-                    self.screen.width,
-                    self.screen.height,
-                    self.screen.guard_band
-                )));
-            }
-        }
-        if textures.depth.format() != wgpu::TextureFormat::R32Float {
-            return Err(Error::Input(format!(
-                "AO depth texture is {:?}: it must be R32Float linear view depth",
-                textures.depth.format()
-            )));
+        let r32 = [wgpu::TextureFormat::R32Float];
+        check_texture(&self.screen, "AO depth", textures.depth, &r32)?;
+        check_float_texture(&self.screen, "AO normals", textures.normals)?;
+        if let Some(second) = second_layer {
+            check_texture(&self.screen, "AO second depth layer", second, &r32)?;
         }
         let depth = textures.depth.create_view(&Default::default());
         let normals = textures.normals.create_view(&Default::default());
@@ -228,6 +221,13 @@ impl AmbientOcclusion {
     /// The final AO (after the last filter).
     pub fn output(&self) -> &wgpu::Texture {
         self.filters.last().map_or(&self.raw, |f| &f.output)
+    }
+
+    /// The final AO of the last encoded frame, row-major over the visible image (1 =
+    /// unoccluded). Waits for the GPU; for tests, tools and examples (an engine samples
+    /// [`AmbientOcclusion::output`] instead).
+    pub fn read_output(&self) -> Result<Vec<f32>, Error> {
+        Ok(crate::gpu::read_texture_f32(&self.gpu, self.output(), 1)?)
     }
 
     /// The schedule's AO before the filters.

@@ -1,0 +1,340 @@
+//! Taking what an engine has: its hardware depth buffer and projection matrix, and its normals
+//! if any, turned by two compute passes (`shaders/engine_input/`) into the linear depth and
+//! view-space normals every AO pass reads ([`FrameTextures`]).
+//!
+//! ```text
+//! engine depth (Depth32Float/…, NDC z) ─┐  projection⁻¹   ┌─> linear depth (R32Float)
+//!                                        └────────────────┤
+//! engine normals (view/world, or none) ───────────────────┴─> view-space normals (Rgba16Float)
+//! ```
+//!
+//! Any projection wgpu can rasterise with works: perspective or orthographic, reversed-Z or not,
+//! finite or infinite far plane ([`ScreenGeometry::from_projection`] reads the geometry from the
+//! same matrix). The depth values must be NDC z in [0, 1], as wgpu (and Vulkan, D3D, Metal)
+//! store them; an OpenGL-style matrix (`perspective_rh_gl`, z in [−1, 1]) is not one wgpu draws
+//! with. Without normals they are reconstructed from the depth (see `normals.wgsl`).
+
+use crate::bindings::{self, entry};
+use crate::frame::{check_float_texture, check_texture};
+use crate::gpu::Gpu;
+use crate::pipeline::FrameTextures;
+use crate::view::ScreenGeometry;
+use crate::Error;
+use glam::Mat4;
+use wgpu::util::DeviceExt;
+
+/// How the engine's normals are stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NormalEncoding {
+    /// The components as they are (a float format).
+    #[default]
+    Signed,
+    /// `n * 0.5 + 0.5`, as in unorm targets (`Rgba8Unorm`, `Rgb10a2Unorm`).
+    Biased,
+}
+
+/// The engine's normals, if it has them.
+#[derive(Clone, Copy, Debug)]
+pub enum EngineNormals<'a> {
+    /// None: reconstructed from the depth buffer.
+    Reconstruct,
+    /// View-space normals (right-handed, camera looking down −Z), xyz of the texture.
+    View {
+        texture: &'a wgpu::Texture,
+        encoding: NormalEncoding,
+    },
+    /// World-space normals with the view matrix (world to view) that turns them.
+    World {
+        texture: &'a wgpu::Texture,
+        encoding: NormalEncoding,
+        view_from_world: Mat4,
+    },
+}
+
+/// One frame as the engine has it. Every texture covers the guard-banded framebuffer
+/// (`ScreenGeometry::full_width` × `full_height`), is single-sampled and has
+/// `TEXTURE_BINDING` usage.
+#[derive(Clone, Copy, Debug)]
+pub struct EngineFrame<'a> {
+    /// The hardware depth buffer: `Depth32Float`, `Depth24Plus`, `Depth24PlusStencil8`
+    /// (its depth aspect), `Depth16Unorm`, or `R32Float` holding NDC z.
+    pub depth: &'a wgpu::Texture,
+    /// The projection the depth was rendered with (the one given to
+    /// [`ScreenGeometry::from_projection`]).
+    pub projection: Mat4,
+    pub normals: EngineNormals<'a>,
+}
+
+/// The two passes and the textures they write, for one screen geometry.
+pub struct EngineInput {
+    gpu: Gpu,
+    screen: ScreenGeometry,
+    view: wgpu::Buffer,
+    depth_layout: wgpu::BindGroupLayout,
+    depth_pipeline: wgpu::ComputePipeline,
+    normals_layout: wgpu::BindGroupLayout,
+    /// Indexed by [`EngineInput::normals_pipeline_index`]: mode × encoding.
+    normals_pipelines: Vec<wgpu::ComputePipeline>,
+    linear_depth: wgpu::Texture,
+    normals: wgpu::Texture,
+}
+
+/// `EngineDepth` of depth.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct DepthParams {
+    clip_to_view: [[f32; 4]; 4],
+    far_clear: f32,
+    _pad: [f32; 3],
+}
+
+const DEPTH_FORMATS: [wgpu::TextureFormat; 5] = [
+    wgpu::TextureFormat::Depth32Float,
+    wgpu::TextureFormat::Depth24Plus,
+    wgpu::TextureFormat::Depth24PlusStencil8,
+    wgpu::TextureFormat::Depth16Unorm,
+    wgpu::TextureFormat::R32Float,
+];
+
+impl EngineInput {
+    /// The passes for `screen` (e.g. from [`ScreenGeometry::from_projection`]).
+    pub fn new(gpu: &Gpu, screen: ScreenGeometry) -> Self {
+        let device = &gpu.device;
+        let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("engine input view"),
+            contents: bytemuck::bytes_of(&screen.uniform()),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let storage = |binding, format| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+            count: None,
+        };
+        let depth_layout = bindings::layout(
+            device,
+            "engine depth",
+            &[
+                entry::uniform(0),
+                entry::uniform(1),
+                entry::texture(2),
+                storage(3, wgpu::TextureFormat::R32Float),
+            ],
+        );
+        let normals_layout = bindings::layout(
+            device,
+            "engine normals",
+            &[
+                entry::uniform(0),
+                entry::uniform(1),
+                entry::texture(2),
+                entry::texture(3),
+                storage(4, crate::raster::gbuffer::NORMAL_FORMAT),
+            ],
+        );
+        let pipeline = |label: &str,
+                        layout: &wgpu::BindGroupLayout,
+                        source: &str,
+                        constants: &[(&str, f64)]| {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(
+                    crate::shaders::with_common(&[crate::shaders::VIEW], source).into(),
+                ),
+            });
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            });
+            crate::gpu::pipeline_from_module(
+                device,
+                label,
+                &module,
+                constants,
+                Some(&pipeline_layout),
+            )
+        };
+        let depth_pipeline = pipeline(
+            "engine depth",
+            &depth_layout,
+            crate::shaders::ENGINE_DEPTH,
+            &[],
+        );
+        let normals_pipelines = (0..6)
+            .map(|i| {
+                let (mode, biased) = (i / 2, i % 2);
+                pipeline(
+                    "engine normals",
+                    &normals_layout,
+                    crate::shaders::ENGINE_NORMALS,
+                    &[("MODE", f64::from(mode)), ("BIASED", f64::from(biased))],
+                )
+            })
+            .collect();
+        let target = |label, format| {
+            crate::gpu::texture_2d(
+                device,
+                label,
+                screen.full_width(),
+                screen.full_height(),
+                format,
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+            )
+        };
+        Self {
+            gpu: gpu.clone(),
+            screen,
+            view,
+            depth_layout,
+            depth_pipeline,
+            normals_layout,
+            normals_pipelines,
+            linear_depth: target("engine linear depth", wgpu::TextureFormat::R32Float),
+            normals: target("engine normals", crate::raster::gbuffer::NORMAL_FORMAT),
+        }
+    }
+
+    fn normals_pipeline_index(normals: &EngineNormals) -> usize {
+        let (mode, encoding) = match normals {
+            EngineNormals::Reconstruct => (0, NormalEncoding::Signed),
+            EngineNormals::View { encoding, .. } => (1, *encoding),
+            EngineNormals::World { encoding, .. } => (2, *encoding),
+        };
+        2 * mode + usize::from(encoding == NormalEncoding::Biased)
+    }
+
+    /// Record the two passes for `frame`; the returned textures go to
+    /// [`crate::AmbientOcclusion::encode`] in the same encoder. A texture of the wrong size,
+    /// format, sample count or usage, or a projection that does not match the screen geometry,
+    /// is an error naming it (nothing is recorded then).
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &EngineFrame,
+    ) -> Result<FrameTextures<'_>, Error> {
+        let device = &self.gpu.device;
+        check_texture(&self.screen, "engine depth", frame.depth, &DEPTH_FORMATS)?;
+        let from_matrix = ScreenGeometry::from_projection(
+            frame.projection,
+            self.screen.width,
+            self.screen.height,
+            self.screen.guard_band,
+        )?;
+        let close = (from_matrix.tan_half_fov - self.screen.tan_half_fov)
+            .abs()
+            .max_element()
+            <= 1e-4 * self.screen.tan_half_fov.max_element();
+        if !close || from_matrix.orthographic != self.screen.orthographic {
+            return Err(Error::Input(format!(
+                "EngineFrame::projection describes {from_matrix:?}, but this EngineInput was made \
+                 for {:?}: make a new EngineInput when the projection changes",
+                self.screen
+            )));
+        }
+        let normals_texture = match frame.normals {
+            EngineNormals::Reconstruct => None,
+            EngineNormals::View { texture, .. } | EngineNormals::World { texture, .. } => {
+                Some(texture)
+            }
+        };
+        if let Some(t) = normals_texture {
+            check_float_texture(&self.screen, "engine normals", t)?;
+        }
+        let p = frame.projection;
+        // Reversed-Z maps farther points to smaller depths: perspective when the constant term
+        // of clip z is positive, orthographic when its z scale is.
+        let reversed = if self.screen.orthographic {
+            p.z_axis.z > 0.0
+        } else {
+            p.w_axis.z > 0.0
+        };
+        let params = DepthParams {
+            clip_to_view: p.inverse().to_cols_array_2d(),
+            far_clear: if reversed { 0.0 } else { 1.0 },
+            _pad: [0.0; 3],
+        };
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("engine depth params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let view_from_world = match frame.normals {
+            EngineNormals::World {
+                view_from_world, ..
+            } => view_from_world,
+            _ => Mat4::IDENTITY,
+        };
+        let normal_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("engine normals params"),
+            contents: bytemuck::cast_slice(&view_from_world.to_cols_array()),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let depth_in = frame.depth.create_view(&wgpu::TextureViewDescriptor {
+            aspect: if frame.depth.format().has_depth_aspect() {
+                wgpu::TextureAspect::DepthOnly
+            } else {
+                wgpu::TextureAspect::All
+            },
+            ..Default::default()
+        });
+        let linear = self.linear_depth.create_view(&Default::default());
+        let normals_out = self.normals.create_view(&Default::default());
+        let normals_in = normals_texture.map(|t| t.create_view(&Default::default()));
+        let depth_group = bindings::group(
+            device,
+            "engine depth",
+            &self.depth_layout,
+            &[
+                (0, params.as_entire_binding()),
+                (1, self.view.as_entire_binding()),
+                (2, wgpu::BindingResource::TextureView(&depth_in)),
+                (3, wgpu::BindingResource::TextureView(&linear)),
+            ],
+        );
+        let normals_group = bindings::group(
+            device,
+            "engine normals",
+            &self.normals_layout,
+            &[
+                (0, normal_params.as_entire_binding()),
+                (1, self.view.as_entire_binding()),
+                (2, wgpu::BindingResource::TextureView(&linear)),
+                (
+                    3,
+                    wgpu::BindingResource::TextureView(normals_in.as_ref().unwrap_or(&linear)),
+                ),
+                (4, wgpu::BindingResource::TextureView(&normals_out)),
+            ],
+        );
+        let groups =
+            crate::frame::workgroups_32x8(self.screen.full_width(), self.screen.full_height());
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("engine input"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.depth_pipeline);
+        pass.set_bind_group(0, &depth_group, &[]);
+        pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+        pass.set_pipeline(&self.normals_pipelines[Self::normals_pipeline_index(&frame.normals)]);
+        pass.set_bind_group(0, &normals_group, &[]);
+        pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+        drop(pass);
+        Ok(FrameTextures {
+            depth: &self.linear_depth,
+            normals: &self.normals,
+            second_layer: None,
+        })
+    }
+
+    /// The screen geometry these passes were made for.
+    pub fn screen(&self) -> ScreenGeometry {
+        self.screen
+    }
+}
