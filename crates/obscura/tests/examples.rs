@@ -1,0 +1,30 @@
+//! The examples run as tests, so `cargo test` (and CI) keeps them working as written.
+
+mod common;
+
+#[allow(dead_code)] // its `main`: the test calls `run` with a path of its own
+#[path = "../examples/engine_depth.rs"]
+mod engine_depth;
+
+#[test]
+fn engine_depth_example_writes_an_occluded_image() {
+    common::gpu(); // quiets the Vulkan loader as the other tests do
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("engine_depth.png");
+    let mean = engine_depth::run(&out).unwrap();
+    let image = obscura::output::read_ao(&out).unwrap();
+    assert_eq!((image.width, image.height), (320, 180));
+    // A box in front of a floor-wall corner: occluded, but not black.
+    assert!(
+        (0.3..0.98).contains(&mean),
+        "mean AO of the occluded pixels {mean}"
+    );
+    let darkest = image.values.iter().copied().fold(1.0, f32::min);
+    assert!(
+        darkest < 0.85,
+        "the box's contact and the floor-wall corner are darker: {darkest}"
+    );
+    // The open floor in front (bottom centre) is unoccluded.
+    let open = image.values[(175 * 320 + 160) as usize];
+    assert!(open > 0.97, "open floor {open}");
+}
