@@ -25,8 +25,9 @@ struct GpuMaterial {
 #[derive(Clone)]
 pub struct GpuScene {
     pub positions: wgpu::Buffer,
-    /// Per vertex `(u, v, normal)`, the normal octahedral-encoded ([`encode_normal`]); "none"
-    /// everywhere unless the scene [uses shading normals](Scene::uses_shading_normals).
+    /// Per vertex `(u, v, normal)`, the normal octahedral-encoded (`encode_normal`,
+    /// `shaders/common/vertex_normal.wgsl`); "none" everywhere unless the scene
+    /// [uses shading normals](Scene::uses_shading_normals).
     pub attributes: wgpu::Buffer,
     /// The scene uses its vertex normals (the G-buffer interpolates them).
     pub shading_normals: bool,
