@@ -40,13 +40,19 @@ pub enum EngineNormals<'a> {
     Reconstruct,
     /// View-space normals (right-handed, camera looking down −Z), xyz of the texture.
     View {
+        /// The engine's normal target over the framebuffer, any float or unorm format; need
+        /// not be unit length (normalised, and turned to face the camera).
         texture: &'a wgpu::Texture,
+        /// How the texture stores the components.
         encoding: NormalEncoding,
     },
     /// World-space normals with the view matrix (world to view) that turns them.
     World {
+        /// The engine's normal target over the framebuffer, any float or unorm format.
         texture: &'a wgpu::Texture,
+        /// How the texture stores the components.
         encoding: NormalEncoding,
+        /// World to view space (the camera's view matrix); only its linear part turns the normals.
         view_from_world: Mat4,
     },
 }
@@ -62,6 +68,7 @@ pub struct EngineFrame<'a> {
     /// The projection the depth was rendered with (the one given to
     /// [`ScreenGeometry::from_projection`]).
     pub projection: Mat4,
+    /// The engine's normals, or [`EngineNormals::Reconstruct`] to derive them from the depth.
     pub normals: EngineNormals<'a>,
 }
 
@@ -172,7 +179,11 @@ impl EngineInput {
                     "engine normals",
                     &normals_layout,
                     crate::shaders::ENGINE_NORMALS,
-                    &[("MODE", f64::from(mode)), ("BIASED", f64::from(biased))],
+                    &[
+                        ("MODE", f64::from(mode)),
+                        ("BIASED", f64::from(biased)),
+                        ("ORTHOGRAPHIC", f64::from(u8::from(screen.orthographic))),
+                    ],
                 )
             })
             .collect();

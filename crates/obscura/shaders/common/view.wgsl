@@ -8,7 +8,7 @@ struct View {
     // Perspective: tan of half the field of view; orthographic: half the extent in world units.
     tan_half_fov: vec2<f32>,
     guard_band: u32,
-    // 1: orthographic projection (parallel view rays along -Z).
+    // 1: orthographic projection (the pipelines also set ORTHOGRAPHIC, which the helpers read).
     orthographic: u32,
     // 2 / full_size: normalised device coordinates per pixel.
     ndc_per_pixel: vec2<f32>,
@@ -16,27 +16,32 @@ struct View {
     projection_scale: vec2<f32>,
 }
 
+// An orthographic projection (parallel view rays along -Z): a pipeline constant rather than a
+// uniform test, so the perspective pipelines compile without it (4 % of the vao pass on an H200
+// when it was read from the uniform per sample; BENCHMARKS.md).
+override ORTHOGRAPHIC: bool = false;
+
 // View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at depth `z`.
 fn pixel_to_view(v: View, px: vec2<f32>, z: f32) -> vec3<f32> {
     let ndc = vec2<f32>(px.x * v.ndc_per_pixel.x - 1.0, 1.0 - px.y * v.ndc_per_pixel.y);
-    return vec3<f32>(ndc * v.tan_half_fov * select(z, 1.0, v.orthographic != 0u), -z);
+    return vec3<f32>(ndc * v.tan_half_fov * select(z, 1.0, ORTHOGRAPHIC), -z);
 }
 
 // Framebuffer pixel coordinates of a view-space point.
 fn view_to_pixel(v: View, p: vec3<f32>) -> vec2<f32> {
-    let s = p.xy * (v.projection_scale / select(-p.z, 1.0, v.orthographic != 0u));
+    let s = p.xy * (v.projection_scale / select(-p.z, 1.0, ORTHOGRAPHIC));
     let half_size = 0.5 * vec2<f32>(v.full_size);
     return vec2<f32>(half_size.x + s.x, half_size.y - s.y);
 }
 
 // Pixels per world unit across the view at linear depth `z`.
 fn pixels_per_unit(v: View, z: f32) -> vec2<f32> {
-    return v.projection_scale / select(z, 1.0, v.orthographic != 0u);
+    return v.projection_scale / select(z, 1.0, ORTHOGRAPHIC);
 }
 
 // Unit vector from view-space point `p` towards the camera (along +Z when orthographic).
 fn toward_camera(v: View, p: vec3<f32>) -> vec3<f32> {
-    return select(normalize(-p), vec3<f32>(0.0, 0.0, 1.0), v.orthographic != 0u);
+    return select(normalize(-p), vec3<f32>(0.0, 0.0, 1.0), ORTHOGRAPHIC);
 }
 
 // Background (no geometry) is stored as linear depth 0 in the G-buffer.

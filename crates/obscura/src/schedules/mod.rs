@@ -140,7 +140,12 @@ impl SchedulePass {
         source: &SourcePass,
         screen: &ScreenGeometry,
     ) -> Self {
-        let stages = stages(schedule);
+        let mut stages = stages(schedule);
+        if screen.orthographic {
+            for stage in &mut stages {
+                stage.constants.push(("ORTHOGRAPHIC", 1.0));
+            }
+        }
         match schedule {
             Schedule::Single => SchedulePass::Single(single::Single::new(
                 device,
