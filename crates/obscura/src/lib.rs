@@ -15,6 +15,7 @@
 
 pub mod bindings;
 pub mod bvh;
+pub mod engine_geometry;
 pub mod engine_input;
 pub mod estimators;
 pub mod filter;
@@ -35,6 +36,7 @@ pub mod sources;
 pub mod technique;
 pub mod view;
 
+pub use engine_geometry::{AlphaMask, EngineGeometry, EngineMesh, IndexData, VertexAttribute};
 pub use engine_input::{EngineFrame, EngineInput, EngineNormals, NormalEncoding};
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};
 pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};

@@ -25,10 +25,13 @@ pub fn near_plane(scene: &crate::scene::Scene) -> f32 {
 /// Everything a pass needs to go between pixels and view space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameView {
+    /// The camera; its `fov_y_deg` frames the visible image, not the whole framebuffer.
     pub camera: Camera,
     /// Visible image size.
     pub width: u32,
+    /// Visible image height in pixels (guard band excluded).
     pub height: u32,
+    /// Guard band in pixels on every side: the framebuffer is `(width + 2g) × (height + 2g)`.
     pub guard_band: u32,
     /// `tan` of half the field of view of the whole framebuffer (x, y).
     pub tan_half_fov: Vec2,
@@ -37,6 +40,9 @@ pub struct FrameView {
 }
 
 impl FrameView {
+    /// The view of `camera` for a visible `width`×`height` image with `guard_band` pixels on every
+    /// side: the field of view is widened so that the visible part keeps the camera's framing.
+    /// `near` is the projection's near plane ([`near_plane`]).
     pub fn new(camera: Camera, width: u32, height: u32, guard_band: u32, near: f32) -> Self {
         let tan_y_visible = (camera.fov_y_deg.to_radians() * 0.5).tan();
         // One visible pixel spans 2·tan(fov/2)/H; the guard band adds g such pixels per side.
@@ -52,10 +58,64 @@ impl FrameView {
         }
     }
 
+    /// The view of an engine's camera: its view matrix (world to view, rigid) and the screen
+    /// geometry of its projection ([`ScreenGeometry::from_projection`]), for the sources that
+    /// trace or rasterise hidden depth from the camera (`AmbientOcclusion::set_camera`). `near`:
+    /// where camera rays start (the engine's near plane). Orthographic screens have no camera
+    /// position: an error, as is a view matrix that scales or shears.
+    pub fn from_matrices(
+        view: Mat4,
+        screen: ScreenGeometry,
+        near: f32,
+    ) -> Result<Self, crate::Error> {
+        let bad = |why: String| Err(crate::Error::Input(why));
+        if screen.orthographic {
+            return bad(
+                "an orthographic screen has no camera position: the hidden-depth sources need a \
+                 perspective projection"
+                    .into(),
+            );
+        }
+        let to_world = view.inverse();
+        let axes = [to_world.x_axis, to_world.y_axis, to_world.z_axis].map(|a| a.truncate());
+        let rigid = axes.iter().all(|a| (a.length() - 1.0).abs() < 1e-4)
+            && axes[0].dot(axes[1]).abs() < 1e-4
+            && axes[1].dot(axes[2]).abs() < 1e-4
+            && axes[0].dot(axes[2]).abs() < 1e-4;
+        if !view.is_finite() || !rigid {
+            return bad(format!(
+                "view matrix {view:?} is not a rigid transform (rotation and translation): pass \
+                 the camera's world-to-view matrix without scale"
+            ));
+        }
+        if !(near > 0.0 && near.is_finite()) {
+            return bad(format!("near plane {near} must be positive"));
+        }
+        let eye = to_world.w_axis.truncate();
+        let tan_y_visible =
+            screen.tan_half_fov.y * screen.height as f32 / screen.full_height() as f32;
+        let camera = Camera {
+            eye,
+            target: eye - axes[2],
+            up: axes[1],
+            fov_y_deg: 2.0 * tan_y_visible.atan().to_degrees(),
+        };
+        Ok(Self {
+            camera,
+            width: screen.width,
+            height: screen.height,
+            guard_band: screen.guard_band,
+            tan_half_fov: screen.tan_half_fov,
+            near,
+        })
+    }
+
+    /// Framebuffer width in pixels: the visible width plus the guard band on both sides.
     pub fn full_width(&self) -> u32 {
         self.width + 2 * self.guard_band
     }
 
+    /// Framebuffer height in pixels: the visible height plus the guard band on both sides.
     pub fn full_height(&self) -> u32 {
         self.height + 2 * self.guard_band
     }
@@ -65,6 +125,7 @@ impl FrameView {
         2.0 * self.tan_half_fov.y.atan()
     }
 
+    /// World space to view space (right-handed, looking down −Z): the camera's look-at matrix.
     pub fn view_matrix(&self) -> Mat4 {
         self.camera.view_matrix()
     }
@@ -101,8 +162,11 @@ impl FrameView {
 /// [`crate::AmbientOcclusion`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScreenGeometry {
+    /// Visible image width in pixels (guard band excluded): the size of the AO output.
     pub width: u32,
+    /// Visible image height in pixels (guard band excluded).
     pub height: u32,
+    /// Guard band in pixels on every side: the inputs are `(width + 2g) × (height + 2g)`.
     pub guard_band: u32,
     /// `tan` of half the field of view of the whole framebuffer, guard band included (x, y); for
     /// an orthographic projection, half the framebuffer's extent in world units.
@@ -172,10 +236,12 @@ impl ScreenGeometry {
         })
     }
 
+    /// Framebuffer width in pixels: the visible width plus the guard band on both sides.
     pub fn full_width(&self) -> u32 {
         self.width + 2 * self.guard_band
     }
 
+    /// Framebuffer height in pixels: the visible height plus the guard band on both sides.
     pub fn full_height(&self) -> u32 {
         self.height + 2 * self.guard_band
     }
@@ -220,12 +286,20 @@ impl ScreenGeometry {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ViewUniform {
+    /// Framebuffer size in pixels, guard band included (`full_width`, `full_height`).
     pub full_size: [u32; 2],
+    /// Visible image size in pixels.
     pub visible_size: [u32; 2],
+    /// As [`ScreenGeometry::tan_half_fov`]: `tan` of half the whole framebuffer's field of view,
+    /// or half its extent in world units when orthographic.
     pub tan_half_fov: [f32; 2],
+    /// Guard band in pixels on every side.
     pub guard_band: u32,
+    /// 1 for an orthographic projection (parallel view rays along −Z), else 0.
     pub orthographic: u32,
+    /// `2 / full_size`: normalised device coordinates per pixel.
     pub ndc_per_pixel: [f32; 2],
+    /// `0.5 · full_size / tan_half_fov`: pixels per unit of x/z (y/z) from the image centre.
     pub projection_scale: [f32; 2],
 }
 

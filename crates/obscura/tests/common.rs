@@ -148,3 +148,33 @@ pub fn masked_quad_before_wall() -> Scene {
     push_quad(&mut scene, quad(1.0, -2.0), 1);
     scene
 }
+
+/// A `width`×`height` texture of `format` (`texel` bytes each) holding `bytes`, with the usages
+/// an engine's inputs have (sampled, and written here).
+pub fn upload_texture(
+    gpu: &Gpu,
+    format: wgpu::TextureFormat,
+    (width, height): (u32, u32),
+    bytes: &[u8],
+    texel: u32,
+) -> wgpu::Texture {
+    let t = obscura::gpu::texture_2d(
+        &gpu.device,
+        "uploaded",
+        width,
+        height,
+        format,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    gpu.queue.write_texture(
+        t.as_image_copy(),
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * texel),
+            rows_per_image: None,
+        },
+        t.size(),
+    );
+    t
+}

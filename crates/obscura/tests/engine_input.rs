@@ -31,26 +31,7 @@ fn our_frame(gpu: &Gpu, settings: &AoSettings) -> (GBufferImage, Vec<f32>, Frame
 }
 
 fn upload(gpu: &Gpu, format: wgpu::TextureFormat, bytes: &[u8], texel: u32) -> wgpu::Texture {
-    let (fw, fh) = (W + 2 * BAND, H + 2 * BAND);
-    let t = obscura::gpu::texture_2d(
-        &gpu.device,
-        "engine texture",
-        fw,
-        fh,
-        format,
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-    );
-    gpu.queue.write_texture(
-        t.as_image_copy(),
-        bytes,
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(fw * texel),
-            rows_per_image: None,
-        },
-        t.size(),
-    );
-    t
+    upload_texture(gpu, format, (W + 2 * BAND, H + 2 * BAND), bytes, texel)
 }
 
 /// NDC z of every framebuffer pixel of `g` under `projection` (the engine's depth buffer), the

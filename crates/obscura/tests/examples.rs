@@ -28,3 +28,24 @@ fn engine_depth_example_writes_an_occluded_image() {
     let open = image.values[(175 * 320 + 160) as usize];
     assert!(open > 0.97, "open floor {open}");
 }
+
+#[allow(dead_code)]
+#[path = "../examples/engine_meshes.rs"]
+mod engine_meshes;
+
+#[test]
+fn engine_meshes_example_traces_the_engine_s_own_geometry() {
+    common::gpu();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("engine_meshes.png");
+    engine_meshes::run(&out, obscura::Technique::RtVao).unwrap();
+    let image = obscura::output::read_ao(&out).unwrap();
+    assert_eq!((image.width, image.height), (320, 180));
+    let at = |x: u32, y: u32| image.values[(y * 320 + x) as usize];
+    // The pillar's face (image centre) and the open floor in front are unoccluded; the foot of
+    // the back wall and of the pillar are not.
+    assert!(at(160, 60) > 0.97, "pillar face {}", at(160, 60));
+    assert!(at(160, 175) > 0.97, "open floor {}", at(160, 175));
+    let darkest = image.values.iter().copied().fold(1.0, f32::min);
+    assert!(darkest < 0.8, "no contact occlusion: {darkest}");
+}

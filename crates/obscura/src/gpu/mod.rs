@@ -5,7 +5,9 @@ mod profiler;
 mod readback;
 
 pub use profiler::{FrameFragments, FrameTimings, PassProfiler};
-pub use readback::{read_buffer, read_texture_bytes, read_texture_f32, read_texture_rgba8};
+pub use readback::{
+    read_buffer, read_buffer_copy, read_texture_bytes, read_texture_f32, read_texture_rgba8,
+};
 
 use std::sync::{Arc, Mutex};
 
@@ -19,30 +21,45 @@ pub struct GpuOptions {
     pub backend: Option<String>,
 }
 
+/// What can go wrong with the GPU, each message saying what to do about it.
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
+    /// No adapter at all, or none left by the adapter name and backend asked for.
     #[error(
         "no GPU adapter found{filter}. obscura needs Vulkan, Metal or DX12; on a machine without a GPU \
          install Mesa's software Vulkan driver (Debian/Ubuntu: `sudo apt-get install mesa-vulkan-drivers`)"
     )]
-    NoAdapter { filter: String },
+    NoAdapter {
+        /// What narrowed the search, for the message (` matching 'x' on backend 'y'`; empty
+        /// when nothing did).
+        filter: String,
+    },
+    /// Adapters exist, but none whose name contains [`GpuOptions::adapter`].
     #[error(
         "no GPU adapter matching '{filter}'; the adapters here are: {}: pick one by a part of its name",
         available.join("; ")
     )]
     NoMatchingAdapter {
+        /// The adapter name asked for.
         filter: String,
+        /// Every adapter found, as `name (backend)`.
         available: Vec<String>,
     },
+    /// A backend name (`--backend`, `OBSCURA_BACKEND`) that is not vulkan, metal, dx12 or gl.
     #[error("unknown backend '{0}': use vulkan, metal, dx12 or gl")]
     UnknownBackend(String),
+    /// The adapter refused to create a device.
     #[error("could not create a device on '{adapter}': {source}")]
     Device {
+        /// The adapter's name.
         adapter: String,
+        /// wgpu's error.
         source: wgpu::RequestDeviceError,
     },
+    /// wgpu validation errors raised since the last check ([`Gpu::check_errors`]), one a line.
     #[error("GPU validation error: {0}")]
     Validation(String),
+    /// Anything else: an adapter limit or missing feature, a failed poll or buffer mapping.
     #[error("GPU error: {0}")]
     Other(String),
 }
@@ -50,20 +67,34 @@ pub enum GpuError {
 /// Adapter facts worth printing (`obscura info`) and recording next to benchmark numbers.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct AdapterSummary {
+    /// The adapter's name, as the driver reports it.
     pub name: String,
+    /// wgpu's backend, `Debug`-formatted (`Vulkan`, `Metal`, `Dx12`, `Gl`).
     pub backend: String,
+    /// `DiscreteGpu`, `IntegratedGpu`, `VirtualGpu`, `Cpu` (software, e.g. lavapipe) or `Other`.
     pub device_type: String,
+    /// The driver's name (may be empty).
     pub driver: String,
+    /// The driver's version or other details (may be empty).
     pub driver_info: String,
+    /// Backend-specific vendor id, generally the PCI one (0x10de NVIDIA, 0x1002 AMD, 0x8086 Intel).
     pub vendor: u32,
+    /// Backend-specific device id, generally the PCI one.
     pub device: u32,
+    /// Timestamp queries are enabled: per-pass GPU times ([`PassProfiler`]) work.
     pub timestamp_queries: bool,
     /// Pipeline statistics queries (bench counts the fragments of each raster pass).
     pub pipeline_statistics: bool,
+    /// Largest width or height of a 2D texture, pixels: bounds the framebuffer, guard band
+    /// included.
     pub max_texture_dimension_2d: u32,
+    /// Most layers of a texture array (the scene's base-colour textures take one each).
     pub max_texture_array_layers: u32,
+    /// Largest storage buffer binding, bytes (bounds the scene's vertex and triangle buffers).
     pub max_storage_buffer_binding_size: u64,
+    /// Largest compute workgroup size in x, y, z.
     pub max_compute_workgroup_size: [u32; 3],
+    /// Most invocations in one compute workgroup.
     pub max_compute_invocations_per_workgroup: u32,
     /// MSAA sample counts a depth texture (`Depth32Float`) supports on this adapter.
     pub depth_msaa_sample_counts: Vec<u32>,
@@ -74,9 +105,14 @@ pub struct AdapterSummary {
 /// each own one.
 #[derive(Clone)]
 pub struct Gpu {
+    /// The adapter the device was created on.
     pub adapter: wgpu::Adapter,
+    /// The device. [`Gpu::new`] creates it with the adapter's limits and those of the features
+    /// obscura uses that the adapter has.
     pub device: wgpu::Device,
+    /// The device's queue.
     pub queue: wgpu::Queue,
+    /// What the adapter is and can do, read once at creation.
     pub summary: AdapterSummary,
     errors: Arc<Mutex<Vec<String>>>,
 }

@@ -45,6 +45,20 @@ pub fn read_texture_bytes(
     Ok(out)
 }
 
+/// Copy a `COPY_SRC` buffer into a staging buffer and read it (waits for the GPU).
+pub fn read_buffer_copy(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    gpu.queue.submit([encoder.finish()]);
+    read_buffer(gpu, &staging)
+}
+
 /// Wait for the GPU, then copy a `MAP_READ` buffer's contents out.
 pub fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
     let slice = buffer.slice(..);

@@ -149,10 +149,12 @@ impl AmbientOcclusion {
         self.source.set_camera(queue, view);
     }
 
+    /// The settings it was built with (validated).
     pub fn settings(&self) -> &AoSettings {
         &self.settings
     }
 
+    /// The screen geometry it was built for: the inputs' and the output's sizes.
     pub fn screen(&self) -> ScreenGeometry {
         self.screen
     }
@@ -270,9 +272,9 @@ impl AmbientOcclusion {
         let Some(buffer) = self.source.requests() else {
             return Ok(None);
         };
-        Ok(Some(bytemuck::pod_collect_to_vec(&read_whole_buffer(
-            &self.gpu, buffer,
-        )?)))
+        Ok(Some(bytemuck::pod_collect_to_vec(
+            &crate::gpu::read_buffer_copy(&self.gpu, buffer)?,
+        )))
     }
 
     /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
@@ -281,7 +283,7 @@ impl AmbientOcclusion {
         let Some(counter) = self.source.stack_overflows() else {
             return Ok(0);
         };
-        let bytes = read_whole_buffer(&self.gpu, counter)?;
+        let bytes = crate::gpu::read_buffer_copy(&self.gpu, counter)?;
         Ok(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
     }
 
@@ -291,24 +293,11 @@ impl AmbientOcclusion {
         let Some(records) = self.schedule.phase1_records() else {
             return Ok(None);
         };
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&read_whole_buffer(&self.gpu, records)?);
+        let words: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer_copy(&self.gpu, records)?);
         let pixels = (self.screen.width * self.screen.height) as usize;
         Ok(Some(
             words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
         ))
     }
-}
-
-/// A GPU buffer's bytes (copied to a mappable buffer first). Waits for the GPU.
-fn read_whole_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Error> {
-    let staging = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: buffer.size(),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
-    gpu.queue.submit([encoder.finish()]);
-    Ok(crate::gpu::read_buffer(gpu, &staging)?)
 }
