@@ -8,15 +8,22 @@
 
 /// Bind group indices, one per axis.
 pub const GROUP_FRAME: u32 = 0;
+/// Group 1: the estimator's parameters (GTAO-VB, HBAO+ or VAO uniform).
 pub const GROUP_ESTIMATOR: u32 = 1;
+/// Group 2: the hidden-depth source's resources (second depth layer, BVH, stochastic depth maps).
 pub const GROUP_SOURCE: u32 = 2;
+/// Group 3: the schedule's buffers (two-phase), or a pass's own parameters and output in its place.
 pub const GROUP_SCHEDULE: u32 = 3;
+/// How many bind groups a pipeline layout has (WebGPU's default `maxBindGroups`).
 pub const GROUP_COUNT: usize = 4;
 
 /// Group 0, the frame (`shaders/frame/frame.wgsl`).
 pub const FRAME_VIEW: u32 = 0;
+/// The first depth layer: `R32Float` linear depth (−z, world units, 0 = background).
 pub const FRAME_DEPTH: u32 = 1;
+/// The view-space normals of the first layer.
 pub const FRAME_NORMALS: u32 = 2;
+/// The AO image the pass writes (write-only `r32float` storage texture, 1 = unoccluded).
 pub const FRAME_AO_OUT: u32 = 3;
 
 /// Group 1, the estimator's parameters.
@@ -24,27 +31,40 @@ pub const ESTIMATOR_PARAMS: u32 = 0;
 
 /// Group 2, the source. Each source uses its own bindings; a layout holds only one source's.
 pub const SOURCE_SECOND_DEPTH: u32 = 0;
+/// Column rays: the `RayCamera` uniform (camera-to-world matrix and near plane) of
+/// `shaders/sources/column_trace.wgsl`.
 pub const SOURCE_RAY_CAMERA: u32 = 0;
+/// Column rays: the atomic count of rays whose BVH traversal overflowed its stack.
 pub const SOURCE_STACK_OVERFLOWS: u32 = 1;
 /// The six bindings of `shaders/common/bvh.wgsl` start here.
 pub const SOURCE_BVH: u32 = 2;
+/// Stochastic depth: the projection's near plane (`vec4`, in `x`), to turn the maps' reversed-Z
+/// values back into linear depth.
 pub const SOURCE_SD_NEAR: u32 = 0;
+/// Stochastic depth: one `u32` per framebuffer pixel, set to 1 by the two-phase schedule's
+/// phase 1 where the map must be rasterised.
 pub const SOURCE_SD_REQUEST: u32 = 1;
 /// One multisampled depth texture per stacked stochastic depth map from here on.
 pub const SOURCE_SD_MAPS: u32 = 2;
 
 /// Group 3, the two-phase schedule.
 pub const SCHEDULE_PIXELS: u32 = 0;
+/// The atomic count of pixels phase 1 left flagged for phase 2.
 pub const SCHEDULE_WORK_COUNT: u32 = 1;
+/// The compacted list of flagged pixel indices phase 2 works through.
 pub const SCHEDULE_WORK_LIST: u32 = 2;
 /// Group 0 of the two-phase schedule's indirect-arguments pass.
 pub const INDIRECT_WORK_COUNT: u32 = 0;
+/// The three `u32` workgroup counts of phase 2's indirect dispatch, written by the pass.
 pub const INDIRECT_DISPATCH: u32 = 1;
 /// Group 3 of the ground truth (its own parameters and output in the schedule's place).
 pub const REFERENCE_PARAMS: u32 = 0;
+/// Per visible pixel: the AO (`vao` model) or the occlusion summed over the rays so far
+/// (`hemisphere` model).
 pub const REFERENCE_OUT: u32 = 1;
 /// Group 3 of the stochastic depth map's read-back.
 pub const UNPACK_LAYER: u32 = 0;
+/// The unpacked layer: one `f32` per framebuffer pixel, linear depth, 0 = empty.
 pub const UNPACK_OUT: u32 = 1;
 
 /// Every named binding, for [`wgsl_constants`].
@@ -96,6 +116,7 @@ pub mod entry {
         }
     }
 
+    /// A uniform buffer.
     pub fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
         compute(
             binding,
@@ -107,6 +128,7 @@ pub mod entry {
         )
     }
 
+    /// A storage buffer, `read_only` or read-write.
     pub fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
         compute(
             binding,

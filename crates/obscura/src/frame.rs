@@ -13,6 +13,7 @@ pub struct FrameInputs<'a> {
     pub normals: &'a wgpu::TextureView,
     /// The second depth layer from depth peeling (`R32Float`, linear, 0 = none), for `vao-dual`.
     pub second_layer: Option<&'a wgpu::TextureView>,
+    /// The screen geometry the textures and the AO output are sized by.
     pub screen: ScreenGeometry,
     /// The uniform of `screen` (`View` in `shaders/common/view.wgsl`).
     pub view: &'a wgpu::Buffer,

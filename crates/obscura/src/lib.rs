@@ -13,6 +13,8 @@
 //! Conventions: right-handed view space looking down −Z, linear depth = −z in world units,
 //! AO = 1 unoccluded / 0 fully occluded, exponent applied last.
 
+#![warn(missing_docs)]
+
 pub mod bindings;
 pub mod bvh;
 pub mod engine_geometry;
@@ -51,12 +53,23 @@ use std::path::PathBuf;
 /// Everything that can go wrong, each with a message that names the input and the fix.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
+    /// The GPU failed: no adapter, no device, a validation error or an adapter limit.
     #[error(transparent)]
     Gpu(#[from] GpuError),
+    /// The AO settings are invalid (an out-of-range value, a technique's missing requirement).
     #[error(transparent)]
     Settings(#[from] SettingsError),
+    /// An input the caller passed is unusable (a texture of the wrong size or format, a bad
+    /// projection matrix, an unreadable image, an output path without a known extension); the
+    /// message says which and how to fix it.
     #[error("{0}")]
     Input(String),
+    /// Writing an output file failed; nothing half-written is left at `path`.
     #[error("could not write '{path}': {message}")]
-    Output { path: PathBuf, message: String },
+    Output {
+        /// The file that was being written.
+        path: PathBuf,
+        /// Why it failed (the encoder's or the file system's error).
+        message: String,
+    },
 }

@@ -14,6 +14,8 @@ pub enum ImageFormat {
 }
 
 impl ImageFormat {
+    /// The format `path`'s extension names (`.png` or `.exr`, any case); any other is an
+    /// [`Error::Input`] saying which to use.
     pub fn from_path(path: &Path) -> Result<Self, Error> {
         match path
             .extension()
@@ -103,8 +105,11 @@ pub fn write_atomically(
 
 /// A single-channel image read back: `width × height` values, row-major.
 pub struct AoImage {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// `width × height` values, row-major from the top row (AO: 1 = unoccluded).
     pub values: Vec<f32>,
 }
 

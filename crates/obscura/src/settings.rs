@@ -14,6 +14,7 @@ use std::str::FromStr;
 /// to its flags itself.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingsError {
+    /// A `technique` name that is not a row of the technique table.
     #[error(transparent)]
     UnknownTechnique(#[from] UnknownTechnique),
     /// A value no kernel can use.
@@ -22,6 +23,7 @@ pub enum SettingsError {
         /// The field's path, as in a settings file: `vao.radius`, `blur.radius`,
         /// `stochastic_depth.alpha`, `peel_separation`, … (one of [`AoSettings::field_paths`]).
         field: &'static str,
+        /// The rejected value, as given.
         value: String,
         /// What a valid value is, with an example; no command-line flags.
         rule: &'static str,
@@ -32,7 +34,9 @@ pub enum SettingsError {
     Unsupported {
         /// The field's path, as for [`SettingsError::Invalid`].
         field: &'static str,
+        /// The value asked for, as given.
         value: String,
+        /// The adapter's name.
         adapter: String,
         /// Why, and the values that work here.
         reason: String,
@@ -46,10 +50,18 @@ pub enum SettingsError {
          chosen by the extension)",
         path.display()
     )]
-    UnknownFormat { path: PathBuf },
+    UnknownFormat {
+        /// The settings file.
+        path: PathBuf,
+    },
     /// A settings file that cannot be read.
     #[error("cannot read settings file '{}': {message}: check the path", path.display())]
-    Read { path: PathBuf, message: String },
+    Read {
+        /// The settings file.
+        path: PathBuf,
+        /// The operating system's error.
+        message: String,
+    },
     /// A settings file that is not valid JSON/TOML, has a value of the wrong type or names a
     /// field that does not exist (`line`/`column` where the parser says, 1-based).
     #[error(
@@ -58,15 +70,21 @@ pub enum SettingsError {
         at(*line, *column)
     )]
     Parse {
+        /// The settings file.
         path: PathBuf,
+        /// The line the parser points at, 1-based; `None` where it cannot tell.
         line: Option<usize>,
+        /// The column on that line, 1-based; `None` where the parser cannot tell.
         column: Option<usize>,
+        /// The parser's message, without the position (`line`, `column` give it).
         message: String,
     },
     /// A settings file that parses but whose values do not validate.
     #[error("settings file '{}': {source}", path.display())]
     InFile {
+        /// The settings file.
         path: PathBuf,
+        /// What [`AoSettings::validate`] rejected in the file's values.
         source: Box<SettingsError>,
     },
 }
@@ -91,6 +109,7 @@ pub struct VaoSettings {
     pub exponent: f32,
     /// Line samples per pixel: 8, 16 or 32.
     pub samples: u32,
+    /// How the free column lengths become AO (default [`Normalization::Clipped`]).
     pub normalization: Normalization,
 }
 
@@ -209,6 +228,7 @@ pub struct GtaoVbSettings {
     pub slices: u32,
     /// Steps on each side of a slice; slices × 2 × steps ≤ 32.
     pub steps: u32,
+    /// Which sectors a sample's angular span sets (default [`SectorActivation::Ceil`]).
     pub activation: SectorActivation,
 }
 
@@ -229,6 +249,7 @@ impl Default for GtaoVbSettings {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BlurSettings {
+    /// Whether the blur runs at all; `false` outputs the estimator's unfiltered AO.
     pub enabled: bool,
     /// Taps on each side.
     pub radius: u32,
@@ -354,14 +375,20 @@ pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct AoSettings {
+    /// Which row of the technique table runs (estimator × hidden-depth source × schedule); default
+    /// `vao`.
     pub technique: Technique,
+    /// The VAO estimator (`vao`, `vao-dual`, `rt-vao`, `rt-svao`, `rt-svao-dense`, `sd-vao`,
+    /// `sd-svao`).
     pub vao: VaoSettings,
+    /// The bilateral blur that filters every technique's raw AO.
     pub blur: BlurSettings,
     /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
     /// the first (the authors' `minSeparationDistance`, seed-code-notes §2.1).
     /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
     /// depth map (`sd-vao`, `sd-svao`).
     pub peel_separation: f32,
+    /// The stochastic depth map (`sd-vao`, `sd-svao`).
     pub stochastic_depth: StochasticDepthSettings,
     /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
     pub hbao_plus: HbaoPlusSettings,
@@ -562,17 +589,23 @@ fn to_value(settings: &AoSettings) -> serde_json::Value {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Preset {
+    /// The cheapest: blur radius 2 (VAO, HBAO+), fewer samples (HBAO+ 4 directions, GTAO-VB
+    /// 1 × 2) and one stochastic depth sample per pixel.
     Low,
     /// The defaults ([`AoSettings::default`]) for every technique.
     #[default]
     Medium,
+    /// More samples than the defaults where the estimator has room (VAO 16, GTAO-VB 3 × 3).
     High,
+    /// The most samples (VAO 32, GTAO-VB 3 × 5, S = 8) and, for VAO and HBAO+, blur radius 6.
     Ultra,
 }
 
 impl Preset {
+    /// Every preset, cheapest first.
     pub const ALL: [Preset; 4] = [Preset::Low, Preset::Medium, Preset::High, Preset::Ultra];
 
+    /// The preset's name in settings files and on the command line (`low` … `ultra`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::Low => "low",

@@ -13,13 +13,14 @@ use std::str::FromStr;
 /// Declares [`Technique`] and the list of its variants (so a test can hold every variant to
 /// exactly one row).
 macro_rules! techniques {
-    ($first:ident $(, $rest:ident)* $(,)?) => {
+    ($(#[$first_doc:meta])* $first:ident $(, $(#[$rest_doc:meta])* $rest:ident)* $(,)?) => {
         /// An AO technique: a handle on its row of [`TABLE`].
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
         pub enum Technique {
+            $(#[$first_doc])*
             #[default]
             $first,
-            $($rest,)*
+            $($(#[$rest_doc])* $rest,)*
         }
 
         #[cfg(test)]
@@ -28,16 +29,27 @@ macro_rules! techniques {
 }
 
 techniques!(
+    /// `vao`: volumetric AO over the depth buffer (seed 000 §3.1–3.5). The default.
     Vao,
+    /// `vao-dual`: VAO; occluded samples also read a second depth layer (depth peeling).
     VaoDual,
+    /// `rt-vao`: VAO; occluded samples trace their camera-ray column through the BVH.
     RtVao,
+    /// `rt-svao`: RT-VAO in two phases; phase 2 traces only the flagged samples (work list).
     RtSvao,
+    /// `rt-svao-dense`: RT-SVAO with phase 2 walking every pixel (no work list).
     RtSvaoDense,
+    /// `sd-vao`: VAO; occluded samples read every sample of a stochastic depth map.
     SdVao,
+    /// `sd-svao`: SD-VAO in two phases; the map is rasterised only where phase 1 asked.
     SdSvao,
+    /// `hbao+`: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline).
     HbaoPlus,
+    /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `gtao-vb`: GTAO slices with a 32-sector visibility bitmask and constant thickness.
     GtaoVb,
+    /// `gtao-vb-dual`: GTAO-VB; every sample also marks the sectors of the second depth layer.
     GtaoVbDual
 );
 
@@ -82,6 +94,7 @@ pub enum Schedule {
 /// One row of the technique table.
 #[derive(Clone, Copy, Debug)]
 pub struct TechniqueRow {
+    /// The variant this row describes (every variant has exactly one row, tested).
     pub technique: Technique,
     /// The name the CLI, reports and JSON use.
     pub name: &'static str,
@@ -89,8 +102,11 @@ pub struct TechniqueRow {
     pub summary: &'static str,
     /// Paper (DESIGN.md numbering) and section.
     pub paper: &'static str,
+    /// What turns the depth samples into occlusion.
     pub estimator: Estimator,
+    /// What answers for the geometry behind the first depth layer.
     pub source: Source,
+    /// Which passes run the estimator over the source.
     pub schedule: Schedule,
 }
 
@@ -211,6 +227,7 @@ pub struct Needs {
 }
 
 impl Source {
+    /// What this source needs from the caller beyond depth and normals.
     pub fn needs(self) -> Needs {
         match self {
             Source::FirstLayer => Needs::default(),
@@ -239,6 +256,7 @@ impl Source {
         }
     }
 
+    /// Its name in the README's table and help texts (`first layer`, `column rays`, …).
     pub fn name(self) -> &'static str {
         match self {
             Source::FirstLayer => "first layer",
@@ -250,10 +268,12 @@ impl Source {
 }
 
 impl Schedule {
+    /// Whether this is a two-phase schedule (work list or dense).
     pub fn two_phase(self) -> bool {
         self != Schedule::Single
     }
 
+    /// Its name in the README's table (`single pass`, `two-phase (work list)`, …).
     pub fn name(self) -> &'static str {
         match self {
             Schedule::Single => "single pass",
@@ -264,6 +284,7 @@ impl Schedule {
 }
 
 impl Estimator {
+    /// Its name in the README's table (`vao`, `hbao+`, `gtao-vb`).
     pub fn name(self) -> &'static str {
         match self {
             Estimator::Vao => "vao",
@@ -274,6 +295,7 @@ impl Estimator {
 }
 
 impl TechniqueRow {
+    /// What the row's source needs from the caller ([`Source::needs`]).
     pub fn needs(&self) -> Needs {
         self.source.needs()
     }
@@ -299,22 +321,27 @@ impl Technique {
             .expect("every Technique has a row in TABLE (tested)")
     }
 
+    /// The row's name (`vao`, `sd-svao`, …): what the CLI, settings files and reports use.
     pub fn name(self) -> &'static str {
         self.row().name
     }
 
+    /// The row's estimator.
     pub fn estimator(self) -> Estimator {
         self.row().estimator
     }
 
+    /// The row's hidden-depth source.
     pub fn source(self) -> Source {
         self.row().source
     }
 
+    /// The row's schedule.
     pub fn schedule(self) -> Schedule {
         self.row().schedule
     }
 
+    /// What the row needs from the caller beyond depth and normals ([`Source::needs`]).
     pub fn needs(self) -> Needs {
         self.row().needs()
     }

@@ -8,7 +8,10 @@ use crate::raster::gpu_scene::GpuScene;
 use crate::scene::Scene;
 use wgpu::util::DeviceExt;
 
+/// A [`Bvh`] uploaded for the GPU traversal of `shaders/common/bvh.wgsl`: storage buffers in the
+/// layout its bindings read, bound with [`GpuBvh::resources`] next to a [`GpuScene`].
 pub struct GpuBvh {
+    /// [`Bvh::nodes`] as WGSL `BvhNode`s, 32 bytes each (two empty boxes for an empty tree).
     pub nodes: wgpu::Buffer,
     /// `(i0, i1, i2, material)` per leaf slot.
     pub triangles: wgpu::Buffer,
@@ -22,6 +25,8 @@ pub struct GpuBvh {
 pub const STACK_SIZE: usize = 64;
 
 impl GpuBvh {
+    /// Uploads `bvh`, built over `scene`, with the triangles copied into leaf order. Logs a warning
+    /// when the tree is deeper than the GPU stack ([`STACK_SIZE`]); overflowing rays are counted.
     pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Self {
         // An empty tree still binds: two inverted (empty) boxes that no ray enters.
         let empty = super::BvhNode {
@@ -108,9 +113,13 @@ impl GpuBvh {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct QueryRay {
+    /// Ray origin, world space.
     pub origin: [f32; 3],
+    /// Start of the interval searched, in units of `dir`.
     pub t_min: f32,
+    /// Ray direction, world space; need not be normalised.
     pub dir: [f32; 3],
+    /// End of the interval searched, in units of `dir`.
     pub t_max: f32,
 }
 
@@ -122,21 +131,27 @@ pub struct QueryResult {
     pub t: f32,
     /// Closest hit's index into `scene.triangles` (`u32::MAX` for none).
     pub triangle: u32,
+    /// Closest hit's barycentric weight of the triangle's vertex 1 (as [`super::Hit::u`]).
     pub u: f32,
+    /// Closest hit's barycentric weight of the triangle's vertex 2 (as [`super::Hit::v`]).
     pub v: f32,
+    /// 1 when the closest hit is a front face (counter-clockwise seen from the origin), else 0.
     pub front_face: u32,
     /// All-hits mode: the number of hits, the first 16 triangles in `triangles`.
     pub hit_count: u32,
     /// Non-zero when the traversal stack overflowed (the result is then incomplete).
     pub stack_overflow: u32,
     _pad: u32,
+    /// All-hits mode: the first 16 hits' indices into `scene.triangles` (`hit_count` may be more).
     pub triangles: [u32; 16],
 }
 
 /// What [`trace_batch`] asks of every ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum QueryMode {
+    /// The nearest hit in `[t_min, t_max]`: `t`, `triangle`, `u`, `v`, `front_face`.
     ClosestHit = 0,
+    /// Every hit in `[t_min, t_max]`: `hit_count` and the first 16 in `triangles`.
     AllHits = 1,
 }
 

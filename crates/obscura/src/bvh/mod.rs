@@ -70,11 +70,14 @@ use crate::scene::Scene;
 /// `origin + t * dir`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
+    /// Ray origin, world space.
     pub origin: Vec3,
+    /// Ray direction, world space; need not be normalised (it sets the unit of `t`).
     pub dir: Vec3,
 }
 
 impl Ray {
+    /// The ray from `origin` along `dir`.
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
         Self { origin, dir }
     }
@@ -131,6 +134,7 @@ pub struct BvhNode {
 }
 
 impl BvhNode {
+    /// Whether the node is a leaf (`count > 0`) rather than an inner node.
     pub fn is_leaf(&self) -> bool {
         self.count != 0
     }

@@ -65,6 +65,8 @@ pub struct VaoParams {
 }
 
 impl VaoParams {
+    /// The uniform for `s`: its radius, thickness, exponent and normalisation, the kernel of
+    /// `s.samples` line samples and the 4×4 per-pixel rotation pattern.
     pub fn new(s: &VaoSettings) -> Self {
         let mut kernel = [[0.0; 4]; 32];
         for (i, k) in kernel.iter_mut().enumerate().take(s.samples as usize) {

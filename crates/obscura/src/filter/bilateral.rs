@@ -26,6 +26,8 @@ pub struct BilateralBlur {
 }
 
 impl BilateralBlur {
+    /// The pipeline and intermediate image for a visible `width`×`height` AO image; `view` is the
+    /// frame's `View` uniform. The radius is clamped to 1..=[`MAX_RADIUS`].
     pub fn new(
         device: &wgpu::Device,
         settings: &BlurSettings,

@@ -8,6 +8,8 @@ use crate::gpu::PassProfiler;
 /// A pass from one AO image to the next (`R32Float`, visible size), with the frame's inputs at
 /// hand (depth for edge-aware weights, the screen geometry).
 pub trait AoFilter {
+    /// Record the filter's passes from `input` to `output` (both `R32Float`, visible size), timed
+    /// by `profiler` when given.
     fn encode(
         &self,
         device: &wgpu::Device,

@@ -29,6 +29,10 @@ struct FragmentQueries {
 /// Fragment queries per frame slot (8 bytes each).
 const MAX_RASTER_PASSES: u32 = (SLOT_BYTES / 8) as u32;
 
+/// GPU times per named pass over up to `max_frames` frames: each pass asks for its timestamp
+/// writes by name ([`PassProfiler::compute_pass`], [`PassProfiler::render_pass`]),
+/// [`PassProfiler::end_frame`] resolves the frame and [`PassProfiler::read`] returns milliseconds
+/// per pass name (summed over passes of one name).
 pub struct PassProfiler {
     fragments: Option<FragmentQueries>,
     queries: wgpu::QuerySet,
@@ -105,6 +109,8 @@ impl PassProfiler {
         2 * index
     }
 
+    /// The timestamp writes for compute pass `name` of the current frame. At most 16 passes a frame
+    /// (one 256-byte resolve slot); panics past that or past `max_frames` frames.
     pub fn compute_pass(&mut self, name: &str) -> wgpu::ComputePassTimestampWrites<'_> {
         let begin = self.next_pass(name);
         wgpu::ComputePassTimestampWrites {
@@ -114,6 +120,8 @@ impl PassProfiler {
         }
     }
 
+    /// The timestamp writes for render pass `name` of the current frame; limits as
+    /// [`PassProfiler::compute_pass`].
     pub fn render_pass(&mut self, name: &str) -> wgpu::RenderPassTimestampWrites<'_> {
         let begin = self.next_pass(name);
         wgpu::RenderPassTimestampWrites {
@@ -134,6 +142,8 @@ impl PassProfiler {
         }
     }
 
+    /// Stops the count [`PassProfiler::begin_fragments`] started (no-op without pipeline statistics
+    /// queries); call it before `pass` ends.
     pub fn end_fragments(&self, pass: &mut wgpu::RenderPass) {
         if self.fragments.is_some() {
             pass.end_pipeline_statistics_query();

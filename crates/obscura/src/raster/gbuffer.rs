@@ -14,8 +14,11 @@ use crate::shaders;
 use crate::view::FrameView;
 use wgpu::util::DeviceExt;
 
+/// Linear depth: −z in world units, 0 = background (also the peeled second layer's format).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// View-space unit normals facing the camera in xyz (0 = background).
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Base colour for composites (white where nothing is drawn).
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -44,9 +47,14 @@ struct Peel {
     depth: wgpu::Texture,
 }
 
+/// The G-buffer's targets and pipelines over the guard-banded framebuffer: what
+/// [`crate::AmbientOcclusion`] reads for our own scenes ([`crate::Renderer`]).
 pub struct GBuffer {
+    /// Linear depth ([`DEPTH_FORMAT`]): −z in world units, 0 = background.
     pub depth: wgpu::Texture,
+    /// View-space normals facing the camera ([`NORMAL_FORMAT`]), face or shading normals.
     pub normals: wgpu::Texture,
+    /// Base colour ([`ALBEDO_FORMAT`]), written only by [`GBuffer::render_albedo`].
     pub albedo: wgpu::Texture,
     z: wgpu::Texture,
     /// Back faces culled (no alpha test) / kept (double-sided and alpha-tested materials).

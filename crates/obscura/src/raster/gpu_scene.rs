@@ -22,8 +22,11 @@ struct GpuMaterial {
     _pad: [u32; 3],
 }
 
+/// A [`Scene`] in GPU buffers: what the G-buffer, the stochastic depth map and the BVH passes
+/// read. Cheap to clone (wgpu handles).
 #[derive(Clone)]
 pub struct GpuScene {
+    /// World-space vertex positions, `vec4<f32>` each (w = 1).
     pub positions: wgpu::Buffer,
     /// Per vertex `(u, v, normal)`, the normal octahedral-encoded (`encode_normal`,
     /// `shaders/common/vertex_normal.wgsl`); "none" everywhere unless the scene
@@ -33,14 +36,20 @@ pub struct GpuScene {
     pub shading_normals: bool,
     /// `(i0, i1, i2, material)` per triangle; back-face-culled triangles come first.
     pub triangles: wgpu::Buffer,
+    /// One `Material` of `shaders/gbuffer.wgsl` per scene material (colour, texture layer, alpha
+    /// cutoff, back-face flag).
     pub materials: wgpu::Buffer,
+    /// Every base-colour texture as one `Rgba8Unorm` 2D array, one layer each (smaller ones in the
+    /// top-left corner of their layer).
     pub textures: wgpu::TextureView,
     /// Triangles `0..culled_count` are drawn with back-face culling, the rest without.
     pub culled_count: u32,
+    /// Number of triangles in `triangles`.
     pub triangle_count: u32,
 }
 
 impl GpuScene {
+    /// Uploads `scene`. Errors when a buffer or the texture count is over the adapter's `limits`.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,

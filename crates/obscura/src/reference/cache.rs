@@ -15,6 +15,8 @@ use std::path::{Path, PathBuf};
 /// Bumped whenever the reference computation changes its results.
 const FORMAT: &str = "obscura-reference-v2";
 
+/// Where the entries live: `$OBSCURA_CACHE_DIR`, else `$XDG_CACHE_HOME/obscura/references`, else
+/// `~/.cache/obscura/references` (under the temporary directory when `HOME` is unset too).
 pub fn cache_dir() -> PathBuf {
     if let Some(dir) = std::env::var_os("OBSCURA_CACHE_DIR") {
         return PathBuf::from(dir);

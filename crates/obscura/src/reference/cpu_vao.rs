@@ -8,7 +8,9 @@ use glam::{UVec2, Vec3};
 
 /// A G-buffer read back to the CPU (whole framebuffer, guard band included, row-major).
 pub struct GBufferImage {
+    /// Framebuffer width in pixels, guard band included.
     pub width: u32,
+    /// Framebuffer height in pixels, guard band included.
     pub height: u32,
     /// Linear depth, 0 = background.
     pub depth: Vec<f32>,
@@ -17,6 +19,7 @@ pub struct GBufferImage {
 }
 
 impl GBufferImage {
+    /// Linear depth at framebuffer pixel `p` (0 = background).
     pub fn depth_at(&self, p: UVec2) -> f32 {
         self.depth[(p.y * self.width + p.x) as usize]
     }
@@ -33,12 +36,15 @@ impl GBufferImage {
 
 /// CPU VAO for every visible pixel (before blur).
 pub struct CpuVao {
+    /// AO per visible pixel, row-major, exponent applied (1 = unoccluded; background 1).
     pub ao: Vec<f32>,
     /// Pixels where some sample projects within `1e-3` px of a pixel edge: there float rounding
     /// may snap the GPU and the CPU to different neighbours, so the two may legitimately differ.
     pub ambiguous: Vec<bool>,
 }
 
+/// VAO of every visible pixel of `g` with settings `s`, as `vao.wgsl` computes it from the first
+/// depth layer (no blur): the oracle the GPU `vao` pass is tested against.
 pub fn cpu_vao(g: &GBufferImage, screen: &ScreenGeometry, s: &VaoSettings) -> CpuVao {
     let n_pixels = (screen.width * screen.height) as usize;
     let mut ao = vec![1.0; n_pixels];

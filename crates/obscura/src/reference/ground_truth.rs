@@ -25,13 +25,19 @@ use std::f32::consts::TAU;
 use std::fmt;
 use std::str::FromStr;
 
+/// Which quantity a ground-truth image holds (the module documentation describes both).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ReferenceModel {
+    /// `vao`: the VAO kernel with every surface along each sample's camera ray as occluder
+    /// (seed 000 §3.6): what the `vao` techniques estimate with nothing hidden.
     Vao,
+    /// `hemisphere`: the fraction of cosine-weighted rays from the surface that hit nothing
+    /// within R.
     Hemisphere,
 }
 
 impl ReferenceModel {
+    /// Its name on the command line and in reports (`vao`, `hemisphere`).
     pub fn name(self) -> &'static str {
         match self {
             ReferenceModel::Vao => "vao",
@@ -62,6 +68,7 @@ impl FromStr for ReferenceModel {
 /// Everything a reference image depends on (also the cache key's content).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceSettings {
+    /// Which quantity to compute.
     pub model: ReferenceModel,
     /// The VAO parameters: the `vao` model's kernel; `radius` is also the hemisphere's R.
     pub vao: VaoSettings,
@@ -86,6 +93,8 @@ impl Default for ReferenceSettings {
 }
 
 impl ReferenceSettings {
+    /// Rejects `spp` 0 and VAO parameters [`crate::AoSettings::validate`] rejects, with a message
+    /// naming the value.
     pub fn validate(&self) -> Result<(), String> {
         if self.spp == 0 {
             return Err(
@@ -111,8 +120,11 @@ impl ReferenceSettings {
 
 /// The camera and the BVH, everything a ray needs.
 pub struct Tracer<'a> {
+    /// The scene the BVH was built from.
     pub scene: &'a Scene,
+    /// The BVH over `scene`.
     pub bvh: &'a Bvh,
+    /// The camera, image size and guard band of the frame.
     pub view: FrameView,
     camera_to_world: Mat4,
 }
@@ -122,6 +134,7 @@ pub struct Tracer<'a> {
 pub struct Surface {
     /// Linear view depth (= the ray parameter for camera rays built by [`Tracer::camera_ray`]).
     pub depth: f32,
+    /// The hit point, world space.
     pub world: Vec3,
     /// The normal AO is computed around ([`Scene::surface_normal`]: the face normal, or the shading
     /// normal where the scene uses them) on the ray origin's side, world space.
@@ -129,6 +142,7 @@ pub struct Surface {
 }
 
 impl<'a> Tracer<'a> {
+    /// A tracer for `view` of `scene` through `bvh` (built from `scene`).
     pub fn new(scene: &'a Scene, bvh: &'a Bvh, view: FrameView) -> Self {
         Self {
             scene,
@@ -263,6 +277,7 @@ pub fn pixel_rotation_2d(seed: u64, x: u32, y: u32) -> Vec2 {
 pub struct HemisphereRays {
     /// Rays longer than this do not occlude.
     pub radius: f32,
+    /// Rays for the point (the Hammersley set's size).
     pub spp: u32,
     /// Weight hits by W(t) = max(0, 1 − t/R).
     pub falloff: bool,

@@ -24,7 +24,11 @@ pub struct Column {
     pub d: Vec2,
     /// Half height of the full column.
     pub h: f32,
+    /// Top of the clipped column: height along the view axis from the pixel's surface point,
+    /// world units.
     pub start: f32,
+    /// Bottom of the clipped column (where the tangent plane cuts it, or −`h`); `start − end` is
+    /// its length.
     pub end: f32,
     /// Unclamped framebuffer pixel coordinates of the sample point.
     pub px: Vec2,
@@ -32,9 +36,13 @@ pub struct Column {
 
 /// A visible pixel's sample frame: position, view axis, disc basis, normal in that frame.
 pub struct PixelFrame {
+    /// The pixel's surface point, view space.
     pub pos: Vec3,
+    /// Unit view axis from the point towards the camera: the columns' direction.
     pub axis: Vec3,
+    /// First axis of the sample disc, perpendicular to `axis`.
     pub tangent: Vec3,
+    /// Second axis of the sample disc, perpendicular to `axis` and `tangent`.
     pub bitangent: Vec3,
     n_local: Vec3,
     inv_n_z: f32,
@@ -115,6 +123,7 @@ pub struct Accumulator {
 }
 
 impl Accumulator {
+    /// Add one column: its free length `free` and its clipped length, each over its full length 2h.
     pub fn add(&mut self, column: &Column, free: f32) {
         let inv_2h = 0.5 / column.h;
         self.sum += free * inv_2h;

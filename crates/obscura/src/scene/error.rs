@@ -24,61 +24,98 @@ fn camera_list(available: &[String]) -> String {
 /// Why a scene could not be loaded, or why a loaded scene is unusable.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
+    /// Not a built-in scene name, and no file of that name (most likely a mistyped built-in).
     #[error(
         "unknown scene '{spec}': use a built-in name ({}) or a path to a .gltf/.glb/.obj file",
         builtin_list()
     )]
-    UnknownScene { spec: String },
+    UnknownScene {
+        /// What was asked for, as given.
+        spec: String,
+    },
 
+    /// A path whose extension is not `.gltf`, `.glb` or `.obj` (or an existing file with none).
     #[error(
         "scene file '{}' has an unsupported type: load a .gltf, .glb or .obj file, or use a \
          built-in scene name ({})",
         path.display(),
         builtin_list()
     )]
-    UnsupportedFormat { path: PathBuf },
+    UnsupportedFormat {
+        /// The scene file.
+        path: PathBuf,
+    },
 
+    /// A `.gltf`, `.glb` or `.obj` path that does not exist.
     #[error(
         "scene file '{}' does not exist: check the path (or use a built-in scene name: {})",
         path.display(),
         builtin_list()
     )]
-    NotFound { path: PathBuf },
+    NotFound {
+        /// The scene file.
+        path: PathBuf,
+    },
 
+    /// The scene file exists but cannot be read.
     #[error(
         "cannot read scene file '{}': {source}: check that it is a readable file",
         path.display()
     )]
     Io {
+        /// The scene file.
         path: PathBuf,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },
 
+    /// The glTF loader rejected the file.
     #[error(
         "'{}' is not a usable glTF 2.0 file: {message}: re-export it (glTF 2.0, .gltf or .glb) or \
          check it with the Khronos glTF validator",
         path.display()
     )]
-    Gltf { path: PathBuf, message: String },
+    Gltf {
+        /// The scene file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
 
+    /// The OBJ loader rejected the file.
     #[error(
         "'{}' is not a usable OBJ file: {message}: re-export it as a Wavefront OBJ with 1-based \
          face indices",
         path.display()
     )]
-    Obj { path: PathBuf, message: String },
+    Obj {
+        /// The scene file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
 
+    /// A loaded or hand-built scene that fails [`crate::scene::Scene::validate`].
     #[error("scene '{scene}' is invalid: {problem}")]
-    Invalid { scene: String, problem: String },
+    Invalid {
+        /// The scene's name.
+        scene: String,
+        /// The first rule it breaks (no triangles, an index out of range, …) and the fix.
+        problem: String,
+    },
 
+    /// [`crate::scene::Scene::camera`] asked for a name the scene has no camera of.
     #[error(
         "scene '{scene}' has no camera named '{name}': available cameras: {}",
         camera_list(available)
     )]
     UnknownCamera {
+        /// The scene's name.
         scene: String,
+        /// The camera name asked for.
         name: String,
+        /// The names of the scene's cameras (may be empty).
         available: Vec<String>,
     },
 }
@@ -97,8 +134,11 @@ pub const MAX_EXTENT: f32 = 1e18;
     point(*max)
 )]
 pub struct ExtentError {
+    /// The scene's name.
     pub name: String,
+    /// The lower corner of the scene's bounds, world units.
     pub min: Vec3,
+    /// The upper corner of the scene's bounds, world units.
     pub max: Vec3,
 }
 
@@ -110,24 +150,46 @@ fn point(p: Vec3) -> String {
 /// Why a camera is unusable.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CameraError {
+    /// A position, the up vector or the field of view is NaN or infinite.
     #[error("camera {what} is not finite ({value}): give finite numbers")]
-    NonFinite { what: &'static str, value: String },
+    NonFinite {
+        /// Which: `eye`, `target`, `up` or `field of view`.
+        what: &'static str,
+        /// The offending value, formatted.
+        value: String,
+    },
 
+    /// A vertical field of view not strictly between 0° and 180°.
     #[error(
         "camera field of view {fov_y_deg}° is outside (0°, 180°): use a vertical field of view \
          strictly between 0 and 180 degrees, e.g. 60"
     )]
-    FieldOfView { fov_y_deg: f32 },
+    FieldOfView {
+        /// The vertical field of view given, degrees.
+        fov_y_deg: f32,
+    },
 
+    /// Eye and target (almost) the same point, relative to their magnitude: no view direction.
     #[error(
         "camera eye {eye} and target {target} are (almost) the same point: move the eye away from \
          the target"
     )]
-    EyeAtTarget { eye: Vec3, target: Vec3 },
+    EyeAtTarget {
+        /// The camera position, world space.
+        eye: Vec3,
+        /// The point looked at, world space.
+        target: Vec3,
+    },
 
+    /// An up vector that is zero or within about 0.8° of the view direction.
     #[error(
         "camera up vector {up} is zero or parallel to the view direction {forward}: choose an up \
          vector that is not along the view direction"
     )]
-    UpParallel { up: Vec3, forward: Vec3 },
+    UpParallel {
+        /// The up vector given.
+        up: Vec3,
+        /// The unit view direction, eye towards target.
+        forward: Vec3,
+    },
 }

@@ -11,7 +11,10 @@ pub enum AlphaMode {
     /// Fully opaque; alpha ignored.
     Opaque,
     /// Alpha-tested: a fragment/hit is kept when `base_color.a * texture.a >= cutoff`.
-    Mask { cutoff: f32 },
+    Mask {
+        /// The alpha threshold, glTF `alphaCutoff` (0.5 where the file leaves it out).
+        cutoff: f32,
+    },
     /// Blended in glTF; AO treats it as opaque (no order-independent transparency here).
     Blend,
 }
@@ -19,11 +22,13 @@ pub enum AlphaMode {
 /// A material as far as AO and the colour composite need it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// The file's material name (glTF: `material{i}` where unnamed), for messages.
     pub name: String,
     /// Base colour factor, linear RGBA.
     pub base_color: [f32; 4],
     /// Index into [`Scene::textures`] of the base-colour texture (its alpha drives `Mask`).
     pub base_color_texture: Option<u32>,
+    /// How alpha is used: alpha-tested materials are cut out and keep their back faces.
     pub alpha_mode: AlphaMode,
     /// Back faces are kept (rasteriser: no culling; rays: back-face hits count). glTF's
     /// `doubleSided`; true for every OBJ material (OBJ has no culling flag); see [`Sidedness`] for
@@ -94,37 +99,51 @@ impl std::str::FromStr for Normals {
 /// An RGBA8 texture (sRGB-encoded colour, linear alpha), row-major, top row first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
+    /// The image's name or file name, for messages.
     pub name: String,
+    /// Width in texels (at most [`crate::scene::MAX_TEXTURE_SIZE`] for loaded images).
     pub width: u32,
+    /// Height in texels (at most [`crate::scene::MAX_TEXTURE_SIZE`] for loaded images).
     pub height: u32,
+    /// `width × height × 4` bytes, RGBA per texel.
     pub rgba8: Vec<u8>,
 }
 
 /// A pinhole camera. `fov_y_deg` is the vertical field of view of the *visible* image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// Camera position, world space.
     pub eye: Vec3,
+    /// The point looked at, world space: only its direction from `eye` matters.
     pub target: Vec3,
+    /// Up direction, world space: any length, but not zero or along the view direction.
     pub up: Vec3,
+    /// Vertical field of view of the visible image, degrees, strictly between 0 and 180.
     pub fov_y_deg: f32,
 }
 
+/// A camera a scene names (a glTF file's cameras, the built-ins' `closeup` and `overview`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NamedCamera {
+    /// The name [`Scene::camera`] looks it up by.
     pub name: String,
+    /// The camera.
     pub camera: Camera,
 }
 
 /// Axis-aligned bounds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bounds {
+    /// The lowest x, y and z, world units.
     pub min: Vec3,
+    /// The highest x, y and z, world units.
     pub max: Vec3,
 }
 
 /// A triangle soup in world space with materials and named cameras.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
+    /// The scene's name in messages and reports: a built-in's name, or the file's path.
     pub name: String,
     /// World-space vertex positions.
     pub positions: Vec<Vec3>,
@@ -139,7 +158,9 @@ pub struct Scene {
     pub triangles: Vec<[u32; 3]>,
     /// Material index (into `materials`) of each triangle.
     pub triangle_materials: Vec<u32>,
+    /// The materials `triangle_materials` indexes.
     pub materials: Vec<Material>,
+    /// The base-colour textures [`Material::base_color_texture`] indexes.
     pub textures: Vec<Texture>,
     /// Named cameras; the first one is the default (for built-ins: the close-up).
     pub cameras: Vec<NamedCamera>,

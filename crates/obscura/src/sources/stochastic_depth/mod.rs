@@ -32,11 +32,14 @@ const MAX_MAPS: u32 = 4;
 /// How S depth samples per pixel are laid out: `maps` targets of `samples_per_map` each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SdLayout {
+    /// Number of stacked map targets, each with its own seed (1 to 4).
     pub maps: u32,
+    /// Depth samples per pixel in each target: the multisample count (1, 2, 4 or 8).
     pub samples_per_map: u32,
 }
 
 impl SdLayout {
+    /// S, the depth samples per pixel over all maps.
     pub fn samples(&self) -> u32 {
         self.maps * self.samples_per_map
     }
@@ -171,6 +174,7 @@ pub struct SdCapabilities {
 }
 
 impl SdCapabilities {
+    /// What `adapter` and `device` allow: the map's format and the sample counts and layouts.
     pub fn of(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Self {
         let per_map = map_sample_counts(adapter, device);
         Self {
@@ -397,6 +401,7 @@ impl StochasticDepthMap {
         })
     }
 
+    /// How its S samples per pixel are laid out over stacked targets.
     pub fn layout(&self) -> SdLayout {
         self.layout
     }
