@@ -62,6 +62,8 @@ pub struct AmbientOcclusion {
     schedule: SchedulePass,
     raw: wgpu::Texture,
     filters: Vec<FilterStage>,
+    /// [`AmbientOcclusion::set_camera`] was called (rows that trace or rasterise need it).
+    camera_set: std::cell::Cell<bool>,
 }
 
 impl AmbientOcclusion {
@@ -141,12 +143,16 @@ impl AmbientOcclusion {
             schedule,
             raw: ao_texture("ao raw"),
             filters,
+            camera_set: std::cell::Cell::new(false),
         })
     }
 
-    /// The camera of the coming frame; sources that trace rays or rasterise use it.
+    /// The camera of the coming frame; sources that trace rays or rasterise use it (for the
+    /// others it does nothing). Those rows refuse to [`encode`](Self::encode) until it was set
+    /// once, and its screen geometry must be the one this was built for.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
         self.source.set_camera(queue, view);
+        self.camera_set.set(true);
     }
 
     /// The settings it was built with (validated).
@@ -160,8 +166,13 @@ impl AmbientOcclusion {
     }
 
     /// Record the passes of one frame. The textures must cover the guard-banded framebuffer
-    /// ([`FrameTextures`]); a wrong size or format, or a missing second layer where the row needs
-    /// it, is an error naming the texture.
+    /// ([`FrameTextures`]); a wrong size, format, usage or sample count, a missing second layer
+    /// where the row needs it, or (rows that trace or rasterise) no [`set_camera`] yet is an
+    /// error naming it. Validation errors wgpu reported on this device since the last check are
+    /// returned too; what wgpu only sees when the commands run (a texture of another device)
+    /// comes from [`Gpu::finish`] or the next `encode`.
+    ///
+    /// [`set_camera`]: Self::set_camera
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -169,7 +180,15 @@ impl AmbientOcclusion {
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         let device = &self.gpu.device;
-        let needs_second = self.settings.technique.needs().second_layer;
+        let needs = self.settings.technique.needs();
+        if (needs.triangles || needs.bvh) && !self.camera_set.get() {
+            return Err(Error::Input(format!(
+                "technique '{}' traces or rasterises the scene from the camera: call \
+                 AmbientOcclusion::set_camera before the first encode",
+                self.settings.technique
+            )));
+        }
+        let needs_second = needs.second_layer;
         if needs_second && textures.second_layer.is_none() {
             return Err(Error::Input(format!(
                 "technique '{}' needs the second depth layer: set FrameTextures::second_layer",
@@ -217,7 +236,9 @@ impl AmbientOcclusion {
             );
             input = output;
         }
-        Ok(())
+        // wgpu reports what the checks above cannot see (e.g. a texture of another device) to
+        // the device's error handler: surface it here, as this call's error.
+        Ok(self.gpu.check_errors()?)
     }
 
     /// The final AO (after the last filter).
