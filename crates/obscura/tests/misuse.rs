@@ -185,3 +185,32 @@ fn settings_out_of_range_are_errors_naming_the_field() {
         .to_string()
         .contains("stochastic_depth.samples"));
 }
+
+#[test]
+fn a_scene_over_the_adapter_s_buffer_limit_is_an_error_naming_it() {
+    let gpu = gpu();
+    let scene = obscura::scene::builtin("grass").unwrap();
+    // The adapter's limits, with the storage-buffer binding limit just under the scene's need.
+    let needed = 16 * scene.positions.len().max(scene.triangles.len()) as u64;
+    let limits = wgpu::Limits {
+        max_storage_buffer_binding_size: needed - 16,
+        ..gpu.device.limits()
+    };
+    let err =
+        match obscura::raster::gpu_scene::GpuScene::new(&gpu.device, &gpu.queue, &scene, &limits) {
+            Ok(_) => panic!("a scene over the limit was accepted"),
+            Err(e) => e.to_string(),
+        };
+    assert!(
+        err.contains(&format!("limit of {}", needed - 16)) && err.contains(&needed.to_string()),
+        "{err}"
+    );
+    // Within the limit it uploads.
+    let limits = wgpu::Limits {
+        max_storage_buffer_binding_size: needed,
+        ..gpu.device.limits()
+    };
+    assert!(
+        obscura::raster::gpu_scene::GpuScene::new(&gpu.device, &gpu.queue, &scene, &limits).is_ok()
+    );
+}
