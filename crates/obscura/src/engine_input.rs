@@ -73,6 +73,23 @@ pub struct EngineFrame<'a> {
 }
 
 /// The two passes and the textures they write, for one screen geometry.
+///
+/// ```no_run
+/// # fn frame(gpu: &obscura::Gpu, depth: &wgpu::Texture, projection: glam::Mat4)
+/// #     -> Result<(), obscura::Error> {
+/// use obscura::*;
+/// let screen = ScreenGeometry::from_projection(projection, 1920, 1080, 64)?;
+/// let input = EngineInput::new(gpu, screen);
+/// let ao = AmbientOcclusion::new(gpu, &AoSettings::default(), screen, SceneResources::default())?;
+/// // Every frame, after the engine's depth prepass:
+/// let mut encoder = gpu.device.create_command_encoder(&Default::default());
+/// let frame = EngineFrame { depth, projection, normals: EngineNormals::Reconstruct };
+/// let textures = input.encode(&mut encoder, &frame)?;
+/// ao.encode(&mut encoder, textures, None)?;
+/// gpu.queue.submit([encoder.finish()]);
+/// // ao.output(): R32Float, the visible size, 1 = unoccluded.
+/// # Ok(()) }
+/// ```
 pub struct EngineInput {
     gpu: Gpu,
     screen: ScreenGeometry,

@@ -372,6 +372,22 @@ pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
 /// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
 /// an unknown field is an error. `docs/SETTINGS.md` lists every field.
+///
+/// ```
+/// use obscura::settings::{AoSettings, Preset};
+/// use obscura::Technique;
+///
+/// let mut s = AoSettings::preset("gtao-vb".parse::<Technique>()?, Preset::High);
+/// s.gtao_vb.radius = 0.75;
+/// s.validate()?;
+/// // α = 1.5/S unless given: 0.375 at the default S = 4.
+/// assert_eq!(s.stochastic_depth.alpha(), 0.375);
+///
+/// s.vao.radius = -1.0;
+/// let err = s.validate().unwrap_err().to_string();
+/// assert!(err.contains("vao.radius"), "{err}"); // errors name the field
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct AoSettings {

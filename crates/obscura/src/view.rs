@@ -185,6 +185,24 @@ impl ScreenGeometry {
     /// The frustum must be centred: an off-centre shift of up to 2 pixels (TAA jitter) is
     /// ignored (AO does not need sub-pixel registration); a larger one is an error, as is a
     /// matrix that is neither a perspective nor an orthographic projection.
+    ///
+    /// ```
+    /// use glam::camera::rh::proj::directx::{orthographic, perspective_infinite_reverse};
+    /// use obscura::ScreenGeometry;
+    ///
+    /// // 1920×1080 with a 64 px guard band: the engine renders depth at 2048×1208.
+    /// let (fw, fh) = (2048.0, 1208.0);
+    /// let reversed = perspective_infinite_reverse(60f32.to_radians(), fw / fh, 0.1);
+    /// let screen = ScreenGeometry::from_projection(reversed, 1920, 1080, 64)?;
+    /// assert!(!screen.orthographic);
+    /// assert!((screen.tan_half_fov.y - 30f32.to_radians().tan()).abs() < 1e-6);
+    ///
+    /// let ortho = orthographic(-8.0, 8.0, -4.5, 4.5, 0.1, 100.0);
+    /// let screen = ScreenGeometry::from_projection(ortho, 1920, 1080, 0)?;
+    /// assert!(screen.orthographic);
+    /// assert_eq!(screen.tan_half_fov, glam::Vec2::new(8.0, 4.5)); // half extents, world units
+    /// # Ok::<(), obscura::Error>(())
+    /// ```
     pub fn from_projection(
         projection: glam::Mat4,
         width: u32,

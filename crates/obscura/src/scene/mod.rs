@@ -29,6 +29,21 @@ pub use texture::MAX_TEXTURE_SIZE;
 
 /// Loads a scene: a built-in name (see [`builtin_names`]) or a path to a `.gltf`, `.glb` or `.obj`
 /// file (extension matched case-insensitively). The result is validated.
+///
+/// ```
+/// use obscura::scene::{self, Normals, Sidedness};
+///
+/// let mut stairs = scene::load("stairs")?;
+/// assert!(stairs.triangle_count() > 0);
+/// // What a renderer of ground-truth AO (e.g. Blender Cycles) counts: both sides, shading normals.
+/// stairs.set_sidedness(Sidedness::DoubleSided);
+/// stairs.set_normals(Normals::Shading);
+/// assert!(stairs.materials.iter().all(|m| m.double_sided));
+///
+/// let err = scene::load("stair").unwrap_err().to_string();
+/// assert!(err.contains("stair"), "{err}"); // names the input and the built-in choices
+/// # Ok::<(), obscura::scene::SceneError>(())
+/// ```
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
     if builtin_names().contains(&spec) {
         return builtin(spec);
