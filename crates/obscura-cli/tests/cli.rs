@@ -443,6 +443,7 @@ fn compare_writes_a_report_and_reuses_the_reference() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(v["scene"], "cornell");
+    assert_eq!(v["scene_options"], "sides as authored, normals face");
     assert_eq!(
         (v["width"].as_u64(), v["height"].as_u64()),
         (Some(64), Some(48))

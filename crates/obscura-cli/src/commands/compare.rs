@@ -115,6 +115,7 @@ pub fn compare(
     let input = ReportInput {
         scene: &c.scene.name,
         camera: c.camera_name,
+        scene_options: &c.scene.options_description(),
         width: c.width,
         height: c.height,
         guard_band: c.guard_band,

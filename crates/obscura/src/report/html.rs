@@ -94,6 +94,7 @@ fn write_page(page: &mut String, report: &Report, input: &ReportInput, scale: f6
     let info = [
         ("scene", escape(&report.scene)),
         ("camera", escape(&report.camera)),
+        ("scene options", escape(&report.scene_options)),
         (
             "size",
             format!(

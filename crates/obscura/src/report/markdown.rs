@@ -58,8 +58,9 @@ fn write_md(md: &mut String, report: &Report, input: &ReportInput, scale: f64) -
     }
     writeln!(
         md,
-        "Guard band {} px. GPU adapter: {}.",
+        "Guard band {} px. Scene options: {}. GPU adapter: {}.",
         report.guard_band,
+        escape(&report.scene_options),
         escape(input.adapter)
     )?;
     writeln!(md)?;

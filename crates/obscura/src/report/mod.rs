@@ -94,6 +94,9 @@ pub struct ReportInput<'a> {
     pub scene: &'a str,
     /// Camera name, printed in the report.
     pub camera: &'a str,
+    /// The scene-wide choices the images depend on (e.g. `Scene::options_description`: sides
+    /// and normals), printed in the report; empty when not known.
+    pub scene_options: &'a str,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -175,6 +178,9 @@ pub struct Report {
     pub scene: String,
     /// Camera name.
     pub camera: String,
+    /// The scene-wide choices (sides, normals), as [`ReportInput::scene_options`].
+    #[serde(default)]
+    pub scene_options: String,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -279,6 +285,7 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
     Ok(Report {
         scene: input.scene.to_owned(),
         camera: input.camera.to_owned(),
+        scene_options: input.scene_options.to_owned(),
         width: input.width,
         height: input.height,
         guard_band: input.guard_band,

@@ -59,6 +59,7 @@ impl Fixture {
         ReportInput {
             scene: "cornell box",
             camera: "front",
+            scene_options: "sides as authored, normals face",
             width: W,
             height: H,
             guard_band: 8,
@@ -292,6 +293,7 @@ fn report_json_round_trips_with_null_for_infinite_psnr() {
     assert!(value["results"][1]["psnr"].is_f64());
     assert!(value["reference"]["spp"].is_null());
     assert_eq!(value["reference"]["model"], "vao");
+    assert_eq!(value["scene_options"], "sides as authored, normals face");
     assert_eq!(value["width"], W);
     // Pretty-printed.
     assert!(text.contains("\n  \"scene\": \"cornell box\""));

@@ -187,6 +187,7 @@ impl Scene {
     /// Applies a scene-wide choice of which faces count (see [`Sidedness`]) to every material.
     /// `AsAuthored` leaves the materials as loaded.
     pub fn set_sidedness(&mut self, sidedness: Sidedness) {
+        self.sidedness = sidedness;
         let double_sided = match sidedness {
             Sidedness::AsAuthored => return,
             Sidedness::DoubleSided => true,
@@ -233,6 +234,16 @@ impl Scene {
     /// Whether rendering uses vertex normals: [`Normals::Shading`] and the scene has some.
     pub fn uses_shading_normals(&self) -> bool {
         self.normal_mode == Normals::Shading && !self.normals.is_empty()
+    }
+
+    /// The scene-wide choices a comparison depends on, for reports: sides and normals (and when
+    /// shading normals were asked for but the scene has none).
+    pub fn options_description(&self) -> String {
+        let normals = match (self.normal_mode, self.normals.is_empty()) {
+            (Normals::Shading, true) => "shading asked, none in the scene: face",
+            (mode, _) => mode.name(),
+        };
+        format!("sides {}, normals {normals}", self.sidedness.name())
     }
 
     /// A 64-bit fingerprint of everything that decides AO: positions, uvs, triangles, their
@@ -443,6 +454,16 @@ mod tests {
         assert_ne!(double, authored);
         s.set_sidedness(Sidedness::CullBackFaces);
         assert!(s.materials.iter().all(|m| !m.double_sided));
+        assert_eq!(
+            s.options_description(),
+            "sides back faces culled, normals face"
+        );
+        s.set_normals(Normals::Shading);
+        assert_eq!(
+            s.options_description(),
+            "sides back faces culled, normals shading asked, none in the scene: face"
+        );
+        s.set_normals(Normals::Face);
         assert!(![double, authored].contains(&s.fingerprint()));
 
         let mut moved = tiny();

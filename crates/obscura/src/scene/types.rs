@@ -82,6 +82,27 @@ pub enum Normals {
     Shading,
 }
 
+impl Normals {
+    /// The name reports use (`face`, `shading`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Normals::Face => "face",
+            Normals::Shading => "shading",
+        }
+    }
+}
+
+impl Sidedness {
+    /// The name reports use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sidedness::AsAuthored => "as authored",
+            Sidedness::DoubleSided => "double-sided",
+            Sidedness::CullBackFaces => "back faces culled",
+        }
+    }
+}
+
 impl std::str::FromStr for Normals {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -154,6 +175,8 @@ pub struct Scene {
     pub normals: Vec<Vec3>,
     /// Which normal AO is computed around (default: the face normal).
     pub normal_mode: Normals,
+    /// The last [`Sidedness`] applied to the materials ([`Scene::set_sidedness`]).
+    pub sidedness: Sidedness,
     /// Counter-clockwise front faces (glTF/OBJ convention), indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
     /// Material index (into `materials`) of each triangle.
