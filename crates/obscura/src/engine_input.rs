@@ -101,6 +101,9 @@ pub struct EngineInput {
     normals_pipelines: Vec<wgpu::ComputePipeline>,
     linear_depth: wgpu::Texture,
     normals: wgpu::Texture,
+    /// `EngineDepth` and `EngineNormals` of the WGSL, written by each encode.
+    depth_params: wgpu::Buffer,
+    normal_params: wgpu::Buffer,
 }
 
 /// `EngineDepth` of depth.wgsl.
@@ -204,6 +207,14 @@ impl EngineInput {
                 )
             })
             .collect();
+        let uniform = |label, size: usize| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
         let target = |label, format| {
             crate::gpu::texture_2d(
                 device,
@@ -226,6 +237,8 @@ impl EngineInput {
             normals_pipelines,
             linear_depth: target("engine linear depth", wgpu::TextureFormat::R32Float),
             normals: target("engine normals", crate::raster::gbuffer::NORMAL_FORMAT),
+            depth_params: uniform("engine depth params", std::mem::size_of::<DepthParams>()),
+            normal_params: uniform("engine normals params", std::mem::size_of::<Mat4>()),
         }
     }
 
@@ -239,7 +252,8 @@ impl EngineInput {
     }
 
     /// Record the two passes for `frame`; the returned textures go to
-    /// [`crate::AmbientOcclusion::encode`] in the same encoder. A texture of the wrong size,
+    /// [`crate::AmbientOcclusion::encode`] in the same encoder. The frame's matrices are written
+    /// to the queue (as `set_camera` does): one `encode` per submission. A texture of the wrong size,
     /// format, sample count or usage, or a projection that does not match the screen geometry,
     /// is an error naming it (nothing is recorded then).
     pub fn encode(
@@ -288,22 +302,19 @@ impl EngineInput {
             far_clear: if reversed { 0.0 } else { 1.0 },
             _pad: [0.0; 3],
         };
-        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("engine depth params"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let queue = &self.gpu.queue;
+        queue.write_buffer(&self.depth_params, 0, bytemuck::bytes_of(&params));
         let view_from_world = match frame.normals {
             EngineNormals::World {
                 view_from_world, ..
             } => view_from_world,
             _ => Mat4::IDENTITY,
         };
-        let normal_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("engine normals params"),
-            contents: bytemuck::cast_slice(&view_from_world.to_cols_array()),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        queue.write_buffer(
+            &self.normal_params,
+            0,
+            bytemuck::cast_slice(&view_from_world.to_cols_array()),
+        );
         let depth_in = frame.depth.create_view(&wgpu::TextureViewDescriptor {
             aspect: if frame.depth.format().has_depth_aspect() {
                 wgpu::TextureAspect::DepthOnly
@@ -320,7 +331,7 @@ impl EngineInput {
             "engine depth",
             &self.depth_layout,
             &[
-                (0, params.as_entire_binding()),
+                (0, self.depth_params.as_entire_binding()),
                 (1, self.view.as_entire_binding()),
                 (2, wgpu::BindingResource::TextureView(&depth_in)),
                 (3, wgpu::BindingResource::TextureView(&linear)),
@@ -331,7 +342,7 @@ impl EngineInput {
             "engine normals",
             &self.normals_layout,
             &[
-                (0, normal_params.as_entire_binding()),
+                (0, self.normal_params.as_entire_binding()),
                 (1, self.view.as_entire_binding()),
                 (2, wgpu::BindingResource::TextureView(&linear)),
                 (
