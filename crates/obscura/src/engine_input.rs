@@ -253,9 +253,9 @@ impl EngineInput {
 
     /// Record the two passes for `frame`; the returned textures go to
     /// [`crate::AmbientOcclusion::encode`] in the same encoder. The frame's matrices are written
-    /// to the queue (as `set_camera` does): one `encode` per submission. A texture of the wrong size,
-    /// format, sample count or usage, or a projection that does not match the screen geometry,
-    /// is an error naming it (nothing is recorded then).
+    /// to the queue (as `set_camera` does): one `encode` per submission. A texture of the wrong
+    /// size, format, sample count or usage, or a projection that does not match the screen
+    /// geometry, is an error naming it (nothing is recorded then).
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
