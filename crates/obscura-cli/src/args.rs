@@ -92,7 +92,12 @@ pub struct SceneArgs {
     /// The normal AO is computed around, in the G-buffer and the reference alike: 'face' (the
     /// triangle's, as the papers do) or 'shading' (the file's vertex normals interpolated, as
     /// engines and offline renderers do; face normals where a mesh has none).
-    #[arg(long, default_value = "face", value_parser = PossibleValuesParser::new(["face", "shading"]).map(|s| s.parse::<Normals>().expect("a listed value")))]
+    #[arg(
+        long,
+        default_value = "face",
+        value_parser = PossibleValuesParser::new(["face", "shading"])
+            .map(|s| s.parse::<Normals>().expect("a listed value"))
+    )]
     pub normals: Normals,
 }
 
