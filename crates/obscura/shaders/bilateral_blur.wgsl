@@ -89,5 +89,6 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
         sum += w * ao;
         weight_sum += w;
     }
-    textureStore(ao_out, p, vec4<f32>(sum / weight_sum));
+    // The normalised sum of values in [0, 1] can round past 1 (seen on an H200, RELIABILITY.md).
+    textureStore(ao_out, p, vec4<f32>(min(sum / weight_sum, 1.0)));
 }
