@@ -9,7 +9,9 @@ use crate::scene::Scene;
 use wgpu::util::DeviceExt;
 
 /// A [`Bvh`] uploaded for the GPU traversal of `shaders/common/bvh.wgsl`: storage buffers in the
-/// layout its bindings read, bound with [`GpuBvh::resources`] next to a [`GpuScene`].
+/// layout its bindings read, bound with [`GpuBvh::resources`] next to a [`GpuScene`]. Clones share
+/// the buffers.
+#[derive(Clone)]
 pub struct GpuBvh {
     /// [`Bvh::nodes`] as WGSL `BvhNode`s, 32 bytes each (two empty boxes for an empty tree).
     pub nodes: wgpu::Buffer,

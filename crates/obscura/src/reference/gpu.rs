@@ -133,6 +133,7 @@ pub fn render_reference_gpu(
                 (REFERENCE_OUT, output.as_entire_binding()),
             ],
         );
+        let rays_group = rays.group(device);
         let mut encoder = device.create_command_encoder(&Default::default());
         if done == 0 {
             encoder.clear_buffer(&output, 0, None);
@@ -143,7 +144,7 @@ pub fn render_reference_gpu(
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(GROUP_FRAME, &frame_group, &[]);
             pass.set_bind_group(GROUP_ESTIMATOR, &estimator.group, &[]);
-            pass.set_bind_group(GROUP_SOURCE, rays.group(), &[]);
+            pass.set_bind_group(GROUP_SOURCE, &rays_group, &[]);
             pass.set_bind_group(GROUP_SCHEDULE, &output_group, &[]);
             pass.dispatch_workgroups(view.width.div_ceil(8), view.height.div_ceil(8), 1);
         }

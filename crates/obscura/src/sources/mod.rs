@@ -77,7 +77,7 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
 enum Held {
     FirstLayer,
     DualDepth,
-    ColumnRays(ColumnRays),
+    ColumnRays(Box<ColumnRays>),
     StochasticDepth(Box<StochasticDepthMap>),
 }
 
@@ -130,7 +130,7 @@ impl SourcePass {
                 let rays = ColumnRays::new(device, &layout, scene_gpu, bvh);
                 return Ok(Self {
                     kind,
-                    held: Held::ColumnRays(rays),
+                    held: Held::ColumnRays(Box::new(rays)),
                     sd_layout,
                     resolve_layout: Some(layout),
                     request_layout: None,
@@ -270,7 +270,7 @@ impl SourcePass {
                     )],
                 )
             }
-            Held::ColumnRays(rays) => rays.group().clone(),
+            Held::ColumnRays(rays) => rays.group(device),
             Held::StochasticDepth(map) => {
                 bindings::group(device, "stochastic depth", layout, &map.read_resources())
             }
