@@ -178,3 +178,48 @@ pub fn upload_texture(
     );
     t
 }
+
+/// A 2D texture of `format` with any usage and sample count (for the misuse tests' bad inputs).
+pub fn bare_texture(
+    gpu: &Gpu,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    samples: u32,
+) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("test texture"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// Records `ao` over `depth` and `normals` (no second layer) and submits it if the recording
+/// succeeded; the recording's result.
+pub fn encode_and_submit(
+    gpu: &Gpu,
+    ao: &obscura::AmbientOcclusion,
+    depth: &wgpu::Texture,
+    normals: &wgpu::Texture,
+) -> Result<(), obscura::Error> {
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let frame = obscura::FrameTextures {
+        depth,
+        normals,
+        second_layer: None,
+    };
+    let result = ao.encode(&mut encoder, frame, None);
+    if result.is_ok() {
+        gpu.queue.submit([encoder.finish()]);
+    }
+    result
+}

@@ -8,8 +8,8 @@ use glam::{Mat4, Vec3};
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::scene::Scene;
 use obscura::{
-    AmbientOcclusion, AoSettings, EngineGeometry, EngineMesh, FrameTextures, FrameView, Gpu,
-    IndexData, Renderer, Technique, VertexAttribute,
+    AmbientOcclusion, AoSettings, EngineGeometry, EngineMesh, FrameView, Gpu, IndexData, Renderer,
+    Technique, VertexAttribute,
 };
 
 const W: u32 = 80;
@@ -72,14 +72,7 @@ fn engine_ao(gpu: &Gpu, geometry: &EngineGeometry, view: &FrameView, g: &GBuffer
         16,
         g,
     );
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let frame = FrameTextures {
-        depth: &depth,
-        normals: &normals,
-        second_layer: None,
-    };
-    ao.encode(&mut encoder, frame, None).unwrap();
-    gpu.queue.submit([encoder.finish()]);
+    encode_and_submit(gpu, &ao, &depth, &normals).unwrap();
     ao.read_output().unwrap()
 }
 

@@ -385,22 +385,7 @@ fn bad_engine_inputs_are_errors_naming_them() {
     let screen = ScreenGeometry::from_projection(projection, W, H, BAND).unwrap();
     let input = EngineInput::new(&gpu, screen);
     let (fw, fh) = (W + 2 * BAND, H + 2 * BAND);
-    let make = |w, h, format, usage, samples| {
-        gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("bad"),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: samples,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
+    let make = |w, h, format, usage, samples| bare_texture(&gpu, (w, h), format, usage, samples);
     let binding = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::RENDER_ATTACHMENT;
     let depth = make(fw, fh, wgpu::TextureFormat::Depth32Float, binding, 1);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());

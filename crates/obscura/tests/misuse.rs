@@ -5,8 +5,7 @@
 mod common;
 use common::*;
 use obscura::{
-    AmbientOcclusion, AoSettings, FrameTextures, FrameView, Gpu, SceneResources, ScreenGeometry,
-    Technique,
+    AmbientOcclusion, AoSettings, FrameView, Gpu, SceneResources, ScreenGeometry, Technique,
 };
 
 fn screen() -> ScreenGeometry {
@@ -26,20 +25,13 @@ fn texture(
     samples: u32,
 ) -> wgpu::Texture {
     let s = screen();
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("misuse"),
-        size: wgpu::Extent3d {
-            width: s.full_width(),
-            height: s.full_height(),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: samples,
-        dimension: wgpu::TextureDimension::D2,
+    bare_texture(
+        gpu,
+        (s.full_width(), s.full_height()),
         format,
         usage,
-        view_formats: &[],
-    })
+        samples,
+    )
 }
 
 fn encode_err(
@@ -48,18 +40,9 @@ fn encode_err(
     depth: &wgpu::Texture,
     normals: &wgpu::Texture,
 ) -> String {
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let frame = FrameTextures {
-        depth,
-        normals,
-        second_layer: None,
-    };
-    let err = ao
-        .encode(&mut encoder, frame, None)
+    encode_and_submit(gpu, ao, depth, normals)
         .expect_err("an error")
-        .to_string();
-    drop(encoder);
-    err
+        .to_string()
 }
 
 const BINDING: wgpu::TextureUsages = wgpu::TextureUsages::TEXTURE_BINDING;
@@ -116,14 +99,7 @@ fn a_texture_of_another_device_is_an_error() {
     let normals = texture(&gpu, wgpu::TextureFormat::Rgba16Float, BINDING, 1);
     // wgpu does not reject it when the frame's bind group is made; it reports it when the
     // commands run. Gpu::finish / Gpu::check_errors (and the next encode) return it.
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let frame = FrameTextures {
-        depth: &depth,
-        normals: &normals,
-        second_layer: None,
-    };
-    let _ = ao.encode(&mut encoder, frame, None);
-    gpu.queue.submit([encoder.finish()]);
+    let _ = encode_and_submit(&gpu, &ao, &depth, &normals);
     let err = gpu.finish().expect_err("a validation error").to_string();
     assert!(err.contains("Validation"), "{err}");
 }
@@ -155,14 +131,7 @@ fn encoding_a_camera_technique_before_set_camera_is_an_error() {
         // Once the camera is set, the same call records.
         let view = FrameView::new(scene.cameras[0].camera, 32, 24, 4, 0.01);
         ao.set_camera(&gpu.queue, &view);
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        let frame = FrameTextures {
-            depth: &depth,
-            normals: &normals,
-            second_layer: None,
-        };
-        ao.encode(&mut encoder, frame, None).unwrap();
-        gpu.queue.submit([encoder.finish()]);
+        encode_and_submit(&gpu, &ao, &depth, &normals).unwrap();
         gpu.finish().unwrap();
     }
 }
