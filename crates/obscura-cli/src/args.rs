@@ -163,6 +163,16 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.alpha", "--sd-alpha"),
     ("stochastic_depth.seed", "--sd-seed"),
     ("stochastic_depth.mask", "--sd-mask"),
+    ("hbao.radius", "--horizon-radius"),
+    ("hbao.angle_bias", "--horizon-bias"),
+    ("hbao.exponent", "--horizon-exponent"),
+    ("hbao.directions", "--horizon-directions"),
+    ("hbao.steps", "--horizon-steps"),
+    ("gtao.radius", "--gtao-radius"),
+    ("gtao.thickness_blend", "--gtao-thickness-blend"),
+    ("gtao.exponent", "--gtao-exponent"),
+    ("gtao.slices", "--gtao-slices"),
+    ("gtao.steps", "--gtao-steps"),
     ("hbao_plus.radius", "--hbao-radius"),
     ("hbao_plus.bias", "--hbao-bias"),
     ("hbao_plus.exponent", "--hbao-exponent"),
@@ -288,6 +298,35 @@ pub struct AoArgs {
     pub hbao_directions: Option<u32>,
     #[arg(long, help = help("HBAO+ steps per direction.", "hbao_plus.steps"))]
     pub hbao_steps: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "HBAO (hbao, hbao-dual) radius R in world units; attenuation 1 − r/R.",
+        "hbao.radius"
+    ))]
+    pub horizon_radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "HBAO angle bias in radians, added to the tangent elevation each direction starts from.",
+        "hbao.angle_bias"
+    ))]
+    pub horizon_bias: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("HBAO power applied to the final AO.", "hbao.exponent"))]
+    pub horizon_exponent: Option<f32>,
+    #[arg(long, help = help("HBAO directions per pixel (1 to 64).", "hbao.directions"))]
+    pub horizon_directions: Option<u32>,
+    #[arg(long, help = help("HBAO steps per direction (1 to 128).", "hbao.steps"))]
+    pub horizon_steps: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("GTAO radius R in world units.", "gtao.radius"))]
+    pub gtao_radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help(
+        "GTAO thickness heuristic β in [0, 1]: how far a lower sample pulls the horizon down.",
+        "gtao.thickness_blend"
+    ))]
+    pub gtao_thickness_blend: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("GTAO power applied to the final AO.", "gtao.exponent"))]
+    pub gtao_exponent: Option<f32>,
+    #[arg(long, help = help("GTAO slices per pixel (1 to 16).", "gtao.slices"))]
+    pub gtao_slices: Option<u32>,
+    #[arg(long, help = help("GTAO steps on each side of a slice (1 to 32).", "gtao.steps"))]
+    pub gtao_steps: Option<u32>,
     #[arg(long, allow_hyphen_values = true, help = help("GTAO-VB search radius R in world units.", "gtao_vb.radius"))]
     pub vb_radius: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help(
@@ -399,6 +438,18 @@ impl AoArgs {
         if let Some(n) = &self.normalization {
             v.normalization = n.parse::<Normalization>().map_err(with_flags)?;
         }
+        let h = &mut s.hbao;
+        set(&mut h.radius, self.horizon_radius);
+        set(&mut h.angle_bias, self.horizon_bias);
+        set(&mut h.exponent, self.horizon_exponent);
+        set(&mut h.directions, self.horizon_directions);
+        set(&mut h.steps, self.horizon_steps);
+        let g = &mut s.gtao;
+        set(&mut g.radius, self.gtao_radius);
+        set(&mut g.thickness_blend, self.gtao_thickness_blend);
+        set(&mut g.exponent, self.gtao_exponent);
+        set(&mut g.slices, self.gtao_slices);
+        set(&mut g.steps, self.gtao_steps);
         let h = &mut s.hbao_plus;
         set(&mut h.radius, self.hbao_radius);
         set(&mut h.bias, self.hbao_bias);

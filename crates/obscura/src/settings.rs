@@ -154,6 +154,74 @@ impl Default for VaoSettings {
     }
 }
 
+/// The most `hbao.directions` (the parameter block's direction table; seed 004's largest grid is
+/// 64 × 80).
+pub const HBAO_MAX_DIRECTIONS: u32 = 64;
+
+/// The most `gtao.slices` (the parameter block's slice table).
+pub const GTAO_MAX_SLICES: u32 = 16;
+
+/// Classic HBAO parameters (seed 001 §3.2 Algorithm 2, seed 004 §2.2.1): D directions × S steps,
+/// defaults 8 × 4 as seed 001 Tab. 1; seed 004's grid 8 × 10 … 64 × 80 is within range.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HbaoSettings {
+    /// Radius R in world units: samples up to R on screen, attenuation W(r) = 1 − r/R.
+    pub radius: f32,
+    /// Angle added to the tangent's elevation to start each direction's horizon, in radians
+    /// (absorbs tessellation creases; the papers give no value, ours is 0.1 ≈ 5.7°).
+    pub angle_bias: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Directions per pixel, 1 to 64.
+    pub directions: u32,
+    /// Steps per direction, 1 to 128.
+    pub steps: u32,
+}
+
+impl Default for HbaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            angle_bias: 0.1,
+            exponent: 1.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
+/// GTAO parameters (Jimenez et al. 2016, the baseline of seed 003; falloff and step distribution
+/// as XeGTAO).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GtaoSettings {
+    /// Radius R in world units. As XeGTAO, samples reach 1.457·R, their weight falling from 1 at
+    /// 0.56·R to 0 at 1.457·R, which finds as much occlusion as R unattenuated on average.
+    pub radius: f32,
+    /// Thickness heuristic β in [0, 1]: a sample below the current horizon pulls it down by β
+    /// (0, the default: the plain maximum horizon).
+    pub thickness_blend: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Slices per pixel, 1 to 16.
+    pub slices: u32,
+    /// Steps on each side of a slice, 1 to 32.
+    pub steps: u32,
+}
+
+impl Default for GtaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            thickness_blend: 0.0,
+            exponent: 1.0,
+            slices: 2,
+            steps: 2,
+        }
+    }
+}
+
 /// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
 /// (seed-code-notes §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -406,8 +474,12 @@ pub struct AoSettings {
     pub peel_separation: f32,
     /// The stochastic depth map (`sd-vao`, `sd-svao`).
     pub stochastic_depth: StochasticDepthSettings,
+    /// The classic HBAO estimator (`hbao`, `hbao-dual`).
+    pub hbao: HbaoSettings,
     /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
     pub hbao_plus: HbaoPlusSettings,
+    /// The GTAO estimator (`gtao`).
+    pub gtao: GtaoSettings,
     /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
     pub gtao_vb: GtaoVbSettings,
 }
@@ -416,7 +488,9 @@ impl Default for AoSettings {
     fn default() -> Self {
         Self {
             technique: Technique::default(),
+            hbao: HbaoSettings::default(),
             hbao_plus: HbaoPlusSettings::default(),
+            gtao: GtaoSettings::default(),
             gtao_vb: GtaoVbSettings::default(),
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
@@ -484,6 +558,67 @@ impl AoSettings {
                 alpha,
                 "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
             ));
+        }
+        let h = &self.hbao;
+        if !(h.radius.is_finite() && h.radius > 0.0) {
+            return Err(invalid(
+                "hbao.radius",
+                h.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(h.angle_bias.is_finite() && (0.0..std::f32::consts::FRAC_PI_2).contains(&h.angle_bias))
+        {
+            return Err(invalid(
+                "hbao.angle_bias",
+                h.angle_bias,
+                "must be in [0, π/2) radians, e.g. 0.1",
+            ));
+        }
+        if !(h.exponent.is_finite() && h.exponent > 0.0) {
+            return Err(invalid(
+                "hbao.exponent",
+                h.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=HBAO_MAX_DIRECTIONS).contains(&h.directions) {
+            return Err(invalid(
+                "hbao.directions",
+                h.directions,
+                "must be 1 to 64, e.g. 8",
+            ));
+        }
+        if !(1..=128).contains(&h.steps) {
+            return Err(invalid("hbao.steps", h.steps, "must be 1 to 128, e.g. 4"));
+        }
+        let g = &self.gtao;
+        if !(g.radius.is_finite() && g.radius > 0.0) {
+            return Err(invalid(
+                "gtao.radius",
+                g.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(g.thickness_blend.is_finite() && (0.0..=1.0).contains(&g.thickness_blend)) {
+            return Err(invalid(
+                "gtao.thickness_blend",
+                g.thickness_blend,
+                "must be in [0, 1], e.g. 0 (the plain maximum horizon)",
+            ));
+        }
+        if !(g.exponent.is_finite() && g.exponent > 0.0) {
+            return Err(invalid(
+                "gtao.exponent",
+                g.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=GTAO_MAX_SLICES).contains(&g.slices) {
+            return Err(invalid("gtao.slices", g.slices, "must be 1 to 16, e.g. 2"));
+        }
+        if !(1..=32).contains(&g.steps) {
+            return Err(invalid("gtao.steps", g.steps, "must be 1 to 32, e.g. 2"));
         }
         let h = &self.hbao_plus;
         if !(h.radius.is_finite() && h.radius > 0.0) {
@@ -605,15 +740,17 @@ fn to_value(settings: &AoSettings) -> serde_json::Value {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Preset {
-    /// The cheapest: blur radius 2 (VAO, HBAO+), fewer samples (HBAO+ 4 directions, GTAO-VB
-    /// 1 × 2) and one stochastic depth sample per pixel.
+    /// The cheapest: blur radius 2 (VAO, HBAO+), fewer samples (HBAO 4 × 4, HBAO+ 4 directions,
+    /// GTAO and GTAO-VB 1 × 2) and one stochastic depth sample per pixel.
     Low,
     /// The defaults ([`AoSettings::default`]) for every technique.
     #[default]
     Medium,
-    /// More samples than the defaults where the estimator has room (VAO 16, GTAO-VB 3 × 3).
+    /// More samples than the defaults where the estimator has room (VAO 16, HBAO 8 × 10, GTAO
+    /// and GTAO-VB 3 × 3).
     High,
-    /// The most samples (VAO 32, GTAO-VB 3 × 5, S = 8) and, for VAO and HBAO+, blur radius 6.
+    /// The most samples (VAO 32, HBAO 16 × 20, GTAO 9 × 3, GTAO-VB 3 × 5, S = 8) and, for VAO
+    /// and HBAO+, blur radius 6.
     Ultra,
 }
 
@@ -666,7 +803,8 @@ impl AoSettings {
     ///
     /// Per estimator and source (docs/SETTINGS.md has the table with every column): VAO
     /// `vao.samples` 8, 8, 16, 32 and `blur.radius` 2, 4, 4, 6; HBAO+ 4 × 4 directions × steps
-    /// at low, else 8 × 4, `blur.radius` as VAO; GTAO-VB slices × steps 1×2, 2×2, 3×3, 3×5; the
+    /// at low, else 8 × 4, `blur.radius` as VAO; HBAO directions × steps 4×4, 8×4, 8×10, 16×20;
+    /// GTAO slices × steps 1×2, 2×2, 3×3, 9×3; GTAO-VB 1×2, 2×2, 3×3, 3×5; the
     /// stochastic depth map S = 1, 4, 4, 8 with α = 1.5/S throughout (at most 1: at S = 1 the
     /// nearest hidden surface).
     ///
@@ -700,6 +838,28 @@ impl AoSettings {
                 Preset::Medium | Preset::High => {}
                 Preset::Ultra => s.blur.radius = 6,
             },
+            // Seed 001 Tab. 1's 8 × 4 as the default, seed 004's smallest grid (8 × 10) as high.
+            Estimator::Hbao => {
+                let (directions, steps) = match preset {
+                    Preset::Low => (4, 4),
+                    Preset::Medium => (8, 4),
+                    Preset::High => (8, 10),
+                    Preset::Ultra => (16, 20),
+                };
+                s.hbao.directions = directions;
+                s.hbao.steps = steps;
+            }
+            // The common XeGTAO-style grid, slices × steps 1×2, 2×2, 3×3, 9×3.
+            Estimator::Gtao => {
+                let (slices, steps) = match preset {
+                    Preset::Low => (1, 2),
+                    Preset::Medium => (2, 2),
+                    Preset::High => (3, 3),
+                    Preset::Ultra => (9, 3),
+                };
+                s.gtao.slices = slices;
+                s.gtao.steps = steps;
+            }
             // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
             // samples allow: ultra is 3 × 5 instead of 9 × 3.
             Estimator::GtaoVb => {
@@ -983,8 +1143,8 @@ mod tests {
             &["line 2", "many"],
         );
         check(
-            &file(d, "tech.toml", "technique = \"hbao\"\n"),
-            &["hbao", "sd-svao"],
+            &file(d, "tech.toml", "technique = \"hbao-classic\"\n"),
+            &["hbao-classic", "sd-svao"],
         );
         check(
             &file(d, "norm.toml", "[vao]\nnormalization = \"flat\"\n"),
@@ -1044,6 +1204,17 @@ mod tests {
         assert_eq!(vao(Preset::Low), (8, 2, sd_default));
         assert_eq!(vao(Preset::High), (16, 4, sd_default));
         assert_eq!(vao(Preset::Ultra), (32, 6, sd_default));
+        let grid = |t, p| {
+            let s = AoSettings::preset(t, p);
+            match t.estimator() {
+                Estimator::Hbao => (s.hbao.directions, s.hbao.steps),
+                _ => (s.gtao.slices, s.gtao.steps),
+            }
+        };
+        let hbao: Vec<_> = Preset::ALL.map(|p| grid(Technique::Hbao, p)).into();
+        assert_eq!(hbao, [(4, 4), (8, 4), (8, 10), (16, 20)]);
+        let gtao: Vec<_> = Preset::ALL.map(|p| grid(Technique::Gtao, p)).into();
+        assert_eq!(gtao, [(1, 2), (2, 2), (3, 3), (9, 3)]);
         let sd = |p| {
             let s = AoSettings::preset(Technique::SdSvao, p);
             (
@@ -1078,7 +1249,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 25, "{paths:?}");
+        assert_eq!(paths.len(), 35, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1099,6 +1270,16 @@ mod tests {
         push(&|s| s.hbao_plus.exponent = 0.0);
         push(&|s| s.hbao_plus.directions = 0);
         push(&|s| s.hbao_plus.steps = 5);
+        push(&|s| s.hbao.radius = 0.0);
+        push(&|s| s.hbao.angle_bias = 1.6);
+        push(&|s| s.hbao.exponent = f32::NAN);
+        push(&|s| s.hbao.directions = 65);
+        push(&|s| s.hbao.steps = 0);
+        push(&|s| s.gtao.radius = -1.0);
+        push(&|s| s.gtao.thickness_blend = 1.5);
+        push(&|s| s.gtao.exponent = 0.0);
+        push(&|s| s.gtao.slices = 17);
+        push(&|s| s.gtao.steps = 33);
         push(&|s| s.gtao_vb.radius = f32::INFINITY);
         push(&|s| s.gtao_vb.thickness = -0.5);
         push(&|s| s.gtao_vb.exponent = -1.0);

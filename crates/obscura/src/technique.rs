@@ -43,10 +43,17 @@ techniques!(
     SdVao,
     /// `sd-svao`: SD-VAO in two phases; the map is rasterised only where phase 1 asked.
     SdSvao,
+    /// `hbao`: horizon-based AO, D directions × S steps (seed 001 §3.2, seed 004 §2.2.1).
+    Hbao,
+    /// `hbao-dual`: HBAO; a step whose surface lies above the horizon but beyond R also reads the
+    /// second depth layer.
+    HbaoDual,
     /// `hbao+`: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline).
     HbaoPlus,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `gtao`: ground-truth-based AO, slices × steps with the analytic cosine-weighted integral.
+    Gtao,
     /// `gtao-vb`: GTAO slices with a 32-sector visibility bitmask and constant thickness.
     GtaoVb,
     /// `gtao-vb-dual`: GTAO-VB; every sample also marks the sectors of the second depth layer.
@@ -58,9 +65,13 @@ techniques!(
 pub enum Estimator {
     /// Volumetric AO, seed 000 §3.1–3.5.
     Vao,
+    /// Horizon-based AO, seed 001 §3.2 Algorithm 2, seed 004 §2.2.1.
+    Hbao,
     /// NVIDIA-style per-sample horizon AO, the seed authors' baseline (seed 000 §2.1,
     /// seed-code-notes §1.7).
     HbaoPlus,
+    /// Ground-truth-based AO (Jimenez et al. 2016), the baseline of seed 003.
+    Gtao,
     /// GTAO with a visibility bitmask of 32 sectors per slice (seed 003).
     GtaoVb,
 }
@@ -176,6 +187,24 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::TwoPhase,
     },
     TechniqueRow {
+        technique: Technique::Hbao,
+        name: "hbao",
+        summary: "HBAO: horizon angles along 8 directions × 4 steps, attenuation 1 − r/R",
+        paper: "seed 001 §3.2, seed 004 §2.2.1",
+        estimator: Estimator::Hbao,
+        source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::HbaoDual,
+        name: "hbao-dual",
+        summary: "HBAO; a step above the horizon but beyond R also reads the second layer",
+        paper: "seed 001 §3.2 (Algorithm 2), seed 000 §2.1",
+        estimator: Estimator::Hbao,
+        source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::HbaoPlus,
         name: "hbao+",
         summary: "HBAO+: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline)",
@@ -191,6 +220,15 @@ pub const TABLE: &[TechniqueRow] = &[
         paper: "seed 000 §2.1",
         estimator: Estimator::HbaoPlus,
         source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::Gtao,
+        name: "gtao",
+        summary: "GTAO: two horizons per slice, analytic cosine-weighted visibility, falloff",
+        paper: "Jimenez et al. 2016 (seed 003's baseline)",
+        estimator: Estimator::Gtao,
+        source: Source::FirstLayer,
         schedule: Schedule::Single,
     },
     TechniqueRow {
@@ -273,6 +311,13 @@ impl Schedule {
         self != Schedule::Single
     }
 
+    /// Whether this schedule can run `estimator`: a two-phase schedule adds phase 2's samples
+    /// after all others and holds one bit per sample (at most 32), so it needs an
+    /// [`Estimator::order_independent`] estimator.
+    pub fn supports(self, estimator: Estimator) -> bool {
+        !self.two_phase() || estimator.order_independent()
+    }
+
     /// Its name in the README's table (`single pass`, `two-phase (work list)`, …).
     pub fn name(self) -> &'static str {
         match self {
@@ -284,12 +329,24 @@ impl Schedule {
 }
 
 impl Estimator {
-    /// Its name in the README's table (`vao`, `hbao+`, `gtao-vb`).
+    /// Its name in the README's table (`vao`, `hbao`, `hbao+`, `gtao`, `gtao-vb`).
     pub fn name(self) -> &'static str {
         match self {
             Estimator::Vao => "vao",
+            Estimator::Hbao => "hbao",
             Estimator::HbaoPlus => "hbao+",
+            Estimator::Gtao => "gtao",
             Estimator::GtaoVb => "gtao-vb",
+        }
+    }
+
+    /// Whether the estimator's result is independent of the order its samples arrive in, as a
+    /// two-phase schedule needs (phase 2 adds the flagged samples after all others). HBAO and
+    /// GTAO walk each direction outwards, carrying a running horizon: single pass only.
+    pub fn order_independent(self) -> bool {
+        match self {
+            Estimator::Vao | Estimator::HbaoPlus | Estimator::GtaoVb => true,
+            Estimator::Hbao | Estimator::Gtao => false,
         }
     }
 }
@@ -440,12 +497,19 @@ mod tests {
                 r.source,
                 r.estimator
             );
+            assert!(
+                r.schedule.supports(r.estimator),
+                "{}: schedule {:?} cannot run estimator {:?}",
+                r.name,
+                r.schedule,
+                r.estimator
+            );
         }
     }
 
     #[test]
     fn unknown_names_list_the_table() {
-        let err = "hbao".parse::<Technique>().unwrap_err().to_string();
+        let err = "hbao-plus".parse::<Technique>().unwrap_err().to_string();
         for r in TABLE {
             assert!(err.contains(r.name), "{err}");
         }

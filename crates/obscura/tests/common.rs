@@ -223,3 +223,26 @@ pub fn encode_and_submit(
     }
     result
 }
+
+/// GPU against CPU: within 1/255 except where a sample lay on a pixel edge (at most 1 in 500
+/// pixels), and the view shows occlusion.
+pub fn assert_mirrors(name: &str, gpu_ao: &[f32], cpu: (Vec<f32>, Vec<bool>)) {
+    let (cpu_ao, ambiguous) = cpu;
+    let (mut worst, mut mismatches) = (0.0f32, 0);
+    for (i, (&g, &c)) in gpu_ao.iter().zip(&cpu_ao).enumerate() {
+        let diff = (g - c).abs();
+        if diff > 1.0 / 255.0 {
+            assert!(ambiguous[i], "{name}: pixel {i} GPU {g} CPU {c}");
+            mismatches += 1;
+        } else {
+            worst = worst.max(diff);
+        }
+    }
+    println!("{name}: max |GPU − CPU| {worst:.2e}, {mismatches} edge-snapping mismatches");
+    assert!(mismatches <= gpu_ao.len() / 500, "{name}: {mismatches}");
+    let occluded = gpu_ao.iter().filter(|&&v| v < 0.9).count();
+    assert!(
+        occluded > gpu_ao.len() / 50,
+        "{name}: the view must show occlusion ({occluded} pixels)"
+    );
+}

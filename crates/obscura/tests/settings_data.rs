@@ -10,37 +10,40 @@ fn doc() -> String {
     std::fs::read_to_string(path).expect("docs/SETTINGS.md")
 }
 
+/// The first technique of the table with estimator `e`.
+fn with_estimator(e: Estimator) -> Technique {
+    Technique::all().find(|t| t.estimator() == e).unwrap()
+}
+
 /// The preset table of docs/SETTINGS.md, made by calling `AoSettings::preset`.
 fn preset_table() -> String {
-    let vao = Technique::all()
-        .find(|t| t.estimator() == Estimator::Vao)
-        .unwrap();
-    let hbao = Technique::all()
-        .find(|t| t.estimator() == Estimator::HbaoPlus)
-        .unwrap();
-    let vb = Technique::all()
-        .find(|t| t.estimator() == Estimator::GtaoVb)
-        .unwrap();
     let sd = Technique::all()
         .find(|t| t.source() == Source::StochasticDepth)
         .unwrap();
     let mut out = String::from(
-        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO-VB: `gtao_vb.slices` × `.steps` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|\n",
+        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO: `hbao.directions` × `.steps` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO: `gtao.slices` × `.steps` | GTAO-VB: `gtao_vb.slices` × `.steps` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|---|---|\n",
     );
     for p in Preset::ALL {
-        let (v, h, g, s) = (
-            AoSettings::preset(vao, p),
-            AoSettings::preset(hbao, p),
-            AoSettings::preset(vb, p),
+        let at = |e| AoSettings::preset(with_estimator(e), p);
+        let (v, hb, h, gt, g, s) = (
+            at(Estimator::Vao),
+            at(Estimator::Hbao),
+            at(Estimator::HbaoPlus),
+            at(Estimator::Gtao),
+            at(Estimator::GtaoVb),
             AoSettings::preset(sd, p),
         );
         out += &format!(
-            "| `{p}` | {}, {} | {} × {}, {} | {} × {} | {}, {} |\n",
+            "| `{p}` | {}, {} | {} × {} | {} × {}, {} | {} × {} | {} × {} | {}, {} |\n",
             v.vao.samples,
             v.blur.radius,
+            hb.hbao.directions,
+            hb.hbao.steps,
             h.hbao_plus.directions,
             h.hbao_plus.steps,
             h.blur.radius,
+            gt.gtao.slices,
+            gt.gtao.steps,
             g.gtao_vb.slices,
             g.gtao_vb.steps,
             s.stochastic_depth.samples,
@@ -61,14 +64,8 @@ fn the_preset_table_is_the_whole_story() {
     // The table holds for every technique: the VAO columns for every VAO-estimator technique,
     // the stochastic-depth ones for every technique with that source (the others keep the
     // defaults), and nothing else changes.
-    let vao = Technique::all()
-        .find(|t| t.estimator() == Estimator::Vao)
-        .unwrap();
     let sd = Technique::all()
         .find(|t| t.source() == Source::StochasticDepth)
-        .unwrap();
-    let hbao = Technique::all()
-        .find(|t| t.estimator() == Estimator::HbaoPlus)
         .unwrap();
     for t in Technique::all() {
         for p in Preset::ALL {
@@ -77,23 +74,19 @@ fn the_preset_table_is_the_whole_story() {
                 technique: t,
                 ..AoSettings::default()
             };
+            let first = AoSettings::preset(with_estimator(t.estimator()), p);
             match t.estimator() {
                 Estimator::Vao => {
-                    let v = AoSettings::preset(vao, p);
-                    want.vao.samples = v.vao.samples;
-                    want.blur.radius = v.blur.radius;
+                    want.vao.samples = first.vao.samples;
+                    want.blur.radius = first.blur.radius;
                 }
+                Estimator::Hbao => want.hbao = first.hbao,
                 Estimator::HbaoPlus => {
-                    let h = AoSettings::preset(hbao, p);
-                    want.hbao_plus = h.hbao_plus;
-                    want.blur.radius = h.blur.radius;
+                    want.hbao_plus = first.hbao_plus;
+                    want.blur.radius = first.blur.radius;
                 }
-                Estimator::GtaoVb => {
-                    let vb = Technique::all()
-                        .find(|t| t.estimator() == Estimator::GtaoVb)
-                        .unwrap();
-                    want.gtao_vb = AoSettings::preset(vb, p).gtao_vb;
-                }
+                Estimator::Gtao => want.gtao = first.gtao,
+                Estimator::GtaoVb => want.gtao_vb = first.gtao_vb,
             }
             want.stochastic_depth = if t.source() == Source::StochasticDepth {
                 AoSettings::preset(sd, p).stochastic_depth

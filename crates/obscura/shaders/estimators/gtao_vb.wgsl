@@ -103,14 +103,6 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     return p;
 }
 
-fn estimator_pixel_valid(p: EstimatorPixel) -> bool {
-    return p.valid;
-}
-
-fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> {
-    return p.pixel;
-}
-
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
@@ -120,14 +112,6 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     // View y is up, framebuffer y down.
     s.px = vec2<f32>(p.pixel) + 0.5 + k.z * vec2<f32>(dir.x, -dir.y) * ((p.jitter + 1.0 + k.w) * p.step_px);
     return s;
-}
-
-fn estimator_sample_active(s: EstimatorSample) -> bool {
-    return s.on;
-}
-
-fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
-    return s.px;
 }
 
 fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> u32 {

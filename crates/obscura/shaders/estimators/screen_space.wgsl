@@ -1,4 +1,4 @@
-// What the screen-space estimators (HBAO+, GTAO-VB) start a pixel from: the shading point and its
+// What the screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB) start a pixel from: the shading point and its
 // normal from the frame, and the world radius in framebuffer pixels. Put in front of such an
 // estimator (its Rust module concatenates the two).
 
@@ -24,4 +24,23 @@ fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
     p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
     p.radius_px = radius * pixels_per_unit(view, z).y;
     return p;
+}
+
+// The estimator contract's accessors, alike for every screen-space estimator: each names its
+// EstimatorPixel fields `valid` and `pixel` and its EstimatorSample fields `on` and `px`.
+
+fn estimator_pixel_valid(p: EstimatorPixel) -> bool {
+    return p.valid;
+}
+
+fn estimator_shading_pixel(p: EstimatorPixel) -> vec2<u32> {
+    return p.pixel;
+}
+
+fn estimator_sample_active(s: EstimatorSample) -> bool {
+    return s.on;
+}
+
+fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
+    return s.px;
 }

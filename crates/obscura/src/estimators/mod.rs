@@ -6,7 +6,9 @@
 //! plus a Rust module here that makes its parameters (bind group 1) and pipeline constants. The
 //! schedules own the loops; the sources consult the estimator for each depth they find.
 
+pub mod gtao;
 pub mod gtao_vb;
+pub mod hbao;
 pub mod hbao_plus;
 pub mod vao;
 
@@ -57,7 +59,9 @@ impl EstimatorPass {
         let (wgsl, names) = wgsl(estimator);
         let (params, values) = match estimator {
             Estimator::Vao => vao::params(&settings.vao),
+            Estimator::Hbao => hbao::params(&settings.hbao),
             Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
+            Estimator::Gtao => gtao::params(&settings.gtao),
             Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
         };
         let constants = names.iter().copied().zip(values).collect();
@@ -65,7 +69,7 @@ impl EstimatorPass {
     }
 }
 
-/// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO+, GTAO-VB): (cos, sin) of
+/// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB): (cos, sin) of
 /// `period`·B/16 with B the 4×4 Bayer value of (x % 4, y % 4) (the pattern VAO rotates by), and a
 /// jitter in [0, 1) from the transposed matrix, (B(y % 4, x % 4) + 0.5)/16, so angle and jitter
 /// do not repeat together; the blur's 4-pixel radius averages both.
@@ -90,7 +94,9 @@ pub(crate) fn bayer_table(period: f32) -> [[f32; 4]; 16] {
 pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static str]) {
     match estimator {
         Estimator::Vao => (vao::WGSL, vao::CONSTANTS),
+        Estimator::Hbao => (hbao::WGSL, hbao::CONSTANTS),
         Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
+        Estimator::Gtao => (gtao::WGSL, gtao::CONSTANTS),
         Estimator::GtaoVb => (gtao_vb::WGSL, gtao_vb::CONSTANTS),
     }
 }

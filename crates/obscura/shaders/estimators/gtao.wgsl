@@ -1,0 +1,226 @@
+// GTAO: ground-truth-based AO (Jimenez, Wu, Pesce, Jarabo, "Practical Real-Time Strategies for
+// Accurate Indirect Occlusion", 2016), the baseline seed 003 modifies. Per pixel, `slices` planes
+// through the view vector V; in each, `steps` samples on either side find the two horizon angles
+// h₀ ≤ 0 ≤ h₁ (measured from V), clamped to the hemisphere around the normal projected onto the
+// slice (angle γ, length |n_p|); the cosine-weighted visibility of the slice is then analytic:
+//     â = |n_p| · Σ_{h ∈ {h₀, h₁}} ¼ (−cos(2h − γ) + cos γ + 2h sin γ).
+// Distance falloff as XeGTAO (Intel, 2021): samples reach 1.457·R (its radius multiplier) and a
+// sample's horizon cosine is blended towards the side's lowest horizon by the weight
+// w = saturate((1.457·R − d)/(0.615·1.457·R)): full weight up to 0.56·R, none beyond 1.457·R.
+// Thickness heuristic (Jimenez et al. §4): walking a side outwards, a sample below the current
+// horizon pulls it down, h ← max(h_s, mix(h, h_s, β)); β = 0 (the default, XeGTAO's) keeps the
+// plain maximum, larger β lets light pass behind thin occluders.
+//
+// Estimator contract (docs/ARCHITECTURE.md), per-sample form: sample i is slice i / (2·steps),
+// side + then −, step i % steps outwards. The accumulator holds only the current slice's two
+// horizons and folds a slice into the running sums when the next begins, so samples must arrive
+// slice by slice with ascending steps: the single-pass schedule does, and the table keeps GTAO off
+// the two-phase schedules (Estimator::order_independent). A sample's value is (cos h_s, w).
+//
+// Ours, where the papers leave it open:
+// - AO = Σ â / Σ â_open, with â_open a slice's visibility with its horizons on the tangent plane,
+//   instead of Σ â / slices. Both have the same limit (the mean of â_open over slice angles is 1),
+//   but ours is exactly 1 on every unoccluded plane, as VAO's clipped normalisation;
+// - step distances ((step + jitter)/steps)²·r' + 1.3 px (XeGTAO's quadratic distribution and its
+//   minimum offset), with the per-pixel slice rotation and jitter of the 4×4 Bayer pattern;
+// - a surface on or below the shading point's tangent plane (within 1e-3 rad) occludes nothing:
+//   samples snap to pixel centres, off the slice, where a tilted plane lies above the slice's
+//   lowest horizon (the same rule as gtao_vb.wgsl);
+// - exponent 1 by default (XeGTAO ships 2.2 as an artistic power; the ground truth has none).
+
+struct GtaoParams {
+    // The reach, 1.457·R.
+    radius: f32,
+    // w = saturate(d · falloff_mul + falloff_add).
+    falloff_mul: f32,
+    falloff_add: f32,
+    thickness_blend: f32,
+    exponent: f32,
+    slices: u32,
+    steps: u32,
+    _pad0: u32,
+    // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the slice rotation, z the step jitter in [0, 1).
+    pattern: array<vec4<f32>, 16>,
+    // Slice j: xy the unrotated slice direction at angle π·j/slices (view-space x right, y up).
+    slice_table: array<vec4<f32>, 16>,
+}
+
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: GtaoParams;
+
+// slices × 2 × steps.
+override SAMPLE_COUNT: u32 = 8u;
+
+const HALF_PI: f32 = 1.5707963267948966;
+
+struct EstimatorPixel {
+    pos: vec3<f32>,
+    // Unit vector to the camera.
+    v: vec3<f32>,
+    normal: vec3<f32>,
+    pixel: vec2<u32>,
+    rotation: vec2<f32>,
+    jitter: f32,
+    radius_px: f32,
+    // XeGTAO's minimum offset, 1.3 px, as a fraction of the radius.
+    min_fraction: f32,
+    valid: bool,
+}
+
+struct EstimatorSample {
+    px: vec2<f32>,
+    slice: u32,
+    // 0: side +, towards the slice direction; 1: side −.
+    side: u32,
+    // The projected normal in the slice: its angle γ from V and its length.
+    gamma: f32,
+    projected_length: f32,
+    on: bool,
+}
+
+// (cos of the sample's angle from V, falloff weight w); w = 0 where nothing is there.
+alias EstimatorValue = vec2<f32>;
+
+struct EstimatorAccum {
+    // The slice being walked (0xffffffff before the first) and its horizon cosines, side + and −.
+    slice: u32,
+    horizon_cos: vec2<f32>,
+    gamma: f32,
+    projected_length: f32,
+    visible: f32,
+    open: f32,
+}
+
+struct Occluder {
+    value: vec2<f32>,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let base = screen_pixel(id, params.radius);
+    var p: EstimatorPixel;
+    p.pixel = base.pixel;
+    p.valid = base.valid;
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = base.pos;
+    p.v = toward_camera(view, p.pos);
+    p.normal = base.normal;
+    let pattern = params.pattern[pattern_index(id)];
+    p.rotation = pattern.xy;
+    p.jitter = pattern.z;
+    p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
+    p.min_fraction = 1.3 / max(base.radius_px, 1.0);
+    return p;
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.radius_px > 0.0;
+    s.slice = i / (2u * params.steps);
+    s.side = (i / params.steps) % 2u;
+    let step = f32(i % params.steps);
+    let dir = rotate_by(params.slice_table[s.slice].xy, p.rotation);
+    let fraction = (step + p.jitter) / f32(params.steps);
+    let distance = (fraction * fraction + p.min_fraction) * p.radius_px;
+    let sign = select(1.0, -1.0, s.side == 1u);
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + sign * vec2<f32>(dir.x, -dir.y) * distance;
+    // The slice plane: V and the slice direction made orthogonal to V (its tangent).
+    let d = vec3<f32>(dir, 0.0);
+    let tangent = normalize(d - p.v * dot(d, p.v));
+    let axis = cross(tangent, p.v);
+    let projected = p.normal - axis * dot(p.normal, axis);
+    s.projected_length = length(projected);
+    s.gamma = atan2(dot(projected, tangent), dot(projected, p.v));
+    return s;
+}
+
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
+    return vec2<f32>(-1.0, 0.0);
+}
+
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let delta = pos - p.pos;
+    let distance = length(delta);
+    // A surface on or below the tangent plane occludes nothing (see the top comment).
+    let above = dot(delta, p.normal) > 1e-3 * distance;
+    var o: Occluder;
+    o.value = vec2<f32>(
+        dot(delta, p.v) / max(distance, 1e-20),
+        select(0.0, saturate(distance * params.falloff_mul + params.falloff_add), above),
+    );
+    // GTAO has no hidden-depth rows (table): nothing deeper is consulted.
+    o.hidden = false;
+    return o;
+}
+
+// Several depths for one sample: the higher weighted horizon.
+fn estimator_combine(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return select(a, b, b.y * (b.x + 1.0) > a.y * (a.x + 1.0));
+}
+
+// Side horizon cosines at the tangent plane: cos(γ + π/2) = −sin γ and cos(γ − π/2) = sin γ.
+fn lowest_horizon_cos(gamma: f32) -> vec2<f32> {
+    let s = sin(gamma);
+    return vec2<f32>(-s, s);
+}
+
+// ¼ (−cos(2h − γ) + cos γ + 2h sin γ): one side's cosine-weighted visibility in the slice.
+fn side_visibility(h: f32, gamma: f32) -> f32 {
+    return 0.25 * (-cos(2.0 * h - gamma) + cos(gamma) + 2.0 * h * sin(gamma));
+}
+
+// Adds the finished slice of `acc` (if any) to its sums.
+fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
+    var a = acc;
+    if (a.slice == 0xffffffffu) {
+        return a;
+    }
+    let g = a.gamma;
+    let h1 = g + min(acos(clamp(a.horizon_cos.x, -1.0, 1.0)) - g, HALF_PI);
+    let h0 = g + max(-acos(clamp(a.horizon_cos.y, -1.0, 1.0)) - g, -HALF_PI);
+    a.visible += a.projected_length * (side_visibility(h0, g) + side_visibility(h1, g));
+    // Both horizons on the tangent plane: ¼(2 cos γ + 2(γ ∓ π/2) sin γ) summed, cos γ + γ sin γ.
+    a.open += a.projected_length * (cos(g) + g * sin(g));
+    return a;
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    var a: EstimatorAccum;
+    a.slice = 0xffffffffu;
+    a.horizon_cos = vec2<f32>(-1.0);
+    a.gamma = 0.0;
+    a.projected_length = 0.0;
+    a.visible = 0.0;
+    a.open = 0.0;
+    return a;
+}
+
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    return acc;
+}
+
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f32>) -> EstimatorAccum {
+    var a = acc;
+    if (s.slice != a.slice) {
+        a = fold_slice(a);
+        a.slice = s.slice;
+        a.gamma = s.gamma;
+        a.projected_length = s.projected_length;
+        a.horizon_cos = lowest_horizon_cos(s.gamma);
+    }
+    let lowest = lowest_horizon_cos(a.gamma)[s.side];
+    let sample_cos = mix(lowest, value.x, value.y);
+    let current = a.horizon_cos[s.side];
+    a.horizon_cos[s.side] = max(sample_cos, mix(current, sample_cos, params.thickness_blend));
+    return a;
+}
+
+fn estimator_finish(acc: EstimatorAccum) -> f32 {
+    let a = fold_slice(acc);
+    if (a.open <= 0.0) {
+        return 1.0;
+    }
+    return pow(saturate(a.visible / a.open), params.exponent);
+}

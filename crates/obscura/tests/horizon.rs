@@ -1,0 +1,443 @@
+//! The classic horizon estimators, HBAO (seed 001 §3.2 Algorithm 2, seed 004 §2.2.1) and GTAO
+//! (Jimenez et al. 2016 with XeGTAO's falloff), against values derived without the GPU kernels:
+//! unoccluded planes, the closed forms of their models for a step seen from above and for an
+//! inside corner, plain CPU implementations on read-back G-buffers, and the hemisphere ground
+//! truth.
+
+mod common;
+use common::*;
+use glam::{UVec2, Vec2, Vec3};
+use obscura::estimators::{gtao, hbao};
+use obscura::reference::cpu_vao::GBufferImage;
+use obscura::scene::{self, Camera, Scene};
+use obscura::settings::{AoSettings, GtaoSettings, HbaoSettings};
+use obscura::{Renderer, ScreenGeometry, Technique};
+use std::f32::consts::{FRAC_PI_2, PI};
+
+#[test]
+fn unoccluded_plane_is_one_everywhere() {
+    // HBAO: every step lies on the tangent, below the biased starting horizon. GTAO: both
+    // horizons lie on the tangent plane, and the clipped normalisation makes that exactly 1.
+    let gpu = gpu();
+    for blur in [false, true] {
+        let mut settings = Vec::new();
+        for (directions, steps) in [(8, 4), (4, 8), (16, 20)] {
+            let mut s = technique_settings(Technique::Hbao, blur);
+            (s.hbao.directions, s.hbao.steps) = (directions, steps);
+            settings.push(s);
+        }
+        for (slices, steps, blend) in [(2, 2, 0.0), (3, 3, 0.5), (9, 3, 0.0), (1, 8, 1.0)] {
+            let mut s = technique_settings(Technique::Gtao, blur);
+            (s.gtao.slices, s.gtao.steps, s.gtao.thickness_blend) = (slices, steps, blend);
+            settings.push(s);
+        }
+        for s in settings {
+            let ao = tilted_floor_ao(&gpu, &s);
+            let min = ao.iter().copied().fold(f32::MAX, f32::min);
+            let max = ao.iter().copied().fold(f32::MIN, f32::max);
+            assert!(
+                min > 1.0 - 1e-3 && max < 1.0 + 1e-3,
+                "{} {:?} {:?}, blur {blur}: AO in [{min}, {max}]",
+                s.technique,
+                s.hbao,
+                s.gtao
+            );
+        }
+    }
+}
+
+// ------------------------------------------------------------------------ closed forms
+
+/// A step seen from straight above: the floor y = 0 for x < `d`, a block of height `h` beyond
+/// (its top at y = h, its face x = d towards the floor).
+fn step_scene(d: f32, h: f32) -> Scene {
+    let far = 30.0;
+    quads(
+        "step",
+        &[
+            [
+                Vec3::new(-far, 0.0, far),
+                Vec3::new(d, 0.0, far),
+                Vec3::new(d, 0.0, -far),
+                Vec3::new(-far, 0.0, -far),
+            ],
+            [
+                Vec3::new(d, h, far),
+                Vec3::new(far, h, far),
+                Vec3::new(far, h, -far),
+                Vec3::new(d, h, -far),
+            ],
+            [
+                Vec3::new(d, 0.0, far),
+                Vec3::new(d, h, far),
+                Vec3::new(d, h, -far),
+                Vec3::new(d, 0.0, -far),
+            ],
+        ],
+    )
+}
+
+/// Looking straight down on the origin from `height`, x to the right of the image.
+fn top_view(height: f32, fov_y_deg: f32) -> Camera {
+    Camera {
+        eye: Vec3::new(0.0, height, 0.0),
+        target: Vec3::ZERO,
+        up: Vec3::NEG_Z,
+        fov_y_deg,
+    }
+}
+
+/// ∫ f(θ) dθ over (−π/2, π/2) by the midpoint rule.
+fn integrate_half_circle(f: impl Fn(f32) -> f32) -> f32 {
+    let n = 4000;
+    let dt = PI / n as f32;
+    (0..n)
+        .map(|i| f(-FRAC_PI_2 + (i as f32 + 0.5) * dt))
+        .sum::<f32>()
+        * dt
+}
+
+/// HBAO's model for a floor point `d` before a step of height `h`, seen from above (normal = V,
+/// tangent elevation 0), in the limit of fine steps: towards the step (|θ| < π/2) the horizon
+/// rises once, at the step's edge r_e = d/cos θ, to sin φ = h/ρ with ρ = √(h² + r_e²), adding
+/// W(ρ)·(sin φ − sin bias) (Algorithm 2, line 18); beyond the edge the block's top lies lower, and
+/// the floor never rises above the bias. AO = 1 − (1/2π) ∫ over all directions.
+fn hbao_step_closed_form(d: f32, h: f32, s: &HbaoSettings) -> f32 {
+    let occlusion = integrate_half_circle(|theta| {
+        let rho = (h * h + (d / theta.cos()).powi(2)).sqrt();
+        let w = (1.0 - rho / s.radius).max(0.0);
+        w * (h / rho - s.angle_bias.sin()).max(0.0)
+    });
+    1.0 - occlusion / (2.0 * PI)
+}
+
+/// GTAO's model for the same point: every slice has γ = 0 and |n_p| = 1; the side away from the
+/// step keeps its horizon on the floor (visibility ½), the side towards it meets the edge, whose
+/// weighted horizon cosine c = w(ρ)·h/ρ is the largest of the side (farther block points are lower
+/// and weigh less), visibility ¼(1 − cos 2h) = (1 − c²)/2. The slice sees 1 − c²/2; slice angles
+/// are uniform, so AO = 1 − (1/π) ∫_{−π/2}^{π/2} c²/2 dθ.
+fn gtao_step_closed_form(d: f32, h: f32, s: &GtaoSettings) -> f32 {
+    let loss = integrate_half_circle(|theta| {
+        let rho = (h * h + (d / theta.cos()).powi(2)).sqrt();
+        let c = gtao::falloff(rho, s.radius) * h / rho;
+        c * c / 2.0
+    });
+    1.0 - loss / PI
+}
+
+/// The centre block's AO of `settings` over the step seen from above, and the mean of `model`
+/// over the block's pixels at their own distances from the step (the block spans 6 cm of x).
+fn step_ao(settings: &AoSettings, d: f32, h: f32, model: impl Fn(f32) -> f32) -> (f32, f32) {
+    let gpu = gpu();
+    let (w, ht) = (96, 96);
+    let mut r = Renderer::new(&gpu, &step_scene(d, h), settings, w, ht, 32).unwrap();
+    // 20 m up, 4° field: 96 px cover 1.40 m, 1.5 cm per pixel, and the view ray is within 0.1°
+    // of the normal over the block.
+    r.render(&top_view(20.0, 4.0), None).unwrap();
+    let ao = r.read_raw_ao().unwrap();
+    let g = r.read_gbuffer().unwrap();
+    let screen = r.view().unwrap().screen();
+    let world = r.view().unwrap().view_matrix().inverse();
+    let (cx, cy) = (w / 2, ht / 2);
+    let (mut got, mut want) = (0.0, 0.0);
+    for y in cy..cy + 4 {
+        for x in cx..cx + 4 {
+            let pixel = UVec2::new(x, y) + screen.guard_band;
+            let z = g.depth_at(pixel);
+            let p = world.transform_point3(screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
+            assert!(p.y.abs() < 1e-3 && p.x < d, "a floor pixel: {p}");
+            got += ao[(y * w + x) as usize] / 16.0;
+            want += model(d - p.x) / 16.0;
+        }
+    }
+    (got, want)
+}
+
+#[test]
+fn a_step_seen_from_above_matches_each_models_closed_form() {
+    // Fine steps make the first sample past the edge land within a pixel of it; the centre
+    // block's 16 patterns average the direction rotation. Pixel snapping leaves a hundredth or
+    // two.
+    for (d, h) in [(0.15, 0.2), (0.3, 0.3), (0.08, 0.4)] {
+        let mut s = technique_settings(Technique::Hbao, false);
+        (s.hbao.directions, s.hbao.steps, s.hbao.radius) = (16, 48, 1.0);
+        let (got, want) = step_ao(&s, d, h, |d| hbao_step_closed_form(d, h, &s.hbao));
+        println!("hbao step d {d} h {h}: GPU {got:.4}, closed form {want:.4}");
+        assert!(want < 0.97, "the configuration must occlude: {want}");
+        assert!(
+            (got - want).abs() < 0.02,
+            "hbao d {d} h {h}: {got} vs {want}"
+        );
+
+        let mut s = technique_settings(Technique::Gtao, false);
+        (s.gtao.slices, s.gtao.steps) = (8, 24);
+        let (got, want) = step_ao(&s, d, h, |d| gtao_step_closed_form(d, h, &s.gtao));
+        println!("gtao step d {d} h {h}: GPU {got:.4}, closed form {want:.4}");
+        assert!(want < 0.97, "the configuration must occlude: {want}");
+        assert!(
+            (got - want).abs() < 0.02,
+            "gtao d {d} h {h}: {got} vs {want}"
+        );
+    }
+}
+
+#[test]
+fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
+    // A floor meeting a tall wall, seen obliquely: at the corner the wall hides exactly half of
+    // the cosine-weighted hemisphere (every direction towards it meets it), which GTAO's analytic
+    // inner integral recovers once the horizons sit on the wall. Pixels within 2 cm of the corner
+    // line (the first sample is 1.3 px out: the horizon is a few degrees short of the wall).
+    let gpu = gpu();
+    let wall = [
+        Vec3::new(-20.0, 0.0, 0.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(20.0, 20.0, 0.0),
+        Vec3::new(-20.0, 20.0, 0.0),
+    ];
+    let floor = [
+        Vec3::new(-20.0, 0.0, 20.0),
+        Vec3::new(20.0, 0.0, 20.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(-20.0, 0.0, 0.0),
+    ];
+    let scene = quads("corner", &[wall, floor]);
+    let mut s = technique_settings(Technique::Gtao, false);
+    (s.gtao.slices, s.gtao.steps) = (8, 16);
+    let (w, h) = (96, 96);
+    let mut r = Renderer::new(&gpu, &scene, &s, w, h, 32).unwrap();
+    r.render(&camera(Vec3::new(0.6, 2.0, 3.0), Vec3::ZERO, 20.0), None)
+        .unwrap();
+    let ao = r.read_raw_ao().unwrap();
+    let g = r.read_gbuffer().unwrap();
+    let screen = r.view().unwrap().screen();
+    let world = r.view().unwrap().view_matrix().inverse();
+    let (mut sum, mut count) = (0.0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let pixel = UVec2::new(x, y) + screen.guard_band;
+            let z = g.depth_at(pixel);
+            let p = world.transform_point3(screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
+            // On the floor (not the wall), within 2 cm of the corner, away from the image edge.
+            let on_floor = p.y.abs() < 1e-3 && p.z > 0.0 && p.z < 0.02;
+            if on_floor && (x as i32 - 48).abs() < 24 {
+                sum += ao[(y * w + x) as usize];
+                count += 1;
+            }
+        }
+    }
+    assert!(count >= 16, "{count} corner pixels");
+    let mean = sum / count as f32;
+    println!("gtao at the inside corner: mean AO {mean:.4} over {count} pixels");
+    assert!((mean - 0.5).abs() < 0.05, "{mean}");
+}
+
+// ------------------------------------------------------------------------------ CPU mirrors
+
+/// Per visible pixel of a G-buffer: its view-space position, unit vector to the camera, normal,
+/// pixel centre and radius in pixels (None for background).
+struct PixelSetup {
+    pos: Vec3,
+    v: Vec3,
+    n: Vec3,
+    centre: Vec2,
+    pixel: UVec2,
+    radius_px: f32,
+}
+
+fn pixel_setup(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    x: u32,
+    y: u32,
+    radius: f32,
+) -> Option<PixelSetup> {
+    let pixel = UVec2::new(x, y) + screen.guard_band;
+    let z = g.depth_at(pixel);
+    if z.is_nan() || z <= 0.0 {
+        return None;
+    }
+    let centre = pixel.as_vec2() + 0.5;
+    let pos = screen.pixel_to_view(centre, z);
+    Some(PixelSetup {
+        pos,
+        v: (-pos).normalize(),
+        n: g.normals[(pixel.y * g.width + pixel.x) as usize].normalize(),
+        centre,
+        pixel,
+        radius_px: radius * screen.uniform().projection_scale[1] / z,
+    })
+}
+
+/// The view-space surface at framebuffer position `px` (clamped and snapped as the kernels do),
+/// or None for the shading pixel itself or background; and whether `px` lies within 1e-3 px of
+/// a pixel edge (where the GPU and the CPU may snap to different neighbours).
+fn surface_at(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    p: &PixelSetup,
+    px: Vec2,
+) -> (Option<Vec3>, bool) {
+    let f = px.fract();
+    let edge = f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
+    let full = Vec2::new(g.width as f32, g.height as f32);
+    let cell = px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2();
+    if cell == p.pixel {
+        return (None, edge);
+    }
+    let z = g.depth_at(cell);
+    if z.is_nan() || z <= 0.0 {
+        return (None, edge);
+    }
+    (Some(screen.pixel_to_view(cell.as_vec2() + 0.5, z)), edge)
+}
+
+/// HBAO as `shaders/estimators/hbao.wgsl` states it, per visible pixel, and whether a sample lay
+/// on a pixel edge.
+fn cpu_hbao(g: &GBufferImage, screen: &ScreenGeometry, s: &HbaoSettings) -> (Vec<f32>, Vec<bool>) {
+    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
+    for y in 0..screen.height {
+        for x in 0..screen.width {
+            let Some(p) = pixel_setup(g, screen, x, y, s.radius).filter(|p| p.radius_px >= 1.0)
+            else {
+                ao.push(1.0);
+                ambiguous.push(false);
+                continue;
+            };
+            let step = p.radius_px / (s.steps + 1) as f32;
+            let (c, sn, jitter) = hbao::pixel_pattern(x, y, s.directions);
+            let start = jitter * step + 1.0;
+            let (mut occlusion, mut edge) = (0.0f32, false);
+            for d in 0..s.directions {
+                let (bx, by) = hbao::direction(d, s.directions);
+                let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+                let d3 = dir.extend(0.0);
+                let slice = (d3 - p.v * d3.dot(p.v)).normalize();
+                let (n_v, n_d) = (p.n.dot(p.v), p.n.dot(slice));
+                let sin_t = -n_d / (n_v * n_v + n_d * n_d).max(1e-12).sqrt();
+                let t = sin_t.clamp(-1.0, 1.0).asin();
+                let mut sin_h = (t + s.angle_bias).min(FRAC_PI_2).sin();
+                for k in 0..s.steps {
+                    let px = p.centre + Vec2::new(dir.x, -dir.y) * (start + k as f32 * step);
+                    let (surface, e) = surface_at(g, screen, &p, px);
+                    edge |= e;
+                    let Some(q) = surface else { continue };
+                    let v = q - p.pos;
+                    let dist = v.length();
+                    let sin_phi = v.dot(p.v) / dist.max(1e-20);
+                    if v.dot(p.n) <= 1e-3 * dist {
+                        continue;
+                    }
+                    let w = (1.0 - dist / s.radius).max(0.0);
+                    if w > 0.0 && sin_phi > sin_h {
+                        occlusion += w * (sin_phi - sin_h);
+                        sin_h = sin_phi;
+                    }
+                }
+            }
+            ao.push(
+                (1.0 - occlusion / s.directions as f32)
+                    .clamp(0.0, 1.0)
+                    .powf(s.exponent),
+            );
+            ambiguous.push(edge);
+        }
+    }
+    (ao, ambiguous)
+}
+
+/// ¼ (−cos(2h − γ) + cos γ + 2h sin γ).
+fn side_visibility(h: f32, gamma: f32) -> f32 {
+    0.25 * (-(2.0 * h - gamma).cos() + gamma.cos() + 2.0 * h * gamma.sin())
+}
+
+/// GTAO as `shaders/estimators/gtao.wgsl` states it, per visible pixel, and whether a sample lay
+/// on a pixel edge.
+fn cpu_gtao(g: &GBufferImage, screen: &ScreenGeometry, s: &GtaoSettings) -> (Vec<f32>, Vec<bool>) {
+    let reach = gtao::reach(s.radius);
+    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
+    for y in 0..screen.height {
+        for x in 0..screen.width {
+            let Some(p) = pixel_setup(g, screen, x, y, reach).filter(|p| p.radius_px >= 1.0) else {
+                ao.push(1.0);
+                ambiguous.push(false);
+                continue;
+            };
+            let (c, sn, jitter) = gtao::pixel_pattern(x, y, s.slices);
+            let min_fraction = 1.3 / p.radius_px;
+            let (mut visible, mut open, mut edge) = (0.0f32, 0.0f32, false);
+            for j in 0..s.slices {
+                let (bx, by) = gtao::slice_direction(j, s.slices);
+                let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+                let d3 = dir.extend(0.0);
+                let tangent = (d3 - p.v * d3.dot(p.v)).normalize();
+                let axis = tangent.cross(p.v);
+                let projected = p.n - axis * p.n.dot(axis);
+                let length = projected.length();
+                let gamma = projected.dot(tangent).atan2(projected.dot(p.v));
+                let lowest = [-gamma.sin(), gamma.sin()];
+                let mut horizon = lowest;
+                for (side, sign) in [(0, 1.0), (1, -1.0)] {
+                    for k in 0..s.steps {
+                        let f = (k as f32 + jitter) / s.steps as f32;
+                        let distance = (f * f + min_fraction) * p.radius_px;
+                        let px = p.centre + sign * Vec2::new(dir.x, -dir.y) * distance;
+                        let (surface, e) = surface_at(g, screen, &p, px);
+                        edge |= e;
+                        let (cos_s, w) = match surface {
+                            Some(q) => {
+                                let delta = q - p.pos;
+                                let dist = delta.length();
+                                let above = delta.dot(p.n) > 1e-3 * dist;
+                                let w = if above {
+                                    gtao::falloff(dist, s.radius)
+                                } else {
+                                    0.0
+                                };
+                                (delta.dot(p.v) / dist.max(1e-20), w)
+                            }
+                            None => (-1.0, 0.0),
+                        };
+                        let sample = lowest[side] + (cos_s - lowest[side]) * w;
+                        let h = horizon[side];
+                        horizon[side] = sample.max(h + (sample - h) * s.thickness_blend);
+                    }
+                }
+                let h1 = gamma + (horizon[0].clamp(-1.0, 1.0).acos() - gamma).min(FRAC_PI_2);
+                let h0 = gamma + (-horizon[1].clamp(-1.0, 1.0).acos() - gamma).max(-FRAC_PI_2);
+                visible += length * (side_visibility(h0, gamma) + side_visibility(h1, gamma));
+                open += length * (gamma.cos() + gamma * gamma.sin());
+            }
+            ao.push(if open > 0.0 {
+                (visible / open).clamp(0.0, 1.0).powf(s.exponent)
+            } else {
+                1.0
+            });
+            ambiguous.push(edge);
+        }
+    }
+    (ao, ambiguous)
+}
+
+#[test]
+fn gpu_matches_the_cpu_implementations() {
+    let gpu = gpu();
+    for name in ["stairs", "colonnade"] {
+        let scene = scene::builtin(name).unwrap();
+        let mut hb = technique_settings(Technique::Hbao, false);
+        (hb.hbao.directions, hb.hbao.steps) = (6, 5);
+        let mut gt = technique_settings(Technique::Gtao, false);
+        (gt.gtao.slices, gt.gtao.steps, gt.gtao.thickness_blend) = (3, 3, 0.3);
+        for s in [hb, gt] {
+            let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
+            r.render(&scene.cameras[0].camera, None).unwrap();
+            let gpu_ao = r.read_raw_ao().unwrap();
+            let g = r.read_gbuffer().unwrap();
+            let screen = r.view().unwrap().screen();
+            let cpu = match s.technique {
+                Technique::Hbao => cpu_hbao(&g, &screen, &s.hbao),
+                _ => cpu_gtao(&g, &screen, &s.gtao),
+            };
+            assert_mirrors(&format!("{name} {}", s.technique), &gpu_ao, cpu);
+        }
+    }
+}
