@@ -184,6 +184,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("gtao_vb.slices", "--vb-slices"),
     ("gtao_vb.steps", "--vb-steps"),
     ("gtao_vb.activation", "--vb-activation"),
+    ("gtao_vb.cosine_weighted", "--vb-cosine"),
 ];
 
 /// The flag that sets a settings field: `flag_for_field("vao.radius") == Some("--radius")`.
@@ -348,6 +349,10 @@ pub struct AoArgs {
         "gtao_vb.activation"
     ))]
     pub vb_activation: Option<String>,
+    /// GTAO-VB: weigh free sectors by the cosine to the normal, GTAO's integral (our extension;
+    /// seed 003 counts sectors alike).
+    #[arg(long)]
+    pub vb_cosine: bool,
     #[arg(long, allow_hyphen_values = true, help = help(
         "VAO thickness τ (constant occluded area above the column, in units of R).",
         "vao.thickness"
@@ -466,6 +471,9 @@ impl AoArgs {
             g.activation = a.parse::<SectorActivation>().map_err(with_flags)?;
         }
         let b = &mut s.blur;
+        if self.vb_cosine {
+            s.gtao_vb.cosine_weighted = true;
+        }
         if self.no_blur {
             b.enabled = false;
         }

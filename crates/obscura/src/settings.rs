@@ -298,6 +298,10 @@ pub struct GtaoVbSettings {
     pub steps: u32,
     /// Which sectors a sample's angular span sets (default [`SectorActivation::Ceil`]).
     pub activation: SectorActivation,
+    /// Weigh each free sector by its cosine-weighted share of the slice, GTAO's integral (our
+    /// extension: the ground truth's cosine-weighted AO); default `false`, seed 003's uniform
+    /// count of free sectors.
+    pub cosine_weighted: bool,
 }
 
 impl Default for GtaoVbSettings {
@@ -309,6 +313,7 @@ impl Default for GtaoVbSettings {
             slices: 2,
             steps: 2,
             activation: SectorActivation::Ceil,
+            cosine_weighted: false,
         }
     }
 }
@@ -1249,7 +1254,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 35, "{paths:?}");
+        assert_eq!(paths.len(), 36, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();

@@ -246,3 +246,51 @@ pub fn assert_mirrors(name: &str, gpu_ao: &[f32], cpu: (Vec<f32>, Vec<bool>)) {
         "{name}: the view must show occlusion ({occluded} pixels)"
     );
 }
+
+/// Metrics of `settings`' blurred AO (128×80, guard band 16, the scene's first camera) against
+/// the cosine-weighted hemisphere ground truth of radius `radius` (256 rays per pixel), with the
+/// report's halo band (4 px around relative depth jumps over 0.1); and the MAE of an image of ones
+/// (no occlusion) against the same truth.
+pub fn hemisphere_metrics(
+    gpu: &Gpu,
+    scene: &Scene,
+    settings: &AoSettings,
+    radius: f32,
+) -> (obscura::metrics::Summary, f64) {
+    use obscura::bvh::Bvh;
+    use obscura::metrics::{mae, summarize, Image};
+    use obscura::reference::gpu::render_reference_gpu;
+    use obscura::reference::ground_truth::{ReferenceModel, ReferenceSettings};
+    let (w, h) = (128, 80);
+    let mut r = Renderer::new(gpu, scene, settings, w, h, 16).unwrap();
+    r.render(&scene.cameras[0].camera, None).unwrap();
+    let ao = r.read_ao().unwrap();
+    let depth = r.read_gbuffer().unwrap().visible_depth(16);
+    let mut reference = ReferenceSettings {
+        model: ReferenceModel::Hemisphere,
+        spp: 256,
+        ..Default::default()
+    };
+    reference.vao.radius = radius;
+    let (truth, _) = render_reference_gpu(
+        gpu,
+        scene,
+        &Bvh::build(scene),
+        *r.view().unwrap(),
+        &reference,
+        &|_, _| {},
+    )
+    .unwrap();
+    let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
+    let ones = vec![1.0; ao.len()];
+    (
+        summarize(&image(&ao), &image(&truth), &image(&depth), 4, 0.1).unwrap(),
+        mae(&image(&ones), &image(&truth)).unwrap(),
+    )
+}
+
+/// [`hemisphere_metrics`]' MAE, and that of no occlusion.
+pub fn hemisphere_mae(gpu: &Gpu, scene: &Scene, settings: &AoSettings, radius: f32) -> (f64, f64) {
+    let (summary, baseline) = hemisphere_metrics(gpu, scene, settings, radius);
+    (summary.mae, baseline)
+}

@@ -441,3 +441,73 @@ fn gpu_matches_the_cpu_implementations() {
         }
     }
 }
+
+#[test]
+fn closer_to_the_hemisphere_ground_truth_than_no_occlusion() {
+    // The hemisphere ground truth with the estimator's radius; a broken kernel (no occlusion, or
+    // occlusion everywhere) is no closer to it than an image of ones.
+    let gpu = gpu();
+    for name in ["stairs", "colonnade", "grass", "tower"] {
+        let scene = scene::builtin(name).unwrap();
+        for t in [Technique::Hbao, Technique::Gtao] {
+            let s = technique_settings(t, true);
+            let radius = match t {
+                Technique::Hbao => s.hbao.radius,
+                _ => s.gtao.radius,
+            };
+            let (error, baseline) = hemisphere_mae(&gpu, &scene, &s, radius);
+            println!("{name}: MAE {t} {error:.4}, no occlusion {baseline:.4}");
+            // Closer than no occlusion everywhere, and by 15 % where the truth has much
+            // occlusion (MAE of ones over 0.1).
+            let factor = if baseline > 0.1 { 0.85 } else { 1.0 };
+            assert!(
+                error < factor * baseline,
+                "{name} {t}: {error} vs {baseline}"
+            );
+        }
+    }
+}
+
+#[test]
+fn light_passes_behind_thin_geometry() {
+    // Seed 003's claim for the visibility bitmask: with a constant thickness, light passes behind
+    // thin surfaces (grass blades) that a horizon hides everything behind, so GTAO-VB darkens
+    // less next to their silhouettes than GTAO does. Measured here as the report's dark halo
+    // (mean excess occlusion within 4 px of depth jumps) against the hemisphere ground truth.
+    // Whole-image MAE is printed, not asserted: on our grass views GTAO's MAE is the lower one
+    // (both miss occlusion from hidden blades, GTAO-VB more, having let light through them).
+    // GTAO's own thickness heuristic moves the same way: β = 0.5 lets horizons drop behind the
+    // blades, less occlusion than β = 0.
+    let gpu = gpu();
+    let scene = scene::builtin("grass").unwrap();
+    let mut gtao = technique_settings(Technique::Gtao, true);
+    let mut vb = technique_settings(Technique::GtaoVb, true);
+    // The same reach and sampling for both: 3 slices × 3 steps.
+    (gtao.gtao.slices, gtao.gtao.steps) = (3, 3);
+    (vb.gtao_vb.slices, vb.gtao_vb.steps) = (3, 3);
+    vb.gtao_vb.radius = gtao::reach(gtao.gtao.radius);
+    let (g, _) = hemisphere_metrics(&gpu, &scene, &gtao, gtao.gtao.radius);
+    let (v, _) = hemisphere_metrics(&gpu, &scene, &vb, gtao.gtao.radius);
+    println!(
+        "grass: gtao MAE {:.4} dark halo {:.4}; gtao-vb MAE {:.4} dark halo {:.4}",
+        g.mae, g.halo_dark, v.mae, v.halo_dark
+    );
+    assert!(
+        v.halo_dark > g.halo_dark,
+        "gtao-vb dark halo {} vs gtao {}",
+        v.halo_dark,
+        g.halo_dark
+    );
+
+    let mean_ao = |s: &AoSettings| {
+        let mut r = Renderer::new(&gpu, &scene, s, 128, 80, 16).unwrap();
+        r.render(&scene.cameras[0].camera, None).unwrap();
+        let ao = r.read_raw_ao().unwrap();
+        ao.iter().sum::<f32>() / ao.len() as f32
+    };
+    let plain = mean_ao(&gtao);
+    gtao.gtao.thickness_blend = 0.5;
+    let blended = mean_ao(&gtao);
+    println!("grass: mean GTAO AO β = 0: {plain:.4}, β = 0.5: {blended:.4}");
+    assert!(blended > plain + 0.005, "{blended} vs {plain}");
+}

@@ -3,7 +3,7 @@
 // through the view vector V; in each, `steps` samples on either side find the two horizon angles
 // h₀ ≤ 0 ≤ h₁ (measured from V), clamped to the hemisphere around the normal projected onto the
 // slice (angle γ, length |n_p|); the cosine-weighted visibility of the slice is then analytic:
-//     â = |n_p| · Σ_{h ∈ {h₀, h₁}} ¼ (−cos(2h − γ) + cos γ + 2h sin γ).
+//     â = |n_p| · Σ_{h ∈ {h₀, h₁}} ¼ (−cos(2h − γ) + cos γ + 2h sin γ)    (slice_visibility.wgsl).
 // Distance falloff as XeGTAO (Intel, 2021): samples reach 1.457·R (its radius multiplier) and a
 // sample's horizon cosine is blended towards the side's lowest horizon by the weight
 // w = saturate((1.457·R − d)/(0.615·1.457·R)): full weight up to 0.56·R, none beyond 1.457·R.
@@ -166,11 +166,6 @@ fn lowest_horizon_cos(gamma: f32) -> vec2<f32> {
     return vec2<f32>(-s, s);
 }
 
-// ¼ (−cos(2h − γ) + cos γ + 2h sin γ): one side's cosine-weighted visibility in the slice.
-fn side_visibility(h: f32, gamma: f32) -> f32 {
-    return 0.25 * (-cos(2.0 * h - gamma) + cos(gamma) + 2.0 * h * sin(gamma));
-}
-
 // Adds the finished slice of `acc` (if any) to its sums.
 fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
     var a = acc;
@@ -181,8 +176,7 @@ fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
     let h1 = g + min(acos(clamp(a.horizon_cos.x, -1.0, 1.0)) - g, HALF_PI);
     let h0 = g + max(-acos(clamp(a.horizon_cos.y, -1.0, 1.0)) - g, -HALF_PI);
     a.visible += a.projected_length * (side_visibility(h0, g) + side_visibility(h1, g));
-    // Both horizons on the tangent plane: ¼(2 cos γ + 2(γ ∓ π/2) sin γ) summed, cos γ + γ sin γ.
-    a.open += a.projected_length * (cos(g) + g * sin(g));
+    a.open += a.projected_length * open_slice_visibility(g);
     return a;
 }
 
@@ -217,7 +211,7 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f3
     return a;
 }
 
-fn estimator_finish(acc: EstimatorAccum) -> f32 {
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     let a = fold_slice(acc);
     if (a.open <= 0.0) {
         return 1.0;

@@ -19,7 +19,11 @@
 // - a sample whose front face lies on or below the shading point's tangent plane (within 1e-3 rad)
 //   marks nothing: geometrically its span lies below the hemisphere, and without the rule float
 //   rounding and the half-float normals made every unoccluded plane occlude itself a little;
-// - the per-pixel slice rotation and step jitter come from the 4×4 Bayer matrix (as our HBAO+).
+// - the per-pixel slice rotation and step jitter come from the 4×4 Bayer matrix (as our HBAO+);
+// - optionally (`gtao_vb.cosine_weighted`) every free sector weighs its share of the slice's
+//   cosine-weighted visibility, GTAO's analytic integral over the sector's angles, with AO the
+//   free weight over the whole hemisphere's, summed over slices (as our GTAO normalises): the
+//   cosine-weighted ambient occlusion of the ground truth rather than seed 003's uniform count.
 
 struct GtaoVbParams {
     radius: f32,
@@ -29,7 +33,8 @@ struct GtaoVbParams {
     activation: u32,
     slices: u32,
     steps: u32,
-    _pad0: u32,
+    // 1: weigh sectors by the cosine to the normal (ours; seed 003 counts them alike).
+    cosine_weighted: u32,
     _pad1: u32,
     // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the slice rotation, z the step jitter in [0, 1).
     pattern: array<vec4<f32>, 16>,
@@ -55,6 +60,8 @@ struct EstimatorPixel {
     // (⟂ V, towards the slice direction) and the projected normal's angle from V towards it.
     tangents: array<vec3<f32>, 3>,
     normal_angles: array<f32, 3>,
+    // The projected normal's length (cosine-weighted sectors only).
+    projected_lengths: array<f32, 3>,
     valid: bool,
 }
 
@@ -99,6 +106,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
         let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
         p.tangents[j] = tangent;
         p.normal_angles[j] = atan2(dot(projected, tangent), dot(projected, p.v));
+        p.projected_lengths[j] = length(projected);
     }
     return p;
 }
@@ -179,10 +187,39 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: u32) ->
     return a;
 }
 
-fn estimator_finish(acc: EstimatorAccum) -> f32 {
+// The cosine-weighted visibility of slice j's free sectors over its whole hemisphere's
+// (slice_visibility.wgsl), one run of free sectors at a time.
+fn cosine_weighted_visible(p: EstimatorPixel, j: u32, mask: u32) -> vec2<f32> {
+    let g = p.normal_angles[j];
+    var free = ~mask;
     var visible = 0.0;
-    for (var j = 0u; j < params.slices; j++) {
-        visible += 1.0 - f32(countOneBits(acc.masks[j])) / 32.0;
+    while (free != 0u) {
+        let start = countTrailingZeros(free);
+        // The run of free sectors from `start`: the ones of free >> start up to its first zero.
+        let run = countTrailingZeros(~(free >> start));
+        let end = start + run;
+        visible += span_visibility(
+            g + 3.141592653589793 * (f32(start) / 32.0 - 0.5),
+            g + 3.141592653589793 * (f32(end) / 32.0 - 0.5),
+            g,
+        );
+        free &= select(0xffffffffu << end, 0u, end >= 32u);
     }
-    return pow(saturate(visible / f32(params.slices)), params.exponent);
+    return p.projected_lengths[j] * vec2<f32>(visible, open_slice_visibility(g));
+}
+
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    var visible = 0.0;
+    var open = 0.0;
+    for (var j = 0u; j < params.slices; j++) {
+        if (params.cosine_weighted != 0u) {
+            let v = cosine_weighted_visible(p, j, acc.masks[j]);
+            visible += v.x;
+            open += v.y;
+        } else {
+            visible += 1.0 - f32(countOneBits(acc.masks[j])) / 32.0;
+            open += 1.0;
+        }
+    }
+    return pow(saturate(visible / max(open, 1e-20)), params.exponent);
 }

@@ -171,6 +171,6 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec3<f3
     return a;
 }
 
-fn estimator_finish(acc: EstimatorAccum) -> f32 {
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return pow(saturate(1.0 - acc.occlusion / f32(params.directions)), params.exponent);
 }

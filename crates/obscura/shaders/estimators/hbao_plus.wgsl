@@ -133,7 +133,7 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
     return a;
 }
 
-fn estimator_finish(acc: EstimatorAccum) -> f32 {
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     if (acc.count == 0.0) {
         return 1.0;
     }

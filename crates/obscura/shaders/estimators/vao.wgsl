@@ -264,6 +264,6 @@ fn estimator_accum_value(acc: EstimatorAccum, s: VaoSample, value: f32) -> Estim
     return a;
 }
 
-fn estimator_finish(acc: EstimatorAccum) -> f32 {
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return vao_finish(acc.sum, acc.clipped_sum);
 }

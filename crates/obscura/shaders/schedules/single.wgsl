@@ -20,5 +20,5 @@ fn single_pass_ao(p: EstimatorPixel) -> f32 {
         acc = estimator_accum_value(acc, s, value);
         acc = estimator_accum_sample(acc, s);
     }
-    return estimator_finish(acc);
+    return estimator_finish(p, acc);
 }

@@ -70,7 +70,7 @@ fn shade(id: vec2<u32>, index: u32) -> bool {
     out.accum = acc;
     two_phase_pixels[index] = out;
     if (out.mask == 0u) {
-        textureStore(ao_out, id, vec4<f32>(estimator_finish(acc)));
+        textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
     }
     return out.mask != 0u;
 }

@@ -37,5 +37,5 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
         let l = source_lookup(p, s);
         acc = estimator_accum_value(acc, s, source_resolve(p, s, l));
     }
-    textureStore(ao_out, id, vec4<f32>(estimator_finish(acc)));
+    textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
 }

@@ -9,6 +9,7 @@ use std::f32::consts::PI;
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao.wgsl")
 );
 /// Its `override` constants: the sample count, slices × 2 × steps.

@@ -8,6 +8,7 @@ use std::f32::consts::PI;
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao_vb.wgsl")
 );
 /// Its `override` constants: the sample count, slices × 2 × steps.
@@ -41,7 +42,8 @@ struct GtaoVbParams {
     activation: u32,
     slices: u32,
     steps: u32,
-    _pad: [u32; 2],
+    cosine_weighted: u32,
+    _pad: u32,
     pattern: [[f32; 4]; 16],
     samples: [[f32; 4]; 32],
 }
@@ -66,7 +68,8 @@ pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
         },
         slices: s.slices,
         steps: s.steps,
-        _pad: [0; 2],
+        cosine_weighted: u32::from(s.cosine_weighted),
+        _pad: 0,
         pattern,
         samples,
     };
