@@ -47,8 +47,9 @@ struct GtaoParams {
 
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: GtaoParams;
 
-// slices × 2 × steps.
+// slices × 2 × steps, and steps (constants: the per-sample divisions are multiplications).
 override SAMPLE_COUNT: u32 = 8u;
+override STEPS: u32 = 2u;
 
 const HALF_PI: f32 = 1.5707963267948966;
 
@@ -71,7 +72,8 @@ struct EstimatorSample {
     slice: u32,
     // 0: side +, towards the slice direction; 1: side −.
     side: u32,
-    // The projected normal in the slice: its angle γ from V and its length.
+    // The projected normal in the slice, on the slice's first sample: its angle γ from V and its
+    // length (0 on later samples, unread).
     gamma: f32,
     projected_length: f32,
     on: bool,
@@ -117,22 +119,28 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.radius_px > 0.0;
-    s.slice = i / (2u * params.steps);
-    s.side = (i / params.steps) % 2u;
-    let step = f32(i % params.steps);
+    s.slice = i / (2u * STEPS);
+    s.side = (i / STEPS) % 2u;
+    let step = f32(i % STEPS);
     let dir = rotate_by(params.slice_table[s.slice].xy, p.rotation);
-    let fraction = (step + p.jitter) / f32(params.steps);
+    let fraction = (step + p.jitter) / f32(STEPS);
     let distance = (fraction * fraction + p.min_fraction) * p.radius_px;
     let sign = select(1.0, -1.0, s.side == 1u);
     // View y is up, framebuffer y down.
     s.px = vec2<f32>(p.pixel) + 0.5 + sign * vec2<f32>(dir.x, -dir.y) * distance;
-    // The slice plane: V and the slice direction made orthogonal to V (its tangent).
-    let d = vec3<f32>(dir, 0.0);
-    let tangent = normalize(d - p.v * dot(d, p.v));
-    let axis = cross(tangent, p.v);
-    let projected = p.normal - axis * dot(p.normal, axis);
-    s.projected_length = length(projected);
-    s.gamma = atan2(dot(projected, tangent), dot(projected, p.v));
+    // The slice's projected normal: the accumulator reads it on a slice's first sample only
+    // (every active sample reaches it, in order), so only that sample pays for it.
+    s.gamma = 0.0;
+    s.projected_length = 0.0;
+    if (i % (2u * STEPS) == 0u) {
+        // The slice plane: V and the slice direction made orthogonal to V (its tangent).
+        let d = vec3<f32>(dir, 0.0);
+        let tangent = normalize(d - p.v * dot(d, p.v));
+        let axis = cross(tangent, p.v);
+        let projected = p.normal - axis * dot(p.normal, axis);
+        s.projected_length = length(projected);
+        s.gamma = atan2(dot(projected, tangent), dot(projected, p.v));
+    }
     return s;
 }
 

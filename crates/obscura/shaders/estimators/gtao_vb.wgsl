@@ -33,8 +33,7 @@ struct GtaoVbParams {
     activation: u32,
     slices: u32,
     steps: u32,
-    // 1: weigh sectors by the cosine to the normal (ours; seed 003 counts them alike).
-    cosine_weighted: u32,
+    _pad0: u32,
     _pad1: u32,
     // Index x % 4 + 4 * (y % 4): xy (cos, sin) of the slice rotation, z the step jitter in [0, 1).
     pattern: array<vec4<f32>, 16>,
@@ -46,6 +45,9 @@ struct GtaoVbParams {
 
 // slices × 2 × steps, at most 32.
 override SAMPLE_COUNT: u32 = 8u;
+// Weigh free sectors by the cosine to the normal (`gtao_vb.cosine_weighted`, ours): a constant, so
+// that seed 003's uniform count compiles without it.
+override COSINE_WEIGHTED: bool = false;
 
 struct EstimatorPixel {
     pos: vec3<f32>,
@@ -106,7 +108,9 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
         let projected = p.normal - slice_normal * dot(p.normal, slice_normal);
         p.tangents[j] = tangent;
         p.normal_angles[j] = atan2(dot(projected, tangent), dot(projected, p.v));
-        p.projected_lengths[j] = length(projected);
+        if (COSINE_WEIGHTED) {
+            p.projected_lengths[j] = length(projected);
+        }
     }
     return p;
 }
@@ -212,7 +216,7 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     var visible = 0.0;
     var open = 0.0;
     for (var j = 0u; j < params.slices; j++) {
-        if (params.cosine_weighted != 0u) {
+        if (COSINE_WEIGHTED) {
             let v = cosine_weighted_visible(p, j, acc.masks[j]);
             visible += v.x;
             open += v.y;

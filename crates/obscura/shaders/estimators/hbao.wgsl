@@ -15,10 +15,12 @@
 // i / steps, step i % steps. The accumulator carries the current direction's horizon, so samples
 // must arrive direction by direction with ascending steps, which the single-pass schedule does;
 // the table keeps HBAO off the two-phase schedules (Estimator::order_independent). A sample's value
-// is (sin φ, W, W·(sin φ − sin h₀)) with h₀ the direction's starting horizon; several depths for
-// one sample (dual depth) keep the one with the largest third component, Algorithm 2's "maximum
-// occlusion" (lines 24–32) judged against h₀ because the running horizon is the accumulator's. A
-// surface above h₀ but beyond R may hide a nearer one behind it (Algorithm 2, line 20).
+// is (sin φ, W). A surface above the tangent plane but beyond R may hide a nearer one behind it
+// (Algorithm 2, line 20); several depths for one sample keep the one with the largest
+// W·(sin φ + 1), Algorithm 2's "maximum occlusion" (lines 24–32) judged against the lowest
+// horizon because the running one is the accumulator's. With dual depth that is exact: the first
+// layer reaches the combine only beyond R (W = 0), so the second is taken wherever it lies within
+// R, and the accumulator compares it with the running horizon as Algorithm 2 does.
 //
 // Ours, where the papers are silent:
 // - a surface on or below the shading point's tangent plane (within 1e-3 rad) occludes nothing.
@@ -47,8 +49,9 @@ struct HbaoParams {
 
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: HbaoParams;
 
-// directions × steps.
+// directions × steps, and steps (constants: the per-sample division by STEPS is a multiplication).
 override SAMPLE_COUNT: u32 = 32u;
+override STEPS: u32 = 4u;
 
 struct EstimatorPixel {
     pos: vec3<f32>,
@@ -66,13 +69,14 @@ struct EstimatorPixel {
 struct EstimatorSample {
     px: vec2<f32>,
     direction: u32,
-    // sin of the direction's starting horizon: tangent elevation + bias, at most π/2.
+    // sin of the direction's starting horizon, tangent elevation + bias (at most π/2), on step 0;
+    // later steps leave it at 1 (unread).
     sin_start: f32,
     on: bool,
 }
 
-// (sin φ, W(|v|), W·(sin φ − sin h₀)); W = 0 where nothing within R is there.
-alias EstimatorValue = vec3<f32>;
+// (sin φ, W(|v|)); W = 0 where nothing within R is there.
+alias EstimatorValue = vec2<f32>;
 
 struct EstimatorAccum {
     occlusion: f32,
@@ -81,7 +85,7 @@ struct EstimatorAccum {
 }
 
 struct Occluder {
-    value: vec3<f32>,
+    value: vec2<f32>,
     hidden: bool,
 }
 
@@ -104,16 +108,11 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     return p;
 }
 
-fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
-    var s: EstimatorSample;
-    s.on = p.step_px > 0.0;
-    s.direction = i / params.steps;
-    let step = f32(i % params.steps);
-    let dir = rotate_by(params.direction_table[s.direction].xy, p.rotation);
-    // View y is up, framebuffer y down.
-    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(dir.x, -dir.y) * (p.start_px + step * p.step_px);
-    // The slice: V and the screen direction made orthogonal to it. The tangent t_p is the slice
-    // direction ⟂ the normal, t ∝ D·(n·V) − V·(n·D), whose elevation has sin t = −n·D/|(n·V, n·D)|.
+// sin of the starting horizon of screen direction `dir` (view-space xy): the elevation of the
+// tangent t_p in the direction's slice, plus the bias, at most π/2. The slice is spanned by V and
+// the direction made orthogonal to it, D; t_p ∝ D·(n·V) − V·(n·D) lies in the surface, and its
+// elevation has sin t = −n·D/|(n·V, n·D)|.
+fn starting_horizon(p: EstimatorPixel, dir: vec2<f32>) -> f32 {
     let d = vec3<f32>(dir, 0.0);
     let slice_dir = normalize(d - p.v * dot(d, p.v));
     let n_v = dot(p.normal, p.v);
@@ -122,12 +121,29 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     let cos_t = sqrt(max(1.0 - sin_t * sin_t, 0.0));
     // sin(t + bias), or 1 where t + bias passes π/2 (cos(t + bias) < 0).
     let cos_start = cos_t * params.cos_bias - sin_t * params.sin_bias;
-    s.sin_start = select(1.0, sin_t * params.cos_bias + cos_t * params.sin_bias, cos_start > 0.0);
+    return select(1.0, sin_t * params.cos_bias + cos_t * params.sin_bias, cos_start > 0.0);
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.step_px > 0.0;
+    s.direction = i / STEPS;
+    let step_index = i % STEPS;
+    let step = f32(step_index);
+    let dir = rotate_by(params.direction_table[s.direction].xy, p.rotation);
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(dir.x, -dir.y) * (p.start_px + step * p.step_px);
+    // The direction's starting horizon: the accumulator reads it on a direction's first sample
+    // only (every active sample reaches it, in order), so only step 0 pays for it.
+    s.sin_start = 1.0;
+    if (step_index == 0u) {
+        s.sin_start = starting_horizon(p, dir);
+    }
     return s;
 }
 
-fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> vec3<f32> {
-    return vec3<f32>(-1.0, 0.0, -4.0);
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
+    return vec2<f32>(-1.0, 0.0);
 }
 
 fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
@@ -138,14 +154,15 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let above = dot(v, p.normal) > 1e-3 * distance;
     let w = select(0.0, max(1.0 - distance * params.inv_radius, 0.0), above);
     var o: Occluder;
-    o.value = vec3<f32>(sin_phi, w, w * (sin_phi - s.sin_start));
-    o.hidden = above && sin_phi > s.sin_start && w <= 0.0;
+    o.value = vec2<f32>(sin_phi, w);
+    o.hidden = above && w <= 0.0;
     return o;
 }
 
-// Several depths for one sample: the one that occludes most against the starting horizon.
-fn estimator_combine(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
-    return select(a, b, b.z > a.z);
+// Several depths for one sample: the one that occludes most against the lowest horizon, −π/2
+// (the running horizon is the accumulator's, which then compares the pick with it).
+fn estimator_combine(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return select(a, b, b.y * (b.x + 1.0) > a.y * (a.x + 1.0));
 }
 
 fn estimator_accum_init() -> EstimatorAccum {
@@ -158,7 +175,7 @@ fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorA
 
 // Algorithm 2, lines 10 and 15–19: a new direction starts at its tangent horizon; a surface within
 // R above the horizon raises it.
-fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec3<f32>) -> EstimatorAccum {
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f32>) -> EstimatorAccum {
     var a = acc;
     if (s.direction != a.direction) {
         a.direction = s.direction;

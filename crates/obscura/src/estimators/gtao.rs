@@ -12,8 +12,8 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao.wgsl")
 );
-/// Its `override` constants: the sample count, slices × 2 × steps.
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+/// Its `override` constants: the sample count, slices × 2 × steps, and the steps per side.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "STEPS"];
 
 /// XeGTAO's radius multiplier: samples reach 1.457·R, so that with the falloff below the
 /// occlusion found matches an unattenuated radius R on average (XeGTAO's default).
@@ -87,6 +87,6 @@ pub(crate) fn params(s: &GtaoSettings) -> (Vec<u8>, Vec<f64>) {
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
-        vec![f64::from(s.slices * 2 * s.steps)],
+        vec![f64::from(s.slices * 2 * s.steps), f64::from(s.steps)],
     )
 }

@@ -11,8 +11,9 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao_vb.wgsl")
 );
-/// Its `override` constants: the sample count, slices × 2 × steps.
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+/// Its `override` constants: the sample count, slices × 2 × steps, and whether sectors are
+/// cosine-weighted (1) or counted alike (0, seed 003).
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED"];
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its slice rotation, π·B/16/slices with B the
 /// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) ([`super::bayer_pattern`]).
@@ -42,8 +43,7 @@ struct GtaoVbParams {
     activation: u32,
     slices: u32,
     steps: u32,
-    cosine_weighted: u32,
-    _pad: u32,
+    _pad: [u32; 2],
     pattern: [[f32; 4]; 16],
     samples: [[f32; 4]; 32],
 }
@@ -68,10 +68,12 @@ pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
         },
         slices: s.slices,
         steps: s.steps,
-        cosine_weighted: u32::from(s.cosine_weighted),
-        _pad: 0,
+        _pad: [0; 2],
         pattern,
         samples,
     };
-    (bytemuck::bytes_of(&params).to_vec(), vec![f64::from(count)])
+    (
+        bytemuck::bytes_of(&params).to_vec(),
+        vec![f64::from(count), f64::from(u8::from(s.cosine_weighted))],
+    )
 }
