@@ -6,6 +6,7 @@
 #    64×80 at R = 1 m (the paper gives no R), each timed by `bench` (the AO pass) and compared by
 #    `compare` with the hemisphere ground truth of the same radius (1024 rays per pixel; blurred,
 #    as the paper filters its maps but leaves the filter out of its times).
+# SKIP_BENCH=1 runs part 2 only, SKIP_TAB1=1 part 1 only.
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
 # (../shared/tools/prepare-device.sh crytek-sponza); results go to $OUT.
 set -uo pipefail
@@ -14,6 +15,7 @@ $bin info | tee "$out/info.txt"
 all=$($bin info --techniques)
 techniques=${TECHNIQUES:-vao,$(echo "$all" | tr ',' '\n' | grep -E "hbao|gtao" | paste -sd,)}
 bench=(--frames 200 --warmup 20)
+if [ -z "${SKIP_BENCH:-}" ]; then
 $bin bench "${sponza[@]}" --size 1920x1080 --techniques "$techniques" "${bench[@]}" \
   --json "$out/sponza.json" 2>&1 | tee -a "$out/bench.txt"
 $bin bench "${sponza[@]}" --size 1920x1080 --techniques "$techniques" --preset high "${bench[@]}" \
@@ -22,6 +24,7 @@ for scene in stairs colonnade; do
   $bin bench --scene $scene --size 1920x1080 --techniques "$techniques" "${bench[@]}" \
     --json "$out/$scene.json" 2>&1 | tee -a "$out/bench.txt"
 done
+fi
 [ -n "${SKIP_TAB1:-}" ] && exit 0
 for grid in 8x10 16x20 32x40 64x80; do
   d=${grid%x*} s=${grid#*x}
