@@ -173,6 +173,17 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("gtao.exponent", "--gtao-exponent"),
     ("gtao.slices", "--gtao-slices"),
     ("gtao.steps", "--gtao-steps"),
+    ("pyramid.levels", "--pyramid-levels"),
+    ("pyramid.factor", "--pyramid-factor"),
+    ("pyramid_hbao.radius", "--phbao-radius"),
+    ("pyramid_hbao.exponent", "--phbao-exponent"),
+    ("pyramid_hbao.directions", "--phbao-directions"),
+    ("pyramid_hbao.steps", "--phbao-steps"),
+    ("sao.radius", "--sao-radius"),
+    ("sao.samples", "--sao-samples"),
+    ("sao.spiral_turns", "--sao-turns"),
+    ("sao.bias", "--sao-bias"),
+    ("sao.intensity", "--sao-intensity"),
     ("hbao_plus.radius", "--hbao-radius"),
     ("hbao_plus.bias", "--hbao-bias"),
     ("hbao_plus.exponent", "--hbao-exponent"),
@@ -328,6 +339,34 @@ pub struct AoArgs {
     pub gtao_slices: Option<u32>,
     #[arg(long, help = help("GTAO steps on each side of a slice (1 to 32).", "gtao.steps"))]
     pub gtao_steps: Option<u32>,
+    #[arg(long, help = help(
+        "Depth pyramid levels L, the depth buffer included (1 to 8): sao, pyramid-hbao.",
+        "pyramid.levels"
+    ))]
+    pub pyramid_levels: Option<u32>,
+    #[arg(long, help = help(
+        "Depth pyramid factor K: each texel the mean of K × K below (2 to 4).",
+        "pyramid.factor"
+    ))]
+    pub pyramid_factor: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("Pyramid HBAO radius R in world units; attenuation 1 − r/R.", "pyramid_hbao.radius"))]
+    pub phbao_radius: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("Pyramid HBAO power applied to the final AO.", "pyramid_hbao.exponent"))]
+    pub phbao_exponent: Option<f32>,
+    #[arg(long, help = help("Pyramid HBAO directions per pixel (1 to 32).", "pyramid_hbao.directions"))]
+    pub phbao_directions: Option<u32>,
+    #[arg(long, help = help("Pyramid HBAO steps on every pyramid level (1 to 16).", "pyramid_hbao.steps"))]
+    pub phbao_steps: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SAO radius R in world units.", "sao.radius"))]
+    pub sao_radius: Option<f32>,
+    #[arg(long, help = help("SAO taps per pixel (1 to 64).", "sao.samples"))]
+    pub sao_samples: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SAO turns of the tap spiral.", "sao.spiral_turns"))]
+    pub sao_turns: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SAO bias β in world units.", "sao.bias"))]
+    pub sao_bias: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SAO intensity (scale of the obscurance).", "sao.intensity"))]
+    pub sao_intensity: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help("GTAO-VB search radius R in world units.", "gtao_vb.radius"))]
     pub vb_radius: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help(
@@ -455,6 +494,19 @@ impl AoArgs {
         set(&mut g.exponent, self.gtao_exponent);
         set(&mut g.slices, self.gtao_slices);
         set(&mut g.steps, self.gtao_steps);
+        set(&mut s.pyramid.levels, self.pyramid_levels);
+        set(&mut s.pyramid.factor, self.pyramid_factor);
+        let ph = &mut s.pyramid_hbao;
+        set(&mut ph.radius, self.phbao_radius);
+        set(&mut ph.exponent, self.phbao_exponent);
+        set(&mut ph.directions, self.phbao_directions);
+        set(&mut ph.steps, self.phbao_steps);
+        let sao = &mut s.sao;
+        set(&mut sao.radius, self.sao_radius);
+        set(&mut sao.samples, self.sao_samples);
+        set(&mut sao.spiral_turns, self.sao_turns);
+        set(&mut sao.bias, self.sao_bias);
+        set(&mut sao.intensity, self.sao_intensity);
         let h = &mut s.hbao_plus;
         set(&mut h.radius, self.hbao_radius);
         set(&mut h.bias, self.hbao_bias);

@@ -46,6 +46,10 @@ pub const SOURCE_SD_NEAR: u32 = 0;
 pub const SOURCE_SD_REQUEST: u32 = 1;
 /// One multisampled depth texture per stacked stochastic depth map from here on.
 pub const SOURCE_SD_MAPS: u32 = 2;
+/// Depth pyramid: each level's texel size and extent (`PyramidParams`).
+pub const SOURCE_PYRAMID_PARAMS: u32 = 0;
+/// Depth pyramid: levels 1 … L − 1 as the layers of one array texture.
+pub const SOURCE_PYRAMID_LEVELS: u32 = 1;
 
 /// Group 3, the two-phase schedule.
 pub const SCHEDULE_PIXELS: u32 = 0;
@@ -85,6 +89,8 @@ const NAMED: &[(&str, u32)] = &[
     ("SOURCE_SD_NEAR", SOURCE_SD_NEAR),
     ("SOURCE_SD_REQUEST", SOURCE_SD_REQUEST),
     ("SOURCE_SD_MAPS", SOURCE_SD_MAPS),
+    ("SOURCE_PYRAMID_PARAMS", SOURCE_PYRAMID_PARAMS),
+    ("SOURCE_PYRAMID_LEVELS", SOURCE_PYRAMID_LEVELS),
     ("SCHEDULE_PIXELS", SCHEDULE_PIXELS),
     ("SCHEDULE_WORK_COUNT", SCHEDULE_WORK_COUNT),
     ("SCHEDULE_WORK_LIST", SCHEDULE_WORK_LIST),

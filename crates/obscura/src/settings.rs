@@ -222,6 +222,82 @@ impl Default for GtaoSettings {
     }
 }
 
+/// The depth pyramid (seed 004 §3.3) that `sao` and `pyramid-hbao` read: levels of linear depth,
+/// each texel the mean of K × K texels of the level below.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PyramidSettings {
+    /// L, the levels, the depth buffer (level 0) included: 1 to 8 (seed 004: 1 … 5, default 5).
+    /// More levels reach farther: `pyramid-hbao` walks every level.
+    pub levels: u32,
+    /// K, texels of a level per texel of the next along each axis: 2 to 4 (seed 004: 3).
+    pub factor: u32,
+}
+
+impl Default for PyramidSettings {
+    fn default() -> Self {
+        Self {
+            levels: 5,
+            factor: 3,
+        }
+    }
+}
+
+/// Pyramid HBAO parameters (seed 004 §3.4–3.5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PyramidHbaoSettings {
+    /// Radius R in world units: attenuation W(r) = 1 − r/R (Eq. 7).
+    pub radius: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// D, directions per pixel (seed 004: 8), 1 to 32.
+    pub directions: u32,
+    /// Steps on every pyramid level along each direction, 1 to 16 (the paper fixes a number
+    /// without giving it; ours is 4).
+    pub steps: u32,
+}
+
+impl Default for PyramidHbaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            exponent: 1.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
+/// Scalable Ambient Obscurance parameters (McGuire et al. 2012; defaults of its published code:
+/// 11 taps on 7 spiral turns, bias 0.01, intensity 1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SaoSettings {
+    /// Radius R in world units: taps up to R on screen, falloff (R² − d²)³.
+    pub radius: f32,
+    /// N, taps per pixel, 1 to 64.
+    pub samples: u32,
+    /// τ, turns of the tap spiral.
+    pub spiral_turns: f32,
+    /// β, world units a tap must rise above the tangent plane before it occludes.
+    pub bias: f32,
+    /// Scale of the summed obscurance.
+    pub intensity: f32,
+}
+
+impl Default for SaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            samples: 11,
+            spiral_turns: 7.0,
+            bias: 0.01,
+            intensity: 1.0,
+        }
+    }
+}
+
 /// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
 /// (seed-code-notes §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -485,6 +561,12 @@ pub struct AoSettings {
     pub hbao_plus: HbaoPlusSettings,
     /// The GTAO estimator (`gtao`).
     pub gtao: GtaoSettings,
+    /// The depth pyramid (`sao`, `pyramid-hbao`).
+    pub pyramid: PyramidSettings,
+    /// The Pyramid HBAO estimator (`pyramid-hbao`).
+    pub pyramid_hbao: PyramidHbaoSettings,
+    /// The Scalable Ambient Obscurance estimator (`sao`).
+    pub sao: SaoSettings,
     /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
     pub gtao_vb: GtaoVbSettings,
 }
@@ -496,6 +578,9 @@ impl Default for AoSettings {
             hbao: HbaoSettings::default(),
             hbao_plus: HbaoPlusSettings::default(),
             gtao: GtaoSettings::default(),
+            pyramid: PyramidSettings::default(),
+            pyramid_hbao: PyramidHbaoSettings::default(),
+            sao: SaoSettings::default(),
             gtao_vb: GtaoVbSettings::default(),
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
@@ -624,6 +709,86 @@ impl AoSettings {
         }
         if !(1..=32).contains(&g.steps) {
             return Err(invalid("gtao.steps", g.steps, "must be 1 to 32, e.g. 2"));
+        }
+        let py = &self.pyramid;
+        if !(1..=8).contains(&py.levels) {
+            return Err(invalid(
+                "pyramid.levels",
+                py.levels,
+                "must be 1 to 8, e.g. 5",
+            ));
+        }
+        if !(2..=4).contains(&py.factor) {
+            return Err(invalid(
+                "pyramid.factor",
+                py.factor,
+                "must be 2, 3 or 4, e.g. 3",
+            ));
+        }
+        let ph = &self.pyramid_hbao;
+        if !(ph.radius.is_finite() && ph.radius > 0.0) {
+            return Err(invalid(
+                "pyramid_hbao.radius",
+                ph.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(ph.exponent.is_finite() && ph.exponent > 0.0) {
+            return Err(invalid(
+                "pyramid_hbao.exponent",
+                ph.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=32).contains(&ph.directions) {
+            return Err(invalid(
+                "pyramid_hbao.directions",
+                ph.directions,
+                "must be 1 to 32, e.g. 8",
+            ));
+        }
+        if !(1..=16).contains(&ph.steps) {
+            return Err(invalid(
+                "pyramid_hbao.steps",
+                ph.steps,
+                "must be 1 to 16, e.g. 4",
+            ));
+        }
+        let sao = &self.sao;
+        if !(sao.radius.is_finite() && sao.radius > 0.0) {
+            return Err(invalid(
+                "sao.radius",
+                sao.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(1..=64).contains(&sao.samples) {
+            return Err(invalid(
+                "sao.samples",
+                sao.samples,
+                "must be 1 to 64, e.g. 11",
+            ));
+        }
+        if !(sao.spiral_turns.is_finite() && sao.spiral_turns > 0.0) {
+            return Err(invalid(
+                "sao.spiral_turns",
+                sao.spiral_turns,
+                "must be positive, e.g. 7",
+            ));
+        }
+        if !(sao.bias.is_finite() && sao.bias >= 0.0) {
+            return Err(invalid(
+                "sao.bias",
+                sao.bias,
+                "must be zero or positive world units, e.g. 0.01",
+            ));
+        }
+        if !(sao.intensity.is_finite() && sao.intensity > 0.0) {
+            return Err(invalid(
+                "sao.intensity",
+                sao.intensity,
+                "must be positive, e.g. 1",
+            ));
         }
         let h = &self.hbao_plus;
         if !(h.radius.is_finite() && h.radius > 0.0) {
@@ -865,6 +1030,26 @@ impl AoSettings {
                 s.gtao.slices = slices;
                 s.gtao.steps = steps;
             }
+            // Seed 004's 8 directions as the default; the steps per level are ours.
+            Estimator::PyramidHbao => {
+                let (directions, steps) = match preset {
+                    Preset::Low => (4, 3),
+                    Preset::Medium => (8, 4),
+                    Preset::High => (8, 6),
+                    Preset::Ultra => (16, 6),
+                };
+                s.pyramid_hbao.directions = directions;
+                s.pyramid_hbao.steps = steps;
+            }
+            // SAO's published code ships 11 taps; fewer and more around it.
+            Estimator::Sao => {
+                s.sao.samples = match preset {
+                    Preset::Low => 7,
+                    Preset::Medium => 11,
+                    Preset::High => 16,
+                    Preset::Ultra => 32,
+                };
+            }
             // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
             // samples allow: ultra is 3 × 5 instead of 9 × 3.
             Estimator::GtaoVb => {
@@ -889,7 +1074,7 @@ impl AoSettings {
                     Preset::Ultra => sd.samples = 8,
                 }
             }
-            Source::FirstLayer | Source::DualDepth | Source::ColumnRays => {}
+            Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {}
         }
         s
     }
@@ -1254,7 +1439,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 36, "{paths:?}");
+        assert_eq!(paths.len(), 47, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1285,6 +1470,17 @@ mod tests {
         push(&|s| s.gtao.exponent = 0.0);
         push(&|s| s.gtao.slices = 17);
         push(&|s| s.gtao.steps = 33);
+        push(&|s| s.pyramid.levels = 9);
+        push(&|s| s.pyramid.factor = 1);
+        push(&|s| s.pyramid_hbao.radius = f32::NAN);
+        push(&|s| s.pyramid_hbao.exponent = -1.0);
+        push(&|s| s.pyramid_hbao.directions = 0);
+        push(&|s| s.pyramid_hbao.steps = 17);
+        push(&|s| s.sao.radius = 0.0);
+        push(&|s| s.sao.samples = 65);
+        push(&|s| s.sao.spiral_turns = 0.0);
+        push(&|s| s.sao.bias = -0.1);
+        push(&|s| s.sao.intensity = f32::INFINITY);
         push(&|s| s.gtao_vb.radius = f32::INFINITY);
         push(&|s| s.gtao_vb.thickness = -0.5);
         push(&|s| s.gtao_vb.exponent = -1.0);

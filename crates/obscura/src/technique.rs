@@ -52,6 +52,10 @@ techniques!(
     HbaoPlus,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `sao`: Scalable Ambient Obscurance, spiral taps over the depth pyramid.
+    Sao,
+    /// `pyramid-hbao`: Pyramid HBAO, directions walked over the levels of the depth pyramid.
+    PyramidHbao,
     /// `gtao`: ground-truth-based AO, slices × steps with the analytic cosine-weighted integral.
     Gtao,
     /// `gtao-vb`: GTAO slices with a 32-sector visibility bitmask and constant thickness.
@@ -72,6 +76,10 @@ pub enum Estimator {
     HbaoPlus,
     /// Ground-truth-based AO (Jimenez et al. 2016), the baseline of seed 003.
     Gtao,
+    /// Scalable Ambient Obscurance (McGuire et al. 2012), seed 004 §2.2.2.
+    Sao,
+    /// Pyramid HBAO, seed 004 §3.
+    PyramidHbao,
     /// GTAO with a visibility bitmask of 32 sectors per slice (seed 003).
     GtaoVb,
 }
@@ -88,6 +96,9 @@ pub enum Source {
     ColumnRays,
     /// The rasterised stratified stochastic depth map (seed 001 §3.1, seed 000 §3.7/§3.9).
     StochasticDepth,
+    /// Levels of mean linear depth (seed 004 §3.3): samples read the level their estimator names.
+    /// Hides nothing; the source of the estimators that need levels (SAO, Pyramid HBAO).
+    DepthPyramid,
 }
 
 /// Which passes run the estimator over the source (`src/schedules/`, `shaders/schedules/`).
@@ -223,6 +234,24 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::Sao,
+        name: "sao",
+        summary: "SAO: 11 spiral taps, each reading the pyramid level its distance calls for",
+        paper: "McGuire et al. 2012 (seed 004 §2.2.2)",
+        estimator: Estimator::Sao,
+        source: Source::DepthPyramid,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::PyramidHbao,
+        name: "pyramid-hbao",
+        summary: "Pyramid HBAO: 8 directions walked over 5 pyramid levels, largest contribution",
+        paper: "seed 004 §3",
+        estimator: Estimator::PyramidHbao,
+        source: Source::DepthPyramid,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::Gtao,
         name: "gtao",
         summary: "GTAO: two horizons per slice, analytic cosine-weighted visibility, falloff",
@@ -283,14 +312,19 @@ impl Source {
                 stochastic_depth_map: true,
                 ..Needs::default()
             },
+            Source::DepthPyramid => Needs::default(),
         }
     }
 
-    /// The estimators this source can answer for (column rays read the VAO columns).
+    /// The estimators this source can answer for: column rays read the VAO columns; the depth
+    /// pyramid serves, and alone serves, the estimators that read levels.
     pub fn supports(self, estimator: Estimator) -> bool {
         match self {
             Source::ColumnRays => estimator == Estimator::Vao,
-            Source::FirstLayer | Source::DualDepth | Source::StochasticDepth => true,
+            Source::DepthPyramid => estimator.reads_levels(),
+            Source::FirstLayer | Source::DualDepth | Source::StochasticDepth => {
+                !estimator.reads_levels()
+            }
         }
     }
 
@@ -301,6 +335,7 @@ impl Source {
             Source::DualDepth => "dual depth",
             Source::ColumnRays => "column rays",
             Source::StochasticDepth => "stochastic depth",
+            Source::DepthPyramid => "depth pyramid",
         }
     }
 }
@@ -336,8 +371,15 @@ impl Estimator {
             Estimator::Hbao => "hbao",
             Estimator::HbaoPlus => "hbao+",
             Estimator::Gtao => "gtao",
+            Estimator::Sao => "sao",
+            Estimator::PyramidHbao => "pyramid-hbao",
             Estimator::GtaoVb => "gtao-vb",
         }
+    }
+
+    /// Whether its samples read levels of the depth pyramid (`estimator_sample_level`).
+    pub fn reads_levels(self) -> bool {
+        matches!(self, Estimator::Sao | Estimator::PyramidHbao)
     }
 
     /// Whether the estimator's result is independent of the order its samples arrive in, as a
@@ -345,8 +387,8 @@ impl Estimator {
     /// GTAO walk each direction outwards, carrying a running horizon: single pass only.
     pub fn order_independent(self) -> bool {
         match self {
-            Estimator::Vao | Estimator::HbaoPlus | Estimator::GtaoVb => true,
-            Estimator::Hbao | Estimator::Gtao => false,
+            Estimator::Vao | Estimator::HbaoPlus | Estimator::GtaoVb | Estimator::Sao => true,
+            Estimator::Hbao | Estimator::Gtao | Estimator::PyramidHbao => false,
         }
     }
 }

@@ -42,7 +42,7 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             }
             out
         }
-        Source::FirstLayer | Source::DualDepth | Source::ColumnRays => {
+        Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
             vec![("defaults".into(), base)]
         }
     }

@@ -10,6 +10,8 @@ pub mod gtao;
 pub mod gtao_vb;
 pub mod hbao;
 pub mod hbao_plus;
+pub mod pyramid_hbao;
+pub mod sao;
 pub mod vao;
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS};
@@ -62,6 +64,10 @@ impl EstimatorPass {
             Estimator::Hbao => hbao::params(&settings.hbao),
             Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
             Estimator::Gtao => gtao::params(&settings.gtao),
+            Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
+            Estimator::PyramidHbao => {
+                pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid)
+            }
             Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
         };
         let constants = names.iter().copied().zip(values).collect();
@@ -97,6 +103,8 @@ pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static st
         Estimator::Hbao => (hbao::WGSL, hbao::CONSTANTS),
         Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
         Estimator::Gtao => (gtao::WGSL, gtao::CONSTANTS),
+        Estimator::Sao => (sao::WGSL, sao::CONSTANTS),
+        Estimator::PyramidHbao => (pyramid_hbao::WGSL, pyramid_hbao::CONSTANTS),
         Estimator::GtaoVb => (gtao_vb::WGSL, gtao_vb::CONSTANTS),
     }
 }

@@ -6,7 +6,8 @@ mod readback;
 
 pub use profiler::{FrameFragments, FrameTimings, PassProfiler};
 pub use readback::{
-    read_buffer, read_buffer_copy, read_texture_bytes, read_texture_f32, read_texture_rgba8,
+    read_buffer, read_buffer_copy, read_texture_bytes, read_texture_f32, read_texture_layer_bytes,
+    read_texture_rgba8,
 };
 
 use std::sync::{Arc, Mutex};

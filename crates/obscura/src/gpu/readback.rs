@@ -8,6 +8,16 @@ pub fn read_texture_bytes(
     texture: &wgpu::Texture,
     bytes_per_texel: u32,
 ) -> Result<Vec<u8>, GpuError> {
+    read_texture_layer_bytes(gpu, texture, 0, bytes_per_texel)
+}
+
+/// [`read_texture_bytes`] of array layer `layer`.
+pub fn read_texture_layer_bytes(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    layer: u32,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>, GpuError> {
     let (width, height) = (texture.width(), texture.height());
     let row = width * bytes_per_texel;
     let padded =
@@ -20,7 +30,16 @@ pub fn read_texture_bytes(
     });
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: 0,
+                z: layer,
+            },
+            aspect: wgpu::TextureAspect::All,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout {

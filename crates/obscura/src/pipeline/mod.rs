@@ -286,6 +286,16 @@ impl AmbientOcclusion {
         Ok(Some(layers))
     }
 
+    /// The depth pyramid of the last frame (`sao`, `pyramid-hbao`): levels 1 … L − 1, level l
+    /// ⌈W/K^l⌉ × ⌈H/K^l⌉ texels of the framebuffer (guard band included), row-major, linear
+    /// depth, 0 = background. Waits for the GPU.
+    pub fn read_depth_pyramid(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        match self.source.depth_pyramid() {
+            Some(pyramid) => Ok(Some(pyramid.read_levels(&self.gpu)?)),
+            None => Ok(None),
+        }
+    }
+
     /// Two-phase stochastic depth: the SD-request mask of the last frame, one value per
     /// framebuffer pixel (guard band included), non-zero where phase 1 asked for the map. Waits
     /// for the GPU.

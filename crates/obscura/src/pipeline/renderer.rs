@@ -188,6 +188,12 @@ impl Renderer {
         self.last_ao()?.read_sd_requests()
     }
 
+    /// `sao`, `pyramid-hbao`: the last frame's depth pyramid, levels 1 … L − 1 (see
+    /// [`AmbientOcclusion::read_depth_pyramid`]).
+    pub fn read_depth_pyramid(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        self.last_ao()?.read_depth_pyramid()
+    }
+
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(

@@ -10,6 +10,7 @@
 //! writes; only the stochastic depth map's request mask so far).
 
 pub mod column_rays;
+pub mod depth_pyramid;
 pub mod stochastic_depth;
 
 use crate::bindings::{self, entry, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
@@ -23,6 +24,7 @@ use crate::technique::{Schedule, Source};
 use crate::view::{FrameView, ScreenGeometry};
 use crate::Error;
 use column_rays::ColumnRays;
+use depth_pyramid::DepthPyramid;
 use stochastic_depth::{SdLayout, StochasticDepthMap};
 
 /// The scene data the scene-dependent sources need (the technique row's [`crate::technique::Needs`]).
@@ -50,6 +52,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
             stochastic_depth::bindings_wgsl(sd_layout),
             shaders::SOURCE_STOCHASTIC_DEPTH
         ),
+        Source::DepthPyramid => shaders::SOURCE_DEPTH_PYRAMID.to_string(),
     }
 }
 
@@ -63,6 +66,7 @@ pub(crate) fn resolve_entries(
         Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
         Source::ColumnRays => column_rays::layout_entries(),
         Source::StochasticDepth => stochastic_depth::read_layout_entries(sd_layout),
+        Source::DepthPyramid => depth_pyramid::layout_entries(),
     }
 }
 
@@ -70,7 +74,9 @@ pub(crate) fn resolve_entries(
 pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
         Source::StochasticDepth => vec![entry::storage(SOURCE_SD_REQUEST, false)],
-        Source::FirstLayer | Source::DualDepth | Source::ColumnRays => Vec::new(),
+        Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
+            Vec::new()
+        }
     }
 }
 
@@ -79,6 +85,7 @@ enum Held {
     DualDepth,
     ColumnRays(Box<ColumnRays>),
     StochasticDepth(Box<StochasticDepthMap>),
+    DepthPyramid(Box<DepthPyramid>),
 }
 
 /// A hidden-depth source as an [`crate::AmbientOcclusion`] holds it.
@@ -154,6 +161,9 @@ impl SourcePass {
                 sd_layout = map.layout();
                 Held::StochasticDepth(Box::new(map))
             }
+            Source::DepthPyramid => {
+                Held::DepthPyramid(Box::new(DepthPyramid::new(device, &settings.pyramid, full)))
+            }
         };
         let request_layout = schedule
             .two_phase()
@@ -208,7 +218,7 @@ impl SourcePass {
                 rays.set_camera(queue, view.view_matrix().inverse(), view.near)
             }
             Held::StochasticDepth(map) => map.set_camera(queue, view),
-            Held::FirstLayer | Held::DualDepth => {}
+            Held::FirstLayer | Held::DualDepth | Held::DepthPyramid(_) => {}
         }
     }
 
@@ -231,14 +241,16 @@ impl SourcePass {
         frame: &FrameInputs,
         profiler: Option<&mut PassProfiler>,
     ) {
-        if let Held::StochasticDepth(map) = &self.held {
-            map.render(
+        match &self.held {
+            Held::StochasticDepth(map) => map.render(
                 device,
                 encoder,
                 frame.depth,
                 self.request.as_ref(),
                 profiler,
-            );
+            ),
+            Held::DepthPyramid(pyramid) => pyramid.build(device, encoder, frame.depth, profiler),
+            Held::FirstLayer | Held::DualDepth | Held::ColumnRays(_) => {}
         }
     }
 
@@ -274,6 +286,9 @@ impl SourcePass {
             Held::StochasticDepth(map) => {
                 bindings::group(device, "stochastic depth", layout, &map.read_resources())
             }
+            Held::DepthPyramid(pyramid) => {
+                bindings::group(device, "depth pyramid", layout, &pyramid.read_resources())
+            }
         }))
     }
 
@@ -294,6 +309,14 @@ impl SourcePass {
     pub fn stochastic_depth(&self) -> Option<&StochasticDepthMap> {
         match &self.held {
             Held::StochasticDepth(map) => Some(map),
+            _ => None,
+        }
+    }
+
+    /// The depth pyramid, for read-backs.
+    pub fn depth_pyramid(&self) -> Option<&DepthPyramid> {
+        match &self.held {
+            Held::DepthPyramid(pyramid) => Some(pyramid),
             _ => None,
         }
     }

@@ -1,0 +1,133 @@
+// Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012), the baseline of seed 004 §2.2.2:
+// N taps on a spiral of τ turns around the pixel, tap i at α_i = (i + 0.5)/N of the screen radius
+// r' and angle 2π·α_i·τ + φ (φ the pixel's rotation); each tap reads the depth pyramid level its
+// distance calls for, m = ⌊log_K(α_i r' / q)⌋ clamped to the pyramid (q = 8 px: McGuire's
+// LOG_MAX_OFFSET 3 with K = 2, taps within q texels of the pixel read its level), so distant taps
+// read coarse, cache-friendly depths (§3). Every tap adds the Alchemy AO term with SAO's falloff,
+//     (R² − v·v)³ · max(0, (v·n − β)/(v·v + ε)),    ε = 0.01 (SAO's code),
+// and A = max(0, 1 − intensity/R⁶ · (5/N) · Σ) (the shipped normalisation).
+//
+// Estimator contract (docs/ARCHITECTURE.md): a tap's value is its term, several depths combine by
+// the maximum, the accumulator sums; order-independent. Level reads: sources/depth_pyramid.wgsl.
+//
+// Ours: the pyramid is the shared mean pyramid (seed 004 §3.3, K = 3 by default) rather than SAO's
+// rotated-grid subsampling with K = 2; taps reading level l ≥ 1 see the K^l-pixel block's mean
+// depth at the block's centre; the rotation φ is the 4×4 Bayer pattern's, not SAO's hash.
+
+struct SaoParams {
+    radius: f32,
+    radius2: f32,
+    // intensity / R⁶ · 5 / N.
+    scale: f32,
+    bias: f32,
+    spiral_turns: f32,
+    // 1 / ln K and ln q: the level of a tap at d px is ⌊(ln d − ln q) / ln K⌋.
+    inv_log_factor: f32,
+    log_q: f32,
+    _pad0: f32,
+    // Index x % 4 + 4 * (y % 4): x the rotation φ in radians.
+    pattern: array<vec4<f32>, 16>,
+}
+
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: SaoParams;
+
+// N taps, and the pyramid's levels (level 0 included).
+override SAMPLE_COUNT: u32 = 11u;
+override LEVELS: u32 = 5u;
+
+struct EstimatorPixel {
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    pixel: vec2<u32>,
+    rotation: f32,
+    radius_px: f32,
+    valid: bool,
+}
+
+struct EstimatorSample {
+    px: vec2<f32>,
+    level: u32,
+    on: bool,
+}
+
+// The tap's term.
+alias EstimatorValue = f32;
+
+struct EstimatorAccum {
+    sum: f32,
+    _pad0: f32,
+    _pad1: f32,
+}
+
+struct Occluder {
+    value: f32,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let base = screen_pixel(id, params.radius);
+    var p: EstimatorPixel;
+    p.pixel = base.pixel;
+    p.valid = base.valid;
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = base.pos;
+    p.normal = base.normal;
+    p.rotation = params.pattern[pattern_index(id)].x;
+    p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
+    return p;
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.radius_px > 0.0;
+    let alpha = (f32(i) + 0.5) / f32(SAMPLE_COUNT);
+    let angle = alpha * 6.283185307179586 * params.spiral_turns + p.rotation;
+    let distance = alpha * p.radius_px;
+    let level = floor((log(max(distance, 1.0)) - params.log_q) * params.inv_log_factor);
+    s.level = u32(clamp(level, 0.0, f32(LEVELS - 1u)));
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(cos(angle), -sin(angle)) * distance;
+    return s;
+}
+
+fn estimator_sample_level(s: EstimatorSample) -> u32 {
+    return s.level;
+}
+
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> f32 {
+    return 0.0;
+}
+
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let v = pos - p.pos;
+    let vv = dot(v, v);
+    let f = max(params.radius2 - vv, 0.0);
+    var o: Occluder;
+    o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (0.01 + vv), 0.0);
+    o.hidden = false;
+    return o;
+}
+
+fn estimator_combine(a: f32, b: f32) -> f32 {
+    return max(a, b);
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    return EstimatorAccum(0.0, 0.0, 0.0);
+}
+
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    return acc;
+}
+
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
+    var a = acc;
+    a.sum += value;
+    return a;
+}
+
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return max(0.0, 1.0 - acc.sum * params.scale);
+}
