@@ -679,8 +679,9 @@ mod tests {
                 assert_eq!(a.settings(t).unwrap(), want, "{flag} {value}");
             }
         }
-        // Every field but blur.enabled (the --no-blur switch).
-        assert_eq!(stated, FIELD_FLAGS.len() - 1);
+        // Every field but the switches' blur.enabled (--no-blur) and gtao_vb.cosine_weighted
+        // (--vb-cosine).
+        assert_eq!(stated, FIELD_FLAGS.len() - 2);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),
