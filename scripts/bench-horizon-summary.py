@@ -32,3 +32,21 @@ if rows:
     print("| D × S | AO pass (ms) | MAE | SSIM |")
     print("|---|---|---|---|")
     print("\n".join(rows))
+rows = []
+for levels in range(1, 6):
+    bench, report = out / f"tab1-L{levels}.json", out / f"tab1-L{levels}" / "report.json"
+    if not (bench.exists() and report.exists()):
+        continue
+    timed = {r["technique"]: r["passes"] for r in json.loads(bench.read_text())["results"]}
+    measured = {r["technique"]: r for r in json.loads(report.read_text())["results"]}
+    cells = []
+    for t in ["pyramid-hbao", "sao"]:
+        passes = timed[t]
+        build = passes.get("depth_pyramid", 0.0)
+        cells.append(f"{passes[t]:.3f} + {build:.3f} | {measured[t]['mae']:.4f} | {measured[t]['ssim']:.4f}")
+    rows.append(f"| {levels} | " + " | ".join(cells) + " |")
+if rows:
+    print("\n### Seed 004 Tab. 1 analogue: Pyramid HBAO and SAO on Crytek Sponza, 1280×720, R = 1\n")
+    print("| L | Pyramid HBAO: AO + pyramid (ms) | MAE | SSIM | SAO: AO + pyramid (ms) | MAE | SSIM |")
+    print("|---|---|---|---|---|---|---|")
+    print("\n".join(rows))

@@ -3,9 +3,10 @@
 # 1. every technique of TECHNIQUES (default: vao and every hbao and gtao row) on Crytek Sponza,
 #    stairs and colonnade at 1920x1080 + 64, at the defaults and, on Sponza, at `--preset high`;
 # 2. seed 004 Tab. 1's analogue on Sponza at the paper's 1280x720: HBAO D×S = 8×10, 16×20, 32×40,
-#    64×80 at R = 1 m (the paper gives no R), each timed by `bench` (the AO pass) and compared by
-#    `compare` with the hemisphere ground truth of the same radius (1024 rays per pixel; blurred,
-#    as the paper filters its maps but leaves the filter out of its times).
+#    64×80, Pyramid HBAO and SAO with L = 1 … 5 levels, at R = 1 m (the paper gives no R), each
+#    timed by `bench` (the AO pass and the pyramid's build) and compared by `compare` with the
+#    hemisphere ground truth of the same radius (1024 rays per pixel; blurred, as the paper
+#    filters its maps but leaves the filter out of its times).
 # SKIP_BENCH=1 runs part 2 only, SKIP_TAB1=1 part 1 only.
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
 # (../shared/tools/prepare-device.sh crytek-sponza); results go to $OUT.
@@ -33,4 +34,11 @@ for grid in 8x10 16x20 32x40 64x80; do
     --json "$out/tab1-$grid.json" 2>&1 | tee -a "$out/tab1.txt"
   $bin compare "${sponza[@]}" --size 1280x720 "${hbao[@]}" --reference-model hemisphere \
     --spp 1024 --out "$out/tab1-$grid" 2>&1 | tee -a "$out/tab1.txt"
+done
+for levels in 1 2 3 4 5; do
+  pyr=(--techniques pyramid-hbao,sao --pyramid-levels "$levels" --phbao-radius 1 --sao-radius 1 --radius 1)
+  $bin bench "${sponza[@]}" --size 1280x720 "${pyr[@]}" --frames 50 --warmup 5 \
+    --json "$out/tab1-L$levels.json" 2>&1 | tee -a "$out/tab1.txt"
+  $bin compare "${sponza[@]}" --size 1280x720 "${pyr[@]}" --reference-model hemisphere \
+    --spp 1024 --out "$out/tab1-L$levels" 2>&1 | tee -a "$out/tab1.txt"
 done
