@@ -57,6 +57,8 @@ pub const SCHEDULE_PIXELS: u32 = 0;
 pub const SCHEDULE_WORK_COUNT: u32 = 1;
 /// The compacted list of flagged pixel indices phase 2 works through.
 pub const SCHEDULE_WORK_LIST: u32 = 2;
+/// Group 3 of the interleaved schedule: the 16 quarter-resolution depth layers.
+pub const SCHEDULE_DEPTH_LAYERS: u32 = 0;
 /// Group 0 of the two-phase schedule's indirect-arguments pass.
 pub const INDIRECT_WORK_COUNT: u32 = 0;
 /// The three `u32` workgroup counts of phase 2's indirect dispatch, written by the pass.
@@ -94,6 +96,7 @@ const NAMED: &[(&str, u32)] = &[
     ("SCHEDULE_PIXELS", SCHEDULE_PIXELS),
     ("SCHEDULE_WORK_COUNT", SCHEDULE_WORK_COUNT),
     ("SCHEDULE_WORK_LIST", SCHEDULE_WORK_LIST),
+    ("SCHEDULE_DEPTH_LAYERS", SCHEDULE_DEPTH_LAYERS),
     ("INDIRECT_WORK_COUNT", INDIRECT_WORK_COUNT),
     ("INDIRECT_DISPATCH", INDIRECT_DISPATCH),
     ("REFERENCE_PARAMS", REFERENCE_PARAMS),
@@ -178,6 +181,18 @@ pub mod entry {
                 sample_type: wgpu::TextureSampleType::Depth,
                 view_dimension: wgpu::TextureViewDimension::D2,
                 multisampled,
+            },
+        )
+    }
+
+    /// A write-only `r32float` storage texture array.
+    pub fn storage_texture_r32f_array(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format: wgpu::TextureFormat::R32Float,
+                view_dimension: wgpu::TextureViewDimension::D2Array,
             },
         )
     }

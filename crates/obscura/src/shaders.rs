@@ -31,6 +31,9 @@ pub const STOCHASTIC_DEPTH_UNPACK: &str =
 
 pub const SCHEDULE_SINGLE: &str = include_str!("../shaders/schedules/single.wgsl");
 pub const SCHEDULE_SINGLE_MAIN: &str = include_str!("../shaders/schedules/single_main.wgsl");
+pub const SCHEDULE_INTERLEAVED: &str = include_str!("../shaders/schedules/interleaved.wgsl");
+pub const SCHEDULE_INTERLEAVED_SPLIT: &str =
+    include_str!("../shaders/schedules/interleaved_split.wgsl");
 pub const SCHEDULE_TWO_PHASE: &str = include_str!("../shaders/schedules/two_phase.wgsl");
 pub const SCHEDULE_TWO_PHASE_1: &str = include_str!("../shaders/schedules/two_phase_1.wgsl");
 pub const SCHEDULE_TWO_PHASE_2: &str = include_str!("../shaders/schedules/two_phase_2.wgsl");

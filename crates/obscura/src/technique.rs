@@ -31,6 +31,8 @@ macro_rules! techniques {
 techniques!(
     /// `vao`: volumetric AO over the depth buffer (seed 000 §3.1–3.5). The default.
     Vao,
+    /// `vao-interleaved`: VAO over 16 quarter-resolution depth layers.
+    VaoInterleaved,
     /// `vao-dual`: VAO; occluded samples also read a second depth layer (depth peeling).
     VaoDual,
     /// `rt-vao`: VAO; occluded samples trace their camera-ray column through the BVH.
@@ -45,11 +47,15 @@ techniques!(
     SdSvao,
     /// `hbao`: horizon-based AO, D directions × S steps (seed 001 §3.2, seed 004 §2.2.1).
     Hbao,
+    /// `hbao-interleaved`: HBAO over 16 quarter-resolution depth layers.
+    HbaoInterleaved,
     /// `hbao-dual`: HBAO; a step whose surface lies above the horizon but beyond R also reads the
     /// second depth layer.
     HbaoDual,
     /// `hbao+`: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline).
     HbaoPlus,
+    /// `hbao+-interleaved`: HBAO+ over 16 quarter-resolution depth layers (the authors' way).
+    HbaoPlusInterleaved,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
     /// `sao`: Scalable Ambient Obscurance, spiral taps over the depth pyramid.
@@ -111,6 +117,9 @@ pub enum Schedule {
     TwoPhase,
     /// Two phases, phase 2 walking every pixel and returning at once where nothing is flagged.
     TwoPhaseDense,
+    /// The depth split into 16 quarter-resolution layers (one per pixel residue mod 4), each
+    /// pixel's samples read from its own layer (seed-code-notes §1.7, the authors' HBAO+).
+    Interleaved,
 }
 
 /// One row of the technique table.
@@ -142,6 +151,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::Vao,
         source: Source::FirstLayer,
         schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::VaoInterleaved,
+        name: "vao-interleaved",
+        summary: "VAO over 16 quarter-resolution depth layers (samples snap to their layer)",
+        paper: "seed 000 §3.1–3.5, seed-code-notes §1.7",
+        estimator: Estimator::Vao,
+        source: Source::FirstLayer,
+        schedule: Schedule::Interleaved,
     },
     TechniqueRow {
         technique: Technique::VaoDual,
@@ -207,6 +225,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::HbaoInterleaved,
+        name: "hbao-interleaved",
+        summary: "HBAO over 16 quarter-resolution depth layers (samples snap to their layer)",
+        paper: "seed 001 §3.2, seed-code-notes §1.7",
+        estimator: Estimator::Hbao,
+        source: Source::FirstLayer,
+        schedule: Schedule::Interleaved,
+    },
+    TechniqueRow {
         technique: Technique::HbaoDual,
         name: "hbao-dual",
         summary: "HBAO; a step above the horizon but beyond R also reads the second layer",
@@ -223,6 +250,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::HbaoPlus,
         source: Source::FirstLayer,
         schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::HbaoPlusInterleaved,
+        name: "hbao+-interleaved",
+        summary: "HBAO+ over 16 quarter-resolution depth layers, as the authors ran it",
+        paper: "seed 000 §2.1, seed-code-notes §1.7",
+        estimator: Estimator::HbaoPlus,
+        source: Source::FirstLayer,
+        schedule: Schedule::Interleaved,
     },
     TechniqueRow {
         technique: Technique::HbaoPlusDual,
@@ -343,14 +379,25 @@ impl Source {
 impl Schedule {
     /// Whether this is a two-phase schedule (work list or dense).
     pub fn two_phase(self) -> bool {
-        self != Schedule::Single
+        matches!(self, Schedule::TwoPhase | Schedule::TwoPhaseDense)
     }
 
     /// Whether this schedule can run `estimator`: a two-phase schedule adds phase 2's samples
     /// after all others and holds one bit per sample (at most 32), so it needs an
     /// [`Estimator::order_independent`] estimator.
+    /// The interleaved schedule reads the first depth layer only, not pyramid levels.
     pub fn supports(self, estimator: Estimator) -> bool {
-        !self.two_phase() || estimator.order_independent()
+        match self {
+            Schedule::Single => true,
+            Schedule::TwoPhase | Schedule::TwoPhaseDense => estimator.order_independent(),
+            Schedule::Interleaved => !estimator.reads_levels(),
+        }
+    }
+
+    /// Whether this schedule can run over `source`: the interleaved one only over the first
+    /// layer (it splits that layer and reads nothing else).
+    pub fn supports_source(self, source: Source) -> bool {
+        self != Schedule::Interleaved || source == Source::FirstLayer
     }
 
     /// Its name in the README's table (`single pass`, `two-phase (work list)`, …).
@@ -359,6 +406,7 @@ impl Schedule {
             Schedule::Single => "single pass",
             Schedule::TwoPhase => "two-phase (work list)",
             Schedule::TwoPhaseDense => "two-phase (dense)",
+            Schedule::Interleaved => "interleaved (4×4 layers)",
         }
     }
 }
@@ -538,6 +586,13 @@ mod tests {
                 r.name,
                 r.source,
                 r.estimator
+            );
+            assert!(
+                r.schedule.supports_source(r.source),
+                "{}: schedule {:?} cannot run over source {:?}",
+                r.name,
+                r.schedule,
+                r.source
             );
             assert!(
                 r.schedule.supports(r.estimator),

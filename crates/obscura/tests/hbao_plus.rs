@@ -14,16 +14,20 @@ use obscura::{scene, Renderer, ScreenGeometry, Technique};
 fn unoccluded_plane_is_one_everywhere() {
     // On a plane every sample's V lies in the tangent plane: N·V/|V| = 0 < bias, no occlusion.
     let gpu = gpu();
-    for blur in [false, true] {
+    for (blur, technique) in [
+        (false, Technique::HbaoPlus),
+        (true, Technique::HbaoPlus),
+        (false, Technique::HbaoPlusInterleaved),
+    ] {
         for (directions, steps) in [(8, 4), (4, 8), (32, 1)] {
-            let mut s = technique_settings(Technique::HbaoPlus, blur);
+            let mut s = technique_settings(technique, blur);
             s.hbao_plus.directions = directions;
             s.hbao_plus.steps = steps;
             let ao = tilted_floor_ao(&gpu, &s);
             let min = ao.iter().copied().fold(f32::MAX, f32::min);
             assert!(
                 min > 1.0 - 1e-3,
-                "{directions}×{steps}, blur {blur}: min AO {min}"
+                "{technique} {directions}×{steps}, blur {blur}: min AO {min}"
             );
         }
     }
@@ -36,6 +40,7 @@ fn cpu_hbao_plus(
     g: &GBufferImage,
     screen: &ScreenGeometry,
     s: &HbaoPlusSettings,
+    interleaved: bool,
 ) -> (Vec<f32>, Vec<bool>) {
     let uniform = screen.uniform();
     let full = Vec2::new(g.width as f32, g.height as f32);
@@ -70,10 +75,9 @@ fn cpu_hbao_plus(
                 let base = Vec2::new(bx, by);
                 let dir = Vec2::new(base.x * c - base.y * sn, base.x * sn + base.y * c);
                 let px = centre + dir * (start + k as f32 * step);
-                let f = px.fract();
-                edge |= f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
                 count += 1.0;
-                let cell = px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2();
+                let (cell, e) = sample_cell(px, pixel, full, interleaved);
+                edge |= e;
                 if cell == pixel {
                     continue;
                 }
@@ -100,18 +104,23 @@ fn cpu_hbao_plus(
 
 #[test]
 fn gpu_matches_the_cpu_implementation() {
+    // Both schedules: the interleaved one (the authors' HBAO+) is the same estimator whose samples
+    // read the nearest pixel of their own residue class mod 4.
     let gpu = gpu();
     for name in ["stairs", "colonnade"] {
         let scene = scene::builtin(name).unwrap();
-        let s = technique_settings(Technique::HbaoPlus, false);
-        let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
-        r.render(&scene.cameras[0].camera, None).unwrap();
-        let gpu_ao = r.read_raw_ao().unwrap();
-        let cpu = cpu_hbao_plus(
-            &r.read_gbuffer().unwrap(),
-            &r.view().unwrap().screen(),
-            &s.hbao_plus,
-        );
-        assert_mirrors(name, &gpu_ao, cpu);
+        for technique in [Technique::HbaoPlus, Technique::HbaoPlusInterleaved] {
+            let s = technique_settings(technique, false);
+            let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
+            r.render(&scene.cameras[0].camera, None).unwrap();
+            let gpu_ao = r.read_raw_ao().unwrap();
+            let cpu = cpu_hbao_plus(
+                &r.read_gbuffer().unwrap(),
+                &r.view().unwrap().screen(),
+                &s.hbao_plus,
+                technique == Technique::HbaoPlusInterleaved,
+            );
+            assert_mirrors(&format!("{name} {technique}"), &gpu_ao, cpu);
+        }
     }
 }

@@ -22,9 +22,11 @@ fn unoccluded_plane_is_one_everywhere() {
     for blur in [false, true] {
         let mut settings = Vec::new();
         for (directions, steps) in [(8, 4), (4, 8), (16, 20)] {
-            let mut s = technique_settings(Technique::Hbao, blur);
-            (s.hbao.directions, s.hbao.steps) = (directions, steps);
-            settings.push(s);
+            for t in [Technique::Hbao, Technique::HbaoInterleaved] {
+                let mut s = technique_settings(t, blur);
+                (s.hbao.directions, s.hbao.steps) = (directions, steps);
+                settings.push(s);
+            }
         }
         for (slices, steps, blend) in [(2, 2, 0.0), (3, 3, 0.5), (9, 3, 0.0), (1, 8, 1.0)] {
             let mut s = technique_settings(Technique::Gtao, blur);
@@ -201,19 +203,18 @@ fn pixel_setup(
     })
 }
 
-/// The view-space surface at framebuffer position `px` (clamped and snapped as the kernels do),
-/// or None for the shading pixel itself or background; and whether `px` lies within 1e-3 px of
-/// a pixel edge (where the GPU and the CPU may snap to different neighbours).
+/// The view-space surface at framebuffer position `px` (the pixel the schedule reads there,
+/// [`sample_cell`]), or None for the shading pixel itself or background; and whether `px` lies
+/// where the GPU and the CPU may snap to different pixels.
 fn surface_at(
     g: &GBufferImage,
     screen: &ScreenGeometry,
     p: &PixelSetup,
     px: Vec2,
+    interleaved: bool,
 ) -> (Option<Vec3>, bool) {
-    let f = px.fract();
-    let edge = f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
     let full = Vec2::new(g.width as f32, g.height as f32);
-    let cell = px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2();
+    let (cell, edge) = sample_cell(px, p.pixel, full, interleaved);
     if cell == p.pixel {
         return (None, edge);
     }
@@ -226,7 +227,12 @@ fn surface_at(
 
 /// HBAO as `shaders/estimators/hbao.wgsl` states it, per visible pixel, and whether a sample lay
 /// on a pixel edge.
-fn cpu_hbao(g: &GBufferImage, screen: &ScreenGeometry, s: &HbaoSettings) -> (Vec<f32>, Vec<bool>) {
+fn cpu_hbao(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    s: &HbaoSettings,
+    interleaved: bool,
+) -> (Vec<f32>, Vec<bool>) {
     let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
     for y in 0..screen.height {
         for x in 0..screen.width {
@@ -251,7 +257,7 @@ fn cpu_hbao(g: &GBufferImage, screen: &ScreenGeometry, s: &HbaoSettings) -> (Vec
                 let mut sin_h = (t + s.angle_bias).min(FRAC_PI_2).sin();
                 for k in 0..s.steps {
                     let px = p.centre + Vec2::new(dir.x, -dir.y) * (start + k as f32 * step);
-                    let (surface, e) = surface_at(g, screen, &p, px);
+                    let (surface, e) = surface_at(g, screen, &p, px, interleaved);
                     edge |= e;
                     let Some(q) = surface else { continue };
                     let v = q - p.pos;
@@ -314,7 +320,7 @@ fn cpu_gtao(g: &GBufferImage, screen: &ScreenGeometry, s: &GtaoSettings) -> (Vec
                         let f = (k as f32 + jitter) / s.steps as f32;
                         let distance = (f * f + min_fraction) * p.radius_px;
                         let px = p.centre + sign * Vec2::new(dir.x, -dir.y) * distance;
-                        let (surface, e) = surface_at(g, screen, &p, px);
+                        let (surface, e) = surface_at(g, screen, &p, px, false);
                         edge |= e;
                         let (cos_s, w) = match surface {
                             Some(q) => {
@@ -358,16 +364,20 @@ fn gpu_matches_the_cpu_implementations() {
         let scene = scene::builtin(name).unwrap();
         let mut hb = technique_settings(Technique::Hbao, false);
         (hb.hbao.directions, hb.hbao.steps) = (6, 5);
+        let mut hbi = hb;
+        hbi.technique = Technique::HbaoInterleaved;
         let mut gt = technique_settings(Technique::Gtao, false);
         (gt.gtao.slices, gt.gtao.steps, gt.gtao.thickness_blend) = (3, 3, 0.3);
-        for s in [hb, gt] {
+        for s in [hb, hbi, gt] {
             let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
             r.render(&scene.cameras[0].camera, None).unwrap();
             let gpu_ao = r.read_raw_ao().unwrap();
             let g = r.read_gbuffer().unwrap();
             let screen = r.view().unwrap().screen();
             let cpu = match s.technique {
-                Technique::Hbao => cpu_hbao(&g, &screen, &s.hbao),
+                Technique::Hbao => cpu_hbao(&g, &screen, &s.hbao, false),
+                // The interleaved schedule: samples read their own residue class mod 4.
+                Technique::HbaoInterleaved => cpu_hbao(&g, &screen, &s.hbao, true),
                 _ => cpu_gtao(&g, &screen, &s.gtao),
             };
             assert_mirrors(&format!("{name} {}", s.technique), &gpu_ao, cpu);

@@ -219,8 +219,9 @@ fn check_all_schedules(
             Schedule::Single,
             Schedule::TwoPhase,
             Schedule::TwoPhaseDense,
+            Schedule::Interleaved,
         ] {
-            if schedule.two_phase() && !order_independent {
+            if (schedule.two_phase() && !order_independent) || !schedule.supports_source(source) {
                 continue;
             }
             for stage in schedules::stages(schedule) {

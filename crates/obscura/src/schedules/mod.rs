@@ -2,6 +2,7 @@
 //! technique table). They own the sample loops (`shaders/schedules/`), for any estimator and
 //! source that implement their contracts, and decide when the source prepares its data.
 
+pub mod interleaved;
 pub mod single;
 pub mod two_phase;
 
@@ -41,6 +42,7 @@ pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
         Schedule::Single => vec![single::stage()],
         Schedule::TwoPhase => two_phase::stages(true),
         Schedule::TwoPhaseDense => two_phase::stages(false),
+        Schedule::Interleaved => vec![interleaved::stage()],
     }
 }
 
@@ -128,6 +130,7 @@ impl FrameGroups<'_> {
 pub(crate) enum SchedulePass {
     Single(single::Single),
     TwoPhase(two_phase::TwoPhase),
+    Interleaved(interleaved::Interleaved),
 }
 
 impl SchedulePass {
@@ -155,6 +158,15 @@ impl SchedulePass {
                 estimator,
                 source,
             )),
+            Schedule::Interleaved => SchedulePass::Interleaved(interleaved::Interleaved::new(
+                device,
+                name,
+                &stages,
+                frame_layout,
+                estimator,
+                source,
+                screen,
+            )),
             Schedule::TwoPhase | Schedule::TwoPhaseDense => {
                 SchedulePass::TwoPhase(two_phase::TwoPhase::new(
                     device,
@@ -180,13 +192,14 @@ impl SchedulePass {
         match self {
             SchedulePass::Single(s) => s.encode(ctx, encoder, profiler),
             SchedulePass::TwoPhase(s) => s.encode(ctx, encoder, profiler),
+            SchedulePass::Interleaved(s) => s.encode(ctx, encoder, profiler),
         }
     }
 
     /// Two-phase: phase 1's per-pixel records (16 bytes each, the sample bit mask first).
     pub fn phase1_records(&self) -> Option<&wgpu::Buffer> {
         match self {
-            SchedulePass::Single(_) => None,
+            SchedulePass::Single(_) | SchedulePass::Interleaved(_) => None,
             SchedulePass::TwoPhase(s) => Some(s.records()),
         }
     }
