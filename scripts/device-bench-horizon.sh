@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The horizon-family estimators against VAO on the device GPU (BENCHMARKS.md, issue 10), one call:
-# 1. every technique of TECHNIQUES (default: vao and every hbao and gtao row) on Crytek Sponza,
-#    stairs and colonnade at 1920x1080 + 64, at the defaults and, on Sponza, at `--preset high`;
+# 1. every technique of TECHNIQUES (default: vao, vao-interleaved and every hbao, gtao and sao
+#    row) on Crytek Sponza, stairs and colonnade at 1920x1080 + 64, at the defaults and, on
+#    Sponza, at `--preset high`;
 # 2. seed 004 Tab. 1's analogue on Sponza at the paper's 1280x720: HBAO D×S = 8×10, 16×20, 32×40,
 #    64×80, Pyramid HBAO and SAO with L = 1 … 5 levels, at R = 1 m (the paper gives no R), each
 #    timed by `bench` (the AO pass and the pyramid's build) and compared by `compare` with the
@@ -14,7 +15,7 @@ set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 $bin info | tee "$out/info.txt"
 all=$($bin info --techniques)
-techniques=${TECHNIQUES:-vao,$(echo "$all" | tr ',' '\n' | grep -E "hbao|gtao" | paste -sd,)}
+techniques=${TECHNIQUES:-vao,vao-interleaved,$(echo "$all" | tr ',' '\n' | grep -E "hbao|gtao|sao" | paste -sd,)}
 bench=(--frames 200 --warmup 20)
 if [ -z "${SKIP_BENCH:-}" ]; then
 $bin bench "${sponza[@]}" --size 1920x1080 --techniques "$techniques" "${bench[@]}" \
