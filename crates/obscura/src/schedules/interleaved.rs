@@ -130,7 +130,7 @@ impl Interleaved {
             });
             pass.set_pipeline(&self.split);
             pass.set_bind_group(0, &split_group, &[]);
-            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 16);
+            pass.dispatch_workgroups(w.div_ceil(32), h.div_ceil(4), 1);
         }
         let groups = FrameGroups {
             frame: ctx.frame_group,
