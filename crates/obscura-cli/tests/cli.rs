@@ -690,6 +690,30 @@ fn debug_out_shows_the_flagged_samples() {
     );
 }
 
+#[test]
+fn debug_out_shows_the_estimators_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ao.png");
+    let debug = dir.path().join("debug");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--size",
+        "64x40",
+        "--technique",
+        "gtao-vb",
+        "--out",
+        out.to_str().unwrap(),
+        "--debug-out",
+        debug.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("occupancy"), "{}", stderr(&o));
+    let img = image::open(debug.join("sectors.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (64, 40));
+}
+
 fn info_json() -> serde_json::Value {
     let o = obscura(&["info", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -425,6 +425,30 @@ impl Estimator {
         }
     }
 
+    /// Its `render --debug-out` image over the single-pass schedule (`estimator_debug` in its
+    /// WGSL): the file name and what it shows, or None where it has none.
+    pub fn debug_image(self) -> Option<(&'static str, &'static str)> {
+        match self {
+            Estimator::Hbao => Some((
+                "horizon.png",
+                "the mean final horizon elevation over the directions, -90° black to +90° white",
+            )),
+            Estimator::Gtao => Some((
+                "horizon.png",
+                "the mean angle between each slice's two horizons, 0° black to 180° (open) white",
+            )),
+            Estimator::GtaoVb => Some((
+                "sectors.png",
+                "the bitmask occupancy, occupied sectors of all slices, none black to all white",
+            )),
+            Estimator::HbaoPlus => Some((
+                "occlusion.png",
+                "the mean per-sample occlusion before 1 - 2 mean and the exponent, 0 black to 1 white",
+            )),
+            Estimator::Vao | Estimator::Sao | Estimator::PyramidHbao => None,
+        }
+    }
+
     /// Whether its samples read levels of the depth pyramid (`estimator_sample_level`).
     pub fn reads_levels(self) -> bool {
         matches!(self, Estimator::Sao | Estimator::PyramidHbao)
@@ -448,9 +472,19 @@ impl TechniqueRow {
     }
 
     /// Whether `render --debug-out` has images for it: two-phase schedules show their flagged
-    /// samples, the stochastic depth source its map.
+    /// samples, the stochastic depth source its map, the single pass the estimator's debug image
+    /// ([`Estimator::debug_image`]).
     pub fn has_debug_output(&self) -> bool {
-        self.schedule.two_phase() || self.source == Source::StochasticDepth
+        self.schedule.two_phase()
+            || self.source == Source::StochasticDepth
+            || self.estimator_debug_image().is_some()
+    }
+
+    /// The estimator's debug image where this row can make it (single pass only).
+    pub fn estimator_debug_image(&self) -> Option<(&'static str, &'static str)> {
+        (self.schedule == Schedule::Single)
+            .then(|| self.estimator.debug_image())
+            .flatten()
     }
 }
 

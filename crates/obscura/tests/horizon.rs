@@ -9,7 +9,7 @@ use common::*;
 use glam::{UVec2, Vec2, Vec3};
 use obscura::estimators::{gtao, hbao};
 use obscura::reference::cpu_vao::GBufferImage;
-use obscura::scene;
+use obscura::scene::{self, Camera};
 use obscura::settings::{AoSettings, GtaoSettings, HbaoSettings};
 use obscura::{Renderer, ScreenGeometry, Technique};
 use std::f32::consts::{FRAC_PI_2, PI};
@@ -434,4 +434,65 @@ fn light_passes_behind_thin_geometry() {
     let blended = mean_ao(&gtao);
     println!("grass: mean GTAO AO β = 0: {plain:.4}, β = 0.5: {blended:.4}");
     assert!(blended > plain + 0.005, "{blended} vs {plain}");
+}
+
+#[test]
+fn debug_images_show_open_horizons_on_a_plane_and_closed_ones_at_a_step() {
+    // `render --debug-out`: on an unoccluded plane every GTAO slice is open (π between its
+    // horizons: 1), GTAO-VB occupies no sector and HBAO+ sees no per-sample occlusion (0); HBAO's
+    // horizon stays at the tangent plus the bias. Seen from above (the normal along the view),
+    // the tangent lies at 0 and the image at ½ + bias/π. At the step the horizons rise.
+    let gpu = gpu();
+    let plane = quads("floor", &[floor(100.0)]);
+    let view = Camera {
+        eye: Vec3::new(0.0, 20.0, 0.0),
+        target: Vec3::ZERO,
+        up: Vec3::NEG_Z,
+        fov_y_deg: 4.0,
+    };
+    let debug = |t: Technique, scene: &obscura::scene::Scene| {
+        let s = technique_settings(t, false);
+        let mut r = Renderer::new(&gpu, scene, &s, 48, 48, 16).unwrap();
+        r.render(&view, None).unwrap();
+        let image = r.read_estimator_debug().unwrap().expect("a debug image");
+        let (min, max) = image
+            .iter()
+            .fold((f32::MAX, f32::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+        (min, max, image.iter().sum::<f32>() / image.len() as f32)
+    };
+    let bias = AoSettings::default().hbao.angle_bias;
+    for (t, want) in [
+        (Technique::Gtao, 1.0),
+        (Technique::GtaoVb, 0.0),
+        (Technique::HbaoPlus, 0.0),
+        (Technique::Hbao, 0.5 + bias / PI),
+    ] {
+        let (min, max, _) = debug(t, &plane);
+        println!("{t} on a plane: debug image in [{min:.5}, {max:.5}], want {want:.5}");
+        assert!(
+            (min - want).abs() < 2e-3 && (max - want).abs() < 2e-3,
+            "{t}: [{min}, {max}] vs {want}"
+        );
+    }
+    // A step 5 cm beside the view's centre: its edge is within every radius of the image's
+    // middle, so the mean moves from the plane's value towards occlusion.
+    let step = step_scene(0.05, 0.3);
+    for (t, plane_value, rises) in [
+        (Technique::Gtao, 1.0, false),
+        (Technique::GtaoVb, 0.0, true),
+        (Technique::HbaoPlus, 0.0, true),
+        (Technique::Hbao, 0.5 + bias / PI, true),
+    ] {
+        let (_, _, mean) = debug(t, &step);
+        println!("{t} at a step: mean debug value {mean:.4} (plane {plane_value:.4})");
+        if rises {
+            assert!(mean > plane_value + 0.01, "{t}: {mean}");
+        } else {
+            assert!(mean < plane_value - 0.01, "{t}: {mean}");
+        }
+    }
+    let none = technique_settings(Technique::Vao, false);
+    let mut r = Renderer::new(&gpu, &plane, &none, 16, 16, 0).unwrap();
+    r.render(&view, None).unwrap();
+    assert!(r.read_estimator_debug().unwrap().is_none());
 }

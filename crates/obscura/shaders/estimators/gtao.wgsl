@@ -90,6 +90,8 @@ struct EstimatorAccum {
     projected_length: f32,
     visible: f32,
     open: f32,
+    // The debug image only: the finished slices' angles between their horizons, radians.
+    angles: f32,
 }
 
 struct Occluder {
@@ -184,6 +186,9 @@ fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
     let h1 = g + min(acos(clamp(a.horizon_cos.x, -1.0, 1.0)) - g, HALF_PI);
     let h0 = g + max(-acos(clamp(a.horizon_cos.y, -1.0, 1.0)) - g, -HALF_PI);
     a.visible += a.projected_length * (side_visibility(h0, g) + side_visibility(h1, g));
+    if (ESTIMATOR_DEBUG) {
+        a.angles += h1 - h0;
+    }
     a.open += a.projected_length * open_slice_visibility(g);
     return a;
 }
@@ -196,6 +201,7 @@ fn estimator_accum_init() -> EstimatorAccum {
     a.projected_length = 0.0;
     a.visible = 0.0;
     a.open = 0.0;
+    a.angles = 0.0;
     return a;
 }
 
@@ -225,4 +231,14 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
         return 1.0;
     }
     return pow(saturate(a.visible / a.open), params.exponent);
+}
+
+// The debug image (`render --debug-out`): the mean angle between each slice's two horizons,
+// 0 black … π (an open slice) white.
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    let a = fold_slice(acc);
+    if (a.slice == 0xffffffffu) {
+        return 1.0;
+    }
+    return saturate(a.angles / (3.141592653589793 * f32(a.slice + 1u)));
 }

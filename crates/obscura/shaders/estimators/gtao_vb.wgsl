@@ -227,3 +227,13 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     }
     return pow(saturate(visible / max(open, 1e-20)), params.exponent);
 }
+
+// The debug image (`render --debug-out`): the bitmask occupancy, occupied sectors over all of
+// the pixel's slices' sectors.
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    var occupied = 0u;
+    for (var j = 0u; j < params.slices; j++) {
+        occupied += countOneBits(acc.masks[j]);
+    }
+    return f32(occupied) / (32.0 * f32(params.slices));
+}

@@ -82,6 +82,8 @@ struct EstimatorAccum {
     occlusion: f32,
     sin_horizon: f32,
     direction: u32,
+    // The debug image only: the finished directions' horizon elevations, radians.
+    horizons: f32,
 }
 
 struct Occluder {
@@ -166,7 +168,7 @@ fn estimator_combine(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
 }
 
 fn estimator_accum_init() -> EstimatorAccum {
-    return EstimatorAccum(0.0, 1.0, 0xffffffffu);
+    return EstimatorAccum(0.0, 1.0, 0xffffffffu, 0.0);
 }
 
 fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
@@ -178,6 +180,9 @@ fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorA
 fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f32>) -> EstimatorAccum {
     var a = acc;
     if (s.direction != a.direction) {
+        if (ESTIMATOR_DEBUG && a.direction != 0xffffffffu) {
+            a.horizons += asin(clamp(a.sin_horizon, -1.0, 1.0));
+        }
         a.direction = s.direction;
         a.sin_horizon = s.sin_start;
     }
@@ -190,4 +195,15 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f3
 
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return pow(saturate(1.0 - acc.occlusion / f32(params.directions)), params.exponent);
+}
+
+// The debug image (`render --debug-out`): the mean final horizon elevation over the directions
+// walked, −π/2 black … π/2 white (the tangent's elevation plus the bias where nothing rose above
+// it).
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    if (acc.direction == 0xffffffffu) {
+        return 0.5;
+    }
+    let mean = (acc.horizons + asin(clamp(acc.sin_horizon, -1.0, 1.0))) / f32(acc.direction + 1u);
+    return saturate(mean / 3.141592653589793 + 0.5);
 }

@@ -139,3 +139,9 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     }
     return pow(saturate(1.0 - 2.0 * acc.occlusion / acc.count), params.exponent);
 }
+
+// The debug image (`render --debug-out`): the mean per-sample occlusion, before 1 − 2·mean and
+// the exponent.
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return select(0.0, acc.occlusion / acc.count, acc.count > 0.0);
+}

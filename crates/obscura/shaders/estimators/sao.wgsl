@@ -131,3 +131,8 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return max(0.0, 1.0 - acc.sum * params.scale);
 }
+
+// No debug image (Estimator::debug_image).
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return 0.0;
+}

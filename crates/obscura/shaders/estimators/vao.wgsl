@@ -267,3 +267,9 @@ fn estimator_accum_value(acc: EstimatorAccum, s: VaoSample, value: f32) -> Estim
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return vao_finish(acc.sum, acc.clipped_sum);
 }
+
+// No debug image for VAO (Estimator::debug_image): its two-phase and stochastic-depth rows show
+// their flagged samples and maps instead.
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return 0.0;
+}

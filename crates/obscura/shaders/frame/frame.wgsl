@@ -9,6 +9,11 @@
 @group(GROUP_FRAME) @binding(FRAME_NORMALS) var normal_tex: texture_2d<f32>;
 @group(GROUP_FRAME) @binding(FRAME_AO_OUT) var ao_out: texture_storage_2d<r32float, write>;
 
+// The single pass writes the estimator's debug image (estimator_debug) instead of its AO
+// (`render --debug-out`); estimators keep what only that image needs behind it, so the usual
+// pipelines compile without it.
+override ESTIMATOR_DEBUG: bool = false;
+
 // What a source knows about one sample after its first look: the estimator's value for it
 // (`value`, of the estimator's `EstimatorValue` type: e.g. VAO's free column length), whether the source must still resolve it (`trace`:
 // a deeper surface could change the value), the framebuffer pixel coordinates it looked at (`px`,

@@ -6,6 +6,11 @@
 // first look cannot decide), accumulated and finished by the estimator. The ground truth
 // (reference.wgsl) runs this loop too, over its all-layers source.
 fn single_pass_ao(p: EstimatorPixel) -> f32 {
+    return estimator_finish(p, single_pass_accum(p));
+}
+
+// The accumulated state of every active sample of pixel `p`, in order.
+fn single_pass_accum(p: EstimatorPixel) -> EstimatorAccum {
     var acc = estimator_accum_init();
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
         let s = estimator_sample(p, i);
@@ -20,5 +25,5 @@ fn single_pass_ao(p: EstimatorPixel) -> f32 {
         acc = estimator_accum_value(acc, s, value);
         acc = estimator_accum_sample(acc, s);
     }
-    return estimator_finish(p, acc);
+    return acc;
 }

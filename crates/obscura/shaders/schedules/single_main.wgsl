@@ -11,5 +11,10 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
         textureStore(ao_out, id, vec4<f32>(1.0));
         return;
     }
-    textureStore(ao_out, id, vec4<f32>(single_pass_ao(p)));
+    let acc = single_pass_accum(p);
+    if (ESTIMATOR_DEBUG) {
+        textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));
+    } else {
+        textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
+    }
 }

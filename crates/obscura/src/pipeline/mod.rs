@@ -78,6 +78,18 @@ impl AmbientOcclusion {
         screen: ScreenGeometry,
         scene: SceneResources,
     ) -> Result<Self, Error> {
+        Self::build(gpu, settings, screen, scene, false)
+    }
+
+    /// [`AmbientOcclusion::new`]; `estimator_debug`: the single pass writes the estimator's debug
+    /// image ([`crate::technique::Estimator::debug_image`]) instead of its AO, unblurred.
+    pub(crate) fn build(
+        gpu: &Gpu,
+        settings: &AoSettings,
+        screen: ScreenGeometry,
+        scene: SceneResources,
+        estimator_debug: bool,
+    ) -> Result<Self, Error> {
         settings.validate()?;
         let device = &gpu.device;
         let row = settings.technique.row();
@@ -100,12 +112,12 @@ impl AmbientOcclusion {
         let source = SourcePass::new(gpu, row.source, row.schedule, settings, &screen, scene)?;
         let schedule = SchedulePass::new(
             device,
-            row.schedule,
-            row.name,
+            row,
             &frame_layout,
             &estimator,
             &source,
             &screen,
+            estimator_debug,
         );
         let ao_texture = |label| {
             crate::gpu::texture_2d(
@@ -120,7 +132,7 @@ impl AmbientOcclusion {
             )
         };
         let mut filters = Vec::new();
-        if settings.blur.enabled {
+        if settings.blur.enabled && !estimator_debug {
             filters.push(FilterStage {
                 filter: Box::new(BilateralBlur::new(
                     device,

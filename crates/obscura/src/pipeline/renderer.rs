@@ -194,6 +194,44 @@ impl Renderer {
         self.last_ao()?.read_depth_pyramid()
     }
 
+    /// The estimator's debug image of the last frame's view and G-buffer, row-major over the
+    /// visible image ([`crate::technique::TechniqueRow::estimator_debug_image`] says what it
+    /// shows); None for rows without one. Builds the pipelines it needs each call: for tools.
+    pub fn read_estimator_debug(&self) -> Result<Option<Vec<f32>>, Error> {
+        let view = self
+            .view
+            .ok_or_else(|| Error::Input("nothing rendered yet: call render() first".into()))?;
+        if self
+            .settings
+            .technique
+            .row()
+            .estimator_debug_image()
+            .is_none()
+        {
+            return Ok(None);
+        }
+        let needs = self.settings.technique.needs();
+        let resources = SceneResources {
+            scene: needs.triangles.then_some(&self.scene),
+            bvh: self.bvh.as_ref(),
+        };
+        let ao =
+            AmbientOcclusion::build(&self.gpu, &self.settings, view.screen(), resources, true)?;
+        ao.set_camera(&self.gpu.queue, &view);
+        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
+        ao.encode(
+            &mut encoder,
+            FrameTextures {
+                depth: &self.gbuffer.depth,
+                normals: &self.gbuffer.normals,
+                second_layer: self.gbuffer.second_layer(),
+            },
+            None,
+        )?;
+        self.gpu.queue.submit([encoder.finish()]);
+        Ok(Some(read_texture_f32(&self.gpu, ao.raw_output(), 1)?))
+    }
+
     /// The kernel's AO before the blur.
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(

@@ -54,6 +54,7 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
     return EstimatorAccum(acc.open + value, acc.count, 0.0);
 }
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 { return select(1.0, acc.open / acc.count, acc.count > 0.0); }
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 { return acc.count; }
 "#;
 
 /// Parse and validate `source`; then hold every global its entry point uses to `layouts` (per

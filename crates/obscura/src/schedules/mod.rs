@@ -12,7 +12,7 @@ use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
-use crate::technique::Schedule;
+use crate::technique::{Schedule, TechniqueRow};
 use crate::view::ScreenGeometry;
 use crate::Error;
 
@@ -134,19 +134,25 @@ pub(crate) enum SchedulePass {
 }
 
 impl SchedulePass {
+    /// The passes of `row`'s schedule; `estimator_debug`: the single pass writes the estimator's
+    /// debug image instead of its AO.
     pub fn new(
         device: &wgpu::Device,
-        schedule: Schedule,
-        name: &'static str,
+        row: &TechniqueRow,
         frame_layout: &wgpu::BindGroupLayout,
         estimator: &EstimatorPass,
         source: &SourcePass,
         screen: &ScreenGeometry,
+        estimator_debug: bool,
     ) -> Self {
+        let (schedule, name) = (row.schedule, row.name);
         let mut stages = stages(schedule);
-        if screen.orthographic {
-            for stage in &mut stages {
+        for stage in &mut stages {
+            if screen.orthographic {
                 stage.constants.push(("ORTHOGRAPHIC", 1.0));
+            }
+            if estimator_debug {
+                stage.constants.push(("ESTIMATOR_DEBUG", 1.0));
             }
         }
         match schedule {
