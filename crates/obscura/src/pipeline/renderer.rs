@@ -102,16 +102,11 @@ impl Renderer {
     ) -> Result<(), Error> {
         let view = FrameView::new(*camera, self.width, self.height, self.guard_band, self.near);
         if self.ao.as_ref().map(|ao| ao.screen()) != Some(view.screen()) {
-            let needs = self.settings.technique.needs();
-            let resources = SceneResources {
-                scene: needs.triangles.then_some(&self.scene),
-                bvh: self.bvh.as_ref(),
-            };
             self.ao = Some(AmbientOcclusion::new(
                 &self.gpu,
                 &self.settings,
                 view.screen(),
-                resources,
+                self.scene_resources(),
             )?);
             self.gpu.check_errors()?;
         }
@@ -127,15 +122,7 @@ impl Renderer {
             &view,
             profiler.as_deref_mut(),
         );
-        ao.encode(
-            &mut encoder,
-            FrameTextures {
-                depth: &self.gbuffer.depth,
-                normals: &self.gbuffer.normals,
-                second_layer: self.gbuffer.second_layer(),
-            },
-            profiler.as_deref_mut(),
-        )?;
+        ao.encode(&mut encoder, self.frame_textures(), profiler.as_deref_mut())?;
         if let Some(p) = profiler {
             p.end_frame(&mut encoder);
         }
@@ -143,6 +130,24 @@ impl Renderer {
         self.view = Some(view);
         self.gpu.check_errors()?;
         Ok(())
+    }
+
+    /// What the technique's row needs of the scene, for [`AmbientOcclusion`].
+    fn scene_resources(&self) -> SceneResources<'_> {
+        let needs = self.settings.technique.needs();
+        SceneResources {
+            scene: needs.triangles.then_some(&self.scene),
+            bvh: self.bvh.as_ref(),
+        }
+    }
+
+    /// The G-buffer's textures as the AO passes read them.
+    fn frame_textures(&self) -> FrameTextures<'_> {
+        FrameTextures {
+            depth: &self.gbuffer.depth,
+            normals: &self.gbuffer.normals,
+            second_layer: self.gbuffer.second_layer(),
+        }
     }
 
     fn last_ao(&self) -> Result<&AmbientOcclusion, Error> {
