@@ -1,6 +1,7 @@
 //! GTAO with visibility bitmasks (seed 003) against values derived without the GPU kernel: an
-//! unoccluded plane, a plain CPU implementation on a read-back G-buffer, and the hemisphere
-//! ground truth on thin geometry (its dual-depth row: tests/source_twins.rs).
+//! unoccluded plane, a plain CPU implementation on a read-back G-buffer (uniform and
+//! cosine-weighted sectors), its model's closed form for a step seen from above, and the
+//! hemisphere ground truth (its dual-depth row: tests/source_twins.rs).
 
 mod common;
 use common::*;

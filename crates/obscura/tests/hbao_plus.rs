@@ -1,6 +1,7 @@
 //! HBAO+ (the seed authors' baseline, seed-code-notes §1.7) against values derived without the
-//! GPU kernel: an unoccluded plane and a plain CPU implementation of the same estimator on a
-//! read-back G-buffer (its dual-depth row: tests/source_twins.rs).
+//! GPU kernel: an unoccluded plane, a plain CPU implementation of the same estimator on a
+//! read-back G-buffer (single pass and interleaved), and its model's closed form for a step seen
+//! from above (its dual-depth row: tests/source_twins.rs).
 
 mod common;
 use common::*;
