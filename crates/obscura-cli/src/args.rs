@@ -158,6 +158,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("blur.enabled", "--no-blur"),
     ("blur.radius", "--blur-radius"),
     ("blur.sharpness", "--blur-sharpness"),
+    ("blur.sigma", "--blur-sigma"),
     ("peel_separation", "--peel-separation"),
     ("stochastic_depth.samples", "--sd-samples"),
     ("stochastic_depth.alpha", "--sd-alpha"),
@@ -416,6 +417,10 @@ pub struct AoArgs {
         "blur.sharpness"
     ))]
     pub blur_sharpness: Option<f32>,
+    /// σ in pixels of a natural Gaussian spatial weight (default: HBAO+'s weights); seed 004's
+    /// filter is --blur-radius 2 --blur-sharpness 0 --blur-sigma 1.5.
+    #[arg(long, allow_hyphen_values = true)]
+    pub blur_sigma: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help(
         "vao-dual, sd-vao, sd-svao: hidden layers start this many world units behind the first.",
         "peel_separation"
@@ -531,6 +536,9 @@ impl AoArgs {
         }
         set(&mut b.radius, self.blur_radius);
         set(&mut b.sharpness, self.blur_sharpness);
+        if let Some(sigma) = self.blur_sigma {
+            b.sigma = Some(sigma);
+        }
         set(&mut s.peel_separation, self.peel_separation);
         let sd = &mut s.stochastic_depth;
         set(&mut sd.samples, self.sd_samples);
@@ -680,8 +688,8 @@ mod tests {
             }
         }
         // Every field but the switches' blur.enabled (--no-blur) and gtao_vb.cosine_weighted
-        // (--vb-cosine).
-        assert_eq!(stated, FIELD_FLAGS.len() - 2);
+        // (--vb-cosine), and blur.sigma (--blur-sigma), whose default is to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 3);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

@@ -12,7 +12,9 @@
 struct BlurParams {
     // (1, 0) for the horizontal pass, (0, 1) for the vertical one.
     direction: vec2<i32>,
-    _radius: i32, // RADIUS is the pipeline constant
+    // The spatial weight is exp2(-d² · falloff) (BlurSettings::falloff: HBAO+'s σ = (R + 1)/2 in
+    // exp2 units, or a natural Gaussian of `blur.sigma`); RADIUS is the pipeline constant.
+    falloff: f32,
     sharpness: f32,
 }
 
@@ -74,8 +76,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
     let backward = z - tile_depth[c - 1];
     let slope = select(backward, forward, abs(forward) < abs(backward));
 
-    let sigma = (f32(r) + 1.0) * 0.5;
-    let falloff = 1.0 / (2.0 * sigma * sigma);
+    let falloff = params.falloff;
     var sum = center_ao;
     var weight_sum = 1.0;
     for (var d = -r; d <= r; d++) {

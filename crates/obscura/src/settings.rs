@@ -402,8 +402,12 @@ pub struct BlurSettings {
     pub enabled: bool,
     /// Taps on each side.
     pub radius: u32,
-    /// Depth weight sharpness per world unit of depth difference.
+    /// Depth weight sharpness per world unit of depth difference (0: a plain Gaussian).
     pub sharpness: f32,
+    /// σ in pixels of a natural Gaussian spatial weight, exp(−d²/2σ²); left out (the default),
+    /// HBAO+'s weight exp2(−d²/2σ'²) with σ' = (radius + 1)/2 (seed-code-notes §1.8). Seed 004's
+    /// filter for Pyramid HBAO is `radius = 2, sharpness = 0, sigma = 1.5`.
+    pub sigma: Option<f32>,
 }
 
 impl Default for BlurSettings {
@@ -412,6 +416,21 @@ impl Default for BlurSettings {
             enabled: true,
             radius: 4,
             sharpness: 16.0,
+            sigma: None,
+        }
+    }
+}
+
+impl BlurSettings {
+    /// The spatial weight's exponent per squared pixel of distance, in exp2 units: the weight of
+    /// a tap d pixels away is exp2(−d²·falloff).
+    pub fn falloff(&self) -> f32 {
+        match self.sigma {
+            Some(sigma) => 1.0 / (2.0 * sigma * sigma * std::f32::consts::LN_2),
+            None => {
+                let sigma = (self.radius as f32 + 1.0) * 0.5;
+                1.0 / (2.0 * sigma * sigma)
+            }
         }
     }
 }
@@ -871,6 +890,13 @@ impl AoSettings {
                 "blur.sharpness",
                 b.sharpness,
                 "must be zero or positive",
+            ));
+        }
+        if let Some(sigma) = b.sigma.filter(|s| !(s.is_finite() && *s > 0.0)) {
+            return Err(invalid(
+                "blur.sigma",
+                sigma,
+                "must be a positive number of pixels, e.g. 1.5, or left out for HBAO+'s weights",
             ));
         }
         Ok(())
@@ -1437,9 +1463,28 @@ mod tests {
     }
 
     #[test]
+    fn blur_sigma_is_a_natural_gaussian() {
+        let mut b = BlurSettings {
+            sigma: Some(1.5),
+            ..BlurSettings::default()
+        };
+        for d in 1..=3 {
+            let d2 = (d * d) as f32;
+            let weight = (-d2 * b.falloff()).exp2();
+            assert!(
+                (weight - (-d2 / (2.0 * 1.5 * 1.5)).exp()).abs() < 1e-6,
+                "d {d}"
+            );
+        }
+        // Left out: HBAO+'s weights, σ' = (radius + 1)/2 in exp2 units.
+        b.sigma = None;
+        assert_eq!(b.falloff(), 1.0 / (2.0 * 2.5 * 2.5));
+    }
+
+    #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 47, "{paths:?}");
+        assert_eq!(paths.len(), 48, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1455,6 +1500,7 @@ mod tests {
         push(&|s| s.stochastic_depth.alpha = Some(1.5));
         push(&|s| s.blur.radius = 0);
         push(&|s| s.blur.sharpness = -2.0);
+        push(&|s| s.blur.sigma = Some(0.0));
         push(&|s| s.hbao_plus.radius = -1.0);
         push(&|s| s.hbao_plus.bias = 1.0);
         push(&|s| s.hbao_plus.exponent = 0.0);

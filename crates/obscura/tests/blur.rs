@@ -8,10 +8,18 @@ use obscura::{scene, AoSettings, Renderer};
 #[test]
 fn gpu_blur_matches_cpu_blur() {
     let gpu = gpu();
-    for (name, radius) in [("stairs", 4), ("colonnade", 4), ("grass", 9)] {
+    // The last: seed 004's plain Gaussian (σ = 1.5, no depth weight) for Pyramid HBAO.
+    for (name, radius, sharpness, sigma) in [
+        ("stairs", 4, 16.0, None),
+        ("colonnade", 4, 16.0, None),
+        ("grass", 9, 16.0, None),
+        ("stairs", 2, 0.0, Some(1.5)),
+    ] {
         let scene = scene::builtin(name).unwrap();
         let mut settings = AoSettings::default();
         settings.blur.radius = radius;
+        settings.blur.sharpness = sharpness;
+        settings.blur.sigma = sigma;
         // Sizes that are not multiples of the 64-pixel runs, and a guard band smaller than the radius.
         let (w, h, band) = (150, 90, 8);
         let mut r = Renderer::new(&gpu, &scene, &settings, w, h, band).unwrap();

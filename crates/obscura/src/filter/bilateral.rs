@@ -13,7 +13,7 @@ pub const MAX_RADIUS: u32 = 16;
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct BlurParams {
     direction: [i32; 2],
-    _radius: i32,
+    falloff: f32,
     sharpness: f32,
 }
 
@@ -52,7 +52,7 @@ impl BilateralBlur {
                 label: Some("blur params"),
                 contents: bytemuck::bytes_of(&BlurParams {
                     direction,
-                    _radius: radius as i32,
+                    falloff: settings.falloff(),
                     sharpness: settings.sharpness,
                 }),
                 usage: wgpu::BufferUsages::UNIFORM,

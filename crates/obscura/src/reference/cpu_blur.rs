@@ -20,8 +20,7 @@ fn blur_pass(
         g.depth[(fy * g.width as i32 + fx) as usize]
     };
     let r = s.radius as i32;
-    let sigma = (r as f32 + 1.0) * 0.5;
-    let falloff = 1.0 / (2.0 * sigma * sigma);
+    let falloff = s.falloff();
     let mut out = vec![0.0; ao.len()];
     for y in 0..h {
         for x in 0..w {
