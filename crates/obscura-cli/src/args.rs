@@ -180,6 +180,11 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("pyramid_hbao.exponent", "--phbao-exponent"),
     ("pyramid_hbao.directions", "--phbao-directions"),
     ("pyramid_hbao.steps", "--phbao-steps"),
+    ("ssao.radius", "--ssao-radius"),
+    ("ssao.samples", "--ssao-samples"),
+    ("ssao.intensity", "--ssao-intensity"),
+    ("ssao.bias", "--ssao-bias"),
+    ("ssao.contrast", "--ssao-contrast"),
     ("sao.radius", "--sao-radius"),
     ("sao.samples", "--sao-samples"),
     ("sao.spiral_turns", "--sao-turns"),
@@ -358,6 +363,16 @@ pub struct AoArgs {
     pub phbao_directions: Option<u32>,
     #[arg(long, help = help("Pyramid HBAO steps on every pyramid level (1 to 16).", "pyramid_hbao.steps"))]
     pub phbao_steps: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SSAO (Alchemy) radius R in world units.", "ssao.radius"))]
+    pub ssao_radius: Option<f32>,
+    #[arg(long, help = help("SSAO samples per pixel (1 to 32).", "ssao.samples"))]
+    pub ssao_samples: Option<u32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SSAO intensity σ.", "ssao.intensity"))]
+    pub ssao_intensity: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SSAO bias β per world unit of depth.", "ssao.bias"))]
+    pub ssao_bias: Option<f32>,
+    #[arg(long, allow_hyphen_values = true, help = help("SSAO contrast k (power of the final AO).", "ssao.contrast"))]
+    pub ssao_contrast: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help("SAO radius R in world units.", "sao.radius"))]
     pub sao_radius: Option<f32>,
     #[arg(long, help = help("SAO taps per pixel (1 to 64).", "sao.samples"))]
@@ -506,6 +521,12 @@ impl AoArgs {
         set(&mut ph.exponent, self.phbao_exponent);
         set(&mut ph.directions, self.phbao_directions);
         set(&mut ph.steps, self.phbao_steps);
+        let ss = &mut s.ssao;
+        set(&mut ss.radius, self.ssao_radius);
+        set(&mut ss.samples, self.ssao_samples);
+        set(&mut ss.intensity, self.ssao_intensity);
+        set(&mut ss.bias, self.ssao_bias);
+        set(&mut ss.contrast, self.ssao_contrast);
         let sao = &mut s.sao;
         set(&mut sao.radius, self.sao_radius);
         set(&mut sao.samples, self.sao_samples);

@@ -298,6 +298,36 @@ impl Default for SaoSettings {
     }
 }
 
+/// SSAO parameters (seed 001 §3.2: Alchemy AO, McGuire et al. 2011; 32 samples as seed 001
+/// Tab. 1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SsaoSettings {
+    /// Radius R in world units: samples within R count.
+    pub radius: f32,
+    /// N, samples per pixel, 1 to 32 (one bit each in the two-phase mask).
+    pub samples: u32,
+    /// σ, the intensity: A = max(0, 1 − 2σ·u/N · Σ)^k with u = 0.1 R (ours: the paper folds u
+    /// into σ; written out, σ does not depend on the scene's units).
+    pub intensity: f32,
+    /// β, the bias per world unit of depth (the paper's 10⁻⁴).
+    pub bias: f32,
+    /// k, the contrast: the power applied to the final AO.
+    pub contrast: f32,
+}
+
+impl Default for SsaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            samples: 32,
+            intensity: 1.0,
+            bias: 1e-4,
+            contrast: 1.0,
+        }
+    }
+}
+
 /// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
 /// (seed-code-notes §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -586,6 +616,8 @@ pub struct AoSettings {
     pub pyramid_hbao: PyramidHbaoSettings,
     /// The Scalable Ambient Obscurance estimator (`sao`).
     pub sao: SaoSettings,
+    /// The SSAO (Alchemy AO) estimator (`ssao`).
+    pub ssao: SsaoSettings,
     /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
     pub gtao_vb: GtaoVbSettings,
 }
@@ -600,6 +632,7 @@ impl Default for AoSettings {
             pyramid: PyramidSettings::default(),
             pyramid_hbao: PyramidHbaoSettings::default(),
             sao: SaoSettings::default(),
+            ssao: SsaoSettings::default(),
             gtao_vb: GtaoVbSettings::default(),
             vao: VaoSettings::default(),
             blur: BlurSettings::default(),
@@ -806,6 +839,42 @@ impl AoSettings {
             return Err(invalid(
                 "sao.intensity",
                 sao.intensity,
+                "must be positive, e.g. 1",
+            ));
+        }
+        let ss = &self.ssao;
+        if !(ss.radius.is_finite() && ss.radius > 0.0) {
+            return Err(invalid(
+                "ssao.radius",
+                ss.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(1..=32).contains(&ss.samples) {
+            return Err(invalid(
+                "ssao.samples",
+                ss.samples,
+                "must be 1 to 32 (one bit per sample), e.g. 32",
+            ));
+        }
+        if !(ss.intensity.is_finite() && ss.intensity > 0.0) {
+            return Err(invalid(
+                "ssao.intensity",
+                ss.intensity,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(ss.bias.is_finite() && ss.bias >= 0.0) {
+            return Err(invalid(
+                "ssao.bias",
+                ss.bias,
+                "must be zero or positive, e.g. 0.0001",
+            ));
+        }
+        if !(ss.contrast.is_finite() && ss.contrast > 0.0) {
+            return Err(invalid(
+                "ssao.contrast",
+                ss.contrast,
                 "must be positive, e.g. 1",
             ));
         }
@@ -1066,6 +1135,13 @@ impl AoSettings {
                 };
                 s.pyramid_hbao.directions = directions;
                 s.pyramid_hbao.steps = steps;
+            }
+            // Seed 001 Tab. 1's 32 as the default, the most the two-phase mask holds.
+            Estimator::Ssao => {
+                s.ssao.samples = match preset {
+                    Preset::Low => 8,
+                    Preset::Medium | Preset::High | Preset::Ultra => 32,
+                };
             }
             // SAO's published code ships 11 taps; fewer and more around it.
             Estimator::Sao => {
@@ -1484,7 +1560,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 48, "{paths:?}");
+        assert_eq!(paths.len(), 53, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1522,6 +1598,11 @@ mod tests {
         push(&|s| s.pyramid_hbao.exponent = -1.0);
         push(&|s| s.pyramid_hbao.directions = 0);
         push(&|s| s.pyramid_hbao.steps = 17);
+        push(&|s| s.ssao.radius = -0.5);
+        push(&|s| s.ssao.samples = 33);
+        push(&|s| s.ssao.intensity = 0.0);
+        push(&|s| s.ssao.bias = -1.0);
+        push(&|s| s.ssao.contrast = f32::NAN);
         push(&|s| s.sao.radius = 0.0);
         push(&|s| s.sao.samples = 65);
         push(&|s| s.sao.spiral_turns = 0.0);

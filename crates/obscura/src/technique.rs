@@ -58,6 +58,8 @@ techniques!(
     HbaoPlusInterleaved,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `ssao`: seed 001's SSAO, Alchemy AO with 32 samples.
+    Ssao,
     /// `sao`: Scalable Ambient Obscurance, spiral taps over the depth pyramid.
     Sao,
     /// `pyramid-hbao`: Pyramid HBAO, directions walked over the levels of the depth pyramid.
@@ -82,6 +84,8 @@ pub enum Estimator {
     HbaoPlus,
     /// Ground-truth-based AO (Jimenez et al. 2016), the baseline of seed 003.
     Gtao,
+    /// SSAO as seed 001 §3.2 extends it: Alchemy AO (McGuire et al. 2011).
+    Ssao,
     /// Scalable Ambient Obscurance (McGuire et al. 2012), seed 004 §2.2.2.
     Sao,
     /// Pyramid HBAO, seed 004 §3.
@@ -270,6 +274,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::Ssao,
+        name: "ssao",
+        summary: "SSAO: Alchemy AO, 32 spiral samples within R (seed 001's SSAO baseline)",
+        paper: "seed 001 §3.2, McGuire et al. 2011",
+        estimator: Estimator::Ssao,
+        source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::Sao,
         name: "sao",
         summary: "SAO: 11 spiral taps, each reading the pyramid level its distance calls for",
@@ -412,13 +425,14 @@ impl Schedule {
 }
 
 impl Estimator {
-    /// Its name in the README's table (`vao`, `hbao`, `hbao+`, `gtao`, `gtao-vb`).
+    /// Its name in the README's table (`vao`, `hbao`, `hbao+`, `gtao`, `gtao-vb`, …).
     pub fn name(self) -> &'static str {
         match self {
             Estimator::Vao => "vao",
             Estimator::Hbao => "hbao",
             Estimator::HbaoPlus => "hbao+",
             Estimator::Gtao => "gtao",
+            Estimator::Ssao => "ssao",
             Estimator::Sao => "sao",
             Estimator::PyramidHbao => "pyramid-hbao",
             Estimator::GtaoVb => "gtao-vb",
@@ -445,7 +459,7 @@ impl Estimator {
                 "occlusion.png",
                 "the mean per-sample occlusion before 1 - 2 mean and the exponent, 0 black to 1 white",
             )),
-            Estimator::Vao | Estimator::Sao | Estimator::PyramidHbao => None,
+            Estimator::Vao | Estimator::Sao | Estimator::Ssao | Estimator::PyramidHbao => None,
         }
     }
 
@@ -459,7 +473,11 @@ impl Estimator {
     /// GTAO walk each direction outwards, carrying a running horizon: single pass only.
     pub fn order_independent(self) -> bool {
         match self {
-            Estimator::Vao | Estimator::HbaoPlus | Estimator::GtaoVb | Estimator::Sao => true,
+            Estimator::Vao
+            | Estimator::HbaoPlus
+            | Estimator::GtaoVb
+            | Estimator::Sao
+            | Estimator::Ssao => true,
             Estimator::Hbao | Estimator::Gtao | Estimator::PyramidHbao => false,
         }
     }

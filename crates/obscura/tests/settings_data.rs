@@ -21,11 +21,11 @@ fn preset_table() -> String {
         .find(|t| t.source() == Source::StochasticDepth)
         .unwrap();
     let mut out = String::from(
-        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO: `hbao.directions` × `.steps` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO: `gtao.slices` × `.steps` | GTAO-VB: `gtao_vb.slices` × `.steps` | Pyramid HBAO: `pyramid_hbao.directions` × `.steps` | SAO: `sao.samples` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|---|---|---|---|\n",
+        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO: `hbao.directions` × `.steps` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO: `gtao.slices` × `.steps` | GTAO-VB: `gtao_vb.slices` × `.steps` | Pyramid HBAO: `pyramid_hbao.directions` × `.steps` | SAO: `sao.samples` | SSAO: `ssao.samples` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for p in Preset::ALL {
         let at = |e| AoSettings::preset(with_estimator(e), p);
-        let (v, hb, h, gt, g, ph, sao, s) = (
+        let (v, hb, h, gt, g, ph, sao, ss, s) = (
             at(Estimator::Vao),
             at(Estimator::Hbao),
             at(Estimator::HbaoPlus),
@@ -33,10 +33,11 @@ fn preset_table() -> String {
             at(Estimator::GtaoVb),
             at(Estimator::PyramidHbao),
             at(Estimator::Sao),
+            at(Estimator::Ssao),
             AoSettings::preset(sd, p),
         );
         out += &format!(
-            "| `{p}` | {}, {} | {} × {} | {} × {}, {} | {} × {} | {} × {} | {} × {} | {} | {}, {} |\n",
+            "| `{p}` | {}, {} | {} × {} | {} × {}, {} | {} × {} | {} × {} | {} × {} | {} | {} | {}, {} |\n",
             v.vao.samples,
             v.blur.radius,
             hb.hbao.directions,
@@ -51,6 +52,7 @@ fn preset_table() -> String {
             ph.pyramid_hbao.directions,
             ph.pyramid_hbao.steps,
             sao.sao.samples,
+            ss.ssao.samples,
             s.stochastic_depth.samples,
             s.stochastic_depth.alpha()
         );
@@ -93,6 +95,7 @@ fn the_preset_table_is_the_whole_story() {
                 Estimator::Gtao => want.gtao = first.gtao,
                 Estimator::PyramidHbao => want.pyramid_hbao = first.pyramid_hbao,
                 Estimator::Sao => want.sao = first.sao,
+                Estimator::Ssao => want.ssao = first.ssao,
                 Estimator::GtaoVb => want.gtao_vb = first.gtao_vb,
             }
             want.stochastic_depth = if t.source() == Source::StochasticDepth {

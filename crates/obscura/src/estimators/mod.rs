@@ -12,6 +12,7 @@ pub mod hbao;
 pub mod hbao_plus;
 pub mod pyramid_hbao;
 pub mod sao;
+pub mod ssao;
 pub mod vao;
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS};
@@ -65,6 +66,7 @@ impl EstimatorPass {
             Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
             Estimator::Gtao => gtao::params(&settings.gtao),
             Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
+            Estimator::Ssao => ssao::params(&settings.ssao),
             Estimator::PyramidHbao => {
                 pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid)
             }
@@ -104,6 +106,7 @@ pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static st
         Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
         Estimator::Gtao => (gtao::WGSL, gtao::CONSTANTS),
         Estimator::Sao => (sao::WGSL, sao::CONSTANTS),
+        Estimator::Ssao => (ssao::WGSL, ssao::CONSTANTS),
         Estimator::PyramidHbao => (pyramid_hbao::WGSL, pyramid_hbao::CONSTANTS),
         Estimator::GtaoVb => (gtao_vb::WGSL, gtao_vb::CONSTANTS),
     }

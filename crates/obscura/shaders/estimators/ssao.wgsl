@@ -1,0 +1,134 @@
+// SSAO as seed 001 §3.2 extends it: Alchemy AO (McGuire, Osman, Bukowski, Hennessy, HPG 2011),
+// the estimator SAO later scaled. N samples around the pixel within the world radius R; each
+// within R adds max(0, v·n + z·β)/(v·v + ε) (v from the shading point to the sample's surface, z
+// the shading point's depth, β a depth-scaled bias, ε against division by zero), and
+//     A = max(0, 1 − (2σ·u/N) Σ)^k
+// (the paper's Eq. 10; σ the intensity, k the contrast, 1 by default; u = 0.1 R, the length of
+// Alchemy's falloff u·t/max(u, t)², written out here so that σ is dimensionless and the result
+// does not change with the scene's units: ours, the paper folds it into σ). Seed 001 Tab. 1 runs
+// it with 32 samples.
+//
+// Estimator contract (docs/ARCHITECTURE.md): a sample's value is its term; several depths combine
+// by the maximum (seed 001 §3.3: "we do not access the stochastic samples if the regular depth
+// map sample already represents an occluder" — a surface in front within R already occludes; a
+// surface beyond R, or below the tangent plane, may hide one that occludes); the accumulator
+// sums, so the order of samples never matters (two-phase schedules run it too).
+//
+// Ours, where the paper leaves it to the implementation: the samples lie on SAO's spiral (7
+// turns, tap i at (i + 0.5)/N of the radius) turned by the pixel's 4×4 Bayer rotation, rather
+// than the paper's per-pixel random disc. β = 10⁻⁴ and ε = 10⁻⁴ are the paper's values.
+
+struct SsaoParams {
+    radius: f32,
+    radius2: f32,
+    // 2σ·u/N.
+    scale: f32,
+    bias: f32,
+    contrast: f32,
+    epsilon: f32,
+    spiral_turns: f32,
+    _pad0: f32,
+    // Index x % 4 + 4 * (y % 4): x the rotation in radians.
+    pattern: array<vec4<f32>, 16>,
+}
+
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: SsaoParams;
+
+// N, at most 32 (one bit per sample in the two-phase mask).
+override SAMPLE_COUNT: u32 = 32u;
+
+struct EstimatorPixel {
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    pixel: vec2<u32>,
+    rotation: f32,
+    radius_px: f32,
+    valid: bool,
+}
+
+struct EstimatorSample {
+    px: vec2<f32>,
+    on: bool,
+}
+
+// The sample's term.
+alias EstimatorValue = f32;
+
+struct EstimatorAccum {
+    sum: f32,
+    _pad0: f32,
+    _pad1: f32,
+}
+
+struct Occluder {
+    value: f32,
+    hidden: bool,
+}
+
+fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
+    let base = screen_pixel(id, params.radius);
+    var p: EstimatorPixel;
+    p.pixel = base.pixel;
+    p.valid = base.valid;
+    if (!p.valid) {
+        return p;
+    }
+    p.pos = base.pos;
+    p.normal = base.normal;
+    p.rotation = params.pattern[pattern_index(id)].x;
+    p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
+    return p;
+}
+
+fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
+    var s: EstimatorSample;
+    s.on = p.radius_px > 0.0;
+    let alpha = (f32(i) + 0.5) / f32(SAMPLE_COUNT);
+    let angle = alpha * 6.283185307179586 * params.spiral_turns + p.rotation;
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(cos(angle), -sin(angle)) * (alpha * p.radius_px);
+    return s;
+}
+
+fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> f32 {
+    return 0.0;
+}
+
+fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
+    let v = pos - p.pos;
+    let vv = dot(v, v);
+    // View-space z is negative in front of the camera: z·β lowers the term by depth·β.
+    let term = max(dot(v, p.normal) + p.pos.z * params.bias, 0.0) / (vv + params.epsilon);
+    var o: Occluder;
+    o.value = select(0.0, term, vv < params.radius2);
+    // Beyond R or below the tangent plane: a deeper surface may still occlude.
+    o.hidden = o.value <= 0.0;
+    return o;
+}
+
+fn estimator_combine(a: f32, b: f32) -> f32 {
+    return max(a, b);
+}
+
+fn estimator_accum_init() -> EstimatorAccum {
+    return EstimatorAccum(0.0, 0.0, 0.0);
+}
+
+fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
+    return acc;
+}
+
+fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
+    var a = acc;
+    a.sum += value;
+    return a;
+}
+
+fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return pow(max(1.0 - params.scale * acc.sum, 0.0), params.contrast);
+}
+
+// No debug image (Estimator::debug_image).
+fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
+    return 0.0;
+}

@@ -1,0 +1,56 @@
+//! The SSAO estimator of seed 001 §3.2 (`shaders/estimators/ssao.wgsl`): Alchemy AO (McGuire et
+//! al. 2011), N samples on a spiral within the world radius.
+
+use crate::settings::SsaoSettings;
+use std::f32::consts::TAU;
+
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
+/// screen-space pixel set-up.
+pub(crate) const WGSL: &str = concat!(
+    include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/ssao.wgsl")
+);
+/// Its `override` constants: the sample count.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+
+/// The spiral's turns (SAO's, McGuire et al. 2012).
+pub const SPIRAL_TURNS: f32 = 7.0;
+
+/// u = 0.1·R, the length of Alchemy's falloff u·t/max(u, t)², whose u is what turns the term
+/// (v·n)/(v·v), an inverse length, into a dimensionless obscurance.
+pub const FALLOFF_U: f32 = 0.1;
+
+/// GPU mirror of `SsaoParams` in the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct SsaoParams {
+    radius: f32,
+    radius2: f32,
+    scale: f32,
+    bias: f32,
+    contrast: f32,
+    epsilon: f32,
+    spiral_turns: f32,
+    _pad: f32,
+    pattern: [[f32; 4]; 16],
+}
+
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
+pub(crate) fn params(s: &SsaoSettings) -> (Vec<u8>, Vec<f64>) {
+    let pattern = super::bayer_table(TAU).map(|[c, sn, _, _]| [sn.atan2(c), 0.0, 0.0, 0.0]);
+    let params = SsaoParams {
+        radius: s.radius,
+        radius2: s.radius * s.radius,
+        scale: 2.0 * s.intensity * FALLOFF_U * s.radius / s.samples as f32,
+        bias: s.bias,
+        contrast: s.contrast,
+        epsilon: 1e-4,
+        spiral_turns: SPIRAL_TURNS,
+        _pad: 0.0,
+        pattern,
+    };
+    (
+        bytemuck::bytes_of(&params).to_vec(),
+        vec![f64::from(s.samples)],
+    )
+}
