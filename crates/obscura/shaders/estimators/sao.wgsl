@@ -82,13 +82,10 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.radius_px > 0.0;
-    let alpha = (f32(i) + 0.5) / f32(SAMPLE_COUNT);
-    let angle = alpha * 6.283185307179586 * params.spiral_turns + p.rotation;
-    let distance = alpha * p.radius_px;
-    let level = floor((log(max(distance, 1.0)) - params.log_q) * params.inv_log_factor);
+    let tap = spiral_tap(i, SAMPLE_COUNT, params.spiral_turns, p.rotation, p.radius_px);
+    let level = floor((log(max(tap.z, 1.0)) - params.log_q) * params.inv_log_factor);
     s.level = u32(clamp(level, 0.0, f32(LEVELS - 1u)));
-    // View y is up, framebuffer y down.
-    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(cos(angle), -sin(angle)) * distance;
+    s.px = vec2<f32>(p.pixel) + 0.5 + tap.xy;
     return s;
 }
 

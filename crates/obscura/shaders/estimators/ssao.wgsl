@@ -83,10 +83,8 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.radius_px > 0.0;
-    let alpha = (f32(i) + 0.5) / f32(SAMPLE_COUNT);
-    let angle = alpha * 6.283185307179586 * params.spiral_turns + p.rotation;
-    // View y is up, framebuffer y down.
-    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(cos(angle), -sin(angle)) * (alpha * p.radius_px);
+    let tap = spiral_tap(i, SAMPLE_COUNT, params.spiral_turns, p.rotation, p.radius_px);
+    s.px = vec2<f32>(p.pixel) + 0.5 + tap.xy;
     return s;
 }
 
