@@ -1070,7 +1070,7 @@ fn exit_status_2_for_usage_errors_1_for_the_rest() {
     let code = |args: &[&str]| obscura(args).status.code();
     // The command line cannot be parsed.
     assert_eq!(
-        code(&["render", "--technique", "ssao", "--out", out]),
+        code(&["render", "--technique", "ssdo", "--out", out]),
         Some(2)
     );
     assert_eq!(
