@@ -49,8 +49,8 @@ techniques!(
     Hbao,
     /// `hbao-interleaved`: HBAO over 16 quarter-resolution depth layers.
     HbaoInterleaved,
-    /// `hbao-dual`: HBAO; a step whose surface lies above the horizon but beyond R also reads the
-    /// second depth layer.
+    /// `hbao-dual`: HBAO; a step whose surface lies above the tangent plane but beyond R also
+    /// reads the second depth layer.
     HbaoDual,
     /// `hbao+`: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline).
     HbaoPlus,
@@ -240,7 +240,7 @@ pub const TABLE: &[TechniqueRow] = &[
     TechniqueRow {
         technique: Technique::HbaoDual,
         name: "hbao-dual",
-        summary: "HBAO; a step above the horizon but beyond R also reads the second layer",
+        summary: "HBAO; a step above the tangent plane but beyond R also reads the second layer",
         paper: "seed 001 §3.2 (Algorithm 2), seed 000 §2.1",
         estimator: Estimator::Hbao,
         source: Source::DualDepth,
