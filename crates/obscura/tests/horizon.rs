@@ -1,8 +1,8 @@
 //! The classic horizon estimators, HBAO (seed 001 §3.2 Algorithm 2, seed 004 §2.2.1) and GTAO
 //! (Jimenez et al. 2016 with XeGTAO's falloff), against values derived without the GPU kernels:
-//! unoccluded planes, the closed forms of their models for a step seen from above and for an
-//! inside corner, plain CPU implementations on read-back G-buffers, and the hemisphere ground
-//! truth.
+//! unoccluded planes, the closed forms of their models for a step seen from above and at an
+//! inside corner, plain CPU implementations on read-back G-buffers (single pass and interleaved),
+//! the hemisphere ground truth, and the debug images.
 
 mod common;
 use common::*;
@@ -116,12 +116,10 @@ fn a_step_seen_from_above_matches_each_models_closed_form() {
     }
 }
 
-#[test]
-fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
-    // A floor meeting a tall wall, seen obliquely: at the corner the wall hides exactly half of
-    // the cosine-weighted hemisphere (every direction towards it meets it), which GTAO's analytic
-    // inner integral recovers once the horizons sit on the wall. Pixels within 2 cm of the corner
-    // line (the first sample is 1.3 px out: the horizon is a few degrees short of the wall).
+/// A floor (y = 0, z > 0) meeting a tall wall (z = 0) seen obliquely from (0.6, 2, 3): the mean
+/// raw AO of `settings` over the floor pixels within 2 cm of the corner line (away from the image
+/// edge), how many they are, and the view's world-to-view matrix.
+fn corner_ao(settings: &AoSettings) -> (f32, usize, glam::Mat4) {
     let gpu = gpu();
     let wall = [
         Vec3::new(-20.0, 0.0, 0.0),
@@ -136,23 +134,21 @@ fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
         Vec3::new(-20.0, 0.0, 0.0),
     ];
     let scene = quads("corner", &[wall, floor]);
-    let mut s = technique_settings(Technique::Gtao, false);
-    (s.gtao.slices, s.gtao.steps) = (8, 16);
     let (w, h) = (96, 96);
-    let mut r = Renderer::new(&gpu, &scene, &s, w, h, 32).unwrap();
+    let mut r = Renderer::new(&gpu, &scene, settings, w, h, 32).unwrap();
     r.render(&camera(Vec3::new(0.6, 2.0, 3.0), Vec3::ZERO, 20.0), None)
         .unwrap();
     let ao = r.read_raw_ao().unwrap();
     let g = r.read_gbuffer().unwrap();
     let screen = r.view().unwrap().screen();
-    let world = r.view().unwrap().view_matrix().inverse();
+    let view = r.view().unwrap().view_matrix();
+    let world = view.inverse();
     let (mut sum, mut count) = (0.0, 0);
     for y in 0..h {
         for x in 0..w {
             let pixel = UVec2::new(x, y) + screen.guard_band;
             let z = g.depth_at(pixel);
             let p = world.transform_point3(screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
-            // On the floor (not the wall), within 2 cm of the corner, away from the image edge.
             let on_floor = p.y.abs() < 1e-3 && p.z > 0.0 && p.z < 0.02;
             if on_floor && (x as i32 - 48).abs() < 24 {
                 sum += ao[(y * w + x) as usize];
@@ -161,9 +157,74 @@ fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
         }
     }
     assert!(count >= 16, "{count} corner pixels");
-    let mean = sum / count as f32;
+    (sum / count as f32, count, view)
+}
+
+#[test]
+fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
+    // At the corner the wall hides exactly half of the cosine-weighted hemisphere (every
+    // direction towards it meets it), which GTAO's analytic inner integral recovers once the
+    // horizons sit on the wall. Within 2 cm of the corner line (the first sample is 1.3 px out: the
+    // horizon is a few degrees short of the wall).
+    let mut s = technique_settings(Technique::Gtao, false);
+    (s.gtao.slices, s.gtao.steps) = (8, 16);
+    let (mean, count, _) = corner_ao(&s);
     println!("gtao at the inside corner: mean AO {mean:.4} over {count} pixels");
     assert!((mean - 0.5).abs() < 0.05, "{mean}");
+}
+
+/// HBAO's model at the corner point itself, in the limit of fine steps: in the slice of screen
+/// direction θ (V and the direction made orthogonal to it, D), the floor's tangent t and the
+/// wall's line meet the corner. Where the floor's line on the +D side runs into the wall (world
+/// z < 0), the samples there lie on the wall's line, all at one elevation h, the first of them at
+/// distance → 0 (W → 1): the direction adds sin h − sin(t + bias) if positive (Algorithm 2,
+/// line 18). Elsewhere the floor adds nothing. AO = 1 − (1/2π) ∫ dθ. All in view space, V the
+/// unit vector from the corner point to the camera.
+fn hbao_corner_closed_form(view: glam::Mat4, s: &HbaoSettings) -> f32 {
+    let corner = view.transform_point3(Vec3::new(0.0, 0.0, 0.0));
+    let v = (-corner).normalize();
+    let floor_n = view.transform_vector3(Vec3::Y).normalize();
+    let wall_n = view.transform_vector3(Vec3::Z).normalize();
+    let to_world = view.inverse();
+    let n = 4000;
+    let mut occlusion = 0.0;
+    for i in 0..n {
+        let theta = (i as f32 + 0.5) / n as f32 * std::f32::consts::TAU;
+        let d3 = Vec3::new(theta.cos(), theta.sin(), 0.0);
+        let d = (d3 - v * d3.dot(v)).normalize();
+        let m = d.cross(v);
+        // The floor's and the wall's lines in the slice, on the +D side.
+        let mut f = floor_n.cross(m).normalize();
+        if f.dot(d) < 0.0 {
+            f = -f;
+        }
+        let mut w = wall_n.cross(m).normalize();
+        if w.dot(d) < 0.0 {
+            w = -w;
+        }
+        if to_world.transform_vector3(f).z >= 0.0 {
+            continue;
+        }
+        let sin_t = f.dot(v);
+        let start = (sin_t.clamp(-1.0, 1.0).asin() + s.angle_bias)
+            .min(FRAC_PI_2)
+            .sin();
+        occlusion += (w.dot(v) - start).max(0.0);
+    }
+    1.0 - occlusion / n as f32
+}
+
+#[test]
+fn hbao_at_an_inside_corner_matches_its_models_limit() {
+    // Many directions and fine steps over a radius large against the pixels' 2 cm: the first wall
+    // sample lies within a few millimetres, W ≈ 1 there (measured: 0.551 against the limit 0.537).
+    let mut s = technique_settings(Technique::Hbao, false);
+    (s.hbao.directions, s.hbao.steps, s.hbao.radius) = (16, 32, 2.0);
+    let (mean, count, view) = corner_ao(&s);
+    let want = hbao_corner_closed_form(view, &s.hbao);
+    println!("hbao at the inside corner: mean AO {mean:.4} over {count} pixels, limit {want:.4}");
+    assert!(want < 0.9, "the corner must occlude: {want}");
+    assert!((mean - want).abs() < 0.04, "{mean} vs {want}");
 }
 
 // ------------------------------------------------------------------------------ CPU mirrors
