@@ -63,22 +63,6 @@ enum Build {
     },
 }
 
-/// A build pass's layout (its uniform, the depth below, `output`) and pipeline.
-fn build_pipeline(
-    device: &wgpu::Device,
-    shader: &str,
-    output: wgpu::BindGroupLayoutEntry,
-) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
-    let layout = bindings::layout(
-        device,
-        "depth pyramid build",
-        &[entry::uniform(0), entry::texture(1), output],
-    );
-    let pipeline =
-        bindings::compute_pipeline(device, "depth pyramid build", shader, &[], &[Some(&layout)]);
-    (layout, pipeline)
-}
-
 /// The per-level build's group for one level: its uniform, the level below, the level itself.
 fn level_group(
     device: &wgpu::Device,
@@ -199,10 +183,21 @@ impl DepthPyramid {
         factor: u32,
         texture: &wgpu::Texture,
     ) -> Build {
-        let (layout, pipeline) = build_pipeline(
+        let layout = bindings::layout(
             device,
+            "depth pyramid build",
+            &[
+                entry::uniform(0),
+                entry::texture(1),
+                entry::storage_texture_r32f_array(2),
+            ],
+        );
+        let pipeline = bindings::compute_pipeline(
+            device,
+            "depth pyramid build",
             shaders::DEPTH_PYRAMID_BUILD_ALL,
-            entry::storage_texture_r32f_array(2),
+            &[],
+            &[Some(&layout)],
         );
         let mut sizes = [[0u32; 4]; MAX_LEVELS as usize];
         for (l, size) in sizes.iter_mut().enumerate().take(levels as usize) {
@@ -240,10 +235,21 @@ impl DepthPyramid {
         factor: u32,
         texture: &wgpu::Texture,
     ) -> Build {
-        let (layout, pipeline) = build_pipeline(
+        let layout = bindings::layout(
             device,
+            "depth pyramid build",
+            &[
+                entry::uniform(0),
+                entry::texture(1),
+                entry::storage_texture_r32f(2),
+            ],
+        );
+        let pipeline = bindings::compute_pipeline(
+            device,
+            "depth pyramid build",
             shaders::DEPTH_PYRAMID_BUILD,
-            entry::storage_texture_r32f(2),
+            &[],
+            &[Some(&layout)],
         );
         let params: Vec<wgpu::Buffer> = (1..levels)
             .map(|l| {
