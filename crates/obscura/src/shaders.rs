@@ -20,8 +20,6 @@ pub const SOURCE_COLUMN_TRACE: &str = include_str!("../shaders/sources/column_tr
 pub const SOURCE_COLUMN_RAYS: &str = include_str!("../shaders/sources/column_rays.wgsl");
 pub const SOURCE_DEPTH_PYRAMID: &str = include_str!("../shaders/sources/depth_pyramid.wgsl");
 pub const DEPTH_PYRAMID_BUILD: &str = include_str!("../shaders/sources/depth_pyramid/build.wgsl");
-pub const DEPTH_PYRAMID_BUILD_ALL: &str =
-    include_str!("../shaders/sources/depth_pyramid/build_all.wgsl");
 pub const SOURCE_ALL_LAYERS: &str = include_str!("../shaders/sources/all_layers.wgsl");
 pub const SOURCE_STOCHASTIC_DEPTH: &str =
     include_str!("../shaders/sources/stochastic_depth/read.wgsl");

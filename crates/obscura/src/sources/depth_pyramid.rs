@@ -1,10 +1,8 @@
 //! Source "depth pyramid" (seed 004 §3.3; McGuire et al., "Scalable Ambient Obscurance", 2012 §3):
 //! levels 1 … L − 1 of linear depth, each texel the mean of K × K texels of the level below (level
-//! 0 is the frame's depth), built by compute before the AO pass (`shaders/sources/depth_pyramid/`:
-//! all levels in one dispatch where a workgroup's tile of them fits its 16 KiB of memory, as for
-//! L = 5 with K = 3, else one dispatch per level) and read by the estimators that choose a level
-//! per sample (`sao`, `pyramid-hbao`). Kept as the layers of one array texture, each layer the
-//! size of level 1, so the AO pass binds one texture.
+//! 0 is the frame's depth), built by compute before the AO pass (`shaders/sources/depth_pyramid/`)
+//! and read by the estimators that choose a level per sample (`sao`, `pyramid-hbao`). Kept as the
+//! layers of one array texture, each layer the size of level 1, so the AO pass binds one texture.
 
 use crate::bindings::{self, entry, SOURCE_PYRAMID_LEVELS, SOURCE_PYRAMID_PARAMS};
 use crate::gpu::PassProfiler;
@@ -19,68 +17,6 @@ pub const MAX_LEVELS: u32 = 8;
 pub fn level_size(full: (u32, u32), factor: u32, level: u32) -> (u32, u32) {
     let scale = factor.pow(level);
     (full.0.div_ceil(scale), full.1.div_ceil(scale))
-}
-
-/// The floats of workgroup memory build_all.wgsl holds (`TILE_FLOATS`: 16 KiB, what WebGPU
-/// guarantees).
-const TILE_FLOATS: u32 = 4096;
-
-/// Whether build_all.wgsl can build `levels` levels of factor `factor` in one dispatch: one
-/// workgroup's tile of levels 1 … L − 1, Σ (K^(L−1−l))² texels, fits its workgroup memory.
-pub fn builds_in_one_dispatch(levels: u32, factor: u32) -> bool {
-    let texels: u64 = (1..levels)
-        .map(|l| u64::from(factor).pow(2 * (levels - 1 - l)))
-        .sum();
-    levels >= 2 && texels <= u64::from(TILE_FLOATS)
-}
-
-/// GPU mirror of `PyramidTiles` in build_all.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct Tiles {
-    sizes: [[u32; 4]; MAX_LEVELS as usize],
-    factor: u32,
-    levels: u32,
-    _pad: [u32; 2],
-}
-
-/// How the pyramid is built: one dispatch for all levels, or one per level.
-enum Build {
-    AllLevels {
-        pipeline: wgpu::ComputePipeline,
-        layout: wgpu::BindGroupLayout,
-        tiles: wgpu::Buffer,
-        /// All layers, as the pass writes them.
-        storage: wgpu::TextureView,
-    },
-    PerLevel {
-        pipeline: wgpu::ComputePipeline,
-        layout: wgpu::BindGroupLayout,
-        /// Per level l ≥ 1: its `PyramidLevel` uniform.
-        params: Vec<wgpu::Buffer>,
-        /// Per level l ≥ 2: its build group (the level below is a layer of the texture, fixed).
-        groups: Vec<wgpu::BindGroup>,
-    },
-}
-
-/// The per-level build's group for one level: its uniform, the level below, the level itself.
-fn level_group(
-    device: &wgpu::Device,
-    layout: &wgpu::BindGroupLayout,
-    params: &wgpu::Buffer,
-    below: &wgpu::TextureView,
-    level: &wgpu::TextureView,
-) -> wgpu::BindGroup {
-    bindings::group(
-        device,
-        "depth pyramid build",
-        layout,
-        &[
-            (0, params.as_entire_binding()),
-            (1, wgpu::BindingResource::TextureView(below)),
-            (2, wgpu::BindingResource::TextureView(level)),
-        ],
-    )
 }
 
 /// GPU mirror of `PyramidLevel` in build.wgsl.
@@ -110,18 +46,12 @@ pub(crate) struct DepthPyramid {
     /// All of `texture`, as the AO pass binds it.
     levels_view: wgpu::TextureView,
     params: wgpu::Buffer,
-    build: Build,
-}
-
-/// A 2D view of level `level` ≥ 1 of the pyramid's array texture (layer level − 1).
-fn layer_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        label: Some("depth pyramid level"),
-        dimension: Some(wgpu::TextureViewDimension::D2),
-        base_array_layer: level - 1,
-        array_layer_count: Some(1),
-        ..Default::default()
-    })
+    build: wgpu::ComputePipeline,
+    build_layout: wgpu::BindGroupLayout,
+    /// Per level l ≥ 1: its `PyramidLevel` uniform.
+    build_params: Vec<wgpu::Buffer>,
+    /// Per level l ≥ 2: its build group (the level below is a layer of `texture`, fixed).
+    build_groups: Vec<wgpu::BindGroup>,
 }
 
 impl DepthPyramid {
@@ -154,88 +84,7 @@ impl DepthPyramid {
             contents: bytemuck::cast_slice(&table),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let levels_view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("depth pyramid levels"),
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        let build = if builds_in_one_dispatch(levels, factor) {
-            Self::all_levels(device, full, levels, factor, &texture)
-        } else {
-            Self::per_level(device, full, levels, factor, &texture)
-        };
-        Self {
-            levels,
-            factor,
-            full,
-            texture,
-            levels_view,
-            params,
-            build,
-        }
-    }
-
-    /// build_all.wgsl: every level in one dispatch.
-    fn all_levels(
-        device: &wgpu::Device,
-        full: (u32, u32),
-        levels: u32,
-        factor: u32,
-        texture: &wgpu::Texture,
-    ) -> Build {
-        let layout = bindings::layout(
-            device,
-            "depth pyramid build",
-            &[
-                entry::uniform(0),
-                entry::texture(1),
-                entry::storage_texture_r32f_array(2),
-            ],
-        );
-        let pipeline = bindings::compute_pipeline(
-            device,
-            "depth pyramid build",
-            shaders::DEPTH_PYRAMID_BUILD_ALL,
-            &[],
-            &[Some(&layout)],
-        );
-        let mut sizes = [[0u32; 4]; MAX_LEVELS as usize];
-        for (l, size) in sizes.iter_mut().enumerate().take(levels as usize) {
-            let (w, h) = level_size(full, factor, l as u32);
-            *size = [w, h, 0, 0];
-        }
-        let tiles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("depth pyramid tiles"),
-            contents: bytemuck::bytes_of(&Tiles {
-                sizes,
-                factor,
-                levels,
-                _pad: [0; 2],
-            }),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let storage = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("depth pyramid levels"),
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        Build::AllLevels {
-            pipeline,
-            layout,
-            tiles,
-            storage,
-        }
-    }
-
-    /// build.wgsl: one dispatch per level (a tile of all levels would not fit the workgroup).
-    fn per_level(
-        device: &wgpu::Device,
-        full: (u32, u32),
-        levels: u32,
-        factor: u32,
-        texture: &wgpu::Texture,
-    ) -> Build {
-        let layout = bindings::layout(
+        let build_layout = bindings::layout(
             device,
             "depth pyramid build",
             &[
@@ -244,14 +93,14 @@ impl DepthPyramid {
                 entry::storage_texture_r32f(2),
             ],
         );
-        let pipeline = bindings::compute_pipeline(
+        let build = bindings::compute_pipeline(
             device,
             "depth pyramid build",
             shaders::DEPTH_PYRAMID_BUILD,
             &[],
-            &[Some(&layout)],
+            &[Some(&build_layout)],
         );
-        let params: Vec<wgpu::Buffer> = (1..levels)
+        let build_params: Vec<wgpu::Buffer> = (1..levels)
             .map(|l| {
                 let (below, size) = (level_size(full, factor, l - 1), level_size(full, factor, l));
                 let level = BuildLevel {
@@ -267,26 +116,65 @@ impl DepthPyramid {
                 })
             })
             .collect();
-        let groups = (2..levels)
+        let levels_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("depth pyramid levels"),
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let mut pyramid = Self {
+            levels,
+            factor,
+            full,
+            texture,
+            levels_view,
+            params,
+            build,
+            build_layout,
+            build_params,
+            build_groups: Vec::new(),
+        };
+        pyramid.build_groups = (2..levels)
             .map(|l| {
-                level_group(
-                    device,
-                    &layout,
-                    &params[l as usize - 1],
-                    &layer_view(texture, l - 1),
-                    &layer_view(texture, l),
-                )
+                let below = pyramid.layer_view(l - 1);
+                pyramid.build_group(device, l, &below)
             })
             .collect();
-        Build::PerLevel {
-            pipeline,
-            layout,
-            params,
-            groups,
-        }
+        pyramid
     }
 
-    /// Records levels 1 … L − 1 from the frame's linear depth.
+    /// A 2D view of level `l` ≥ 1 (layer l − 1).
+    fn layer_view(&self, level: u32) -> wgpu::TextureView {
+        self.texture.create_view(&wgpu::TextureViewDescriptor {
+            label: Some("depth pyramid level"),
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            base_array_layer: level - 1,
+            array_layer_count: Some(1),
+            ..Default::default()
+        })
+    }
+
+    fn build_group(
+        &self,
+        device: &wgpu::Device,
+        level: u32,
+        below: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        bindings::group(
+            device,
+            "depth pyramid build",
+            &self.build_layout,
+            &[
+                (0, self.build_params[level as usize - 1].as_entire_binding()),
+                (1, wgpu::BindingResource::TextureView(below)),
+                (
+                    2,
+                    wgpu::BindingResource::TextureView(&self.layer_view(level)),
+                ),
+            ],
+        )
+    }
+
+    /// Records levels 1 … L − 1 from the frame's linear depth, one dispatch each.
     pub fn build(
         &self,
         device: &wgpu::Device,
@@ -297,59 +185,22 @@ impl DepthPyramid {
         if self.levels < 2 {
             return;
         }
+        let first = self.build_group(device, 1, depth);
         let timestamp_writes = profiler.map(|p| p.compute_pass("depth_pyramid"));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("depth pyramid"),
             timestamp_writes,
         });
-        match &self.build {
-            Build::AllLevels {
-                pipeline,
-                layout,
-                tiles,
-                storage,
-            } => {
-                let group = bindings::group(
-                    device,
-                    "depth pyramid build",
-                    layout,
-                    &[
-                        (0, tiles.as_entire_binding()),
-                        (1, wgpu::BindingResource::TextureView(depth)),
-                        (2, wgpu::BindingResource::TextureView(storage)),
-                    ],
-                );
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &group, &[]);
-                // One workgroup per texel of the top level.
-                let (w, h) = level_size(self.full, self.factor, self.levels - 1);
-                pass.dispatch_workgroups(w, h, 1);
-            }
-            Build::PerLevel {
-                pipeline,
-                layout,
-                params,
-                groups,
-            } => {
-                let first = level_group(
-                    device,
-                    layout,
-                    &params[0],
-                    depth,
-                    &layer_view(&self.texture, 1),
-                );
-                pass.set_pipeline(pipeline);
-                for level in 1..self.levels {
-                    let group = if level == 1 {
-                        &first
-                    } else {
-                        &groups[level as usize - 2]
-                    };
-                    pass.set_bind_group(0, group, &[]);
-                    let (w, h) = level_size(self.full, self.factor, level);
-                    pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
-                }
-            }
+        pass.set_pipeline(&self.build);
+        for level in 1..self.levels {
+            let group = if level == 1 {
+                &first
+            } else {
+                &self.build_groups[level as usize - 2]
+            };
+            pass.set_bind_group(0, group, &[]);
+            let (w, h) = level_size(self.full, self.factor, level);
+            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
     }
 

@@ -1,9 +1,9 @@
 // One level of the depth pyramid (seed 004 §3.3): every texel the mean linear depth of the K×K
 // texels below it, background (0) left out; 0 where all of them are background. Level 1 reads the
 // frame's depth, each further level the one before (a layer of the pyramid's array texture).
-// One dispatch per level, where build_all.wgsl's one dispatch cannot hold a workgroup's tile of
-// all levels in WebGPU's 16 KiB of workgroup memory (K = 4 with L = 5, say): a level needs all of
-// the one below, and workgroups cannot wait for each other.
+// One dispatch per level: a level needs all of the one below, and workgroups cannot wait for each
+// other (a whole pyramid in one dispatch would need a 243×243-pixel tile per workgroup at L = 5,
+// K = 3, past WebGPU's 16 KiB of workgroup memory).
 
 struct PyramidLevel {
     // The level below: its size in texels.
