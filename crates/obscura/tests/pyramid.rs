@@ -48,7 +48,7 @@ fn cpu_level(below: &[f32], below_size: (u32, u32), size: (u32, u32), k: u32) ->
 fn every_level_is_the_mean_of_its_children() {
     let gpu = gpu();
     let scene = scene::builtin("colonnade").unwrap();
-    for (levels, factor) in [(4, 3), (5, 2), (3, 4)] {
+    for (levels, factor) in [(4, 3), (5, 2), (3, 4), (6, 4)] {
         let mut s = technique_settings(Technique::PyramidHbao, false);
         s.pyramid = PyramidSettings { levels, factor };
         let mut r = Renderer::new(&gpu, &scene, &s, 150, 94, 16).unwrap();
