@@ -409,3 +409,47 @@ pub fn sample_cell(px: Vec2, own: UVec2, full: Vec2, interleaved: bool) -> (UVec
     let cell = t.round().clamp(Vec2::ZERO, size - 1.0).as_uvec2();
     (cell * 4 + residue, edge)
 }
+
+/// A floor (y = 0, z > 0) meeting a tall wall (z = 0) seen obliquely from (0.6, 2, 3): the mean
+/// raw AO of `settings` over the floor pixels within 2 cm of the corner line (away from the image
+/// edge), how many they are, and the view's world-to-view matrix.
+pub fn corner_ao(settings: &AoSettings) -> (f32, usize, glam::Mat4) {
+    let gpu = gpu();
+    let wall = [
+        Vec3::new(-20.0, 0.0, 0.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(20.0, 20.0, 0.0),
+        Vec3::new(-20.0, 20.0, 0.0),
+    ];
+    let floor = [
+        Vec3::new(-20.0, 0.0, 20.0),
+        Vec3::new(20.0, 0.0, 20.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(-20.0, 0.0, 0.0),
+    ];
+    let scene = quads("corner", &[wall, floor]);
+    let (w, h) = (96, 96);
+    let mut r = Renderer::new(&gpu, &scene, settings, w, h, 32).unwrap();
+    r.render(&camera(Vec3::new(0.6, 2.0, 3.0), Vec3::ZERO, 20.0), None)
+        .unwrap();
+    let ao = r.read_raw_ao().unwrap();
+    let g = r.read_gbuffer().unwrap();
+    let screen = r.view().unwrap().screen();
+    let view = r.view().unwrap().view_matrix();
+    let world = view.inverse();
+    let (mut sum, mut count) = (0.0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let pixel = UVec2::new(x, y) + screen.guard_band;
+            let z = g.depth_at(pixel);
+            let p = world.transform_point3(screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
+            let on_floor = p.y.abs() < 1e-3 && p.z > 0.0 && p.z < 0.02;
+            if on_floor && (x as i32 - 48).abs() < 24 {
+                sum += ao[(y * w + x) as usize];
+                count += 1;
+            }
+        }
+    }
+    assert!(count >= 16, "{count} corner pixels");
+    (sum / count as f32, count, view)
+}
