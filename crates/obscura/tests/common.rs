@@ -453,3 +453,42 @@ pub fn corner_ao(settings: &AoSettings) -> (f32, usize, glam::Mat4) {
     assert!(count >= 16, "{count} corner pixels");
     (sum / count as f32, count, view)
 }
+
+/// The slice of [`corner_ao`]'s view through the corner point in screen direction θ (view space):
+/// V towards the camera, D the screen direction made orthogonal to V, the floor's normal, the
+/// floor's and the wall's lines in the slice on the +D side, and whether that floor line runs
+/// into the wall (where the samples on that side see the wall's line).
+pub struct CornerSlice {
+    pub v: Vec3,
+    pub d: Vec3,
+    pub floor_n: Vec3,
+    pub floor_line: Vec3,
+    pub wall_line: Vec3,
+    pub into_wall: bool,
+}
+
+pub fn corner_slice(view: glam::Mat4, theta: f32) -> CornerSlice {
+    let v = (-view.transform_point3(Vec3::ZERO)).normalize();
+    let floor_n = view.transform_vector3(Vec3::Y).normalize();
+    let wall_n = view.transform_vector3(Vec3::Z).normalize();
+    let d3 = Vec3::new(theta.cos(), theta.sin(), 0.0);
+    let d = (d3 - v * d3.dot(v)).normalize();
+    let m = d.cross(v);
+    let along = |n: Vec3| {
+        let l = n.cross(m).normalize();
+        if l.dot(d) < 0.0 {
+            -l
+        } else {
+            l
+        }
+    };
+    let floor_line = along(floor_n);
+    CornerSlice {
+        v,
+        d,
+        floor_n,
+        floor_line,
+        wall_line: along(wall_n),
+        into_wall: view.inverse().transform_vector3(floor_line).z < 0.0,
+    }
+}

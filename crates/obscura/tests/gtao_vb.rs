@@ -277,35 +277,25 @@ fn a_step_seen_from_above_matches_the_models_closed_form() {
 /// angle) and that side's edge are occupied. AO = the mean over θ of the free fraction (seed 003's
 /// uniform sectors, before ceil's rounding up of each span).
 fn gtao_vb_corner_limit(view: glam::Mat4) -> f32 {
-    let v = (-view.transform_point3(Vec3::ZERO)).normalize();
-    let floor_n = view.transform_vector3(Vec3::Y).normalize();
-    let wall_n = view.transform_vector3(Vec3::Z).normalize();
-    let to_world = view.inverse();
     let n = 2000;
     let mut free = 0.0;
     for i in 0..n {
         let theta = (i as f32 + 0.5) / n as f32 * PI;
-        let d3 = Vec3::new(theta.cos(), theta.sin(), 0.0);
-        let d = (d3 - v * d3.dot(v)).normalize();
+        // Side + is the slice of θ, side − the same plane walked the other way (θ + π).
+        let plus = corner_slice(view, theta);
+        let (v, d) = (plus.v, plus.d);
         let m = d.cross(v);
-        let projected = floor_n - m * floor_n.dot(m);
+        let projected = plus.floor_n - m * plus.floor_n.dot(m);
         let gamma = projected.dot(d).atan2(projected.dot(v));
+        let position =
+            |w: Vec3| ((w.dot(d).atan2(w.dot(v)) - gamma + FRAC_PI_2) / PI).clamp(0.0, 1.0);
+        let minus = corner_slice(view, theta + PI);
         let mut blocked = 0.0;
-        for side in [1.0f32, -1.0] {
-            let along = d * side;
-            let mut f = floor_n.cross(m).normalize();
-            if f.dot(along) < 0.0 {
-                f = -f;
-            }
-            if to_world.transform_vector3(f).z >= 0.0 {
-                continue;
-            }
-            let mut w = wall_n.cross(m).normalize();
-            if w.dot(along) < 0.0 {
-                w = -w;
-            }
-            let position = ((w.dot(d).atan2(w.dot(v)) - gamma + FRAC_PI_2) / PI).clamp(0.0, 1.0);
-            blocked += if side > 0.0 { 1.0 - position } else { position };
+        if plus.into_wall {
+            blocked += 1.0 - position(plus.wall_line);
+        }
+        if minus.into_wall {
+            blocked += position(minus.wall_line);
         }
         free += 1.0 - blocked;
     }

@@ -137,35 +137,18 @@ fn gtao_sees_half_the_cosine_weighted_hemisphere_at_an_inside_corner() {
 /// line 18). Elsewhere the floor adds nothing. AO = 1 − (1/2π) ∫ dθ. All in view space, V the
 /// unit vector from the corner point to the camera.
 fn hbao_corner_closed_form(view: glam::Mat4, s: &HbaoSettings) -> f32 {
-    let corner = view.transform_point3(Vec3::new(0.0, 0.0, 0.0));
-    let v = (-corner).normalize();
-    let floor_n = view.transform_vector3(Vec3::Y).normalize();
-    let wall_n = view.transform_vector3(Vec3::Z).normalize();
-    let to_world = view.inverse();
     let n = 4000;
     let mut occlusion = 0.0;
     for i in 0..n {
-        let theta = (i as f32 + 0.5) / n as f32 * std::f32::consts::TAU;
-        let d3 = Vec3::new(theta.cos(), theta.sin(), 0.0);
-        let d = (d3 - v * d3.dot(v)).normalize();
-        let m = d.cross(v);
-        // The floor's and the wall's lines in the slice, on the +D side.
-        let mut f = floor_n.cross(m).normalize();
-        if f.dot(d) < 0.0 {
-            f = -f;
-        }
-        let mut w = wall_n.cross(m).normalize();
-        if w.dot(d) < 0.0 {
-            w = -w;
-        }
-        if to_world.transform_vector3(f).z >= 0.0 {
+        let c = corner_slice(view, (i as f32 + 0.5) / n as f32 * std::f32::consts::TAU);
+        if !c.into_wall {
             continue;
         }
-        let sin_t = f.dot(v);
+        let sin_t = c.floor_line.dot(c.v);
         let start = (sin_t.clamp(-1.0, 1.0).asin() + s.angle_bias)
             .min(FRAC_PI_2)
             .sin();
-        occlusion += (w.dot(v) - start).max(0.0);
+        occlusion += (c.wall_line.dot(c.v) - start).max(0.0);
     }
     1.0 - occlusion / n as f32
 }
