@@ -414,6 +414,52 @@ pub fn sample_cell(px: Vec2, own: UVec2, full: Vec2, interleaved: bool) -> (UVec
 /// raw AO of `settings` over the floor pixels within 2 cm of the corner line (away from the image
 /// edge), how many they are, and the view's world-to-view matrix.
 pub fn corner_ao(settings: &AoSettings) -> (f32, usize, glam::Mat4) {
+    let (got, _, count, view) = corner_ao_and_model(settings, |_, _| 0.0);
+    (got, count, view)
+}
+
+/// [`corner_ao`]'s view as the models see it: its screen geometry and world-to-view matrix, with
+/// the surface the camera ray through any framebuffer position meets, computed exactly.
+pub struct CornerView {
+    pub screen: obscura::ScreenGeometry,
+    pub view: glam::Mat4,
+}
+
+impl CornerView {
+    /// The view-space point of the floor or the wall the ray through framebuffer position `px`
+    /// meets first, and that surface's view-space normal (None: the ray misses both).
+    pub fn surface(&self, px: Vec2) -> Option<(Vec3, Vec3)> {
+        let dir = self.screen.pixel_to_view(px, 1.0);
+        let world = self.view.inverse();
+        let mut best: Option<(f32, Vec3, Vec3)> = None;
+        for normal in [Vec3::Y, Vec3::Z] {
+            let n = self.view.transform_vector3(normal);
+            let corner = self.view.transform_point3(Vec3::ZERO);
+            let denominator = n.dot(dir);
+            if denominator.abs() < 1e-9 {
+                continue;
+            }
+            let t = n.dot(corner) / denominator;
+            let hit = dir * t;
+            let w = world.transform_point3(hit);
+            let inside = if normal == Vec3::Y {
+                w.z >= 0.0
+            } else {
+                w.y >= 0.0
+            };
+            if t > 0.0 && inside && best.is_none_or(|(b, _, _)| t < b) {
+                best = Some((t, hit, n.normalize()));
+            }
+        }
+        best.map(|(_, hit, n)| (hit, n))
+    }
+}
+
+/// [`corner_ao`], and the mean of `model(visible pixel, view)` over the same pixels.
+pub fn corner_ao_and_model(
+    settings: &AoSettings,
+    model: impl Fn(UVec2, &CornerView) -> f32,
+) -> (f32, f32, usize, glam::Mat4) {
     let gpu = gpu();
     let wall = [
         Vec3::new(-20.0, 0.0, 0.0),
@@ -434,24 +480,27 @@ pub fn corner_ao(settings: &AoSettings) -> (f32, usize, glam::Mat4) {
         .unwrap();
     let ao = r.read_raw_ao().unwrap();
     let g = r.read_gbuffer().unwrap();
-    let screen = r.view().unwrap().screen();
-    let view = r.view().unwrap().view_matrix();
-    let world = view.inverse();
-    let (mut sum, mut count) = (0.0, 0);
+    let corner = CornerView {
+        screen: r.view().unwrap().screen(),
+        view: r.view().unwrap().view_matrix(),
+    };
+    let world = corner.view.inverse();
+    let (mut got, mut want, mut count) = (0.0, 0.0, 0);
     for y in 0..h {
         for x in 0..w {
-            let pixel = UVec2::new(x, y) + screen.guard_band;
+            let pixel = UVec2::new(x, y) + corner.screen.guard_band;
             let z = g.depth_at(pixel);
-            let p = world.transform_point3(screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
+            let p = world.transform_point3(corner.screen.pixel_to_view(pixel.as_vec2() + 0.5, z));
             let on_floor = p.y.abs() < 1e-3 && p.z > 0.0 && p.z < 0.02;
             if on_floor && (x as i32 - 48).abs() < 24 {
-                sum += ao[(y * w + x) as usize];
+                got += ao[(y * w + x) as usize];
+                want += model(UVec2::new(x, y), &corner);
                 count += 1;
             }
         }
     }
     assert!(count >= 16, "{count} corner pixels");
-    (sum / count as f32, count, view)
+    (got / count as f32, want / count as f32, count, corner.view)
 }
 
 /// The slice of [`corner_ao`]'s view through the corner point in screen direction θ (view space):
