@@ -439,8 +439,9 @@ impl Estimator {
         }
     }
 
-    /// Its `render --debug-out` image over the single-pass schedule (`estimator_debug` in its
-    /// WGSL): the file name and what it shows, or None where it has none.
+    /// Its `render --debug-out` image over the single-pass and interleaved schedules
+    /// (`estimator_debug` in its WGSL): the file name and what it shows, or None where it has
+    /// none.
     pub fn debug_image(self) -> Option<(&'static str, &'static str)> {
         match self {
             Estimator::Hbao => Some((
@@ -459,7 +460,19 @@ impl Estimator {
                 "occlusion.png",
                 "the mean per-sample occlusion before 1 - 2 mean and the exponent, 0 black to 1 white",
             )),
-            Estimator::Vao | Estimator::Sao | Estimator::Ssao | Estimator::PyramidHbao => None,
+            Estimator::Sao => Some((
+                "levels.png",
+                "the mean pyramid level the taps read, level 0 black to the top level white",
+            )),
+            Estimator::Ssao => Some((
+                "occluders.png",
+                "the fraction of the samples that occlude, none black to all white",
+            )),
+            Estimator::PyramidHbao => Some((
+                "levels.png",
+                "the mean pyramid level of each direction's largest contribution, 0 black to the top white",
+            )),
+            Estimator::Vao => None,
         }
     }
 
@@ -490,17 +503,18 @@ impl TechniqueRow {
     }
 
     /// Whether `render --debug-out` has images for it: two-phase schedules show their flagged
-    /// samples, the stochastic depth source its map, the single pass the estimator's debug image
-    /// ([`Estimator::debug_image`]).
+    /// samples, the stochastic depth source its map, the other schedules the estimator's debug
+    /// image ([`Estimator::debug_image`]).
     pub fn has_debug_output(&self) -> bool {
         self.schedule.two_phase()
             || self.source == Source::StochasticDepth
             || self.estimator_debug_image().is_some()
     }
 
-    /// The estimator's debug image where this row can make it (single pass only).
+    /// The estimator's debug image where this row can make it (single pass and interleaved: the
+    /// two-phase rows show their flagged samples instead).
     pub fn estimator_debug_image(&self) -> Option<(&'static str, &'static str)> {
-        (self.schedule == Schedule::Single)
+        (!self.schedule.two_phase())
             .then(|| self.estimator.debug_image())
             .flatten()
     }

@@ -477,3 +477,51 @@ fn sao_at_an_inside_corner_matches_its_model_with_exact_geometry() {
     );
     assert!((got - want).abs() < 0.05, "{got} vs {want}");
 }
+
+#[test]
+fn debug_images_show_the_levels_read() {
+    // `render --debug-out`: SAO's mean tap level follows from each pixel's radius alone (the
+    // level formula of cpu_sao); Pyramid HBAO's directions find nothing on a plane (level 0) and
+    // their largest contributions on coarser levels beside a step.
+    let gpu = gpu();
+    let plane = quads("floor", &[floor(100.0)]);
+    let view = obscura::scene::Camera {
+        eye: Vec3::new(0.0, 20.0, 0.0),
+        target: Vec3::ZERO,
+        up: Vec3::NEG_Z,
+        fov_y_deg: 4.0,
+    };
+    let debug = |s: &obscura::AoSettings, scene: &obscura::scene::Scene| {
+        let mut r = Renderer::new(&gpu, scene, s, 48, 48, 16).unwrap();
+        r.render(&view, None).unwrap();
+        let image = r.read_estimator_debug().unwrap().expect("a debug image");
+        let radius_px = {
+            let screen = r.view().unwrap().screen();
+            s.sao.radius * screen.uniform().projection_scale[1] / 20.0
+        };
+        (image.iter().sum::<f32>() / image.len() as f32, radius_px)
+    };
+    // A radius of 68 px: taps from level 0 to level 2.
+    let mut s = technique_settings(Technique::Sao, false);
+    s.sao.radius = 2.0;
+    let (mean, radius_px) = debug(&s, &plane);
+    let levels = s.pyramid.levels;
+    let want = (0..s.sao.samples)
+        .map(|i| {
+            let distance = (i as f32 + 0.5) / s.sao.samples as f32 * radius_px;
+            let exact = (distance.max(1.0).ln() - sao::LEVEL_OFFSET_PX.ln())
+                / (s.pyramid.factor as f32).ln();
+            exact.floor().clamp(0.0, (levels - 1) as f32)
+        })
+        .sum::<f32>()
+        / (s.sao.samples * (levels - 1)) as f32;
+    println!("sao levels: mean {mean:.4}, from the radius {want:.4}");
+    assert!(want > 0.0 && (mean - want).abs() < 1e-4, "{mean} vs {want}");
+
+    let s = technique_settings(Technique::PyramidHbao, false);
+    let (on_plane, _) = debug(&s, &plane);
+    let (at_step, _) = debug(&s, &step_scene(0.3, 0.5));
+    println!("pyramid-hbao levels: plane {on_plane:.4}, step {at_step:.4}");
+    assert_eq!(on_plane, 0.0);
+    assert!(at_step > 0.05, "{at_step}");
+}

@@ -197,3 +197,29 @@ fn at_an_inside_corner_matches_its_model_with_exact_geometry() {
     assert!(want < 0.9, "the corner must occlude: {want}");
     assert!((got - want).abs() < 0.05, "{got} vs {want}");
 }
+
+#[test]
+fn debug_image_counts_the_occluding_samples() {
+    // `render --debug-out`: on a plane no sample occludes; beside a step some do.
+    let gpu = gpu();
+    let view = obscura::scene::Camera {
+        eye: glam::Vec3::new(0.0, 20.0, 0.0),
+        target: glam::Vec3::ZERO,
+        up: glam::Vec3::NEG_Z,
+        fov_y_deg: 4.0,
+    };
+    let mean = |scene: &obscura::scene::Scene| {
+        let s = technique_settings(Technique::Ssao, false);
+        let mut r = Renderer::new(&gpu, scene, &s, 48, 48, 16).unwrap();
+        r.render(&view, None).unwrap();
+        let image = r.read_estimator_debug().unwrap().expect("a debug image");
+        image.iter().sum::<f32>() / image.len() as f32
+    };
+    let (plane, step) = (
+        mean(&quads("floor", &[floor(100.0)])),
+        mean(&step_scene(0.1, 0.2)),
+    );
+    println!("ssao occluding samples: plane {plane:.4}, step {step:.4}");
+    assert_eq!(plane, 0.0);
+    assert!(step > 0.02, "{step}");
+}

@@ -64,6 +64,10 @@ struct EstimatorAccum {
     sum: f32,
     current: f32,
     direction: u32,
+    // The debug image only: the level of the current direction's largest contribution, and those
+    // of the finished directions summed.
+    current_level: f32,
+    levels: f32,
 }
 
 struct Occluder {
@@ -127,7 +131,7 @@ fn estimator_combine(a: f32, b: f32) -> f32 {
 }
 
 fn estimator_accum_init() -> EstimatorAccum {
-    return EstimatorAccum(0.0, 0.0, 0u);
+    return EstimatorAccum(0.0, 0.0, 0u, 0.0, 0.0);
 }
 
 fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
@@ -141,6 +145,13 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
         a.sum += a.current;
         a.current = 0.0;
         a.direction = s.direction;
+        if (ESTIMATOR_DEBUG) {
+            a.levels += a.current_level;
+            a.current_level = 0.0;
+        }
+    }
+    if (ESTIMATOR_DEBUG && value > a.current) {
+        a.current_level = f32(s.level);
     }
     a.current = max(a.current, value);
     return a;
@@ -151,7 +162,9 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return pow(saturate(1.0 - occlusion), params.exponent);
 }
 
-// No debug image (Estimator::debug_image): the mean largest contribution is 1 − AO.
+// The debug image (`render --debug-out`): the mean level of each direction's largest
+// contribution (level 0 where nothing occludes), level 0 black … level L − 1 white.
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return 0.0;
+    let levels = acc.levels + acc.current_level;
+    return levels / (f32(params.directions) * f32(max(LEVELS - 1u, 1u)));
 }

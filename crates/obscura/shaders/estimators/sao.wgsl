@@ -55,8 +55,9 @@ alias EstimatorValue = f32;
 
 struct EstimatorAccum {
     sum: f32,
+    // The debug image only: the levels the taps read, summed.
+    levels: f32,
     _pad0: f32,
-    _pad1: f32,
 }
 
 struct Occluder {
@@ -122,6 +123,9 @@ fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorA
 fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
     var a = acc;
     a.sum += value;
+    if (ESTIMATOR_DEBUG) {
+        a.levels += f32(s.level);
+    }
     return a;
 }
 
@@ -129,7 +133,8 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return max(0.0, 1.0 - acc.sum * params.scale);
 }
 
-// No debug image (Estimator::debug_image).
+// The debug image (`render --debug-out`): the mean pyramid level the taps read, level 0 black …
+// level L − 1 white.
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return 0.0;
+    return acc.levels / (f32(SAMPLE_COUNT) * f32(max(LEVELS - 1u, 1u)));
 }

@@ -56,8 +56,9 @@ alias EstimatorValue = f32;
 
 struct EstimatorAccum {
     sum: f32,
+    // The debug image only: the samples that occlude.
+    occluding: f32,
     _pad0: f32,
-    _pad1: f32,
 }
 
 struct Occluder {
@@ -119,6 +120,9 @@ fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorA
 fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) -> EstimatorAccum {
     var a = acc;
     a.sum += value;
+    if (ESTIMATOR_DEBUG && value > 0.0) {
+        a.occluding += 1.0;
+    }
     return a;
 }
 
@@ -126,7 +130,8 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return pow(max(1.0 - params.scale * acc.sum, 0.0), params.contrast);
 }
 
-// No debug image (Estimator::debug_image).
+// The debug image (`render --debug-out`): the fraction of the samples that occlude, none black
+// … all white.
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return 0.0;
+    return acc.occluding / f32(SAMPLE_COUNT);
 }

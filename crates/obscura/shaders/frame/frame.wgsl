@@ -9,9 +9,9 @@
 @group(GROUP_FRAME) @binding(FRAME_NORMALS) var normal_tex: texture_2d<f32>;
 @group(GROUP_FRAME) @binding(FRAME_AO_OUT) var ao_out: texture_storage_2d<r32float, write>;
 
-// The single pass writes the estimator's debug image (estimator_debug) instead of its AO
-// (`render --debug-out`); estimators keep what only that image needs behind it, so the usual
-// pipelines compile without it.
+// The single-pass and interleaved schedules write the estimator's debug image (estimator_debug)
+// instead of its AO (`render --debug-out`); estimators keep what only that image needs behind it,
+// so the usual pipelines compile without it.
 override ESTIMATOR_DEBUG: bool = false;
 
 // What a source knows about one sample after its first look: the estimator's value for it

@@ -57,5 +57,9 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         acc = estimator_accum_value(acc, s, interleaved_value(p, s));
         acc = estimator_accum_sample(acc, s);
     }
-    textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
+    if (ESTIMATOR_DEBUG) {
+        textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));
+    } else {
+        textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
+    }
 }

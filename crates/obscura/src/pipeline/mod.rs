@@ -81,7 +81,7 @@ impl AmbientOcclusion {
         Self::build(gpu, settings, screen, scene, false)
     }
 
-    /// [`AmbientOcclusion::new`]; `estimator_debug`: the single pass writes the estimator's debug
+    /// [`AmbientOcclusion::new`]; `estimator_debug`: the AO pass writes the estimator's debug
     /// image ([`crate::technique::Estimator::debug_image`]) instead of its AO, unblurred.
     pub(crate) fn build(
         gpu: &Gpu,

@@ -134,8 +134,8 @@ pub(crate) enum SchedulePass {
 }
 
 impl SchedulePass {
-    /// The passes of `row`'s schedule; `estimator_debug`: the single pass writes the estimator's
-    /// debug image instead of its AO.
+    /// The passes of `row`'s schedule; `estimator_debug`: the single-pass and interleaved passes
+    /// write the estimator's debug image instead of its AO.
     pub fn new(
         device: &wgpu::Device,
         row: &TechniqueRow,
