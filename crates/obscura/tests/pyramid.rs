@@ -263,6 +263,7 @@ impl Levels<'_> {
 /// a sample lay on a texel edge.
 fn cpu_pyramid_hbao(l: &Levels, s: &PyramidHbaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>) {
     let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
+    let k = l.factor as f32;
     for y in 0..l.screen.height {
         for x in 0..l.screen.width {
             let Some((pixel, pos, n, _)) = l.pixel(x, y, s.radius) else {
@@ -270,16 +271,21 @@ fn cpu_pyramid_hbao(l: &Levels, s: &PyramidHbaoSettings, levels: u32) -> (Vec<f3
                 ambiguous.push(false);
                 continue;
             };
+            let (u0, o0) = pyramid_hbao::pixel_offsets(x, y);
             let (mut sum, mut edge) = (0.0f32, false);
             for d in 0..s.directions {
-                let (dx, dy, o) = pyramid_hbao::direction(x, y, d, s.directions);
+                let df = d as f32;
+                let u = (u0 + 0.618_034 * df).fract();
+                let o = (o0 + 0.754_877_7 * df).fract();
+                let angle = TAU * (df + u) / s.directions as f32;
                 let mut best = 0.0f32;
                 for level in 0..levels {
-                    let (size, start) =
-                        pyramid_hbao::level_step_and_start(level, l.factor, s.steps);
+                    let size = k.powi(level as i32);
+                    let start = s.steps as f32 * (size - 1.0) / (k - 1.0);
                     for step in 0..s.steps {
                         let distance = (start + (step as f32 + o) * size).max(1.0);
-                        let px = pixel.as_vec2() + 0.5 + Vec2::new(dx, dy) * distance;
+                        let px =
+                            pixel.as_vec2() + 0.5 + Vec2::new(angle.cos(), -angle.sin()) * distance;
                         let (surface, e) = l.surface(pixel, px, level);
                         edge |= e;
                         if let Some(q) = surface {

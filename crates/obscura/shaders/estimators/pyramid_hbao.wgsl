@@ -26,17 +26,13 @@ struct PyramidHbaoParams {
     radius: f32,
     inv_radius: f32,
     exponent: f32,
-    _pad0: f32,
+    factor: f32,
     directions: u32,
+    _pad0: u32,
     _pad1: u32,
     _pad2: u32,
-    _pad3: u32,
-    // Index 32 · (x % 4 + 4 (y % 4)) + direction: xy the direction's screen unit vector at angle
-    // 2π(d + u_d)/D (y down), z its start offset o_d (tabulated on the CPU: no trigonometry per
-    // sample).
-    direction_table: array<vec4<f32>, 512>,
-    // Level l: x its step K^l in pixels, y where it starts, S·(K^l − 1)/(K − 1) pixels out.
-    level_table: array<vec4<f32>, 8>,
+    // Index x % 4 + 4 * (y % 4): x the direction offset u in [0, 1), y the start offset o.
+    pattern: array<vec4<f32>, 16>,
 }
 
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: PyramidHbaoParams;
@@ -50,8 +46,7 @@ struct EstimatorPixel {
     pos: vec3<f32>,
     normal: vec3<f32>,
     pixel: vec2<u32>,
-    // The pixel's row of the direction table: 32 × its 4×4 pattern index.
-    table_row: u32,
+    offsets: vec2<f32>,
     valid: bool,
 }
 
@@ -90,7 +85,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     }
     p.pos = base.pos;
     p.normal = base.normal;
-    p.table_row = 32u * pattern_index(id);
+    p.offsets = params.pattern[pattern_index(id)].xy;
     return p;
 }
 
@@ -100,10 +95,16 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     s.direction = i / (LEVELS * STEPS);
     s.level = (i / STEPS) % LEVELS;
     let step = f32(i % STEPS);
-    let direction = params.direction_table[p.table_row + s.direction];
-    let level = params.level_table[s.level];
-    let distance = max(level.y + (step + direction.z) * level.x, 1.0);
-    s.px = vec2<f32>(p.pixel) + 0.5 + direction.xy * distance;
+    let d = f32(s.direction);
+    let u = fract(p.offsets.x + 0.6180339887 * d);
+    let o = fract(p.offsets.y + 0.7548776662 * d);
+    let angle = 6.283185307179586 * (d + u) / f32(params.directions);
+    // Level l: steps K^l px apart from S·(K^l − 1)/(K − 1) px on.
+    let size = pow(params.factor, f32(s.level));
+    let start = f32(STEPS) * (size - 1.0) / (params.factor - 1.0);
+    let distance = max(start + (step + o) * size, 1.0);
+    // View y is up, framebuffer y down.
+    s.px = vec2<f32>(p.pixel) + 0.5 + vec2<f32>(cos(angle), -sin(angle)) * distance;
     return s;
 }
 
