@@ -52,14 +52,22 @@ techniques!(
     /// `hbao-dual`: HBAO; a step whose surface lies above the tangent plane but beyond R also
     /// reads the second depth layer.
     HbaoDual,
+    /// `sd-hbao`: HBAO; a step above the tangent plane but beyond R reads every sample of the
+    /// stochastic depth map (seed 001 §3.2, Algorithm 2).
+    SdHbao,
     /// `hbao+`: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline).
     HbaoPlus,
     /// `hbao+-interleaved`: HBAO+ over 16 quarter-resolution depth layers (the authors' way).
     HbaoPlusInterleaved,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `sd-hbao+`: HBAO+ over the stochastic depth map (seed 001 §3.2, the authors' HBAO+SD).
+    SdHbaoPlus,
     /// `ssao`: seed 001's SSAO, Alchemy AO with 32 samples.
     Ssao,
+    /// `sd-ssao`: SSAO; a sample whose first surface does not occlude reads the stochastic depth
+    /// map (seed 001 §3.2–3.3).
+    SdSsao,
     /// `sao`: Scalable Ambient Obscurance, spiral taps over the depth pyramid.
     Sao,
     /// `pyramid-hbao`: Pyramid HBAO, directions walked over the levels of the depth pyramid.
@@ -69,7 +77,9 @@ techniques!(
     /// `gtao-vb`: GTAO slices with a 32-sector visibility bitmask and constant thickness.
     GtaoVb,
     /// `gtao-vb-dual`: GTAO-VB; every sample also marks the sectors of the second depth layer.
-    GtaoVbDual
+    GtaoVbDual,
+    /// `sd-gtao-vb`: GTAO-VB; every sample also marks the sectors of every stochastic depth sample.
+    SdGtaoVb
 );
 
 /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
@@ -247,6 +257,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::SdHbao,
+        name: "sd-hbao",
+        summary: "HBAO; a step above the tangent plane beyond R reads the stochastic depth map",
+        paper: "seed 001 §3.2 (Algorithm 2), §3.3",
+        estimator: Estimator::Hbao,
+        source: Source::StochasticDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::HbaoPlus,
         name: "hbao+",
         summary: "HBAO+: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline)",
@@ -274,12 +293,30 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::SdHbaoPlus,
+        name: "sd-hbao+",
+        summary: "HBAO+; samples in front but beyond R also read the stochastic depth map",
+        paper: "seed 001 §3.2, seed-code-notes §1.7",
+        estimator: Estimator::HbaoPlus,
+        source: Source::StochasticDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::Ssao,
         name: "ssao",
         summary: "SSAO: Alchemy AO, 32 spiral samples within R (seed 001's SSAO baseline)",
         paper: "seed 001 §3.2, McGuire et al. 2011",
         estimator: Estimator::Ssao,
         source: Source::FirstLayer,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::SdSsao,
+        name: "sd-ssao",
+        summary: "SSAO; a sample whose first surface does not occlude reads the stochastic map",
+        paper: "seed 001 §3.2, §3.3",
+        estimator: Estimator::Ssao,
+        source: Source::StochasticDepth,
         schedule: Schedule::Single,
     },
     TechniqueRow {
@@ -325,6 +362,15 @@ pub const TABLE: &[TechniqueRow] = &[
         paper: "seed 003, seed 000 §2.1",
         estimator: Estimator::GtaoVb,
         source: Source::DualDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::SdGtaoVb,
+        name: "sd-gtao-vb",
+        summary: "GTAO-VB; every sample also marks the sectors of every stochastic depth sample",
+        paper: "seed 003, seed 001 §3.1",
+        estimator: Estimator::GtaoVb,
+        source: Source::StochasticDepth,
         schedule: Schedule::Single,
     },
 ];

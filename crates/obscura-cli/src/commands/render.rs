@@ -79,17 +79,19 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     }
     let mut written = vec![args.out.clone()];
     if let Some(dir) = &args.debug_out {
-        if let Some((name, what)) = args.technique.row().estimator_debug_image() {
+        let row = args.technique.row();
+        if row.needs().stochastic_depth_map {
+            write_sd_debug(dir, &renderer, &settings, (width, height), guard_band)?
+        } else if row.schedule.two_phase() {
+            write_debug(dir, &renderer, width, height, settings.vao.samples)?
+        }
+        if let Some((name, what)) = row.estimator_debug_image() {
             let image = renderer
                 .read_estimator_debug()?
                 .ok_or_else(|| anyhow::anyhow!("{} has no debug image", args.technique))?;
             let path = dir.join(name);
             output::write_ao(&path, width, height, &image)?;
             eprintln!("debug: {}: {what}", path.display());
-        } else if args.technique.needs().stochastic_depth_map {
-            write_sd_debug(dir, &renderer, &settings, (width, height), guard_band)?
-        } else {
-            write_debug(dir, &renderer, width, height, settings.vao.samples)?
         }
     }
     if args.composite || args.lit {
