@@ -6,7 +6,7 @@ use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{
-    AoSettings, Normalization, Preset, SdMask, SectorActivation, SettingsError,
+    AoSettings, Normalization, Preset, SdMask, SdQuery, SectorActivation, SettingsError,
 };
 use obscura::Technique;
 use std::path::PathBuf;
@@ -164,6 +164,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.alpha", "--sd-alpha"),
     ("stochastic_depth.seed", "--sd-seed"),
     ("stochastic_depth.mask", "--sd-mask"),
+    ("stochastic_depth.query", "--sd-query"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -465,6 +466,12 @@ pub struct AoArgs {
         "stochastic_depth.mask"
     ))]
     pub sd_mask: Option<String>,
+    #[arg(long, help = help(
+        "Stochastic-depth techniques: read the map only where the first layer cannot decide \
+         ('needed', seed 001 §3.3) or for every sample ('always', to measure the difference).",
+        "stochastic_depth.query"
+    ))]
+    pub sd_query: Option<String>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -569,6 +576,9 @@ impl AoArgs {
         set(&mut sd.seed, self.sd_seed);
         if let Some(m) = &self.sd_mask {
             sd.mask = m.parse::<SdMask>().map_err(with_flags)?;
+        }
+        if let Some(q) = &self.sd_query {
+            sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
         // The preset and the file were valid: anything invalid now came from a flag.
         s.validate().map_err(with_flags)?;

@@ -486,6 +486,37 @@ pub struct StochasticDepthSettings {
     pub seed: u32,
     /// `sd-svao`: how the map is limited to the pixels phase 1 requested.
     pub mask: SdMask,
+    /// When a sample reads the map: only where the first layer cannot decide (the default, seed
+    /// 001 §3.3's query heuristic), or for every sample that finds a surface (to measure what the
+    /// heuristic saves and costs).
+    pub query: SdQuery,
+}
+
+/// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
+/// `"needed"` or `"always"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdQuery {
+    /// Only where the estimator says the first surface may hide more ("needs hidden depth?").
+    #[default]
+    Needed,
+    /// For every sample whose pixel shows a surface.
+    Always,
+}
+
+impl FromStr for SdQuery {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "needed" => Ok(SdQuery::Needed),
+            "always" => Ok(SdQuery::Always),
+            _ => Err(invalid(
+                "stochastic_depth.query",
+                s,
+                "must be 'needed' (default, seed 001 §3.3) or 'always'",
+            )),
+        }
+    }
 }
 
 /// How `sd-svao` rasterises its stochastic depth map only where phase 1 asked for it. In files:
@@ -559,6 +590,7 @@ impl Default for StochasticDepthSettings {
             alpha: None,
             seed: 0,
             mask: SdMask::Stencil,
+            query: SdQuery::Needed,
         }
     }
 }
@@ -1560,7 +1592,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 53, "{paths:?}");
+        assert_eq!(paths.len(), 54, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1629,6 +1661,7 @@ mod tests {
         for (text, field) in [
             ("flat".parse::<Normalization>().err(), "vao.normalization"),
             ("both".parse::<SdMask>().err(), "stochastic_depth.mask"),
+            ("often".parse::<SdQuery>().err(), "stochastic_depth.query"),
             (
                 "half".parse::<SectorActivation>().err(),
                 "gtao_vb.activation",

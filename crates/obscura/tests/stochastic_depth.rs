@@ -438,3 +438,44 @@ fn unsupported_settings_are_clear_errors() {
         "{err}"
     );
 }
+
+#[test]
+fn reading_the_map_only_where_needed_changes_only_what_the_heuristic_allows() {
+    // `stochastic_depth.query`: "always" reads the map for every sample that finds a surface,
+    // "needed" (seed 001 §3.3) only where the estimator says the first surface may hide more.
+    // Every estimator here combines depths by the most occlusion, so reading more can only darken;
+    // GTAO-VB asks for every sample anyway (the same image). What the heuristic skips in VAO, HBAO+
+    // and SSAO shows in the printed counts of darker pixels (the time it saves: BENCHMARKS.md).
+    use obscura::settings::SdQuery;
+    let gpu = gpu();
+    let scene = obscura::scene::builtin("stairs").unwrap();
+    let camera = scene.cameras[0].camera;
+    let render = |technique: Technique, query: SdQuery| {
+        let mut s = settings(technique, 4, 0.375);
+        s.stochastic_depth.query = query;
+        let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
+        r.render(&camera, None).unwrap();
+        r.read_raw_ao().unwrap()
+    };
+    for t in [
+        Technique::SdVao,
+        Technique::SdGtaoVb,
+        Technique::SdHbaoPlus,
+        Technique::SdSsao,
+    ] {
+        let (needed, always) = (render(t, SdQuery::Needed), render(t, SdQuery::Always));
+        let (mut darker, mut lighter) = (0, 0.0f32);
+        for (n, a) in needed.iter().zip(&always) {
+            darker += usize::from(*a < n - 1e-6);
+            lighter = lighter.max(a - n);
+        }
+        println!("{t}: {darker} pixels darker when always read, lightest +{lighter:e}");
+        assert!(
+            lighter <= 1e-6,
+            "{t}: reading more lightened a pixel by {lighter}"
+        );
+        if t == Technique::SdGtaoVb {
+            assert_eq!(darker, 0, "{t}");
+        }
+    }
+}

@@ -36,10 +36,15 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
                         alpha: Some(0.375),
                         seed: 7,
                         mask,
+                        ..StochasticDepthSettings::default()
                     };
                     out.push((format!("S={s} {mask}"), settings));
                 }
             }
+            // Reading the map for every sample: phase 1 flags them all, and still the same image.
+            let mut always = base;
+            always.stochastic_depth.query = obscura::settings::SdQuery::Always;
+            out.push(("S=4 query always".into(), always));
             out
         }
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {

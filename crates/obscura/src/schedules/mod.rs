@@ -83,6 +83,7 @@ pub(crate) fn pipeline(
     layouts.extend(source_layout.map(|l| (GROUP_SOURCE, l)));
     layouts.extend(schedule_layout.map(|l| (GROUP_SCHEDULE, l)));
     let mut constants = estimator.constants.clone();
+    constants.extend_from_slice(source.constants());
     constants.extend_from_slice(&stage.constants);
     bindings::compute_pipeline(
         device,

@@ -99,6 +99,8 @@ pub(crate) struct SourcePass {
     /// §3.9), written by phase 1, read by the map's raster passes.
     request: Option<wgpu::Buffer>,
     request_group: Option<wgpu::BindGroup>,
+    /// The source's pipeline constants (the stochastic depth map's query switch).
+    constants: Vec<(&'static str, f64)>,
 }
 
 fn missing(what: &str, source: Source) -> Error {
@@ -143,6 +145,7 @@ impl SourcePass {
                     request_layout: None,
                     request: None,
                     request_group: None,
+                    constants: Vec::new(),
                 });
             }
             Source::StochasticDepth => {
@@ -188,6 +191,12 @@ impl SourcePass {
             )),
             _ => None,
         };
+        let always = settings.stochastic_depth.query == crate::settings::SdQuery::Always;
+        let constants = if kind == Source::StochasticDepth && always {
+            vec![("SD_QUERY_ALWAYS", 1.0)]
+        } else {
+            Vec::new()
+        };
         Ok(Self {
             kind,
             held,
@@ -196,7 +205,13 @@ impl SourcePass {
             request_layout,
             request,
             request_group,
+            constants,
         })
+    }
+
+    /// Pipeline constants every pass composed with this source sets.
+    pub fn constants(&self) -> &[(&'static str, f64)] {
+        &self.constants
     }
 
     pub fn wgsl(&self) -> String {

@@ -11,10 +11,21 @@
 // The projection's near plane (the first member of map.wgsl's SdRaster).
 @group(GROUP_SOURCE) @binding(SOURCE_SD_NEAR) var<uniform> sd_near: vec4<f32>;
 
+// `stochastic_depth.query = "always"`: read the map for every sample whose pixel shows a surface,
+// not only where the estimator says the first surface may hide more (seed 001 §3.3's heuristic,
+// the default); a switch to measure what the heuristic saves and what it changes.
+override SD_QUERY_ALWAYS: bool = false;
+
 // `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
 // exactly these samples.
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
-    return first_layer_lookup(p, s);
+    var l = first_layer_lookup(p, s);
+    if (SD_QUERY_ALWAYS && !l.trace) {
+        let pixel = vec2<u32>(l.px);
+        l.trace = any(pixel != estimator_shading_pixel(p))
+            && !is_background(textureLoad(depth_tex, pixel, 0).r);
+    }
+    return l;
 }
 
 // The value combined over the first surface (`l.value`) and every stored stochastic sample.
