@@ -35,15 +35,6 @@ struct SaoParams {
 override SAMPLE_COUNT: u32 = 11u;
 override LEVELS: u32 = 5u;
 
-struct EstimatorPixel {
-    pos: vec3<f32>,
-    normal: vec3<f32>,
-    pixel: vec2<u32>,
-    rotation: f32,
-    radius_px: f32,
-    valid: bool,
-}
-
 struct EstimatorSample {
     px: vec2<f32>,
     level: u32,
@@ -63,21 +54,6 @@ struct EstimatorAccum {
 struct Occluder {
     value: f32,
     hidden: bool,
-}
-
-fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
-    let base = screen_pixel(id, params.radius);
-    var p: EstimatorPixel;
-    p.pixel = base.pixel;
-    p.valid = base.valid;
-    if (!p.valid) {
-        return p;
-    }
-    p.pos = base.pos;
-    p.normal = base.normal;
-    p.rotation = params.pattern[pattern_index(id)].x;
-    p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
-    return p;
 }
 
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {

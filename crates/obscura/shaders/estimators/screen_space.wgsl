@@ -44,13 +44,3 @@ fn estimator_sample_active(s: EstimatorSample) -> bool {
 fn estimator_sample_px(p: EstimatorPixel, s: EstimatorSample) -> vec2<f32> {
     return s.px;
 }
-
-// Tap i of n on SAO's spiral (McGuire et al. 2012, shared by `sao` and `ssao`): at α = (i + 0.5)/n
-// of `radius_px` and angle 2π·α·turns + rotation. xy: the framebuffer offset (view y up,
-// framebuffer y down), z: the distance in pixels.
-fn spiral_tap(i: u32, n: u32, turns: f32, rotation: f32, radius_px: f32) -> vec3<f32> {
-    let alpha = (f32(i) + 0.5) / f32(n);
-    let angle = alpha * 6.283185307179586 * turns + rotation;
-    let distance = alpha * radius_px;
-    return vec3<f32>(vec2<f32>(cos(angle), -sin(angle)) * distance, distance);
-}

@@ -6,14 +6,19 @@
 // technique exists for), and sample offsets become multiples of 4 px. Every pixel of a layer shares
 // the pattern entry of the 4×4 Bayer table, so "one jitter per layer" holds by construction.
 //
-// The estimator contract as the single pass uses it, samples in order (order-dependent estimators
-// work too); the first depth layer is the only source (the table allows no other): this file does
-// the lookup itself, the first-layer source's functions stay unused.
+// The sample loop and the store are single.wgsl's; this file is the source they consult in the
+// first layer's place (the table allows no other source), reading the pixel's own layer, and the
+// entry point that walks the layers (src/schedules/interleaved.rs composes it without the row's
+// source file).
 
 @group(GROUP_SCHEDULE) @binding(SCHEDULE_DEPTH_LAYERS) var depth_layers: texture_2d_array<f32>;
 
-// The value of sample `s` of pixel `p` from the pixel's own layer.
-fn interleaved_value(p: EstimatorPixel, s: EstimatorSample) -> EstimatorValue {
+// The first layer's answer for sample `s` of pixel `p`, from the pixel's own layer.
+fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
+    var l: DepthLookup;
+    l.value = estimator_unoccluded(p, s);
+    l.trace = false;
+    l.t_after = 0.0;
     let own = estimator_shading_pixel(p);
     let residue = own % 4u;
     let size = vec2<f32>(textureDimensions(depth_layers).xy);
@@ -23,15 +28,22 @@ fn interleaved_value(p: EstimatorPixel, s: EstimatorSample) -> EstimatorValue {
         size - 1.0,
     ));
     let pixel = cell * 4u + residue;
+    l.px = vec2<f32>(pixel) + 0.5;
     if (all(pixel == own)) {
-        return estimator_unoccluded(p, s);
+        return l;
     }
     let z = textureLoad(depth_layers, cell, residue.x + 4u * residue.y, 0).r;
-    if (is_background(z)) {
-        return estimator_unoccluded(p, s);
+    if (!is_background(z)) {
+        l.value = estimator_occluder(p, s, pixel_to_view(view, l.px, z)).value;
     }
-    return estimator_occluder(p, s, pixel_to_view(view, vec2<f32>(pixel) + 0.5, z)).value;
+    return l;
 }
+
+fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
+    return l.value;
+}
+
+fn source_request(l: DepthLookup) {}
 
 // One invocation per framebuffer pixel of layer `id.z`, (4x, 4y) + its residue; the guard band
 // and what lies past the visible image are skipped.
@@ -43,23 +55,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let id = pixel - guard;
-    let p = estimator_pixel(id);
-    if (!estimator_pixel_valid(p)) {
-        textureStore(ao_out, id, vec4<f32>(1.0));
-        return;
-    }
-    var acc = estimator_accum_init();
-    for (var i = 0u; i < SAMPLE_COUNT; i++) {
-        let s = estimator_sample(p, i);
-        if (!estimator_sample_active(s)) {
-            continue;
-        }
-        acc = estimator_accum_value(acc, s, interleaved_value(p, s));
-        acc = estimator_accum_sample(acc, s);
-    }
-    if (ESTIMATOR_DEBUG) {
-        textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));
-    } else {
-        textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
-    }
+    store_pixel(id, estimator_pixel(id));
 }

@@ -27,3 +27,19 @@ fn single_pass_accum(p: EstimatorPixel) -> EstimatorAccum {
     }
     return acc;
 }
+
+// Writes visible pixel `id`'s result: 1 where there is no surface, else the estimator's AO, or
+// its debug image under ESTIMATOR_DEBUG (frame.wgsl). The single pass and the interleaved
+// schedule both end here.
+fn store_pixel(id: vec2<u32>, p: EstimatorPixel) {
+    if (!estimator_pixel_valid(p)) {
+        textureStore(ao_out, id, vec4<f32>(1.0));
+        return;
+    }
+    let acc = single_pass_accum(p);
+    if (ESTIMATOR_DEBUG) {
+        textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));
+    } else {
+        textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
+    }
+}

@@ -9,6 +9,7 @@ use std::f32::consts::TAU;
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/spiral.wgsl"),
     include_str!("../../shaders/estimators/sao.wgsl")
 );
 /// Its `override` constants: the taps and the pyramid's levels.

@@ -8,6 +8,7 @@ use std::f32::consts::TAU;
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/estimators/spiral.wgsl"),
     include_str!("../../shaders/estimators/ssao.wgsl")
 );
 /// Its `override` constants: the sample count.

@@ -184,7 +184,11 @@ fn check_stage(
     sd: SdLayout,
     stage: schedules::Stage,
 ) {
-    let wgsl = schedules::compose(estimator, &sources::wgsl(source, sd), &stage.parts);
+    let wgsl = schedules::compose(
+        estimator,
+        &stage.source_wgsl(sources::wgsl(source, sd)),
+        &stage.parts,
+    );
     let source_entries = match stage.source_group {
         SourceGroup::Resolve => sources::resolve_entries(source, sd),
         SourceGroup::Request => sources::request_entries(source),

@@ -15,9 +15,10 @@ use crate::Error;
 pub(crate) fn stage() -> Stage {
     Stage {
         label: "interleaved",
-        parts: vec![shaders::SCHEDULE_INTERLEAVED],
+        parts: vec![shaders::SCHEDULE_SINGLE, shaders::SCHEDULE_INTERLEAVED],
         source_group: SourceGroup::Resolve,
         schedule_entries: vec![entry::texture_array(SCHEDULE_DEPTH_LAYERS)],
+        own_source: true,
         constants: Vec::new(),
     }
 }

@@ -33,7 +33,21 @@ pub(crate) struct Stage {
     pub source_group: SourceGroup,
     /// Group-3 layout entries (none: the stage binds no group 3).
     pub schedule_entries: Vec<wgpu::BindGroupLayoutEntry>,
+    /// The stage's parts hold the source functions themselves (the interleaved schedule's
+    /// first-layer lookup): the row's source WGSL is left out.
+    pub own_source: bool,
     pub constants: Vec<(&'static str, f64)>,
+}
+
+impl Stage {
+    /// The source WGSL this stage is composed with: `source`, unless its parts hold their own.
+    pub fn source_wgsl(&self, source: String) -> String {
+        if self.own_source {
+            String::new()
+        } else {
+            source
+        }
+    }
 }
 
 /// The AO pipelines of a schedule, in the order they run.
@@ -88,7 +102,11 @@ pub(crate) fn pipeline(
     bindings::compute_pipeline(
         device,
         stage.label,
-        &compose(estimator.wgsl, &source.wgsl(), &stage.parts),
+        &compose(
+            estimator.wgsl,
+            &stage.source_wgsl(source.wgsl()),
+            &stage.parts,
+        ),
         &constants,
         &bindings::by_group(&layouts),
     )

@@ -15,6 +15,7 @@ pub(crate) fn stage() -> Stage {
         parts: vec![shaders::SCHEDULE_SINGLE, shaders::SCHEDULE_SINGLE_MAIN],
         source_group: SourceGroup::Resolve,
         schedule_entries: Vec::new(),
+        own_source: false,
         constants: Vec::new(),
     }
 }

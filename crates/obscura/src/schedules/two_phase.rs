@@ -50,6 +50,7 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
             parts: vec![shaders::SCHEDULE_TWO_PHASE, shaders::SCHEDULE_TWO_PHASE_1],
             source_group: SourceGroup::Request,
             schedule_entries: schedule_entries(false),
+            own_source: false,
             constants: constants.clone(),
         },
         Stage {
@@ -57,6 +58,7 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
             parts: vec![shaders::SCHEDULE_TWO_PHASE, shaders::SCHEDULE_TWO_PHASE_2],
             source_group: SourceGroup::Resolve,
             schedule_entries: schedule_entries(true),
+            own_source: false,
             constants,
         },
     ]
