@@ -86,8 +86,6 @@ struct EstimatorAccum {
     // The slice being walked (0xffffffff before the first) and its horizon cosines, side + and −.
     slice: u32,
     horizon_cos: vec2<f32>,
-    // The slice's lowest horizon cosines (the tangent plane's), made at the slice's first sample.
-    lowest_cos: vec2<f32>,
     gamma: f32,
     projected_length: f32,
     visible: f32,
@@ -199,7 +197,6 @@ fn estimator_accum_init() -> EstimatorAccum {
     var a: EstimatorAccum;
     a.slice = 0xffffffffu;
     a.horizon_cos = vec2<f32>(-1.0);
-    a.lowest_cos = vec2<f32>(-1.0);
     a.gamma = 0.0;
     a.projected_length = 0.0;
     a.visible = 0.0;
@@ -219,10 +216,10 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f3
         a.slice = s.slice;
         a.gamma = s.gamma;
         a.projected_length = s.projected_length;
-        a.lowest_cos = lowest_horizon_cos(s.gamma);
-        a.horizon_cos = a.lowest_cos;
+        a.horizon_cos = lowest_horizon_cos(s.gamma);
     }
-    let lowest = a.lowest_cos[s.side];
+    // Recomputed per sample: keeping it in the accumulator measured 1 % slower (BENCHMARKS.md).
+    let lowest = lowest_horizon_cos(a.gamma)[s.side];
     let sample_cos = mix(lowest, value.x, value.y);
     let current = a.horizon_cos[s.side];
     a.horizon_cos[s.side] = max(sample_cos, mix(current, sample_cos, params.thickness_blend));
