@@ -165,6 +165,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.seed", "--sd-seed"),
     ("stochastic_depth.mask", "--sd-mask"),
     ("stochastic_depth.query", "--sd-query"),
+    ("stochastic_depth.compensation", "--sd-compensation"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -472,6 +473,12 @@ pub struct AoArgs {
         "stochastic_depth.query"
     ))]
     pub sd_query: Option<String>,
+    #[arg(long, help = help(
+        "Stochastic-depth techniques: multiply the occlusion of stochastic samples by this \
+         factor in [1, 8] (missing-occlusion compensation, seed 001 §4; 1 = off, the paper used 2).",
+        "stochastic_depth.compensation"
+    ))]
+    pub sd_compensation: Option<f32>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -580,6 +587,7 @@ impl AoArgs {
         if let Some(q) = &self.sd_query {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
+        set(&mut sd.compensation, self.sd_compensation);
         // The preset and the file were valid: anything invalid now came from a flag.
         s.validate().map_err(with_flags)?;
         Ok(s)

@@ -490,6 +490,11 @@ pub struct StochasticDepthSettings {
     /// 001 §3.3's query heuristic), or for every sample that finds a surface (to measure what the
     /// heuristic saves and costs).
     pub query: SdQuery,
+    /// Missing-occlusion compensation (seed 001 §4, Figs. 7–8): the occlusion each stochastic
+    /// sample contributes is multiplied by this factor, in [1, 8]; 1 (the default) is off, the
+    /// paper used 2 for its Figs. 7–8. Makes up for occluders the few samples miss behind many
+    /// layers, and overshoots where the samples missed nothing.
+    pub compensation: f32,
 }
 
 /// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
@@ -591,6 +596,7 @@ impl Default for StochasticDepthSettings {
             seed: 0,
             mask: SdMask::Stencil,
             query: SdQuery::Needed,
+            compensation: 1.0,
         }
     }
 }
@@ -731,6 +737,13 @@ impl AoSettings {
                 "stochastic_depth.alpha",
                 alpha,
                 "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
+            ));
+        }
+        if !(sd.compensation.is_finite() && (1.0..=8.0).contains(&sd.compensation)) {
+            return Err(invalid(
+                "stochastic_depth.compensation",
+                sd.compensation,
+                "must be in [1, 8]: 1 is off, the paper used 2",
             ));
         }
         let h = &self.hbao;
@@ -1592,7 +1605,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 54, "{paths:?}");
+        assert_eq!(paths.len(), 55, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1606,6 +1619,7 @@ mod tests {
         push(&|s| s.peel_separation = -0.1);
         push(&|s| s.stochastic_depth.samples = 3);
         push(&|s| s.stochastic_depth.alpha = Some(1.5));
+        push(&|s| s.stochastic_depth.compensation = 0.5);
         push(&|s| s.blur.radius = 0);
         push(&|s| s.blur.sharpness = -2.0);
         push(&|s| s.blur.sigma = Some(0.0));

@@ -170,6 +170,13 @@ fn estimator_combine(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     return select(a, b, b.y * (b.x + 1.0) > a.y * (a.x + 1.0));
 }
 
+// Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION), for a GTAO over a
+// stochastic source (no row has one yet): the sample's falloff weight, which pulls the horizon up
+// from the tangent, counts `factor` times (at most 1).
+fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, value: vec2<f32>, factor: f32) -> vec2<f32> {
+    return vec2<f32>(value.x, min(value.y * factor, 1.0));
+}
+
 // Side horizon cosines at the tangent plane: cos(γ + π/2) = −sin γ and cos(γ − π/2) = sin γ.
 fn lowest_horizon_cos(gamma: f32) -> vec2<f32> {
     let s = sin(gamma);

@@ -177,6 +177,23 @@ fn estimator_combine(a: u32, b: u32) -> u32 {
     return a | b;
 }
 
+// Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION), ours for the
+// bitmask: one surface's sectors are one run (sector_bits); a stochastic sample's run is widened
+// about its centre to `factor` times its sectors (at most 32, kept inside the hemisphere).
+fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, value: u32, factor: f32) -> u32 {
+    let n = countOneBits(value);
+    if (n == 0u) {
+        return 0u;
+    }
+    let wide = min(u32(round(f32(n) * factor)), 32u);
+    if (wide == 0u || wide == 32u) {
+        return select(0u, 0xffffffffu, wide == 32u);
+    }
+    let grow = i32(wide) - i32(n);
+    let start = clamp(i32(firstTrailingBit(value)) - grow / 2, 0, 32 - i32(wide));
+    return (0xffffffffu >> (32u - wide)) << u32(start);
+}
+
 fn estimator_accum_init() -> EstimatorAccum {
     return EstimatorAccum(array<u32, 3>(0u, 0u, 0u));
 }

@@ -167,6 +167,13 @@ fn estimator_combine(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     return select(a, b, b.y * (b.x + 1.0) > a.y * (a.x + 1.0));
 }
 
+// Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION): a stochastic
+// sample's contribution W·(sin φ − sin h) counts `factor` times, so its weight W does; the
+// horizon it raises is its own.
+fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, value: vec2<f32>, factor: f32) -> vec2<f32> {
+    return vec2<f32>(value.x, value.y * factor);
+}
+
 fn estimator_accum_init() -> EstimatorAccum {
     return EstimatorAccum(0.0, 1.0, 0xffffffffu, 0.0);
 }

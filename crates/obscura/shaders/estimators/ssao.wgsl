@@ -85,6 +85,12 @@ fn estimator_combine(a: f32, b: f32) -> f32 {
     return max(a, b);
 }
 
+// Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION): a stochastic
+// sample's occlusion counts `factor` times.
+fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, value: f32, factor: f32) -> f32 {
+    return value * factor;
+}
+
 fn estimator_accum_init() -> EstimatorAccum {
     return EstimatorAccum(0.0, 0.0, 0.0);
 }

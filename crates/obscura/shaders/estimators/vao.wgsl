@@ -246,6 +246,13 @@ fn estimator_combine(a: f32, b: f32) -> f32 {
     return min(a, b);
 }
 
+// Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION): a stochastic
+// sample's occluded part of the column, length − free, counts `factor` times (never below 0 free).
+fn estimator_compensate(p: VaoPixel, s: VaoSample, value: f32, factor: f32) -> f32 {
+    let length = s.column.start - s.column.end;
+    return max(length - factor * (length - value), 0.0);
+}
+
 fn estimator_accum_init() -> EstimatorAccum {
     return EstimatorAccum(0.0, 0.0, 0.0);
 }

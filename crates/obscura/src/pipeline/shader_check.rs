@@ -46,6 +46,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     return Occluder(select(1.0, 0.0, occluded), occluded);
 }
 fn estimator_combine(a: f32, b: f32) -> f32 { return min(a, b); }
+fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, v: f32, factor: f32) -> f32 { return v; }
 fn estimator_accum_init() -> EstimatorAccum { return EstimatorAccum(0.0, 0.0, 0.0); }
 fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
     return EstimatorAccum(acc.open, acc.count + 1.0, 0.0);

@@ -191,12 +191,17 @@ impl SourcePass {
             )),
             _ => None,
         };
-        let always = settings.stochastic_depth.query == crate::settings::SdQuery::Always;
-        let constants = if kind == Source::StochasticDepth && always {
-            vec![("SD_QUERY_ALWAYS", 1.0)]
-        } else {
-            Vec::new()
-        };
+        let sd = &settings.stochastic_depth;
+        let mut constants = Vec::new();
+        if kind == Source::StochasticDepth {
+            if sd.query == crate::settings::SdQuery::Always {
+                constants.push(("SD_QUERY_ALWAYS", 1.0));
+            }
+            // Left at the shader's default when off, so the default pipeline is unchanged.
+            if sd.compensation != 1.0 {
+                constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
+            }
+        }
         Ok(Self {
             kind,
             held,

@@ -16,6 +16,13 @@
 // the default); a switch to measure what the heuristic saves and what it changes.
 override SD_QUERY_ALWAYS: bool = false;
 
+// `stochastic_depth.compensation` (seed 001 §4, "missing occlusion compensation", Figs. 7–8): the
+// occlusion a stochastic sample contributes is multiplied by this factor before it meets the first
+// surface's, to make up for occluders the few samples missed (the paper found 2 works at low
+// sample counts; 1, the default, is the plain estimator). What "occlusion contributed" means is the
+// estimator's (`estimator_compensate`).
+override SD_COMPENSATION: f32 = 1.0;
+
 // `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
 // exactly these samples.
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
@@ -37,7 +44,11 @@ fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Esti
             let v = sd_load(m, pixel, k);
             if (v > 0.0) {
                 let pos = pixel_to_view(view, l.px, sd_near.x / v);
-                value = estimator_combine(value, estimator_occluder(p, s, pos).value);
+                var sample_value = estimator_occluder(p, s, pos).value;
+                if (SD_COMPENSATION != 1.0) {
+                    sample_value = estimator_compensate(p, s, sample_value, SD_COMPENSATION);
+                }
+                value = estimator_combine(value, sample_value);
             }
         }
     }
