@@ -6,7 +6,7 @@ use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{
-    AoSettings, Normalization, Preset, SdMask, SdQuery, SectorActivation, SettingsError,
+    AoSettings, Normalization, Preset, Resolution, SdMask, SdQuery, SectorActivation, SettingsError,
 };
 use obscura::Technique;
 use std::path::PathBuf;
@@ -166,6 +166,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.mask", "--sd-mask"),
     ("stochastic_depth.query", "--sd-query"),
     ("stochastic_depth.compensation", "--sd-compensation"),
+    ("resolution", "--resolution"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -479,6 +480,12 @@ pub struct AoArgs {
         "stochastic_depth.compensation"
     ))]
     pub sd_compensation: Option<f32>,
+    #[arg(long, help = help(
+        "Run the technique at 'full' resolution (default) or at 'half' (a quarter of the pixels, \
+         seed 001 Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
+        "resolution"
+    ))]
+    pub resolution: Option<String>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -588,6 +595,9 @@ impl AoArgs {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
+        if let Some(r) = &self.resolution {
+            s.resolution = r.parse::<Resolution>().map_err(with_flags)?;
+        }
         // The preset and the file were valid: anything invalid now came from a flag.
         s.validate().map_err(with_flags)?;
         Ok(s)

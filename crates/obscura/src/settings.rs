@@ -658,6 +658,46 @@ pub struct AoSettings {
     pub ssao: SsaoSettings,
     /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
     pub gtao_vb: GtaoVbSettings,
+    /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
+    /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
+    pub resolution: Resolution,
+}
+
+/// The resolution a technique's passes run at (`resolution`; in files `"full"` or `"half"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Resolution {
+    /// The inputs' resolution.
+    #[default]
+    Full,
+    /// Half the width and height (a quarter of the pixels): the depth and normals are reduced
+    /// 2×2 → 1, the source, schedule and blur run there, and a depth-aware upsample writes the
+    /// full-size output (src/filter/half_resolution.rs). Needs an even visible size and guard band.
+    Half,
+}
+
+impl FromStr for Resolution {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "full" => Ok(Resolution::Full),
+            "half" => Ok(Resolution::Half),
+            _ => Err(invalid(
+                "resolution",
+                s,
+                "must be 'full' (default) or 'half'",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for Resolution {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Resolution::Full => "full",
+            Resolution::Half => "half",
+        })
+    }
 }
 
 impl Default for AoSettings {
@@ -676,6 +716,7 @@ impl Default for AoSettings {
             blur: BlurSettings::default(),
             peel_separation: 0.01,
             stochastic_depth: StochasticDepthSettings::default(),
+            resolution: Resolution::Full,
         }
     }
 }
@@ -1605,7 +1646,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 55, "{paths:?}");
+        assert_eq!(paths.len(), 56, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1676,6 +1717,7 @@ mod tests {
             ("flat".parse::<Normalization>().err(), "vao.normalization"),
             ("both".parse::<SdMask>().err(), "stochastic_depth.mask"),
             ("often".parse::<SdQuery>().err(), "stochastic_depth.query"),
+            ("quarter".parse::<Resolution>().err(), "resolution"),
             (
                 "half".parse::<SectorActivation>().err(),
                 "gtao_vb.activation",

@@ -145,6 +145,18 @@ impl FrameView {
             .view_to_pixel(self.view_matrix().transform_point3(p))
     }
 
+    /// The same view at half the resolution (`resolution = "half"`): half the visible size and
+    /// guard band, the same frustum. The caller checks [`ScreenGeometry::half`] first (even
+    /// sizes).
+    pub fn half(&self) -> Self {
+        Self {
+            width: self.width / 2,
+            height: self.height / 2,
+            guard_band: self.guard_band / 2,
+            ..*self
+        }
+    }
+
     /// What screen-space passes need of this view.
     pub fn screen(&self) -> ScreenGeometry {
         ScreenGeometry {
@@ -262,6 +274,33 @@ impl ScreenGeometry {
     /// Framebuffer height in pixels: the visible height plus the guard band on both sides.
     pub fn full_height(&self) -> u32 {
         self.height + 2 * self.guard_band
+    }
+
+    /// The same frustum at half the resolution (`resolution = "half"`): every half-resolution
+    /// pixel covers 2×2 pixels of this one exactly, so the visible size and the guard band must
+    /// be even (an error naming them otherwise).
+    pub fn half(&self) -> Result<Self, crate::Error> {
+        if ![self.width, self.height, self.guard_band]
+            .iter()
+            .all(|v| v.is_multiple_of(2))
+        {
+            return Err(crate::Error::Input(format!(
+                "resolution 'half' needs an even visible size and guard band (each half pixel \
+                 covers 2x2 pixels), got {}x{} with a {} px guard band: use e.g. {}x{} and {}",
+                self.width,
+                self.height,
+                self.guard_band,
+                self.width + self.width % 2,
+                self.height + self.height % 2,
+                self.guard_band + self.guard_band % 2
+            )));
+        }
+        Ok(Self {
+            width: self.width / 2,
+            height: self.height / 2,
+            guard_band: self.guard_band / 2,
+            ..*self
+        })
     }
 
     /// View-space point of framebuffer pixel coordinates `px` (pixel centres at +0.5) at linear

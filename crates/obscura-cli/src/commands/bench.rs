@@ -231,17 +231,21 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             }
             None => String::new(),
         };
+        let resolution = match r.settings.resolution {
+            obscura::settings::Resolution::Full => "",
+            obscura::settings::Resolution::Half => ", AO at half resolution",
+        };
         println!(
-            "{} on {} ({}) {}x{} +{} guard band{sd}, median of {} frames:",
+            "{} on {} ({}) {}x{} +{} guard band{sd}{resolution}, median of {} frames:",
             r.technique, r.scene, r.camera, r.width, r.height, r.guard_band, r.frames
         );
         for (pass, ms) in &r.passes {
-            println!("  {pass:<14} {ms:>9.4} ms");
+            println!("  {pass:<15} {ms:>9.4} ms");
         }
-        println!("  {:<14} {:>9.4} ms", "total", r.total_ms);
+        println!("  {:<15} {:>9.4} ms", "total", r.total_ms);
         for (pass, f) in r.fragments.iter().flatten() {
             println!(
-                "  {pass:<14} {:>9} fragments ({:.2} per framebuffer pixel)",
+                "  {pass:<15} {:>9} fragments ({:.2} per framebuffer pixel)",
                 f.invocations, f.per_pixel
             );
         }

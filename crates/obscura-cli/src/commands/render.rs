@@ -80,10 +80,17 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     let mut written = vec![args.out.clone()];
     if let Some(dir) = &args.debug_out {
         let row = args.technique.row();
+        // The maps and masks are at the resolution the technique ran at (half with
+        // `--resolution half`).
+        let work = renderer
+            .ambient_occlusion()
+            .map(|ao| ao.work_screen())
+            .ok_or_else(|| anyhow::anyhow!("nothing rendered"))?;
+        let (w, h, g) = (work.width, work.height, work.guard_band);
         if row.needs().stochastic_depth_map {
-            write_sd_debug(dir, &renderer, &settings, (width, height), guard_band)?
+            write_sd_debug(dir, &renderer, &settings, (w, h), g)?
         } else if row.schedule.two_phase() {
-            write_debug(dir, &renderer, width, height, settings.vao.samples)?
+            write_debug(dir, &renderer, w, h, settings.vao.samples)?
         }
         if let Some((name, what)) = row.estimator_debug_image() {
             let image = renderer

@@ -1,6 +1,7 @@
 //! Filters applied to raw AO: the tail of the pass list ([`crate::AmbientOcclusion`]).
 
 pub mod bilateral;
+pub mod half_resolution;
 
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;

@@ -15,7 +15,7 @@ mod shader_check;
 
 use crate::bindings;
 use crate::estimators::EstimatorPass;
-use crate::filter::{bilateral::BilateralBlur, AoFilter};
+use crate::filter::{bilateral::BilateralBlur, half_resolution::HalfResolution, AoFilter};
 use crate::frame::{check_float_texture, check_texture, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::schedules::{FrameContext, SchedulePass};
@@ -48,7 +48,9 @@ struct FilterStage {
 }
 
 /// AO for one screen configuration: the technique row's source, schedule and estimator, then
-/// the filters (today the bilateral blur, when enabled).
+/// the filters (today the bilateral blur, when enabled). With `resolution = "half"` these run on
+/// a half-resolution copy of the frame between a downsample and a depth-aware upsample
+/// ([`HalfResolution`]).
 ///
 /// The output is an `R32Float` texture of the *visible* size (no guard band), 1 = unoccluded.
 pub struct AmbientOcclusion {
@@ -62,6 +64,8 @@ pub struct AmbientOcclusion {
     schedule: SchedulePass,
     raw: wgpu::Texture,
     filters: Vec<FilterStage>,
+    /// `resolution = "half"`: the half frame and the passes around the technique.
+    half: Option<HalfResolution>,
     /// [`AmbientOcclusion::set_camera`] was called (rows that trace or rasterise need it).
     camera_set: std::cell::Cell<bool>,
 }
@@ -107,24 +111,33 @@ impl AmbientOcclusion {
             contents: bytemuck::bytes_of(&screen.uniform()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
+        let half = match settings.resolution {
+            crate::settings::Resolution::Full => None,
+            crate::settings::Resolution::Half => Some(HalfResolution::new(device, &screen, &view)?),
+        };
+        // The geometry the technique runs at, and its View uniform.
+        let (work, work_view) = match &half {
+            Some(h) => (h.screen(), h.view()),
+            None => (screen, &view),
+        };
         let frame_layout = bindings::frame_layout(device, true);
         let estimator = EstimatorPass::for_row(device, row.estimator, settings);
-        let source = SourcePass::new(gpu, row.source, row.schedule, settings, &screen, scene)?;
+        let source = SourcePass::new(gpu, row.source, row.schedule, settings, &work, scene)?;
         let schedule = SchedulePass::new(
             device,
             row,
             &frame_layout,
             &estimator,
             &source,
-            &screen,
+            &work,
             estimator_debug,
         );
         let ao_texture = |label| {
             crate::gpu::texture_2d(
                 device,
                 label,
-                screen.width,
-                screen.height,
+                work.width,
+                work.height,
                 wgpu::TextureFormat::R32Float,
                 wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
@@ -137,9 +150,9 @@ impl AmbientOcclusion {
                 filter: Box::new(BilateralBlur::new(
                     device,
                     &settings.blur,
-                    &view,
-                    screen.width,
-                    screen.height,
+                    work_view,
+                    work.width,
+                    work.height,
                 )),
                 output: ao_texture("ao blurred"),
             });
@@ -155,6 +168,7 @@ impl AmbientOcclusion {
             schedule,
             raw: ao_texture("ao raw"),
             filters,
+            half,
             camera_set: std::cell::Cell::new(false),
         })
     }
@@ -163,7 +177,10 @@ impl AmbientOcclusion {
     /// others it does nothing). Those rows refuse to [`encode`](Self::encode) until it was set
     /// once, and its screen geometry must be the one this was built for.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
-        self.source.set_camera(queue, view);
+        match &self.half {
+            Some(_) => self.source.set_camera(queue, &view.half()),
+            None => self.source.set_camera(queue, view),
+        }
         self.camera_set.set(true);
     }
 
@@ -175,6 +192,14 @@ impl AmbientOcclusion {
     /// The screen geometry it was built for: the inputs' and the output's sizes.
     pub fn screen(&self) -> ScreenGeometry {
         self.screen
+    }
+
+    /// The screen geometry the technique runs at: [`Self::screen`], or its half with
+    /// `resolution = "half"` (the raw AO, sample masks, maps and requests are that size).
+    pub fn work_screen(&self) -> ScreenGeometry {
+        self.half
+            .as_ref()
+            .map_or(self.screen, HalfResolution::screen)
     }
 
     /// Record the passes of one frame. The textures must cover the guard-banded framebuffer
@@ -224,11 +249,29 @@ impl AmbientOcclusion {
             screen: self.screen,
             view: &self.view,
         };
+        let half_views = self.half.as_ref().map(|half| {
+            half.downsample(device, encoder, &frame, profiler.as_deref_mut());
+            let (d, n, s) = half.textures();
+            let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+            (view(d), view(n), view(s))
+        });
+        let half_frame = match (&self.half, &half_views) {
+            (Some(half), Some((depth, normals, second))) => Some(FrameInputs {
+                depth,
+                normals,
+                second_layer: needs_second.then_some(second),
+                screen: half.screen(),
+                view: half.view(),
+            }),
+            _ => None,
+        };
+        // The frame the technique runs on.
+        let work = half_frame.as_ref().unwrap_or(&frame);
         let raw = self.raw.create_view(&Default::default());
-        let frame_group = frame.group(device, &self.frame_layout, &raw);
+        let frame_group = work.group(device, &self.frame_layout, &raw);
         let ctx = FrameContext {
             device,
-            frame: &frame,
+            frame: work,
             frame_group: &frame_group,
             estimator: &self.estimator,
             source: &self.source,
@@ -241,21 +284,27 @@ impl AmbientOcclusion {
             stage.filter.encode(
                 device,
                 encoder,
-                &frame,
+                work,
                 &input,
                 &output,
                 profiler.as_deref_mut(),
             );
             input = output;
         }
+        if let Some(half) = &self.half {
+            half.upsample(device, encoder, &frame, &input, profiler);
+        }
         // wgpu reports what the checks above cannot see (e.g. a texture of another device) to
         // the device's error handler: surface it here, as this call's error.
         Ok(self.gpu.check_errors()?)
     }
 
-    /// The final AO (after the last filter).
+    /// The final AO (after the last filter, and the upsample at half resolution): visible size.
     pub fn output(&self) -> &wgpu::Texture {
-        self.filters.last().map_or(&self.raw, |f| &f.output)
+        match &self.half {
+            Some(half) => half.output(),
+            None => self.work_output(),
+        }
     }
 
     /// The final AO of the last encoded frame, row-major over the visible image (1 =
@@ -265,7 +314,13 @@ impl AmbientOcclusion {
         Ok(crate::gpu::read_texture_f32(&self.gpu, self.output(), 1)?)
     }
 
-    /// The schedule's AO before the filters.
+    /// The AO after the filters at the resolution the technique ran at ([`Self::work_screen`]):
+    /// [`Self::output`] before the upsample at half resolution, the same texture otherwise.
+    pub fn work_output(&self) -> &wgpu::Texture {
+        self.filters.last().map_or(&self.raw, |f| &f.output)
+    }
+
+    /// The schedule's AO before the filters ([`Self::work_screen`]'s visible size).
     pub fn raw_output(&self) -> &wgpu::Texture {
         &self.raw
     }
@@ -338,7 +393,8 @@ impl AmbientOcclusion {
         };
         let words: Vec<u32> =
             bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer_copy(&self.gpu, records)?);
-        let pixels = (self.screen.width * self.screen.height) as usize;
+        let work = self.work_screen();
+        let pixels = (work.width * work.height) as usize;
         Ok(Some(
             words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
         ))

@@ -220,8 +220,12 @@ impl Renderer {
             scene: needs.triangles.then_some(&self.scene),
             bvh: self.bvh.as_ref(),
         };
-        let ao =
-            AmbientOcclusion::build(&self.gpu, &self.settings, view.screen(), resources, true)?;
+        // At full resolution: the debug image shows the estimator's own quantities per pixel.
+        let settings = AoSettings {
+            resolution: crate::settings::Resolution::Full,
+            ..self.settings
+        };
+        let ao = AmbientOcclusion::build(&self.gpu, &settings, view.screen(), resources, true)?;
         ao.set_camera(&self.gpu.queue, &view);
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
         ao.encode(
@@ -237,7 +241,18 @@ impl Renderer {
         Ok(Some(read_texture_f32(&self.gpu, ao.raw_output(), 1)?))
     }
 
-    /// The kernel's AO before the blur.
+    /// The filtered AO before the upsample at half resolution (the half-size image; with
+    /// `resolution = "full"` the same as [`Self::read_ao`]).
+    pub fn read_work_ao(&self) -> Result<Vec<f32>, Error> {
+        Ok(read_texture_f32(
+            &self.gpu,
+            self.last_ao()?.work_output(),
+            1,
+        )?)
+    }
+
+    /// The kernel's AO before the blur (at half resolution: the half-size image, see
+    /// [`AmbientOcclusion::work_screen`]).
     pub fn read_raw_ao(&self) -> Result<Vec<f32>, Error> {
         Ok(read_texture_f32(
             &self.gpu,
