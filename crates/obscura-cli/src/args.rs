@@ -167,6 +167,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.query", "--sd-query"),
     ("stochastic_depth.compensation", "--sd-compensation"),
     ("resolution", "--resolution"),
+    ("bent_normals", "--bent-normals"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -486,6 +487,10 @@ pub struct AoArgs {
         "resolution"
     ))]
     pub resolution: Option<String>,
+    /// Also compute the bent normal (seed 001 §4): GTAO, GTAO-VB and SD-GTAO-VB; `render` writes
+    /// it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or NAME.bent.exr.
+    #[arg(long)]
+    pub bent_normals: bool,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -595,6 +600,9 @@ impl AoArgs {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
+        if self.bent_normals {
+            s.bent_normals = true;
+        }
         if let Some(r) = &self.resolution {
             s.resolution = r.parse::<Resolution>().map_err(with_flags)?;
         }
@@ -736,9 +744,10 @@ mod tests {
                 assert_eq!(a.settings(t).unwrap(), want, "{flag} {value}");
             }
         }
-        // Every field but the switches' blur.enabled (--no-blur) and gtao_vb.cosine_weighted
-        // (--vb-cosine), and blur.sigma (--blur-sigma), whose default is to be left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 3);
+        // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
+        // (--vb-cosine) and bent_normals (--bent-normals), and blur.sigma (--blur-sigma), whose
+        // default is to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 4);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

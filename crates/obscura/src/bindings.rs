@@ -25,6 +25,9 @@ pub const FRAME_DEPTH: u32 = 1;
 pub const FRAME_NORMALS: u32 = 2;
 /// The AO image the pass writes (write-only `r32float` storage texture, 1 = unoccluded).
 pub const FRAME_AO_OUT: u32 = 3;
+/// The bent normals the pass writes with `bent_normals` (write-only `rgba16float` storage texture,
+/// view-space unit xyz; a 1×1 texture nobody writes otherwise).
+pub const FRAME_BENT_OUT: u32 = 4;
 
 /// Group 1, the estimator's parameters.
 pub const ESTIMATOR_PARAMS: u32 = 0;
@@ -83,6 +86,7 @@ const NAMED: &[(&str, u32)] = &[
     ("FRAME_DEPTH", FRAME_DEPTH),
     ("FRAME_NORMALS", FRAME_NORMALS),
     ("FRAME_AO_OUT", FRAME_AO_OUT),
+    ("FRAME_BENT_OUT", FRAME_BENT_OUT),
     ("ESTIMATOR_PARAMS", ESTIMATOR_PARAMS),
     ("SOURCE_SECOND_DEPTH", SOURCE_SECOND_DEPTH),
     ("SOURCE_RAY_CAMERA", SOURCE_RAY_CAMERA),
@@ -197,6 +201,18 @@ pub mod entry {
         )
     }
 
+    /// A write-only `rgba16float` storage texture.
+    pub fn storage_texture_rgba16f(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::StorageTexture {
+                access: wgpu::StorageTextureAccess::WriteOnly,
+                format: wgpu::TextureFormat::Rgba16Float,
+                view_dimension: wgpu::TextureViewDimension::D2,
+            },
+        )
+    }
+
     /// A write-only `r32float` storage texture.
     pub fn storage_texture_r32f(binding: u32) -> wgpu::BindGroupLayoutEntry {
         compute(
@@ -241,6 +257,7 @@ pub fn frame_layout(device: &wgpu::Device, with_output: bool) -> wgpu::BindGroup
     ];
     if with_output {
         entries.push(entry::storage_texture_r32f(FRAME_AO_OUT));
+        entries.push(entry::storage_texture_rgba16f(FRAME_BENT_OUT));
     }
     layout(device, "frame", &entries)
 }

@@ -1,7 +1,7 @@
 //! What every AO pass reads: the frame's first depth layer and normals (guard-banded framebuffer)
 //! and its screen geometry, bound as group 0 (`shaders/frame/frame.wgsl`) with the AO output.
 
-use crate::bindings::{self, FRAME_AO_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_VIEW};
+use crate::bindings::{self, FRAME_AO_OUT, FRAME_BENT_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_VIEW};
 use crate::view::ScreenGeometry;
 use crate::Error;
 
@@ -20,12 +20,14 @@ pub struct FrameInputs<'a> {
 }
 
 impl FrameInputs<'_> {
-    /// Group 0 of an AO pass writing `output` (`R32Float` storage of the visible size).
+    /// Group 0 of an AO pass writing `output` (`R32Float` storage of the visible size) and, with
+    /// `bent_normals`, `bent` (`Rgba16Float` of the same size; a 1×1 one otherwise).
     pub(crate) fn group(
         &self,
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         output: &wgpu::TextureView,
+        bent: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
         bindings::group(
             device,
@@ -39,6 +41,7 @@ impl FrameInputs<'_> {
                     wgpu::BindingResource::TextureView(self.normals),
                 ),
                 (FRAME_AO_OUT, wgpu::BindingResource::TextureView(output)),
+                (FRAME_BENT_OUT, wgpu::BindingResource::TextureView(bent)),
             ],
         )
     }

@@ -332,3 +332,48 @@ fn tagged_sibling(path: &Path, tag: &str) -> PathBuf {
 pub fn composite_path(path: &Path) -> PathBuf {
     tagged_sibling(path, "composite")
 }
+
+/// The bent-normal image's file name next to an AO output: `ao.png` → `ao.bent.png`.
+pub fn bent_normals_path(path: &Path) -> PathBuf {
+    tagged_sibling(path, "bent")
+}
+
+/// Bent normals (`bent_normals`; [`crate::AmbientOcclusion::bent_normals`]): view-space unit
+/// vectors (right-handed, camera looking down −Z), `w` 1 on geometry and 0 on background. PNG:
+/// RGBA8 with RGB = round(255 · (0.5 · xyz + 0.5)), no sRGB curve (a normal map's usual
+/// encoding), alpha 255 on geometry and 0 on background. EXR: the raw xyz as RGB floats (0 on
+/// background).
+pub fn write_bent_normals(
+    path: &Path,
+    width: u32,
+    height: u32,
+    bent: &[[f32; 4]],
+) -> Result<(), Error> {
+    match ImageFormat::from_path(path)? {
+        ImageFormat::Png => {
+            let encode = |v: f32| ((0.5 * v + 0.5).clamp(0.0, 1.0) * 255.0).round() as u8;
+            let bytes: Vec<u8> = bent
+                .iter()
+                .flat_map(|b| {
+                    [
+                        encode(b[0]),
+                        encode(b[1]),
+                        encode(b[2]),
+                        if b[3] > 0.0 { 255 } else { 0 },
+                    ]
+                })
+                .collect();
+            write_atomically(path, |tmp| {
+                image::save_buffer(tmp, &bytes, width, height, image::ExtendedColorType::Rgba8)
+                    .map_err(|e| e.to_string())
+            })
+        }
+        ImageFormat::Exr => write_atomically(path, |tmp| {
+            exr::prelude::write_rgb_file(tmp, width as usize, height as usize, |x, y| {
+                let b = bent[y * width as usize + x];
+                (b[0], b[1], b[2])
+            })
+            .map_err(|e| e.to_string())
+        }),
+    }
+}

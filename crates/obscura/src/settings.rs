@@ -661,6 +661,10 @@ pub struct AoSettings {
     /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
     /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
     pub resolution: Resolution,
+    /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
+    /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
+    /// GTAO-VB and its stochastic-depth variant), on the single-pass schedule at full resolution.
+    pub bent_normals: bool,
 }
 
 /// The resolution a technique's passes run at (`resolution`; in files `"full"` or `"half"`).
@@ -717,6 +721,7 @@ impl Default for AoSettings {
             peel_separation: 0.01,
             stochastic_depth: StochasticDepthSettings::default(),
             resolution: Resolution::Full,
+            bent_normals: false,
         }
     }
 }
@@ -1646,7 +1651,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 56, "{paths:?}");
+        assert_eq!(paths.len(), 57, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();

@@ -540,6 +540,12 @@ impl Estimator {
             Estimator::Hbao | Estimator::Gtao | Estimator::PyramidHbao => false,
         }
     }
+
+    /// Whether the estimator reports a bent normal with its AO (`bent_normals`, seed 001 §4):
+    /// the slice estimators, whose visible directions are known per slice.
+    pub fn bent_normals(self) -> bool {
+        matches!(self, Estimator::Gtao | Estimator::GtaoVb)
+    }
 }
 
 impl TechniqueRow {

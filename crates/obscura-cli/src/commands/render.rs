@@ -78,6 +78,11 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
         output::write_ao_covered(&args.out, width, height, &ao, &covered)?;
     }
     let mut written = vec![args.out.clone()];
+    if let Some(bent) = renderer.read_bent_normals()? {
+        let path = output::bent_normals_path(&args.out);
+        output::write_bent_normals(&path, width, height, &bent)?;
+        written.push(path);
+    }
     if let Some(dir) = &args.debug_out {
         let row = args.technique.row();
         // The maps and masks are at the resolution the technique ran at (half with

@@ -76,6 +76,8 @@ struct EstimatorSample {
     // length (0 on later samples, unread).
     gamma: f32,
     projected_length: f32,
+    // The slice plane's tangent (⟂ V, towards side +), on the slice's first sample.
+    tangent: vec3<f32>,
     on: bool,
 }
 
@@ -92,6 +94,14 @@ struct EstimatorAccum {
     open: f32,
     // The debug image only: the finished slices' angles between their horizons, radians.
     angles: f32,
+    // Bent normals only (BENT_NORMALS): the current slice's tangent, and the finished slices'
+    // visible and open bent vectors (slice_visibility.wgsl), tangent parts as view-space vectors
+    // and V parts as scalars (V is the pixel's, the same in every slice).
+    tangent: vec3<f32>,
+    bent_tangent: vec3<f32>,
+    bent_v: f32,
+    open_tangent: vec3<f32>,
+    open_v: f32,
 }
 
 struct Occluder {
@@ -138,6 +148,7 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
         // The slice plane: V and the slice direction made orthogonal to V (its tangent).
         let d = vec3<f32>(dir, 0.0);
         let tangent = normalize(d - p.v * dot(d, p.v));
+        s.tangent = tangent;
         let axis = cross(tangent, p.v);
         let projected = p.normal - axis * dot(p.normal, axis);
         s.projected_length = length(projected);
@@ -197,6 +208,14 @@ fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
         a.angles += h1 - h0;
     }
     a.open += a.projected_length * open_slice_visibility(g);
+    if (BENT_NORMALS) {
+        let visible = a.projected_length * span_bent(h0, h1, g);
+        let open = a.projected_length * span_bent(g - HALF_PI, g + HALF_PI, g);
+        a.bent_tangent += visible.x * a.tangent;
+        a.bent_v += visible.y;
+        a.open_tangent += open.x * a.tangent;
+        a.open_v += open.y;
+    }
     return a;
 }
 
@@ -209,6 +228,11 @@ fn estimator_accum_init() -> EstimatorAccum {
     a.visible = 0.0;
     a.open = 0.0;
     a.angles = 0.0;
+    a.tangent = vec3<f32>(0.0);
+    a.bent_tangent = vec3<f32>(0.0);
+    a.bent_v = 0.0;
+    a.open_tangent = vec3<f32>(0.0);
+    a.open_v = 0.0;
     return a;
 }
 
@@ -223,6 +247,7 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f3
         a.slice = s.slice;
         a.gamma = s.gamma;
         a.projected_length = s.projected_length;
+        a.tangent = s.tangent;
         a.horizon_cos = lowest_horizon_cos(s.gamma);
     }
     // Recomputed per sample: keeping it in the accumulator measured 1 % slower (BENCHMARKS.md).
@@ -249,4 +274,15 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
         return 1.0;
     }
     return saturate(a.angles / (3.141592653589793 * f32(a.slice + 1u)));
+}
+
+// The bent normal (`bent_normals`, seed 001 §4): the cosine-weighted mean visible direction over
+// the slices (slice_visibility.wgsl's bent_from_slices), view space.
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+    let a = fold_slice(acc);
+    return bent_from_slices(
+        p.normal,
+        a.bent_tangent + a.bent_v * p.v,
+        a.open_tangent + a.open_v * p.v,
+    );
 }

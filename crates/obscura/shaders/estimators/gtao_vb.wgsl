@@ -254,3 +254,37 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     }
     return f32(occupied) / (32.0 * f32(params.slices));
 }
+
+// The bent normal (`bent_normals`, seed 001 §4; ours for the bitmask): per slice, the mean
+// direction of its free sectors, weighted as its AO weighs them (uniformly in angle, or by the
+// cosine with `cosine_weighted`), summed over slices against the whole hemispheres' and made
+// exact on unoccluded planes by slice_visibility.wgsl's bent_from_slices; view space.
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+    let pi = 3.141592653589793;
+    var visible = vec3<f32>(0.0);
+    var open = vec3<f32>(0.0);
+    for (var j = 0u; j < params.slices; j++) {
+        let g = p.normal_angles[j];
+        var free = ~acc.masks[j];
+        var sum = vec2<f32>(0.0);
+        while (free != 0u) {
+            let start = countTrailingZeros(free);
+            let end = start + countTrailingZeros(~(free >> start));
+            let a = g + pi * (f32(start) / 32.0 - 0.5);
+            let b = g + pi * (f32(end) / 32.0 - 0.5);
+            if (COSINE_WEIGHTED) {
+                sum += p.projected_lengths[j] * span_bent(a, b, g);
+            } else {
+                sum += span_direction(a, b);
+            }
+            free &= select(0xffffffffu << end, 0u, end >= 32u);
+        }
+        var whole = span_direction(g - 0.5 * pi, g + 0.5 * pi);
+        if (COSINE_WEIGHTED) {
+            whole = p.projected_lengths[j] * span_bent(g - 0.5 * pi, g + 0.5 * pi, g);
+        }
+        visible += sum.x * p.tangents[j] + sum.y * p.v;
+        open += whole.x * p.tangents[j] + whole.y * p.v;
+    }
+    return bent_from_slices(p.normal, visible, open);
+}

@@ -168,3 +168,8 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     let levels = acc.levels + acc.current_level;
     return levels / (f32(params.directions) * f32(max(LEVELS - 1u, 1u)));
 }
+
+// No bent normal from this estimator (Estimator::bent_normals; `bent_normals` is refused for it).
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+    return vec3<f32>(0.0);
+}

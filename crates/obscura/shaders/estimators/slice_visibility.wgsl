@@ -21,3 +21,43 @@ fn span_visibility(a: f32, b: f32, gamma: f32) -> f32 {
 fn open_slice_visibility(gamma: f32) -> f32 {
     return cos(gamma) + gamma * sin(gamma);
 }
+
+// Bent normals (seed 001 §4, Fig. 9; `bent_normals`): the weighted mean of the visible directions
+// of a slice, as (tangent, V) components of ∫ ω(θ) weight dθ with ω(θ) = sin θ·tangent + cos θ·V.
+// Cosine-weighted (GTAO, GTAO-VB's cosine sectors; ours, derived as slice_visibility above): the
+// signed integral from 0, G(θ) = sign(θ)·F(θ), with
+//     F_t(θ) = cos γ · sin³θ/3 + sin γ · (2/3 − cos θ + cos³θ/3)
+//     F_v(θ) = cos γ · (1 − cos³θ)/3 + sin γ · sin³θ/3,
+// the antiderivatives of cos(θ − γ)·sin θ·(sin θ, cos θ) from 0.
+fn signed_bent(theta: f32, gamma: f32) -> vec2<f32> {
+    let s = sin(theta);
+    let c = cos(theta);
+    let s3 = s * s * s;
+    let c3 = c * c * c;
+    let f = vec2<f32>(
+        cos(gamma) * s3 / 3.0 + sin(gamma) * (2.0 / 3.0 - c + c3 / 3.0),
+        cos(gamma) * (1.0 - c3) / 3.0 + sin(gamma) * s3 / 3.0,
+    );
+    return sign(theta) * f;
+}
+
+// The cosine-weighted bent vector of the slice's directions between angles a ≤ b.
+fn span_bent(a: f32, b: f32, gamma: f32) -> vec2<f32> {
+    return signed_bent(b, gamma) - signed_bent(a, gamma);
+}
+
+// The uniformly weighted bent vector (∫ ω dθ) of the directions between a ≤ b: GTAO-VB's sectors.
+fn span_direction(a: f32, b: f32) -> vec2<f32> {
+    return vec2<f32>(cos(a) - cos(b), sin(b) - sin(a));
+}
+
+// The bent normal from the slices' visible and open (whole hemisphere) bent vectors, each summed
+// as a view-space vector: n·|open| + (visible − open), normalised. Unoccluded, visible = open and
+// the bent normal is the normal exactly, with any number of slices (the plain sum of a few slices'
+// open vectors leans off the normal on a tilted plane); as the slices cover the hemisphere, open
+// tends to |open|·n and this to the plain mean visible direction (as our AO's Σ â / Σ â_open).
+fn bent_from_slices(normal: vec3<f32>, visible: vec3<f32>, open: vec3<f32>) -> vec3<f32> {
+    let bent = normal * length(open) + (visible - open);
+    let len = length(bent);
+    return select(normal, bent / len, len > 1e-12);
+}

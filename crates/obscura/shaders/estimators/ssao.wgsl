@@ -117,3 +117,8 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return acc.occluding / f32(SAMPLE_COUNT);
 }
+
+// No bent normal from this estimator (Estimator::bent_normals; `bent_normals` is refused for it).
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+    return vec3<f32>(0.0);
+}

@@ -280,3 +280,8 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return 0.0;
 }
+
+// No bent normal from this estimator (Estimator::bent_normals; `bent_normals` is refused for it).
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+    return vec3<f32>(0.0);
+}

@@ -8,6 +8,12 @@
 @group(GROUP_FRAME) @binding(FRAME_DEPTH) var depth_tex: texture_2d<f32>;
 @group(GROUP_FRAME) @binding(FRAME_NORMALS) var normal_tex: texture_2d<f32>;
 @group(GROUP_FRAME) @binding(FRAME_AO_OUT) var ao_out: texture_storage_2d<r32float, write>;
+// View-space unit bent normals (xyz; w = 1), written only with BENT_NORMALS.
+@group(GROUP_FRAME) @binding(FRAME_BENT_OUT) var bent_out: texture_storage_2d<rgba16float, write>;
+
+// `bent_normals` (seed 001 §4): the single-pass schedule writes the estimator's bent normal
+// (estimator_bent_normal) next to its AO; estimators keep what only it needs behind it.
+override BENT_NORMALS: bool = false;
 
 // The single-pass and interleaved schedules write the estimator's debug image (estimator_debug)
 // instead of its AO (`render --debug-out`); estimators keep what only that image needs behind it,

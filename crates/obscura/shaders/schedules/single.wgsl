@@ -34,9 +34,15 @@ fn single_pass_accum(p: EstimatorPixel) -> EstimatorAccum {
 fn store_pixel(id: vec2<u32>, p: EstimatorPixel) {
     if (!estimator_pixel_valid(p)) {
         textureStore(ao_out, id, vec4<f32>(1.0));
+        if (BENT_NORMALS) {
+            textureStore(bent_out, id, vec4<f32>(0.0));
+        }
         return;
     }
     let acc = single_pass_accum(p);
+    if (BENT_NORMALS) {
+        textureStore(bent_out, id, vec4<f32>(estimator_bent_normal(p, acc), 1.0));
+    }
     if (ESTIMATOR_DEBUG) {
         textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));
     } else {

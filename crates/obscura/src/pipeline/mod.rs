@@ -63,6 +63,8 @@ pub struct AmbientOcclusion {
     source: SourcePass,
     schedule: SchedulePass,
     raw: wgpu::Texture,
+    /// `bent_normals`: the bent normals (visible size, `Rgba16Float`); 1×1 and unwritten otherwise.
+    bent: wgpu::Texture,
     filters: Vec<FilterStage>,
     /// `resolution = "half"`: the half frame and the passes around the technique.
     half: Option<HalfResolution>,
@@ -98,6 +100,9 @@ impl AmbientOcclusion {
         let device = &gpu.device;
         let row = settings.technique.row();
         let needs = settings.technique.needs();
+        if settings.bent_normals {
+            check_bent_normals(settings)?;
+        }
         if screen.orthographic && (needs.triangles || needs.bvh) {
             return Err(Error::Input(format!(
                 "technique '{}' traces or rasterises hidden depth from a perspective camera; with \
@@ -130,7 +135,10 @@ impl AmbientOcclusion {
             &estimator,
             &source,
             &work,
-            estimator_debug,
+            crate::schedules::PixelOutputs {
+                estimator_debug,
+                bent_normals: settings.bent_normals,
+            },
         );
         let ao_texture = |label| {
             crate::gpu::texture_2d(
@@ -167,6 +175,20 @@ impl AmbientOcclusion {
             source,
             schedule,
             raw: ao_texture("ao raw"),
+            bent: crate::gpu::texture_2d(
+                device,
+                "bent normals",
+                if settings.bent_normals { work.width } else { 1 },
+                if settings.bent_normals {
+                    work.height
+                } else {
+                    1
+                },
+                wgpu::TextureFormat::Rgba16Float,
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+            ),
             filters,
             half,
             camera_set: std::cell::Cell::new(false),
@@ -268,7 +290,8 @@ impl AmbientOcclusion {
         // The frame the technique runs on.
         let work = half_frame.as_ref().unwrap_or(&frame);
         let raw = self.raw.create_view(&Default::default());
-        let frame_group = work.group(device, &self.frame_layout, &raw);
+        let bent = self.bent.create_view(&Default::default());
+        let frame_group = work.group(device, &self.frame_layout, &raw, &bent);
         let ctx = FrameContext {
             device,
             frame: work,
@@ -312,6 +335,30 @@ impl AmbientOcclusion {
     /// [`AmbientOcclusion::output`] instead).
     pub fn read_output(&self) -> Result<Vec<f32>, Error> {
         Ok(crate::gpu::read_texture_f32(&self.gpu, self.output(), 1)?)
+    }
+
+    /// `bent_normals`: the bent normals of the last frame, `Rgba16Float` of the visible size:
+    /// xyz the view-space unit bent normal (right-handed, camera looking down −Z, as the input
+    /// normals), w = 1 on geometry and all zero on background pixels. Unfiltered. None without
+    /// `bent_normals`.
+    pub fn bent_normals(&self) -> Option<&wgpu::Texture> {
+        self.settings.bent_normals.then_some(&self.bent)
+    }
+
+    /// [`Self::bent_normals`] read back, row-major `[x, y, z, w]` per visible pixel. Waits for
+    /// the GPU.
+    pub fn read_bent_normals(&self) -> Result<Option<Vec<[f32; 4]>>, Error> {
+        let Some(texture) = self.bent_normals() else {
+            return Ok(None);
+        };
+        let bytes = crate::gpu::read_texture_bytes(&self.gpu, texture, 8)?;
+        let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+        Ok(Some(
+            halves
+                .chunks_exact(4)
+                .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
+                .collect(),
+        ))
     }
 
     /// The AO after the filters at the resolution the technique ran at ([`Self::work_screen`]):
@@ -399,4 +446,28 @@ impl AmbientOcclusion {
             words.chunks_exact(4).take(pixels).map(|r| r[0]).collect(),
         ))
     }
+}
+
+/// `bent_normals` needs an estimator that reports them, on the single-pass schedule (the
+/// two-phase ones carry only three words per pixel between their phases), at full resolution:
+/// otherwise an error naming the techniques that can.
+fn check_bent_normals(settings: &AoSettings) -> Result<(), Error> {
+    let can = |row: &crate::technique::TechniqueRow| {
+        row.estimator.bent_normals() && row.schedule == crate::technique::Schedule::Single
+    };
+    if !can(settings.technique.row()) {
+        return Err(Error::Input(format!(
+            "technique '{}' reports no bent normals: use one of {} or leave out --bent-normals",
+            settings.technique,
+            crate::technique::names_where(can)
+        )));
+    }
+    if settings.resolution != crate::settings::Resolution::Full {
+        return Err(Error::Input(
+            "bent normals are written at full resolution only: leave out --resolution half or \
+             --bent-normals"
+                .into(),
+        ));
+    }
+    Ok(())
 }

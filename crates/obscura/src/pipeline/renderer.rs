@@ -241,6 +241,12 @@ impl Renderer {
         Ok(Some(read_texture_f32(&self.gpu, ao.raw_output(), 1)?))
     }
 
+    /// `bent_normals`: the last frame's bent normals, row-major over the visible image (see
+    /// [`AmbientOcclusion::bent_normals`] for the encoding); None without `bent_normals`.
+    pub fn read_bent_normals(&self) -> Result<Option<Vec<[f32; 4]>>, Error> {
+        self.last_ao()?.read_bent_normals()
+    }
+
     /// The filtered AO before the upsample at half resolution (the half-size image; with
     /// `resolution = "full"` the same as [`Self::read_ao`]).
     pub fn read_work_ao(&self) -> Result<Vec<f32>, Error> {

@@ -47,6 +47,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
 }
 fn estimator_combine(a: f32, b: f32) -> f32 { return min(a, b); }
 fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, v: f32, factor: f32) -> f32 { return v; }
+fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> { return vec3<f32>(0.0); }
 fn estimator_accum_init() -> EstimatorAccum { return EstimatorAccum(0.0, 0.0, 0.0); }
 fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {
     return EstimatorAccum(acc.open, acc.count + 1.0, 0.0);
@@ -159,6 +160,7 @@ fn frame_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         entry::texture(bindings::FRAME_DEPTH),
         entry::texture(bindings::FRAME_NORMALS),
         entry::storage_texture_r32f(bindings::FRAME_AO_OUT),
+        entry::storage_texture_rgba16f(bindings::FRAME_BENT_OUT),
     ]
 }
 

@@ -145,6 +145,15 @@ impl FrameGroups<'_> {
     }
 }
 
+/// What the single-pass and interleaved passes write per pixel besides (or instead of) the AO.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PixelOutputs {
+    /// The estimator's debug image instead of its AO (pipeline constant `ESTIMATOR_DEBUG`).
+    pub estimator_debug: bool,
+    /// The bent normal next to the AO (`BENT_NORMALS`; single pass only).
+    pub bent_normals: bool,
+}
+
 /// A schedule as an [`crate::AmbientOcclusion`] holds it.
 pub(crate) enum SchedulePass {
     Single(single::Single),
@@ -153,8 +162,7 @@ pub(crate) enum SchedulePass {
 }
 
 impl SchedulePass {
-    /// The passes of `row`'s schedule; `estimator_debug`: the single-pass and interleaved passes
-    /// write the estimator's debug image instead of its AO.
+    /// The passes of `row`'s schedule, writing `outputs` per pixel.
     pub fn new(
         device: &wgpu::Device,
         row: &TechniqueRow,
@@ -162,7 +170,7 @@ impl SchedulePass {
         estimator: &EstimatorPass,
         source: &SourcePass,
         screen: &ScreenGeometry,
-        estimator_debug: bool,
+        outputs: PixelOutputs,
     ) -> Self {
         let (schedule, name) = (row.schedule, row.name);
         let mut stages = stages(schedule);
@@ -170,8 +178,11 @@ impl SchedulePass {
             if screen.orthographic {
                 stage.constants.push(("ORTHOGRAPHIC", 1.0));
             }
-            if estimator_debug {
+            if outputs.estimator_debug {
                 stage.constants.push(("ESTIMATOR_DEBUG", 1.0));
+            }
+            if outputs.bent_normals {
+                stage.constants.push(("BENT_NORMALS", 1.0));
             }
         }
         match schedule {
