@@ -118,19 +118,7 @@ fn a_corner_bends_away_from_the_wall_by_the_closed_form_angle() {
     // 25.6° here; measured 23.5°) within 2.5°. Every bent normal stays, on average, in the
     // plane of n and w (the corner is symmetric along its line).
     let gpu = gpu();
-    let wall = [
-        Vec3::new(-20.0, 0.0, 0.0),
-        Vec3::new(20.0, 0.0, 0.0),
-        Vec3::new(20.0, 20.0, 0.0),
-        Vec3::new(-20.0, 20.0, 0.0),
-    ];
-    let floor = [
-        Vec3::new(-20.0, 0.0, 20.0),
-        Vec3::new(20.0, 0.0, 20.0),
-        Vec3::new(20.0, 0.0, 0.0),
-        Vec3::new(-20.0, 0.0, 0.0),
-    ];
-    let scene = quads("corner", &[wall, floor]);
+    let scene = corner_scene();
     let limit = (2.0 / std::f32::consts::PI).atan().to_degrees();
     let (w, h) = (96u32, 96u32);
     for (name, s) in cases() {

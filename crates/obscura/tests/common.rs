@@ -455,12 +455,8 @@ impl CornerView {
     }
 }
 
-/// [`corner_ao`], and the mean of `model(visible pixel, view)` over the same pixels.
-pub fn corner_ao_and_model(
-    settings: &AoSettings,
-    model: impl Fn(UVec2, &CornerView) -> f32,
-) -> (f32, f32, usize, glam::Mat4) {
-    let gpu = gpu();
+/// [`corner_ao`]'s scene: a floor (y = 0, z > 0) meeting a tall wall (z = 0), 40 m wide.
+pub fn corner_scene() -> Scene {
     let wall = [
         Vec3::new(-20.0, 0.0, 0.0),
         Vec3::new(20.0, 0.0, 0.0),
@@ -473,7 +469,16 @@ pub fn corner_ao_and_model(
         Vec3::new(20.0, 0.0, 0.0),
         Vec3::new(-20.0, 0.0, 0.0),
     ];
-    let scene = quads("corner", &[wall, floor]);
+    quads("corner", &[wall, floor])
+}
+
+/// [`corner_ao`], and the mean of `model(visible pixel, view)` over the same pixels.
+pub fn corner_ao_and_model(
+    settings: &AoSettings,
+    model: impl Fn(UVec2, &CornerView) -> f32,
+) -> (f32, f32, usize, glam::Mat4) {
+    let gpu = gpu();
+    let scene = corner_scene();
     let (w, h) = (96, 96);
     let mut r = Renderer::new(&gpu, &scene, settings, w, h, 32).unwrap();
     r.render(&camera(Vec3::new(0.6, 2.0, 3.0), Vec3::ZERO, 20.0), None)
