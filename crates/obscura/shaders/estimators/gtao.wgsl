@@ -76,8 +76,10 @@ struct EstimatorSample {
     // length (0 on later samples, unread).
     gamma: f32,
     projected_length: f32,
-    // The slice plane's tangent (⟂ V, towards side +), on the slice's first sample.
+    // Bent normals only: the slice plane's tangent (⟂ V, towards side +) and (sin γ, cos γ), on
+    // the slice's first sample.
     tangent: vec3<f32>,
+    gamma_sc: vec2<f32>,
     on: bool,
 }
 
@@ -94,10 +96,11 @@ struct EstimatorAccum {
     open: f32,
     // The debug image only: the finished slices' angles between their horizons, radians.
     angles: f32,
-    // Bent normals only (BENT_NORMALS): the current slice's tangent, and the finished slices'
-    // visible and open bent vectors (slice_visibility.wgsl), tangent parts as view-space vectors
-    // and V parts as scalars (V is the pixel's, the same in every slice).
+    // Bent normals only (BENT_NORMALS): the current slice's tangent and (sin γ, cos γ), and the
+    // finished slices' visible and open bent vectors (slice_visibility.wgsl), tangent parts as
+    // view-space vectors and V parts as scalars (V is the pixel's, the same in every slice).
     tangent: vec3<f32>,
+    gamma_sc: vec2<f32>,
     bent_tangent: vec3<f32>,
     bent_v: f32,
     open_tangent: vec3<f32>,
@@ -148,11 +151,15 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
         // The slice plane: V and the slice direction made orthogonal to V (its tangent).
         let d = vec3<f32>(dir, 0.0);
         let tangent = normalize(d - p.v * dot(d, p.v));
-        s.tangent = tangent;
         let axis = cross(tangent, p.v);
         let projected = p.normal - axis * dot(p.normal, axis);
         s.projected_length = length(projected);
         s.gamma = atan2(dot(projected, tangent), dot(projected, p.v));
+        if (BENT_NORMALS) {
+            s.tangent = tangent;
+            s.gamma_sc = vec2<f32>(dot(projected, tangent), dot(projected, p.v))
+                / max(s.projected_length, 1e-20);
+        }
     }
     return s;
 }
@@ -209,8 +216,16 @@ fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
     }
     a.open += a.projected_length * open_slice_visibility(g);
     if (BENT_NORMALS) {
-        let visible = a.projected_length * span_bent(h0, h1, g);
-        let open = a.projected_length * span_bent(g - HALF_PI, g + HALF_PI, g);
+        // The horizons as (sin, cos) without trigonometry: from their cosines (h₁ ≥ 0 ≥ h₀), or
+        // the hemisphere's edges where clamped (cos h₁ < cos(γ + π/2) = −sin γ; cos h₀ < sin γ).
+        let sg = a.gamma_sc;
+        let edges = hemisphere_edges(sg);
+        let c1 = clamp(a.horizon_cos.x, -1.0, 1.0);
+        let c0 = clamp(a.horizon_cos.y, -1.0, 1.0);
+        let sc1 = select(vec2<f32>(sqrt(1.0 - c1 * c1), c1), edges[1], c1 < -sg.x);
+        let sc0 = select(vec2<f32>(-sqrt(1.0 - c0 * c0), c0), edges[0], c0 < sg.x);
+        let visible = a.projected_length * span_bent(sc0, sc1, sg);
+        let open = a.projected_length * span_bent(edges[0], edges[1], sg);
         a.bent_tangent += visible.x * a.tangent;
         a.bent_v += visible.y;
         a.open_tangent += open.x * a.tangent;
@@ -229,6 +244,7 @@ fn estimator_accum_init() -> EstimatorAccum {
     a.open = 0.0;
     a.angles = 0.0;
     a.tangent = vec3<f32>(0.0);
+    a.gamma_sc = vec2<f32>(0.0, 1.0);
     a.bent_tangent = vec3<f32>(0.0);
     a.bent_v = 0.0;
     a.open_tangent = vec3<f32>(0.0);
@@ -248,6 +264,7 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: vec2<f3
         a.gamma = s.gamma;
         a.projected_length = s.projected_length;
         a.tangent = s.tangent;
+        a.gamma_sc = s.gamma_sc;
         a.horizon_cos = lowest_horizon_cos(s.gamma);
     }
     // Recomputed per sample: keeping it in the accumulator measured 1 % slower (BENCHMARKS.md).

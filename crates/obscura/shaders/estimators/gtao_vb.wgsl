@@ -258,30 +258,42 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // The bent normal (`bent_normals`, seed 001 §4; ours for the bitmask): per slice, the mean
 // direction of its free sectors, weighted as its AO weighs them (uniformly in angle, or by the
 // cosine with `cosine_weighted`), summed over slices against the whole hemispheres' and made
-// exact on unoccluded planes by slice_visibility.wgsl's bent_from_slices; view space.
+// exact on unoccluded planes by slice_visibility.wgsl's bent_from_slices; view space. Sector
+// boundary k lies at θ = γ + x, x = π(k/32 − 1/2): (sin x, cos x) = (−cos πk/32, sin πk/32),
+// turned by γ. The uniform weight is linear in those pairs, so a slice's runs are summed before
+// the one turn; the open hemisphere's vector is (2 sin γ, 2 cos γ).
 fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
-    let pi = 3.141592653589793;
+    let step = 3.141592653589793 / 32.0;
     var visible = vec3<f32>(0.0);
     var open = vec3<f32>(0.0);
     for (var j = 0u; j < params.slices; j++) {
-        let g = p.normal_angles[j];
+        let g = vec2<f32>(sin(p.normal_angles[j]), cos(p.normal_angles[j]));
         var free = ~acc.masks[j];
-        var sum = vec2<f32>(0.0);
+        var local = vec2<f32>(0.0);
+        var cosine = vec2<f32>(0.0);
         while (free != 0u) {
             let start = countTrailingZeros(free);
             let end = start + countTrailingZeros(~(free >> start));
-            let a = g + pi * (f32(start) / 32.0 - 0.5);
-            let b = g + pi * (f32(end) / 32.0 - 0.5);
+            let a = vec2<f32>(-cos(step * f32(start)), sin(step * f32(start)));
+            let b = vec2<f32>(-cos(step * f32(end)), sin(step * f32(end)));
             if (COSINE_WEIGHTED) {
-                sum += p.projected_lengths[j] * span_bent(a, b, g);
+                let turn = mat2x2<f32>(g.y, -g.x, g.x, g.y);
+                cosine += span_bent(turn * a, turn * b, g);
             } else {
-                sum += span_direction(a, b);
+                local += span_direction(a, b);
             }
             free &= select(0xffffffffu << end, 0u, end >= 32u);
         }
-        var whole = span_direction(g - 0.5 * pi, g + 0.5 * pi);
+        var sum: vec2<f32>;
+        var whole: vec2<f32>;
         if (COSINE_WEIGHTED) {
-            whole = p.projected_lengths[j] * span_bent(g - 0.5 * pi, g + 0.5 * pi, g);
+            let edges = hemisphere_edges(g);
+            sum = p.projected_lengths[j] * cosine;
+            whole = p.projected_lengths[j] * span_bent(edges[0], edges[1], g);
+        } else {
+            // ∫ω over θ = γ + x: the local (t, v) sums turned by γ.
+            sum = vec2<f32>(g.y * local.x + g.x * local.y, g.y * local.y - g.x * local.x);
+            whole = 2.0 * g;
         }
         visible += sum.x * p.tangents[j] + sum.y * p.v;
         open += whole.x * p.tangents[j] + whole.y * p.v;

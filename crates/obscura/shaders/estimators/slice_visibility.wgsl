@@ -24,31 +24,41 @@ fn open_slice_visibility(gamma: f32) -> f32 {
 
 // Bent normals (seed 001 §4, Fig. 9; `bent_normals`): the weighted mean of the visible directions
 // of a slice, as (tangent, V) components of ∫ ω(θ) weight dθ with ω(θ) = sin θ·tangent + cos θ·V.
-// Cosine-weighted (GTAO, GTAO-VB's cosine sectors; ours, derived as slice_visibility above): the
-// signed integral from 0, G(θ) = sign(θ)·F(θ), with
+// Angles are passed as (sin, cos) pairs: the callers have them without trigonometry (GTAO from
+// its horizon cosines, the hemisphere's edges from γ). Cosine-weighted (GTAO, GTAO-VB's cosine
+// sectors; ours, derived as slice_visibility above): the signed integral from 0,
+// G(θ) = sign(θ)·F(θ), with
 //     F_t(θ) = cos γ · sin³θ/3 + sin γ · (2/3 − cos θ + cos³θ/3)
 //     F_v(θ) = cos γ · (1 − cos³θ)/3 + sin γ · sin³θ/3,
-// the antiderivatives of cos(θ − γ)·sin θ·(sin θ, cos θ) from 0.
-fn signed_bent(theta: f32, gamma: f32) -> vec2<f32> {
-    let s = sin(theta);
-    let c = cos(theta);
+// the antiderivatives of cos(θ − γ)·sin θ·(sin θ, cos θ) from 0; θ in [−π, π], so sign(θ) is
+// the sign of sin θ.
+fn signed_bent(theta: vec2<f32>, gamma: vec2<f32>) -> vec2<f32> {
+    let s = theta.x;
+    let c = theta.y;
     let s3 = s * s * s;
     let c3 = c * c * c;
     let f = vec2<f32>(
-        cos(gamma) * s3 / 3.0 + sin(gamma) * (2.0 / 3.0 - c + c3 / 3.0),
-        cos(gamma) * (1.0 - c3) / 3.0 + sin(gamma) * s3 / 3.0,
+        gamma.y * s3 / 3.0 + gamma.x * (2.0 / 3.0 - c + c3 / 3.0),
+        gamma.y * (1.0 - c3) / 3.0 + gamma.x * s3 / 3.0,
     );
-    return sign(theta) * f;
+    return sign(s) * f;
 }
 
-// The cosine-weighted bent vector of the slice's directions between angles a ≤ b.
-fn span_bent(a: f32, b: f32, gamma: f32) -> vec2<f32> {
+// The cosine-weighted bent vector of the slice's directions between angles a ≤ b ((sin, cos)
+// pairs; γ likewise).
+fn span_bent(a: vec2<f32>, b: vec2<f32>, gamma: vec2<f32>) -> vec2<f32> {
     return signed_bent(b, gamma) - signed_bent(a, gamma);
 }
 
-// The uniformly weighted bent vector (∫ ω dθ) of the directions between a ≤ b: GTAO-VB's sectors.
-fn span_direction(a: f32, b: f32) -> vec2<f32> {
-    return vec2<f32>(cos(a) - cos(b), sin(b) - sin(a));
+// The uniformly weighted bent vector (∫ ω dθ) of the directions between a ≤ b ((sin, cos)
+// pairs): GTAO-VB's sectors.
+fn span_direction(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.y - b.y, b.x - a.x);
+}
+
+// The edges of the slice's hemisphere, γ − π/2 and γ + π/2, as (sin, cos) pairs from γ's.
+fn hemisphere_edges(gamma: vec2<f32>) -> array<vec2<f32>, 2> {
+    return array<vec2<f32>, 2>(vec2<f32>(-gamma.y, gamma.x), vec2<f32>(gamma.y, -gamma.x));
 }
 
 // The bent normal from the slices' visible and open (whole hemisphere) bent vectors, each summed
