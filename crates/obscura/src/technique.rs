@@ -63,11 +63,16 @@ techniques!(
     HbaoPlusDual,
     /// `sd-hbao+`: HBAO+ over the stochastic depth map (seed 001 §3.2, the authors' HBAO+SD).
     SdHbaoPlus,
+    /// `sd-hbao+-stenciled`: SD-HBAO+ in two phases; the map is rasterised only where phase 1
+    /// asked (seed 000 §3.9's pipeline around seed 001's estimator).
+    SdHbaoPlusStenciled,
     /// `ssao`: seed 001's SSAO, Alchemy AO with 32 samples.
     Ssao,
     /// `sd-ssao`: SSAO; a sample whose first surface does not occlude reads the stochastic depth
     /// map (seed 001 §3.2–3.3).
     SdSsao,
+    /// `sd-ssao-stenciled`: SD-SSAO in two phases; the map is rasterised only where phase 1 asked.
+    SdSsaoStenciled,
     /// `sao`: Scalable Ambient Obscurance, spiral taps over the depth pyramid.
     Sao,
     /// `pyramid-hbao`: Pyramid HBAO, directions walked over the levels of the depth pyramid.
@@ -79,7 +84,10 @@ techniques!(
     /// `gtao-vb-dual`: GTAO-VB; every sample also marks the sectors of the second depth layer.
     GtaoVbDual,
     /// `sd-gtao-vb`: GTAO-VB; every sample also marks the sectors of every stochastic depth sample.
-    SdGtaoVb
+    SdGtaoVb,
+    /// `sd-gtao-vb-stenciled`: SD-GTAO-VB in two phases; the map is rasterised only where phase 1
+    /// asked.
+    SdGtaoVbStenciled
 );
 
 /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
@@ -302,6 +310,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::SdHbaoPlusStenciled,
+        name: "sd-hbao+-stenciled",
+        summary: "SD-HBAO+ in two phases; the map is rasterised only where phase 1 asked",
+        paper: "seed 001 §3.2, seed 000 §3.9",
+        estimator: Estimator::HbaoPlus,
+        source: Source::StochasticDepth,
+        schedule: Schedule::TwoPhase,
+    },
+    TechniqueRow {
         technique: Technique::Ssao,
         name: "ssao",
         summary: "SSAO: Alchemy AO, 32 spiral samples within R (seed 001's SSAO baseline)",
@@ -318,6 +335,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::Ssao,
         source: Source::StochasticDepth,
         schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::SdSsaoStenciled,
+        name: "sd-ssao-stenciled",
+        summary: "SD-SSAO in two phases; the map is rasterised only where phase 1 asked",
+        paper: "seed 001 §3.2, seed 000 §3.9",
+        estimator: Estimator::Ssao,
+        source: Source::StochasticDepth,
+        schedule: Schedule::TwoPhase,
     },
     TechniqueRow {
         technique: Technique::Sao,
@@ -372,6 +398,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::GtaoVb,
         source: Source::StochasticDepth,
         schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::SdGtaoVbStenciled,
+        name: "sd-gtao-vb-stenciled",
+        summary: "SD-GTAO-VB in two phases; the map is rasterised only where phase 1 asked",
+        paper: "seed 003, seed 001 §3.1, seed 000 §3.9",
+        estimator: Estimator::GtaoVb,
+        source: Source::StochasticDepth,
+        schedule: Schedule::TwoPhase,
     },
 ];
 

@@ -95,7 +95,8 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
         if row.needs().stochastic_depth_map {
             write_sd_debug(dir, &renderer, &settings, (w, h), g)?
         } else if row.schedule.two_phase() {
-            write_debug(dir, &renderer, w, h, settings.vao.samples)?
+            let samples = obscura::estimators::samples_per_pixel(row.estimator, &settings);
+            write_debug(dir, &renderer, w, h, samples)?
         }
         if let Some((name, what)) = row.estimator_debug_image() {
             let image = renderer
@@ -321,7 +322,9 @@ fn write_sd_debug(
         let masks = renderer
             .read_sample_masks()?
             .ok_or_else(|| anyhow::anyhow!("the two-phase schedule returned no sample masks"))?;
-        let per_pixel = settings.vao.samples as f32;
+        let per_pixel =
+            obscura::estimators::samples_per_pixel(settings.technique.row().estimator, settings)
+                as f32;
         let flagged_image: Vec<f32> = masks
             .iter()
             .map(|m| m.count_ones() as f32 / per_pixel)

@@ -77,6 +77,22 @@ impl EstimatorPass {
     }
 }
 
+/// Samples per pixel of `estimator` under `settings`: its `SAMPLE_COUNT` constant, the bits of a
+/// two-phase schedule's mask it uses (e.g. to normalise `render --debug-out`'s `samples.png`).
+pub fn samples_per_pixel(estimator: Estimator, settings: &AoSettings) -> u32 {
+    let values = match estimator {
+        Estimator::Vao => vao::params(&settings.vao).1,
+        Estimator::Hbao => hbao::params(&settings.hbao).1,
+        Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus).1,
+        Estimator::Gtao => gtao::params(&settings.gtao).1,
+        Estimator::Sao => sao::params(&settings.sao, &settings.pyramid).1,
+        Estimator::Ssao => ssao::params(&settings.ssao).1,
+        Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid).1,
+        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb).1,
+    };
+    values[0] as u32
+}
+
 /// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB): (cos, sin) of
 /// `period`·B/16 with B the 4×4 Bayer value of (x % 4, y % 4) (the pattern VAO rotates by), and a
 /// jitter in [0, 1) from the transposed matrix, (B(y % 4, x % 4) + 0.5)/16, so angle and jitter
