@@ -1,8 +1,8 @@
 // Half resolution, step 2 (src/filter/half_resolution.rs): the half-resolution AO brought back to
 // the full-resolution output by a depth-aware (joint bilateral) upsample: each output pixel blends
-// the 4×4 nearest half-resolution texels with a tent weight over two texels (bilinear
-// interpolation's, twice as wide: the downsample's checkerboard keeps each side of an edge in
-// every other texel only), each times a weight for how far the texel's surface point lies from
+// the 3×3 half-resolution texels around the nearest one with a tent weight over two texels
+// (bilinear interpolation's, twice as wide: the downsample's checkerboard keeps each side of an
+// edge in every other texel only), each times a weight for how far the texel's surface point lies from
 // the output pixel's tangent plane, so AO does not bleed across depth discontinuities (the halo
 // the papers fight) while planes at any angle blend smoothly. Where no texel lies on the pixel's
 // surface, the one nearest its plane is taken. Ours; the papers do not say how they upsample.
@@ -35,19 +35,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let normal = textureLoad(full_normals, q, 0).xyz;
     let half_guard = view.guard_band / 2u;
     let half_visible = textureDimensions(half_ao);
-    // The pixel centre in half-resolution framebuffer pixels, texel centres at i + 0.5.
+    // The pixel centre in half-resolution framebuffer pixels, texel centres at i + 0.5, and the
+    // texel nearest to it.
     let t = (vec2<f32>(q) + 0.5) * 0.5 - 0.5;
-    let base = floor(t);
-    let f = t - base;
+    let base = round(t);
     var sum = 0.0;
     var weight = 0.0;
     var closest = 1e30;
     var closest_ao = 1.0;
-    for (var k = 0u; k < 16u; k++) {
-        // Texels base − 1 … base + 2 in each axis; tent weights over distances f + 1, f, 1 − f,
-        // 2 − f texels, halved (width 2).
-        let offset = vec2<f32>(f32(k & 3u), f32(k >> 2u)) - 1.0;
-        let tent = max(1.0 - 0.5 * abs(offset - f), vec2<f32>(0.0));
+    for (var k = 0u; k < 9u; k++) {
+        // Texels base − 1 … base + 1 in each axis, tent weights 1 − d/2 over their distance d.
+        let offset = vec2<f32>(f32(k % 3u), f32(k / 3u)) - 1.0;
+        let tent = max(1.0 - 0.5 * abs(base + offset - t), vec2<f32>(0.0));
         // Clamped to the visible half image (the AO has no guard band).
         let cell = clamp(
             vec2<i32>(base + offset),
