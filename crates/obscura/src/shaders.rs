@@ -13,6 +13,7 @@ pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
 pub const VERTEX_NORMAL: &str = include_str!("../shaders/common/vertex_normal.wgsl");
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
+pub const FRAME_POINT: &str = include_str!("../shaders/frame/point.wgsl");
 
 pub const SOURCE_FIRST_LAYER: &str = include_str!("../shaders/sources/first_layer.wgsl");
 pub const SOURCE_DUAL_DEPTH: &str = include_str!("../shaders/sources/dual_depth.wgsl");
@@ -23,6 +24,8 @@ pub const DEPTH_PYRAMID_BUILD: &str = include_str!("../shaders/sources/depth_pyr
 pub const SOURCE_ALL_LAYERS: &str = include_str!("../shaders/sources/all_layers.wgsl");
 pub const SOURCE_STOCHASTIC_DEPTH: &str =
     include_str!("../shaders/sources/stochastic_depth/read.wgsl");
+pub const STOCHASTIC_DEPTH_SAMPLES: &str =
+    include_str!("../shaders/sources/stochastic_depth/samples.wgsl");
 pub const STOCHASTIC_DEPTH_MAP: &str = include_str!("../shaders/sources/stochastic_depth/map.wgsl");
 pub const STOCHASTIC_DEPTH_RESET: &str =
     include_str!("../shaders/sources/stochastic_depth/reset.wgsl");

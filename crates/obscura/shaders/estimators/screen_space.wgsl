@@ -13,16 +13,16 @@ struct ScreenPixel {
 }
 
 fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
+    let point = frame_point(id);
     var p: ScreenPixel;
-    p.pixel = id + vec2<u32>(view.guard_band);
-    let z = textureLoad(depth_tex, p.pixel, 0).r;
-    p.valid = !is_background(z);
+    p.pixel = point.pixel;
+    p.valid = point.valid;
     if (!p.valid) {
         return p;
     }
-    p.pos = pixel_to_view(view, vec2<f32>(p.pixel) + 0.5, z);
-    p.normal = normalize(textureLoad(normal_tex, p.pixel, 0).xyz);
-    p.radius_px = radius * pixels_per_unit(view, z).y;
+    p.pos = point.pos;
+    p.normal = point.normal;
+    p.radius_px = radius * pixels_per_unit(view, -point.pos.z).y;
     return p;
 }
 

@@ -61,11 +61,12 @@ pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
 }
 
 /// What every estimator is composed after: the shared helpers it may call and the frame.
-pub(crate) const ESTIMATOR_PRELUDE: [&str; 4] = [
+pub(crate) const ESTIMATOR_PRELUDE: [&str; 5] = [
     shaders::VIEW,
     shaders::BASIS,
     shaders::PATTERN,
     shaders::FRAME,
+    shaders::FRAME_POINT,
 ];
 
 /// The whole WGSL of an AO pipeline: binding names, shared helpers, frame, estimator, source,

@@ -48,8 +48,9 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
             parts.join("\n")
         }
         Source::StochasticDepth => format!(
-            "{}\n{}",
+            "{}\n{}\n{}",
             stochastic_depth::bindings_wgsl(sd_layout),
+            shaders::STOCHASTIC_DEPTH_SAMPLES,
             shaders::SOURCE_STOCHASTIC_DEPTH
         ),
         Source::DepthPyramid => shaders::SOURCE_DEPTH_PYRAMID.to_string(),
