@@ -71,3 +71,21 @@ if one and two:
     print("|---|---|---|")
     for t in ["sd-hbao+", "sd-vao"]:
         print(f"| {t} | {one[1][t][t]:.4f} | {two[1][t][t]:.4f} |")
+
+rows = []
+for s in [1, 2, 4, 8]:
+    cells = []
+    for config in ["single", "multiview", "multiview-half", "multiview-second-half"]:
+        r = results(f"tab3-sd{s}-{config}")
+        if not r:
+            cells.append("–")
+            continue
+        p = next(iter(r[1].values()))
+        maps = sd_map(p) + p.get("multiview_sd_map", 0.0) + p.get("multiview_sd_reset", 0.0)
+        cells.append(f"{total(p):.3f} ({maps:.3f})")
+    rows.append(f"| {s}-sample SD-HBAO+ | " + " | ".join(cells) + " |")
+if any("–" not in row.replace("| –", "") for row in rows) and results("tab3-sd1-single"):
+    print("\n### Seed 001 Tab. 3 analogue: SD-HBAO+ on Sibenik, 1920×1080 + 64, α = 0.2 (ms, all but the G-buffer; both maps' reset + raster in parentheses)\n")
+    print("| | single camera, full | multi-view, full | multi-view, half | multi-view, half second view only |")
+    print("|---|---|---|---|---|")
+    print("\n".join(rows))

@@ -168,6 +168,9 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.compensation", "--sd-compensation"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
+    ("multiview.angle", "--mv-angle"),
+    ("multiview.focus", "--mv-focus"),
+    ("multiview.resolution", "--mv-resolution"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -491,6 +494,22 @@ pub struct AoArgs {
     /// it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or NAME.bent.exr.
     #[arg(long)]
     pub bent_normals: bool,
+    #[arg(long, help = help(
+        "sd-hbao+-multiview: degrees the second view is swung about the camera's up axis around \
+         the focus point, in (0, 60] (seed 001 §3.4).",
+        "multiview.angle"
+    ))]
+    pub mv_angle: Option<f32>,
+    /// sd-hbao+-multiview: distance (world units) from the camera to the point both views look
+    /// at (default: along the view axis to the scene's bounding-box centre).
+    #[arg(long)]
+    pub mv_focus: Option<f32>,
+    #[arg(long, help = help(
+        "sd-hbao+-multiview: the second view's map and pass at 'full' or 'half' resolution \
+         (seed 001 Tab. 3).",
+        "multiview.resolution"
+    ))]
+    pub mv_resolution: Option<String>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -602,6 +621,13 @@ impl AoArgs {
         set(&mut sd.compensation, self.sd_compensation);
         if self.bent_normals {
             s.bent_normals = true;
+        }
+        set(&mut s.multiview.angle, self.mv_angle);
+        if let Some(focus) = self.mv_focus {
+            s.multiview.focus = Some(focus);
+        }
+        if let Some(r) = &self.mv_resolution {
+            s.multiview.resolution = r.parse::<Resolution>().map_err(with_flags)?;
         }
         if let Some(r) = &self.resolution {
             s.resolution = r.parse::<Resolution>().map_err(with_flags)?;
@@ -745,9 +771,9 @@ mod tests {
             }
         }
         // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
-        // (--vb-cosine) and bent_normals (--bent-normals), and blur.sigma (--blur-sigma), whose
-        // default is to be left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 4);
+        // (--vb-cosine) and bent_normals (--bent-normals), and blur.sigma (--blur-sigma) and
+        // multiview.focus (--mv-focus), whose defaults are to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 5);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

@@ -196,7 +196,15 @@ fn scenes_and_info_print_json() {
         .collect();
     assert_eq!(
         names,
-        ["stairs", "colonnade", "layers", "grass", "tower", "cornell"]
+        [
+            "stairs",
+            "colonnade",
+            "layers",
+            "grass",
+            "tower",
+            "cornell",
+            "grazing"
+        ]
     );
     for s in v.as_array().unwrap() {
         assert!(s["cameras"].as_array().unwrap().len() >= 2, "{s}");
@@ -1304,7 +1312,7 @@ fn demo_page_is_a_grid_with_one_scale_timings_and_a_verdict() {
         .unwrap()
         .filter(|e| e.as_ref().unwrap().path().is_dir())
         .count();
-    assert_eq!(scenes, 6, "every built-in scene");
+    assert_eq!(scenes, 7, "every built-in scene");
     let techniques = info_json()["techniques"].as_array().unwrap().len();
     // One grid row per technique and one for the reference, per scene.
     assert_eq!(

@@ -49,6 +49,9 @@ pub const SOURCE_SD_NEAR: u32 = 0;
 pub const SOURCE_SD_REQUEST: u32 = 1;
 /// One multisampled depth texture per stacked stochastic depth map from here on.
 pub const SOURCE_SD_MAPS: u32 = 2;
+/// The multi-view schedule's second view: the camera's view and the transform into the second
+/// (`shaders/schedules/multiview/point.wgsl`), after the maps' bindings.
+pub const SOURCE_MULTIVIEW: u32 = 12;
 /// Depth pyramid: each level's texel size and extent (`PyramidParams`).
 pub const SOURCE_PYRAMID_PARAMS: u32 = 0;
 /// Depth pyramid: levels 1 … L − 1 as the layers of one array texture.
@@ -95,6 +98,7 @@ const NAMED: &[(&str, u32)] = &[
     ("SOURCE_SD_NEAR", SOURCE_SD_NEAR),
     ("SOURCE_SD_REQUEST", SOURCE_SD_REQUEST),
     ("SOURCE_SD_MAPS", SOURCE_SD_MAPS),
+    ("SOURCE_MULTIVIEW", SOURCE_MULTIVIEW),
     ("SOURCE_PYRAMID_PARAMS", SOURCE_PYRAMID_PARAMS),
     ("SOURCE_PYRAMID_LEVELS", SOURCE_PYRAMID_LEVELS),
     ("SCHEDULE_PIXELS", SCHEDULE_PIXELS),

@@ -665,6 +665,35 @@ pub struct AoSettings {
     /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
     /// GTAO-VB and its stochastic-depth variant), on the single-pass schedule at full resolution.
     pub bent_normals: bool,
+    /// The multi-view schedule's second view (`sd-hbao+-multiview`).
+    pub multiview: MultiviewSettings,
+}
+
+/// The second view of the multi-view schedule (seed 001 §3.4: "at a set distance to the side of
+/// the original camera, and angled such that the original camera frustum is fully covered"; the
+/// paper gives no numbers, so the rule is ours): the camera swung by `angle` about its up axis
+/// around the focus point `focus` ahead of it, looking at that point, its field of view widened by
+/// twice the angle (at most 150°) so the camera's frustum stays in view.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MultiviewSettings {
+    /// Degrees between the two views' axes, in (0, 60].
+    pub angle: f32,
+    /// Distance (world units) from the camera to the point both views look at; `None` (the
+    /// default): the distance along the view axis to the scene's bounding-box centre.
+    pub focus: Option<f32>,
+    /// The second view's map and pass: at the camera's resolution or at half of it.
+    pub resolution: Resolution,
+}
+
+impl Default for MultiviewSettings {
+    fn default() -> Self {
+        Self {
+            angle: 30.0,
+            focus: None,
+            resolution: Resolution::Full,
+        }
+    }
 }
 
 /// The resolution a technique's passes run at (`resolution`; in files `"full"` or `"half"`).
@@ -722,6 +751,7 @@ impl Default for AoSettings {
             stochastic_depth: StochasticDepthSettings::default(),
             resolution: Resolution::Full,
             bent_normals: false,
+            multiview: MultiviewSettings::default(),
         }
     }
 }
@@ -783,6 +813,21 @@ impl AoSettings {
                 "stochastic_depth.alpha",
                 alpha,
                 "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
+            ));
+        }
+        let mv = &self.multiview;
+        if !(mv.angle.is_finite() && mv.angle > 0.0 && mv.angle <= 60.0) {
+            return Err(invalid(
+                "multiview.angle",
+                mv.angle,
+                "must be in (0, 60] degrees, e.g. 30",
+            ));
+        }
+        if let Some(focus) = mv.focus.filter(|f| !(f.is_finite() && *f > 0.0)) {
+            return Err(invalid(
+                "multiview.focus",
+                focus,
+                "must be a positive distance in world units, or left out for the scene's centre",
             ));
         }
         if !(sd.compensation.is_finite() && (1.0..=8.0).contains(&sd.compensation)) {
@@ -1651,7 +1696,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 57, "{paths:?}");
+        assert_eq!(paths.len(), 60, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1666,6 +1711,8 @@ mod tests {
         push(&|s| s.stochastic_depth.samples = 3);
         push(&|s| s.stochastic_depth.alpha = Some(1.5));
         push(&|s| s.stochastic_depth.compensation = 0.5);
+        push(&|s| s.multiview.angle = 90.0);
+        push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);
         push(&|s| s.blur.sharpness = -2.0);
         push(&|s| s.blur.sigma = Some(0.0));

@@ -40,6 +40,9 @@ pub const SCHEDULE_INTERLEAVED_SPLIT: &str =
 pub const SCHEDULE_TWO_PHASE: &str = include_str!("../shaders/schedules/two_phase.wgsl");
 pub const SCHEDULE_TWO_PHASE_1: &str = include_str!("../shaders/schedules/two_phase_1.wgsl");
 pub const SCHEDULE_TWO_PHASE_2: &str = include_str!("../shaders/schedules/two_phase_2.wgsl");
+pub const MULTIVIEW_POINT: &str = include_str!("../shaders/schedules/multiview/point.wgsl");
+pub const MULTIVIEW_LOOKUP: &str = include_str!("../shaders/schedules/multiview/lookup.wgsl");
+pub const MULTIVIEW_MAIN: &str = include_str!("../shaders/schedules/multiview/main.wgsl");
 pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
     include_str!("../shaders/schedules/two_phase_indirect.wgsl");
 

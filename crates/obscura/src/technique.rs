@@ -66,6 +66,9 @@ techniques!(
     /// `sd-hbao+-stenciled`: SD-HBAO+ in two phases; the map is rasterised only where phase 1
     /// asked (seed 000 §3.9's pipeline around seed 001's estimator).
     SdHbaoPlusStenciled,
+    /// `sd-hbao+-multiview`: SD-HBAO+ in the camera's view and in a second view beside it over a
+    /// second stochastic depth map; AO = the larger occlusion (seed 001 §3.4, Algorithm 3).
+    SdHbaoPlusMultiview,
     /// `ssao`: seed 001's SSAO, Alchemy AO with 32 samples.
     Ssao,
     /// `sd-ssao`: SSAO; a sample whose first surface does not occlude reads the stochastic depth
@@ -142,6 +145,10 @@ pub enum Schedule {
     /// The depth split into 16 quarter-resolution layers (one per pixel residue mod 4), each
     /// pixel's samples read from its own layer (seed-code-notes §1.7, the authors' HBAO+).
     Interleaved,
+    /// The single pass in the camera's view, then the estimator again in a second view beside it
+    /// over a second stochastic depth map that keeps every layer; each pixel keeps the larger
+    /// occlusion (seed 001 §3.4, Algorithm 3).
+    Multiview,
 }
 
 /// One row of the technique table.
@@ -319,6 +326,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::TwoPhase,
     },
     TechniqueRow {
+        technique: Technique::SdHbaoPlusMultiview,
+        name: "sd-hbao+-multiview",
+        summary: "SD-HBAO+ also from a second view beside the camera; the larger occlusion wins",
+        paper: "seed 001 §3.4, Algorithm 3",
+        estimator: Estimator::HbaoPlus,
+        source: Source::StochasticDepth,
+        schedule: Schedule::Multiview,
+    },
+    TechniqueRow {
         technique: Technique::Ssao,
         name: "ssao",
         summary: "SSAO: Alchemy AO, 32 spiral samples within R (seed 001's SSAO baseline)",
@@ -485,13 +501,21 @@ impl Schedule {
             Schedule::Single => true,
             Schedule::TwoPhase | Schedule::TwoPhaseDense => estimator.order_independent(),
             Schedule::Interleaved => !estimator.reads_levels(),
+            // Algorithm 3 needs only a position and a normal per pixel, as HBAO+ does (seed 001
+            // §3.4 extends HBAO+ for that reason).
+            Schedule::Multiview => estimator == Estimator::HbaoPlus,
         }
     }
 
-    /// Whether this schedule can run over `source`: the interleaved one only over the first
+    /// Whether this schedule can run over `source`: the multi-view one only over the stochastic
+    /// depth map (its second view reads a second one); the interleaved one only over the first
     /// layer (it splits that layer and reads nothing else).
     pub fn supports_source(self, source: Source) -> bool {
-        self != Schedule::Interleaved || source == Source::FirstLayer
+        match self {
+            Schedule::Interleaved => source == Source::FirstLayer,
+            Schedule::Multiview => source == Source::StochasticDepth,
+            _ => true,
+        }
     }
 
     /// Its name in the README's table (`single pass`, `two-phase (work list)`, …).
@@ -501,6 +525,7 @@ impl Schedule {
             Schedule::TwoPhase => "two-phase (work list)",
             Schedule::TwoPhaseDense => "two-phase (dense)",
             Schedule::Interleaved => "interleaved (4×4 layers)",
+            Schedule::Multiview => "single pass + second view",
         }
     }
 }

@@ -240,12 +240,12 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             r.technique, r.scene, r.camera, r.width, r.height, r.guard_band, r.frames
         );
         for (pass, ms) in &r.passes {
-            println!("  {pass:<15} {ms:>9.4} ms");
+            println!("  {pass:<20} {ms:>9.4} ms");
         }
-        println!("  {:<15} {:>9.4} ms", "total", r.total_ms);
+        println!("  {:<20} {:>9.4} ms", "total", r.total_ms);
         for (pass, f) in r.fragments.iter().flatten() {
             println!(
-                "  {pass:<15} {:>9} fragments ({:.2} per framebuffer pixel)",
+                "  {pass:<20} {:>9} fragments ({:.2} per framebuffer pixel)",
                 f.invocations, f.per_pixel
             );
         }

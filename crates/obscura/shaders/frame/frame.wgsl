@@ -15,6 +15,16 @@
 // (estimator_bent_normal) next to its AO; estimators keep what only it needs behind it.
 override BENT_NORMALS: bool = false;
 
+// The shading point of a visible pixel in the view the estimators work in (`frame_point`, made by
+// frame/point.wgsl or, in the multi-view schedule's second view, schedules/multiview/point.wgsl).
+struct FramePoint {
+    // Framebuffer pixel of the point in the working view.
+    pixel: vec2<u32>,
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    valid: bool,
+}
+
 // The single-pass and interleaved schedules write the estimator's debug image (estimator_debug)
 // instead of its AO (`render --debug-out`); estimators keep what only that image needs behind it,
 // so the usual pipelines compile without it.

@@ -1,15 +1,8 @@
 // The shading point of visible pixel `id`, in the view the estimators work in: the frame's own
 // (read from its depth and normals). The multi-view schedule's second view composes
 // schedules/multiview/point.wgsl in its place (the same point, seen from the other camera).
+// FramePoint is frame.wgsl's.
 // After frame.wgsl.
-
-struct FramePoint {
-    // Framebuffer pixel of the point in the working view.
-    pixel: vec2<u32>,
-    pos: vec3<f32>,
-    normal: vec3<f32>,
-    valid: bool,
-}
 
 fn frame_point(id: vec2<u32>) -> FramePoint {
     var p: FramePoint;

@@ -129,7 +129,6 @@ impl AmbientOcclusion {
         let estimator = EstimatorPass::for_row(device, row.estimator, settings);
         let source = SourcePass::new(gpu, row.source, row.schedule, settings, &work, scene)?;
         let schedule = SchedulePass::new(
-            device,
             row,
             &frame_layout,
             &estimator,
@@ -139,7 +138,12 @@ impl AmbientOcclusion {
                 estimator_debug,
                 bent_normals: settings.bent_normals,
             },
-        );
+            &crate::schedules::ScheduleInputs {
+                gpu,
+                settings,
+                scene: scene.scene,
+            },
+        )?;
         let ao_texture = |label| {
             crate::gpu::texture_2d(
                 device,
@@ -199,10 +203,12 @@ impl AmbientOcclusion {
     /// others it does nothing). Those rows refuse to [`encode`](Self::encode) until it was set
     /// once, and its screen geometry must be the one this was built for.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
-        match &self.half {
-            Some(_) => self.source.set_camera(queue, &view.half()),
-            None => self.source.set_camera(queue, view),
-        }
+        let work = match &self.half {
+            Some(_) => view.half(),
+            None => *view,
+        };
+        self.source.set_camera(queue, &work);
+        self.schedule.set_camera(queue, &work);
         self.camera_set.set(true);
     }
 
@@ -296,6 +302,8 @@ impl AmbientOcclusion {
             device,
             frame: work,
             frame_group: &frame_group,
+            output: &raw,
+            bent: &bent,
             estimator: &self.estimator,
             source: &self.source,
         };

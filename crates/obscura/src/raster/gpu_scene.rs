@@ -46,6 +46,8 @@ pub struct GpuScene {
     pub culled_count: u32,
     /// Number of triangles in `triangles`.
     pub triangle_count: u32,
+    /// The scene's axis-aligned bounds (min, max corner), world units.
+    pub bounds: (glam::Vec3, glam::Vec3),
 }
 
 impl GpuScene {
@@ -187,6 +189,10 @@ impl GpuScene {
             textures,
             culled_count,
             triangle_count: triangles.len() as u32,
+            bounds: scene.positions.iter().fold(
+                (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+            ),
         })
     }
 }

@@ -119,7 +119,7 @@ mod tests {
     fn load_dispatches_and_reports_bad_specs() {
         let s = load("cornell").unwrap();
         assert_eq!(s.name, "cornell");
-        assert_eq!(builtin_names().len(), 6);
+        assert_eq!(builtin_names().len(), 7);
 
         let err = load("stairz").unwrap_err().to_string();
         assert!(

@@ -3,6 +3,7 @@
 //! source that implement their contracts, and decide when the source prepares its data.
 
 pub mod interleaved;
+pub mod multiview;
 pub mod single;
 pub mod two_phase;
 
@@ -57,6 +58,8 @@ pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
         Schedule::TwoPhase => two_phase::stages(true),
         Schedule::TwoPhaseDense => two_phase::stages(false),
         Schedule::Interleaved => vec![interleaved::stage()],
+        // The camera's pass; the second view's pipeline is the schedule's own (multiview.rs).
+        Schedule::Multiview => vec![single::stage()],
     }
 }
 
@@ -115,10 +118,15 @@ pub(crate) fn pipeline(
 
 /// What a schedule records one frame with: the device, the frame's inputs and group 0, and the
 /// row's estimator and source.
+#[derive(Clone, Copy)]
 pub(crate) struct FrameContext<'a> {
     pub device: &'a wgpu::Device,
     pub frame: &'a FrameInputs<'a>,
     pub frame_group: &'a wgpu::BindGroup,
+    /// The AO image and the bent normals `frame_group` writes (schedules that make their own
+    /// group 0, as the multi-view one, bind them again).
+    pub output: &'a wgpu::TextureView,
+    pub bent: &'a wgpu::TextureView,
     pub estimator: &'a EstimatorPass,
     pub source: &'a SourcePass,
 }
@@ -155,24 +163,34 @@ pub(crate) struct PixelOutputs {
     pub bent_normals: bool,
 }
 
+/// What a schedule beyond the row's estimator and source may need: the GPU, the settings, and
+/// the scene's triangles (the multi-view schedule rasterises a second map from them).
+pub(crate) struct ScheduleInputs<'a> {
+    pub gpu: &'a crate::gpu::Gpu,
+    pub settings: &'a crate::settings::AoSettings,
+    pub scene: Option<&'a crate::raster::gpu_scene::GpuScene>,
+}
+
 /// A schedule as an [`crate::AmbientOcclusion`] holds it.
 pub(crate) enum SchedulePass {
     Single(single::Single),
     TwoPhase(two_phase::TwoPhase),
     Interleaved(interleaved::Interleaved),
+    Multiview(Box<multiview::Multiview>),
 }
 
 impl SchedulePass {
     /// The passes of `row`'s schedule, writing `outputs` per pixel.
     pub fn new(
-        device: &wgpu::Device,
         row: &TechniqueRow,
         frame_layout: &wgpu::BindGroupLayout,
         estimator: &EstimatorPass,
         source: &SourcePass,
         screen: &ScreenGeometry,
         outputs: PixelOutputs,
-    ) -> Self {
+        inputs: &ScheduleInputs,
+    ) -> Result<Self, Error> {
+        let device = &inputs.gpu.device;
         let (schedule, name) = (row.schedule, row.name);
         let mut stages = stages(schedule);
         for stage in &mut stages {
@@ -186,7 +204,7 @@ impl SchedulePass {
                 stage.constants.push(("BENT_NORMALS", 1.0));
             }
         }
-        match schedule {
+        Ok(match schedule {
             Schedule::Single => SchedulePass::Single(single::Single::new(
                 device,
                 name,
@@ -215,7 +233,26 @@ impl SchedulePass {
                     screen,
                 ))
             }
-        }
+            Schedule::Multiview => {
+                let scene = inputs.scene.ok_or_else(|| {
+                    Error::Input(format!(
+                        "technique '{name}' rasterises a second stochastic depth map: pass the \
+                         scene's triangles (SceneResources::scene)"
+                    ))
+                })?;
+                SchedulePass::Multiview(Box::new(multiview::Multiview::new(
+                    inputs.gpu,
+                    inputs.settings,
+                    screen,
+                    scene,
+                    frame_layout,
+                    estimator,
+                    source,
+                    &stages,
+                    name,
+                )?))
+            }
+        })
     }
 
     /// Records the AO passes into the frame's output, with the source prepared where the
@@ -230,13 +267,23 @@ impl SchedulePass {
             SchedulePass::Single(s) => s.encode(ctx, encoder, profiler),
             SchedulePass::TwoPhase(s) => s.encode(ctx, encoder, profiler),
             SchedulePass::Interleaved(s) => s.encode(ctx, encoder, profiler),
+            SchedulePass::Multiview(s) => s.encode(ctx, encoder, profiler),
+        }
+    }
+
+    /// The camera of the coming frame (the multi-view schedule places its second view by it).
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &crate::view::FrameView) {
+        if let SchedulePass::Multiview(m) = self {
+            m.set_camera(queue, view);
         }
     }
 
     /// Two-phase: phase 1's per-pixel records (16 bytes each, the sample bit mask first).
     pub fn phase1_records(&self) -> Option<&wgpu::Buffer> {
         match self {
-            SchedulePass::Single(_) | SchedulePass::Interleaved(_) => None,
+            SchedulePass::Single(_) | SchedulePass::Interleaved(_) | SchedulePass::Multiview(_) => {
+                None
+            }
             SchedulePass::TwoPhase(s) => Some(s.records()),
         }
     }

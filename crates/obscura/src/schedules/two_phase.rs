@@ -194,6 +194,7 @@ impl TwoPhase {
             frame_group,
             estimator,
             source,
+            ..
         } = *ctx;
         encoder.clear_buffer(&self.work_count, 0, None);
         source.begin_frame(encoder);

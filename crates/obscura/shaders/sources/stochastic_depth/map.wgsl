@@ -34,7 +34,9 @@ struct SdRaster {
     seed: u32,
     // Samples per pixel of this map.
     samples: u32,
-    _pad0: u32,
+    // Non-zero: store every layer, the first visible one included (the multi-view schedule's
+    // second map, seed 001 §3.4; its view has no first layer of its own).
+    all_layers: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -63,7 +65,7 @@ fn sd_coverage(in: VertexOut) -> u32 {
     let first = textureLoad(first_layer, pixel, 0).r;
     // Alg. 1 stores hidden layers only: the first layer (and anything within `separation` behind
     // it) is skipped; without a first layer the pixel shows no geometry at all.
-    if (!(first > 0.0) || depth <= first + sd.separation) {
+    if (sd.all_layers == 0u && (!(first > 0.0) || depth <= first + sd.separation)) {
         return 0u;
     }
     let h = sd_fragment_hash(pixel, in.triangle, depth);

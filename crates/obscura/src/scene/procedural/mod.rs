@@ -9,6 +9,7 @@ mod builder;
 mod colonnade;
 mod cornell;
 mod grass;
+mod grazing;
 mod layers;
 pub(super) mod rng;
 mod stairs;
@@ -21,7 +22,15 @@ use builder::Solid;
 
 /// Names of the built-in scenes, in presentation order.
 pub fn builtin_names() -> &'static [&'static str] {
-    &["stairs", "colonnade", "layers", "grass", "tower", "cornell"]
+    &[
+        "stairs",
+        "colonnade",
+        "layers",
+        "grass",
+        "tower",
+        "cornell",
+        "grazing",
+    ]
 }
 
 /// Builds the built-in scene `name` (validated).
@@ -44,6 +53,7 @@ fn build(name: &str) -> Option<(Scene, Vec<Solid>)> {
         "grass" => grass::build(),
         "tower" => tower::build(),
         "cornell" => cornell::build(),
+        "grazing" => grazing::build(),
         _ => return None,
     };
     Some(builder.finish())

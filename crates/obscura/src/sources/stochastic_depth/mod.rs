@@ -202,7 +202,10 @@ struct SdRaster {
     separation: f32,
     seed: u32,
     samples: u32,
-    _pad: [u32; 3],
+    /// Non-zero: keep every layer, the first visible one included (the multi-view schedule's
+    /// second map, which has no depth buffer of its own view).
+    all_layers: u32,
+    _pad: [u32; 2],
 }
 
 /// One stochastic depth map (S samples per pixel, possibly several stacked targets) for a
@@ -226,6 +229,10 @@ pub struct StochasticDepthMap {
     reset: SdReset,
     /// The fragment shader reads the request mask itself ([`SdMask::Discard`]).
     discards: bool,
+    /// Keep every layer ([`StochasticDepthMap::keeping_every_layer`]).
+    all_layers: bool,
+    /// Timing name of the raster (`sd_map`; the reset's is its own).
+    timing_name: &'static str,
 }
 
 impl StochasticDepthMap {
@@ -398,7 +405,24 @@ impl StochasticDepthMap {
             pipelines,
             reset,
             discards: requested == Some(SdMask::Discard),
+            all_layers: false,
+            timing_name: "sd_map",
         })
+    }
+
+    /// This map storing every layer, the first visible one included: no first layer is skipped
+    /// (the multi-view schedule's second view, seed 001 §3.4). The `first_layer` given to
+    /// [`StochasticDepthMap::render`] is then not read.
+    pub fn keeping_every_layer(mut self) -> Self {
+        self.all_layers = true;
+        self
+    }
+
+    /// This map timed as `reset` and `map` instead of `sd_reset` and `sd_map`.
+    pub fn timed_as(mut self, reset: &'static str, map: &'static str) -> Self {
+        self.reset.name = reset;
+        self.timing_name = map;
+        self
     }
 
     /// How its S samples per pixel are laid out over stacked targets.
@@ -428,7 +452,8 @@ impl StochasticDepthMap {
                     self.settings.seed ^ (m as u32).wrapping_mul(0x9e37_79b9),
                 ),
                 samples: self.layout.samples_per_map,
-                _pad: [0; 3],
+                all_layers: u32::from(self.all_layers),
+                _pad: [0; 2],
             };
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&raster));
         }
@@ -474,11 +499,12 @@ impl StochasticDepthMap {
                     &resources,
                 )
             });
-            let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_map"));
+            let map_name = self.timing_name;
+            let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
             let mut pass = begin(encoder, target, timestamp_writes);
             pass.set_stencil_reference(stencil_value);
             if let Some(p) = profiler.as_deref_mut() {
-                p.begin_fragments(&mut pass, "sd_map");
+                p.begin_fragments(&mut pass, map_name);
             }
             draw_scene(&mut pass, &self.scene, &self.pipelines, &bind_groups);
             if let Some(p) = profiler.as_deref() {

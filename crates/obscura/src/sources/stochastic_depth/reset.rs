@@ -25,6 +25,8 @@ pub(crate) struct SdReset {
     width: wgpu::Buffer,
     /// Frames reset so far: the stencil value of a frame is `frames % 255 + 1`.
     frames: AtomicU32,
+    /// Its timing name: `sd_reset` unless the map is renamed.
+    pub name: &'static str,
 }
 
 impl SdReset {
@@ -93,6 +95,7 @@ impl SdReset {
                 usage: wgpu::BufferUsages::UNIFORM,
             }),
             frames: AtomicU32::new(0),
+            name: "sd_reset",
         }
     }
 
@@ -102,8 +105,8 @@ impl SdReset {
         self.frames.fetch_add(1, Ordering::Relaxed) % 255 + 1
     }
 
-    /// Reset `target` (timing `sd_reset`). `request`: the SD-request mask, needed for
-    /// [`ResetScope::Requested`].
+    /// Reset `target` (timing [`SdReset::name`], `sd_reset` unless renamed). `request`: the SD-request mask, needed
+    /// for [`ResetScope::Requested`].
     pub fn encode(
         &self,
         device: &wgpu::Device,
@@ -113,6 +116,7 @@ impl SdReset {
         stencil_value: u32,
         profiler: Option<&mut PassProfiler>,
     ) {
+        let name = self.name;
         let bind_group = match (self.scope, request) {
             (ResetScope::Requested { .. }, Some(request)) => Some(crate::gpu::bind_group(
                 device,
@@ -126,10 +130,10 @@ impl SdReset {
             (ResetScope::All, _) => None,
         };
         let mut profiler = profiler;
-        let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass("sd_reset"));
+        let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(name));
         let mut pass = super::begin(encoder, target, timestamp_writes);
         if let Some(p) = profiler.as_deref_mut() {
-            p.begin_fragments(&mut pass, "sd_reset");
+            p.begin_fragments(&mut pass, name);
         }
         pass.set_pipeline(&self.pipeline);
         if let Some(bind_group) = &bind_group {
