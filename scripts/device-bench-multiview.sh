@@ -5,7 +5,7 @@
 # second view at half (--mv-resolution half).
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
 # (../shared/tools/prepare-device.sh sibenik); results go to $OUT;
-# scripts/bench-sd-summary.py $OUT makes the table.
+# scripts/bench-seed001-summary.py $OUT makes the table.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 $bin info | tee "$out/info.txt"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Markdown tables from scripts/device-bench-sd.sh's $OUT (median ms per pass, G-buffer left out):
+"""Markdown tables from scripts/device-bench-seed001.sh's $OUT (median ms per pass, G-buffer left out):
 seed 001 Tab. 1 (AO pass), Tab. 2 (sd-hbao+ total with the SD map's time in parentheses, full and
 half resolution), the bent-normal and compensation costs."""
 import json
