@@ -250,6 +250,7 @@ impl SchedulePass {
                     source,
                     &stages,
                     name,
+                    outputs.estimator_debug,
                 )?))
             }
         })

@@ -86,6 +86,8 @@ pub(crate) struct Multiview {
     settings: MultiviewSettings,
     bounds: (Vec3, Vec3),
     second_screen: ScreenGeometry,
+    /// The estimator's debug image (`render --debug-out`): the camera's pass only, as it is.
+    estimator_debug: bool,
 }
 
 impl Multiview {
@@ -102,6 +104,7 @@ impl Multiview {
         source: &SourcePass,
         stages: &[Stage],
         name: &'static str,
+        estimator_debug: bool,
     ) -> Result<Self, Error> {
         let device = &gpu.device;
         if screen.orthographic {
@@ -194,6 +197,7 @@ impl Multiview {
             settings: settings.multiview,
             bounds: scene.bounds,
             second_screen,
+            estimator_debug,
         })
     }
 
@@ -221,6 +225,9 @@ impl Multiview {
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         let device = ctx.device;
+        if self.estimator_debug {
+            return self.main.encode(ctx, encoder, profiler);
+        }
         // Pass 1 into the camera's own AO image.
         let main_ao = self.main_ao.create_view(&Default::default());
         let main_group = ctx
