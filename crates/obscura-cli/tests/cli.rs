@@ -1338,3 +1338,77 @@ fn demo_page_is_a_grid_with_one_scale_timings_and_a_verdict() {
     // lavapipe is a CPU adapter: its times are marked.
     assert!(html.contains("CPU"));
 }
+
+#[test]
+fn seed_001_options_are_clear_errors() {
+    // Half resolution needs even sizes; bent normals need an estimator that reports them and full
+    // resolution; the multi-view angle and compensation have ranges. Each fails with one line
+    // naming the input, a non-zero exit and the old output untouched.
+    for (extra, needles) in [
+        (
+            &["--resolution", "half", "--size", "65x48"][..],
+            &["even", "65x48"][..],
+        ),
+        (&["--resolution", "quarter"], &["quarter", "'half'"]),
+        (
+            &["--technique", "hbao", "--bent-normals"],
+            &["'hbao'", "bent normals", "gtao"],
+        ),
+        (
+            &[
+                "--technique",
+                "gtao",
+                "--bent-normals",
+                "--resolution",
+                "half",
+            ],
+            &["full resolution", "--bent-normals"],
+        ),
+        (
+            &["--technique", "sd-hbao+-multiview", "--mv-angle", "75"],
+            &["--mv-angle", "75", "(0, 60]"],
+        ),
+        (
+            &["--technique", "sd-hbao+", "--sd-compensation", "0.5"],
+            &["--sd-compensation", "0.5", "[1, 8]"],
+        ),
+    ] {
+        one_line(&assert_render_fails(extra, needles));
+    }
+}
+
+#[test]
+fn bent_normals_are_written_next_to_the_ao() {
+    // `render --bent-normals` writes NAME.bent.png: RGBA8, RGB = 0.5·n + 0.5 of the view-space
+    // bent normal, alpha 255 on geometry. On `stairs` the close-up shows geometry everywhere, and
+    // view-space normals face the camera (+z), so every blue channel is above the middle.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ao.png");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--technique",
+        "gtao",
+        "--bent-normals",
+        "--size",
+        "64x48",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bent = image::open(dir.path().join("ao.bent.png"))
+        .unwrap()
+        .to_rgba8();
+    assert_eq!(bent.dimensions(), (64, 48));
+    let covered: Vec<_> = bent.pixels().filter(|p| p[3] == 255).collect();
+    assert!(
+        covered.len() > 64 * 48 / 2,
+        "{} covered pixels",
+        covered.len()
+    );
+    assert!(
+        covered.iter().all(|p| p[2] > 128),
+        "a bent normal faces away from the camera"
+    );
+}
