@@ -490,8 +490,9 @@ pub struct AoArgs {
         "resolution"
     ))]
     pub resolution: Option<String>,
-    /// Also compute the bent normal (seed 001 §4): GTAO, GTAO-VB and SD-GTAO-VB; `render` writes
-    /// it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or NAME.bent.exr.
+    /// Also compute the bent normal (seed 001 §4): the single-pass GTAO, GTAO-VB and VAO rows;
+    /// `render` writes it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or
+    /// NAME.bent.exr.
     #[arg(long)]
     pub bent_normals: bool,
     #[arg(long, help = help(

@@ -14,6 +14,7 @@ pub const VERTEX_NORMAL: &str = include_str!("../shaders/common/vertex_normal.wg
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
 pub const FRAME_POINT: &str = include_str!("../shaders/frame/point.wgsl");
+pub const BENT: &str = include_str!("../shaders/common/bent.wgsl");
 
 pub const SOURCE_FIRST_LAYER: &str = include_str!("../shaders/sources/first_layer.wgsl");
 pub const SOURCE_DUAL_DEPTH: &str = include_str!("../shaders/sources/dual_depth.wgsl");

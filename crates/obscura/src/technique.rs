@@ -602,9 +602,10 @@ impl Estimator {
     }
 
     /// Whether the estimator reports a bent normal with its AO (`bent_normals`, seed 001 §4):
-    /// the slice estimators, whose visible directions are known per slice.
+    /// the slice estimators, whose visible directions are known per slice, and VAO, whose free
+    /// column parts locate the free volume.
     pub fn bent_normals(self) -> bool {
-        matches!(self, Estimator::Gtao | Estimator::GtaoVb)
+        matches!(self, Estimator::Gtao | Estimator::GtaoVb | Estimator::Vao)
     }
 }
 

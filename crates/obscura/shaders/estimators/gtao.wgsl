@@ -294,10 +294,21 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 }
 
 // The bent normal (`bent_normals`, seed 001 §4): the cosine-weighted mean visible direction over
-// the slices (slice_visibility.wgsl's bent_from_slices), view space.
-fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+// the slices (common/bent.wgsl's bent_from_sums), view space.
+// No per-sample bent vectors (the slice estimators form theirs from the accumulator; the others
+// have none).
+fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: EstimatorValue) -> vec3<f32> {
+    return vec3<f32>(0.0);
+}
+
+fn estimator_bent_normal(
+    p: EstimatorPixel,
+    acc: EstimatorAccum,
+    sample_visible: vec3<f32>,
+    sample_open: vec3<f32>,
+) -> vec3<f32> {
     let a = fold_slice(acc);
-    return bent_from_slices(
+    return bent_from_sums(
         p.normal,
         a.bent_tangent + a.bent_v * p.v,
         a.open_tangent + a.open_v * p.v,

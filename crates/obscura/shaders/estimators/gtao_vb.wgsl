@@ -258,11 +258,22 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // The bent normal (`bent_normals`, seed 001 §4; ours for the bitmask): per slice, the mean
 // direction of its free sectors, weighted as its AO weighs them (uniformly in angle, or by the
 // cosine with `cosine_weighted`), summed over slices against the whole hemispheres' and made
-// exact on unoccluded planes by slice_visibility.wgsl's bent_from_slices; view space. Sector
+// exact on unoccluded planes by common/bent.wgsl's bent_from_sums; view space. Sector
 // boundary k lies at θ = γ + x, x = π(k/32 − 1/2): (sin x, cos x) = (−cos πk/32, sin πk/32),
 // turned by γ. The uniform weight is linear in those pairs, so a slice's runs are summed before
 // the one turn; the open hemisphere's vector is (2 sin γ, 2 cos γ).
-fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
+// No per-sample bent vectors (the slice estimators form theirs from the accumulator; the others
+// have none).
+fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: EstimatorValue) -> vec3<f32> {
+    return vec3<f32>(0.0);
+}
+
+fn estimator_bent_normal(
+    p: EstimatorPixel,
+    acc: EstimatorAccum,
+    sample_visible: vec3<f32>,
+    sample_open: vec3<f32>,
+) -> vec3<f32> {
     let step = 3.141592653589793 / 32.0;
     var visible = vec3<f32>(0.0);
     var open = vec3<f32>(0.0);
@@ -298,5 +309,5 @@ fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
         visible += sum.x * p.tangents[j] + sum.y * p.v;
         open += whole.x * p.tangents[j] + whole.y * p.v;
     }
-    return bent_from_slices(p.normal, visible, open);
+    return bent_from_sums(p.normal, visible, open);
 }

@@ -60,14 +60,3 @@ fn span_direction(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
 fn hemisphere_edges(gamma: vec2<f32>) -> array<vec2<f32>, 2> {
     return array<vec2<f32>, 2>(vec2<f32>(-gamma.y, gamma.x), vec2<f32>(gamma.y, -gamma.x));
 }
-
-// The bent normal from the slices' visible and open (whole hemisphere) bent vectors, each summed
-// as a view-space vector: n·|open| + (visible − open), normalised. Unoccluded, visible = open and
-// the bent normal is the normal exactly, with any number of slices (the plain sum of a few slices'
-// open vectors leans off the normal on a tilted plane); as the slices cover the hemisphere, open
-// tends to |open|·n and this to the plain mean visible direction (as our AO's Σ â / Σ â_open).
-fn bent_from_slices(normal: vec3<f32>, visible: vec3<f32>, open: vec3<f32>) -> vec3<f32> {
-    let bent = normal * length(open) + (visible - open);
-    let len = length(bent);
-    return select(normal, bent / len, len > 1e-12);
-}

@@ -281,7 +281,29 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return 0.0;
 }
 
-// No bent normal from this estimator (Estimator::bent_normals; `bent_normals` is refused for it).
-fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum) -> vec3<f32> {
-    return vec3<f32>(0.0);
+// Bent normals (`bent_normals`, seed 001 §4; ours for VAO): the direction from the shading point
+// to the centroid of the free volume. A sample's free part of its column is taken as its top
+// `value` (exact inside the column, where the free part runs from the occluder up to the column's
+// top; a convention for the thickness model's partly visible columns above it), so its centroid
+// lies at height start − value/2 over the disc point d; weighted by the free length over the
+// column's pdf 2h, as the AO sums it. The schedule sums these over the samples' values and over
+// their unoccluded values (the open hemisphere's free volume).
+fn estimator_bent_sample(p: VaoPixel, s: VaoSample, value: f32) -> vec3<f32> {
+    let f = p.frame;
+    let centroid = f.tangent * s.column.d.x + f.bitangent * s.column.d.y
+        + f.axis * (s.column.start - 0.5 * value);
+    return centroid * (value * 0.5 / s.h);
+}
+
+// The bent normal from the summed free centroids against the open ones (common/bent.wgsl), view
+// space; the normal is rebuilt from the sample frame.
+fn estimator_bent_normal(
+    p: VaoPixel,
+    acc: EstimatorAccum,
+    sample_visible: vec3<f32>,
+    sample_open: vec3<f32>,
+) -> vec3<f32> {
+    let f = p.frame;
+    let normal = normalize(f.tangent * f.n_xy.x + f.bitangent * f.n_xy.y + f.axis / f.inv_n_z);
+    return bent_from_sums(normal, sample_visible, sample_open);
 }

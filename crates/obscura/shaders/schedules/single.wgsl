@@ -11,7 +11,23 @@ fn single_pass_ao(p: EstimatorPixel) -> f32 {
 
 // The accumulated state of every active sample of pixel `p`, in order.
 fn single_pass_accum(p: EstimatorPixel) -> EstimatorAccum {
-    var acc = estimator_accum_init();
+    return single_pass(p).acc;
+}
+
+// The sample loop's results: the estimator's state and, with BENT_NORMALS, the sums of its
+// per-sample bent vectors over the samples' values and over their unoccluded values
+// (estimator_bent_sample; estimators that form the bent normal from `acc` add nothing).
+struct SinglePass {
+    acc: EstimatorAccum,
+    bent_visible: vec3<f32>,
+    bent_open: vec3<f32>,
+}
+
+fn single_pass(p: EstimatorPixel) -> SinglePass {
+    var r: SinglePass;
+    r.acc = estimator_accum_init();
+    r.bent_visible = vec3<f32>(0.0);
+    r.bent_open = vec3<f32>(0.0);
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
         let s = estimator_sample(p, i);
         if (!estimator_sample_active(s)) {
@@ -22,10 +38,14 @@ fn single_pass_accum(p: EstimatorPixel) -> EstimatorAccum {
         if (l.trace) {
             value = source_resolve(p, s, l);
         }
-        acc = estimator_accum_value(acc, s, value);
-        acc = estimator_accum_sample(acc, s);
+        r.acc = estimator_accum_value(r.acc, s, value);
+        r.acc = estimator_accum_sample(r.acc, s);
+        if (BENT_NORMALS) {
+            r.bent_visible += estimator_bent_sample(p, s, value);
+            r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
+        }
     }
-    return acc;
+    return r;
 }
 
 // Writes visible pixel `id`'s result: 1 where there is no surface, else the estimator's AO, or
@@ -39,9 +59,11 @@ fn store_pixel(id: vec2<u32>, p: EstimatorPixel) {
         }
         return;
     }
-    let acc = single_pass_accum(p);
+    let result = single_pass(p);
+    let acc = result.acc;
     if (BENT_NORMALS) {
-        textureStore(bent_out, id, vec4<f32>(estimator_bent_normal(p, acc), 1.0));
+        let bent = estimator_bent_normal(p, acc, result.bent_visible, result.bent_open);
+        textureStore(bent_out, id, vec4<f32>(bent, 1.0));
     }
     if (ESTIMATOR_DEBUG) {
         textureStore(ao_out, id, vec4<f32>(estimator_debug(p, acc)));

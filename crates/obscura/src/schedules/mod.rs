@@ -64,10 +64,11 @@ pub(crate) fn stages(schedule: Schedule) -> Vec<Stage> {
 }
 
 /// What every estimator is composed after: the shared helpers it may call and the frame.
-pub(crate) const ESTIMATOR_PRELUDE: [&str; 5] = [
+pub(crate) const ESTIMATOR_PRELUDE: [&str; 6] = [
     shaders::VIEW,
     shaders::BASIS,
     shaders::PATTERN,
+    shaders::BENT,
     shaders::FRAME,
     shaders::FRAME_POINT,
 ];
