@@ -295,11 +295,6 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 
 // The bent normal (`bent_normals`, seed 001 §4): the cosine-weighted mean visible direction over
 // the slices (common/bent.wgsl's bent_from_sums), view space.
-// No per-sample bent vectors (the slice estimators form theirs from the accumulator; the others
-// have none).
-fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: EstimatorValue) -> vec3<f32> {
-    return vec3<f32>(0.0);
-}
 
 fn estimator_bent_normal(
     p: EstimatorPixel,

@@ -262,11 +262,6 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // boundary k lies at θ = γ + x, x = π(k/32 − 1/2): (sin x, cos x) = (−cos πk/32, sin πk/32),
 // turned by γ. The uniform weight is linear in those pairs, so a slice's runs are summed before
 // the one turn; the open hemisphere's vector is (2 sin γ, 2 cos γ).
-// No per-sample bent vectors (the slice estimators form theirs from the accumulator; the others
-// have none).
-fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: EstimatorValue) -> vec3<f32> {
-    return vec3<f32>(0.0);
-}
 
 fn estimator_bent_normal(
     p: EstimatorPixel,

@@ -117,19 +117,3 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return acc.occluding / f32(SAMPLE_COUNT);
 }
-
-// No bent normal from this estimator (Estimator::bent_normals; `bent_normals` is refused for it).
-// No per-sample bent vectors (the slice estimators form theirs from the accumulator; the others
-// have none).
-fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: EstimatorValue) -> vec3<f32> {
-    return vec3<f32>(0.0);
-}
-
-fn estimator_bent_normal(
-    p: EstimatorPixel,
-    acc: EstimatorAccum,
-    sample_visible: vec3<f32>,
-    sample_open: vec3<f32>,
-) -> vec3<f32> {
-    return vec3<f32>(0.0);
-}

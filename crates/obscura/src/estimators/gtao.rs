@@ -10,7 +10,8 @@ use std::f32::consts::PI;
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
-    include_str!("../../shaders/estimators/gtao.wgsl")
+    include_str!("../../shaders/estimators/gtao.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
 );
 /// Its `override` constants: the sample count, slices × 2 × steps, and the steps per side.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "STEPS"];

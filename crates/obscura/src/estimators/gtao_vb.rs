@@ -9,7 +9,8 @@ use std::f32::consts::PI;
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
-    include_str!("../../shaders/estimators/gtao_vb.wgsl")
+    include_str!("../../shaders/estimators/gtao_vb.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
 );
 /// Its `override` constants: the sample count, slices × 2 × steps, and whether sectors are
 /// cosine-weighted (1) or counted alike (0, seed 003).

@@ -9,7 +9,9 @@ use std::f32::consts::TAU;
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
-    include_str!("../../shaders/estimators/hbao.wgsl")
+    include_str!("../../shaders/estimators/hbao.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the sample count, directions × steps, and the steps.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "STEPS"];

@@ -8,7 +8,9 @@ use crate::settings::{PyramidHbaoSettings, PyramidSettings};
 /// screen-space pixel set-up.
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
-    include_str!("../../shaders/estimators/pyramid_hbao.wgsl")
+    include_str!("../../shaders/estimators/pyramid_hbao.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the sample count (directions × levels × steps), levels, steps.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "LEVELS", "STEPS"];

@@ -10,7 +10,9 @@ use std::f32::consts::TAU;
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
     include_str!("../../shaders/estimators/spiral.wgsl"),
-    include_str!("../../shaders/estimators/sao.wgsl")
+    include_str!("../../shaders/estimators/sao.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the taps and the pyramid's levels.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "LEVELS"];
