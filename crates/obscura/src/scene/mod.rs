@@ -24,7 +24,7 @@ mod real_scenes_tests;
 use std::path::{Path, PathBuf};
 
 pub use error::{CameraError, ExtentError, SceneError, MAX_EXTENT};
-pub use procedural::{builtin, builtin_names};
+pub use procedural::{builtin, builtin_names, layers_with_shells};
 pub use texture::MAX_TEXTURE_SIZE;
 
 /// Loads a scene: a built-in name (see [`builtin_names`]) or a path to a `.gltf`, `.glb` or `.obj`

@@ -12,9 +12,16 @@ use glam::Vec3;
 
 use super::builder::{Builder, Cylinder};
 
-const SHELLS: usize = 10;
+/// Shells of the built-in scene.
+pub(super) const SHELLS: usize = 10;
 
 pub(super) fn build() -> Builder {
+    build_with(SHELLS)
+}
+
+/// The scene with the first `shells` shells (1 to 10), from the pillar outwards: seed 001 Fig. 8
+/// adds 5 and 10 layers to a pillar.
+pub(super) fn build_with(shells: usize) -> Builder {
     let mut b = Builder::new("layers");
     let floor = b.material("floor", [0.50, 0.47, 0.42], false);
     let wall = b.material("background wall", [0.75, 0.78, 0.82], false);
@@ -26,7 +33,7 @@ pub(super) fn build() -> Builder {
     b.aabb(block, Vec3::new(1.0, 0.0, -1.5), Vec3::new(1.6, 1.4, -0.9));
 
     b.cylinder(pillar, &Cylinder::solid(Vec3::ZERO, 0.25, 2.2, 32));
-    for k in 0..SHELLS {
+    for k in 0..shells.min(SHELLS) {
         let t = k as f32 / (SHELLS - 1) as f32;
         // Hue ramp from warm (inner) to cool (outer), so layers are told apart in colour.
         let rgb = [0.9 - 0.6 * t, 0.45 + 0.2 * t, 0.2 + 0.7 * t];

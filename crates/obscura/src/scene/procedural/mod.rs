@@ -33,6 +33,23 @@ pub fn builtin_names() -> &'static [&'static str] {
     ]
 }
 
+/// The built-in `layers` scene with only its `shells` innermost shells (1 to 10; the built-in has
+/// 10): seed 001 Fig. 8 shows AO behind 5 and 10 added layers. Cameras and everything else as
+/// `layers`.
+pub fn layers_with_shells(shells: usize) -> Result<Scene, SceneError> {
+    if !(1..=layers::SHELLS).contains(&shells) {
+        return Err(SceneError::UnknownScene {
+            spec: format!(
+                "layers with {shells} shells (1 to {} exist)",
+                layers::SHELLS
+            ),
+        });
+    }
+    let scene = layers::build_with(shells).finish().0;
+    scene.validate()?;
+    Ok(scene)
+}
+
 /// Builds the built-in scene `name` (validated).
 pub fn builtin(name: &str) -> Result<Scene, SceneError> {
     let scene = build(name)

@@ -241,3 +241,19 @@ fn intersect(o: Vec3, dir: Vec3, [a, b, c]: &[Vec3; 3]) -> Option<f32> {
     let t = e2.dot(q) / det;
     (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 1e-4).then_some(t)
 }
+
+#[test]
+fn layers_can_have_fewer_shells() {
+    let all = builtin("layers").unwrap();
+    let five = super::layers_with_shells(5).unwrap();
+    assert_eq!(
+        super::layers_with_shells(10).unwrap().triangles,
+        all.triangles
+    );
+    assert!(five.triangle_count() < all.triangle_count());
+    assert_eq!(five.cameras, all.cameras);
+    for bad in [0, 11] {
+        let err = super::layers_with_shells(bad).unwrap_err().to_string();
+        assert!(err.contains(&format!("{bad} shells")), "{err}");
+    }
+}
