@@ -60,37 +60,31 @@ impl EstimatorPass {
     /// The estimator of a technique row with its settings.
     pub fn for_row(device: &wgpu::Device, estimator: Estimator, settings: &AoSettings) -> Self {
         let (wgsl, names) = wgsl(estimator);
-        let (params, values) = match estimator {
-            Estimator::Vao => vao::params(&settings.vao),
-            Estimator::Hbao => hbao::params(&settings.hbao),
-            Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
-            Estimator::Gtao => gtao::params(&settings.gtao),
-            Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
-            Estimator::Ssao => ssao::params(&settings.ssao),
-            Estimator::PyramidHbao => {
-                pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid)
-            }
-            Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
-        };
+        let (params, values) = params(estimator, settings);
         let constants = names.iter().copied().zip(values).collect();
         Self::new(device, estimator.name(), &params, wgsl, constants)
+    }
+}
+
+/// The estimator's uniform bytes and its `override` constants' values (in the order of its
+/// `CONSTANTS`, `SAMPLE_COUNT` first) under `settings`.
+fn params(estimator: Estimator, settings: &AoSettings) -> (Vec<u8>, Vec<f64>) {
+    match estimator {
+        Estimator::Vao => vao::params(&settings.vao),
+        Estimator::Hbao => hbao::params(&settings.hbao),
+        Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
+        Estimator::Gtao => gtao::params(&settings.gtao),
+        Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
+        Estimator::Ssao => ssao::params(&settings.ssao),
+        Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid),
+        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
     }
 }
 
 /// Samples per pixel of `estimator` under `settings`: its `SAMPLE_COUNT` constant, the bits of a
 /// two-phase schedule's mask it uses (e.g. to normalise `render --debug-out`'s `samples.png`).
 pub fn samples_per_pixel(estimator: Estimator, settings: &AoSettings) -> u32 {
-    let values = match estimator {
-        Estimator::Vao => vao::params(&settings.vao).1,
-        Estimator::Hbao => hbao::params(&settings.hbao).1,
-        Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus).1,
-        Estimator::Gtao => gtao::params(&settings.gtao).1,
-        Estimator::Sao => sao::params(&settings.sao, &settings.pyramid).1,
-        Estimator::Ssao => ssao::params(&settings.ssao).1,
-        Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid).1,
-        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb).1,
-    };
-    values[0] as u32
+    params(estimator, settings).1[0] as u32
 }
 
 /// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB): (cos, sin) of

@@ -156,6 +156,11 @@ impl AmbientOcclusion {
                     | wgpu::TextureUsages::COPY_SRC,
             )
         };
+        // Unwritten without `bent_normals`: a 1×1 stand-in for the frame group.
+        let (bent_width, bent_height) = match settings.bent_normals {
+            true => (work.width, work.height),
+            false => (1, 1),
+        };
         let mut filters = Vec::new();
         if settings.blur.enabled && !estimator_debug {
             filters.push(FilterStage {
@@ -182,12 +187,8 @@ impl AmbientOcclusion {
             bent: crate::gpu::texture_2d(
                 device,
                 "bent normals",
-                if settings.bent_normals { work.width } else { 1 },
-                if settings.bent_normals {
-                    work.height
-                } else {
-                    1
-                },
+                bent_width,
+                bent_height,
                 wgpu::TextureFormat::Rgba16Float,
                 wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING

@@ -78,11 +78,13 @@ pub(crate) struct Multiview {
     no_first_layer: wgpu::TextureView,
     second_view: wgpu::Buffer,
     frame: wgpu::Buffer,
-    source_layout: wgpu::BindGroupLayout,
-    main_ao_layout: wgpu::BindGroupLayout,
+    /// The second view's group 2 (the frame uniform and the second map) and group 3 (the
+    /// camera's AO), made once.
+    source_group: wgpu::BindGroup,
+    main_ao_group: wgpu::BindGroup,
     frame_layout: wgpu::BindGroupLayout,
     /// The camera's own AO, before the second view's pass takes the minimum.
-    main_ao: wgpu::Texture,
+    main_ao: wgpu::TextureView,
     settings: MultiviewSettings,
     bounds: (Vec3, Vec3),
     second_screen: ScreenGeometry,
@@ -174,6 +176,25 @@ impl Multiview {
                 usage,
             )
         };
+        let frame = uniform("multiview frame", std::mem::size_of::<MultiviewFrame>());
+        let main_ao = texture(
+            "multiview camera ao",
+            screen.width,
+            screen.height,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        )
+        .create_view(&Default::default());
+        // What the second view's pass binds besides group 0 is the same every frame.
+        let mut resources = vec![(bindings::SOURCE_MULTIVIEW, frame.as_entire_binding())];
+        resources.extend(map.read_resources());
+        let source_group =
+            bindings::group(device, "multiview second view", &source_layout, &resources);
+        let main_ao_group = bindings::group(
+            device,
+            "multiview camera ao",
+            &main_ao_layout,
+            &[(0, wgpu::BindingResource::TextureView(&main_ao))],
+        );
         Ok(Self {
             main: single::Single::new(device, name, stages, frame_layout, estimator, source),
             second,
@@ -184,16 +205,11 @@ impl Multiview {
                 "multiview second view",
                 std::mem::size_of::<crate::view::ViewUniform>(),
             ),
-            frame: uniform("multiview frame", std::mem::size_of::<MultiviewFrame>()),
-            source_layout,
-            main_ao_layout,
+            frame,
+            source_group,
+            main_ao_group,
             frame_layout: frame_layout.clone(),
-            main_ao: texture(
-                "multiview camera ao",
-                screen.width,
-                screen.height,
-                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-            ),
+            main_ao,
             settings: settings.multiview,
             bounds: scene.bounds,
             second_screen,
@@ -229,10 +245,9 @@ impl Multiview {
             return self.main.encode(ctx, encoder, profiler);
         }
         // Pass 1 into the camera's own AO image.
-        let main_ao = self.main_ao.create_view(&Default::default());
         let main_group = ctx
             .frame
-            .group(device, &self.frame_layout, &main_ao, ctx.bent);
+            .group(device, &self.frame_layout, &self.main_ao, ctx.bent);
         let main_ctx = FrameContext {
             frame_group: &main_group,
             ..*ctx
@@ -256,20 +271,6 @@ impl Multiview {
             view: &self.second_view,
         };
         let frame_group = second_frame.group(device, &self.frame_layout, ctx.output, ctx.bent);
-        let mut resources = vec![(bindings::SOURCE_MULTIVIEW, self.frame.as_entire_binding())];
-        resources.extend(self.map.read_resources());
-        let source_group = bindings::group(
-            device,
-            "multiview second view",
-            &self.source_layout,
-            &resources,
-        );
-        let main_ao_group = bindings::group(
-            device,
-            "multiview camera ao",
-            &self.main_ao_layout,
-            &[(0, wgpu::BindingResource::TextureView(&main_ao))],
-        );
         let label = "multiview_second";
         let timestamp_writes = profiler.map(|p| p.compute_pass(label));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -279,8 +280,8 @@ impl Multiview {
         pass.set_pipeline(&self.second);
         pass.set_bind_group(GROUP_FRAME, &frame_group, &[]);
         pass.set_bind_group(GROUP_ESTIMATOR, &ctx.estimator.group, &[]);
-        pass.set_bind_group(GROUP_SOURCE, &source_group, &[]);
-        pass.set_bind_group(GROUP_SCHEDULE, &main_ao_group, &[]);
+        pass.set_bind_group(GROUP_SOURCE, &self.source_group, &[]);
+        pass.set_bind_group(GROUP_SCHEDULE, &self.main_ao_group, &[]);
         let (x, y, z) = workgroups_32x8(ctx.frame.screen.width, ctx.frame.screen.height);
         pass.dispatch_workgroups(x, y, z);
         Ok(())
