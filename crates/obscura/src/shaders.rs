@@ -48,6 +48,7 @@ pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
     include_str!("../shaders/schedules/two_phase_indirect.wgsl");
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
+pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/half_resolution/downsample.wgsl");

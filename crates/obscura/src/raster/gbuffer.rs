@@ -1,12 +1,16 @@
-//! The G-buffer pass (`shaders/gbuffer.wgsl`): linear depth (`R32Float`) and camera-facing
-//! view-space face normals (`Rgba16Float`) over the guard-banded framebuffer, with a reversed-Z
-//! `Depth32Float` buffer for visibility; when asked for, a second depth layer by depth peeling
-//! (`shaders/depth_peel.wgsl`, seed 000 §2.1); and base colour (`Rgba8UnormSrgb`) only on request
-//! ([`GBuffer::render_albedo`], for composites), by its own pass with the same draws.
+//! The G-buffer (`shaders/gbuffer.wgsl`): linear depth (`R32Float`) and camera-facing
+//! view-space face normals (`Rgba16Float`) over the guard-banded framebuffer; when asked for, a
+//! second depth layer by depth peeling (`shaders/depth_peel.wgsl`, seed 000 §2.1); and base colour
+//! (`Rgba8UnormSrgb`) only on request ([`GBuffer::render_albedo`], for composites), by its own
+//! pass with the same draws.
 //!
-//! The back-face-culled triangles (never alpha-tested: alpha-tested materials keep their back
-//! faces) are drawn first with a fragment shader without `discard`, so the hardware may test their
-//! depth before shading them; the others may discard.
+//! Two passes make depth and normals: a raster pass that stores only the visible triangle per
+//! pixel (a visibility buffer, `R32Uint`, with a reversed-Z `Depth32Float` buffer), then a compute
+//! pass (`shaders/gbuffer_resolve.wgsl`) that computes the surface point at each pixel centre from
+//! that triangle. Fragment shading is the scarce resource on the compute GPUs we measure on
+//! (BENCHMARKS.md, issue 16); compute is not. The triangles that are never alpha-tested are drawn
+//! first with a fragment shader without `discard`, so the hardware may test their depth before
+//! shading them; the alpha-tested ones last.
 
 use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
@@ -21,6 +25,8 @@ pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Base colour for composites (white where nothing is drawn).
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The visible triangle's index + 1 per pixel, 0 = background.
+const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// `Camera` of gbuffer.wgsl.
 #[repr(C)]
@@ -28,13 +34,17 @@ const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub(crate) struct CameraUniform {
     view: [[f32; 4]; 4],
     projection: [[f32; 4]; 4],
+    inverse_projection: [[f32; 4]; 4],
 }
 
 impl CameraUniform {
     pub fn new(view: &FrameView) -> Self {
+        let projection = view.projection();
         Self {
             view: view.view_matrix().to_cols_array_2d(),
-            projection: view.projection().to_cols_array_2d(),
+            projection: projection.to_cols_array_2d(),
+            // Inverted in f64: the resolve's pixel rays are as exact as the projection allows.
+            inverse_projection: projection.as_dmat4().inverse().as_mat4().to_cols_array_2d(),
         }
     }
 }
@@ -57,8 +67,13 @@ pub struct GBuffer {
     /// Base colour ([`ALBEDO_FORMAT`]), written only by [`GBuffer::render_albedo`].
     pub albedo: wgpu::Texture,
     z: wgpu::Texture,
-    /// Back faces culled (no alpha test) / kept (double-sided and alpha-tested materials).
-    pipelines: [wgpu::RenderPipeline; 2],
+    /// The visible triangle per pixel ([`VISIBILITY_FORMAT`]).
+    visibility: wgpu::Texture,
+    /// The visibility pass: back faces culled / double-sided / alpha-tested
+    /// ([`GpuScene`]'s three groups).
+    visibility_pipelines: [wgpu::RenderPipeline; 3],
+    /// Depth and normals from the visibility buffer.
+    resolve: wgpu::ComputePipeline,
     /// The base-colour pass, the same way.
     albedo_pipelines: [wgpu::RenderPipeline; 2],
     camera: wgpu::Buffer,
@@ -77,7 +92,7 @@ impl GBuffer {
         peel_separation: Option<f32>,
         shading_normals: bool,
     ) -> Self {
-        let target = |label, format| {
+        let target_with = |label, format, extra| {
             crate::gpu::texture_2d(
                 device,
                 label,
@@ -86,16 +101,17 @@ impl GBuffer {
                 format,
                 wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
+                    | wgpu::TextureUsages::COPY_SRC
+                    | extra,
             )
         };
-        let source = shaders::with_common(
-            &[shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER],
-            shaders::DEPTH_PEEL,
-        );
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        let target = |label, format| target_with(label, format, wgpu::TextureUsages::empty());
+        let scene_shaders = [shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER];
+        let module = &device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
+            source: wgpu::ShaderSource::Wgsl(
+                shaders::with_common(&scene_shaders, shaders::DEPTH_PEEL).into(),
+            ),
         });
         let depth = wgpu::DepthStencilState {
             format: Z_FORMAT,
@@ -107,33 +123,31 @@ impl GBuffer {
         let scene_layout = scene_layout(device);
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let pipeline = |cull_mode,
-                        fragment: &str,
+                        (vertex, fragment): (&str, &str),
                         targets: &[Option<wgpu::ColorTargetState>],
                         layout: Option<&wgpu::PipelineLayout>| {
             ScenePipeline {
                 layout,
-                module: &module,
+                module,
                 cull_mode,
                 depth_stencil: depth.clone(),
                 multisample: Default::default(),
+                vertex,
                 fragment,
                 targets,
-                // Only the G-buffer's own fragments write normals.
-                constants: if fragment.starts_with("fs_peel") || fragment == "fs_albedo" {
-                    &[]
-                } else {
-                    &normal_constants
-                },
+                // The raster passes interpolate no vertex normals (the resolve does).
+                constants: &[],
             }
             .create(device)
         };
-        let gbuffer_targets = [DEPTH_FORMAT, NORMAL_FORMAT].map(|f| Some(f.into()));
+        let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
+        let main = |fragment| ("vs_main", fragment);
         let peel = peel_separation.map(|separation| {
             let targets = [Some(DEPTH_FORMAT.into())];
             Peel {
                 pipelines: [Some(wgpu::Face::Back), None]
-                    .map(|cull| pipeline(cull, "fs_peel", &targets, None)),
+                    .map(|cull| pipeline(cull, main("fs_peel"), &targets, None)),
                 params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("peel params"),
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
@@ -142,22 +156,42 @@ impl GBuffer {
                 depth: target("second depth layer", DEPTH_FORMAT),
             }
         });
+        let opaque = ("vs_visibility", "fs_visibility");
+        let visibility_pipeline =
+            |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&scene_layout));
         Self {
-            depth: target("linear depth", DEPTH_FORMAT),
-            normals: target("normals", NORMAL_FORMAT),
+            depth: target_with(
+                "linear depth",
+                DEPTH_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
+            ),
+            normals: target_with(
+                "normals",
+                NORMAL_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
+            ),
             albedo: target("albedo", ALBEDO_FORMAT),
             z: target("z", Z_FORMAT),
-            pipelines: [
-                pipeline(
-                    Some(wgpu::Face::Back),
-                    "fs_opaque",
-                    &gbuffer_targets,
-                    Some(&scene_layout),
-                ),
-                pipeline(None, "fs_main", &gbuffer_targets, Some(&scene_layout)),
+            visibility: target("visibility", VISIBILITY_FORMAT),
+            visibility_pipelines: [
+                visibility_pipeline(Some(wgpu::Face::Back), opaque),
+                visibility_pipeline(None, opaque),
+                visibility_pipeline(None, main("fs_visibility_masked")),
             ],
-            albedo_pipelines: [Some(wgpu::Face::Back), None]
-                .map(|cull| pipeline(cull, "fs_albedo", &albedo_targets, Some(&scene_layout))),
+            resolve: crate::gpu::compute_pipeline_with(
+                device,
+                "gbuffer resolve",
+                &shaders::with_common(&scene_shaders, shaders::GBUFFER_RESOLVE),
+                &normal_constants,
+            ),
+            albedo_pipelines: [Some(wgpu::Face::Back), None].map(|cull| {
+                pipeline(
+                    cull,
+                    main("fs_albedo"),
+                    &albedo_targets,
+                    Some(&scene_layout),
+                )
+            }),
             camera: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gbuffer camera"),
                 size: std::mem::size_of::<CameraUniform>() as u64,
@@ -173,7 +207,7 @@ impl GBuffer {
         self.peel.as_ref().map(|p| &p.depth)
     }
 
-    /// Rasterise `scene` seen through `view`. Timings: `gbuffer`, and `depth_peel` when peeling.
+    /// Rasterise `scene` seen through `view`. Timings: `gbuffer` (the visibility pass), `gbuffer_resolve`, and `depth_peel` when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,
@@ -185,21 +219,19 @@ impl GBuffer {
     ) {
         let camera = CameraUniform::new(view);
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
-        let targets = [
-            (&self.depth, wgpu::Color::TRANSPARENT),
-            (&self.normals, wgpu::Color::TRANSPARENT),
-        ];
+        let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
         self.draw(
             device,
             encoder,
-            scene,
-            &self.pipelines,
+            &self.visibility_pipelines,
+            &scene.visibility_ranges(),
             &resources,
             &targets,
             "gbuffer",
             profiler.as_deref_mut(),
         );
+        self.resolve(device, encoder, scene, profiler.as_deref_mut());
         if let Some(peel) = &self.peel {
             let first = self.depth.create_view(&Default::default());
             let resources = scene_resources(
@@ -214,8 +246,8 @@ impl GBuffer {
             self.draw(
                 device,
                 encoder,
-                scene,
                 &peel.pipelines,
+                &scene.cull_ranges(),
                 &resources,
                 &targets,
                 "depth_peel",
@@ -237,8 +269,8 @@ impl GBuffer {
         self.draw(
             device,
             encoder,
-            scene,
             &self.albedo_pipelines,
+            &scene.cull_ranges(),
             &resources,
             &targets,
             "albedo",
@@ -246,22 +278,58 @@ impl GBuffer {
         );
     }
 
-    /// One raster pass of the whole scene: culled triangles, then the ones that keep back faces.
+    /// Depth and normals of every pixel from the visibility buffer (timing `gbuffer_resolve`).
+    fn resolve(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        let views = [&self.visibility, &self.depth, &self.normals]
+            .map(|t| t.create_view(&Default::default()));
+        // The resolve reads no materials or textures (bindings 4 and 5).
+        let scene_part = scene_resources(&self.camera, scene, Vec::new())
+            .into_iter()
+            .take(4);
+        let resources: Vec<_> = (0..)
+            .zip(scene_part)
+            .chain((6..).zip(views.iter().map(wgpu::BindingResource::TextureView)))
+            .collect();
+        let bind_group = crate::gpu::bind_group_at(
+            device,
+            "gbuffer resolve",
+            &self.resolve.get_bind_group_layout(0),
+            &resources,
+        );
+        let timestamp_writes = profiler.map(|p| p.compute_pass("gbuffer_resolve"));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("gbuffer resolve"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.resolve);
+        pass.set_bind_group(0, &bind_group, &[]);
+        let size = self.visibility.size();
+        pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
+    }
+
+    /// One raster pass of the whole scene: `ranges[i]` of the triangles with `pipelines[i]`.
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &GpuScene,
-        pipelines: &[wgpu::RenderPipeline; 2],
+        pipelines: &[wgpu::RenderPipeline],
+        ranges: &[std::ops::Range<u32>],
         resources: &[wgpu::BindingResource],
         targets: &[(&wgpu::Texture, wgpu::Color)],
         name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
-        let bind_groups = pipelines
-            .each_ref()
-            .map(|p| crate::gpu::bind_group(device, name, &p.get_bind_group_layout(0), resources));
+        let bind_groups: Vec<_> = pipelines
+            .iter()
+            .map(|p| crate::gpu::bind_group(device, name, &p.get_bind_group_layout(0), resources))
+            .collect();
         let views: Vec<_> = targets
             .iter()
             .map(|(t, _)| t.create_view(&Default::default()))
@@ -302,26 +370,26 @@ impl GBuffer {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
-        draw_scene(&mut pass, scene, pipelines, &bind_groups);
+        draw_scene(&mut pass, pipelines, &bind_groups, ranges);
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
     }
 }
 
-/// Draw the whole scene: the back-face-culled triangles with `pipelines[0]`, the ones that keep
-/// back faces with `pipelines[1]`.
+/// Draw the scene's triangles `ranges[i]` with `pipelines[i]` and `bind_groups[i]` (e.g.
+/// [`GpuScene::cull_ranges`]: the back-face-culled triangles, then the ones that keep back faces).
 pub(crate) fn draw_scene(
     pass: &mut wgpu::RenderPass,
-    scene: &GpuScene,
-    pipelines: &[wgpu::RenderPipeline; 2],
-    bind_groups: &[wgpu::BindGroup; 2],
+    pipelines: &[wgpu::RenderPipeline],
+    bind_groups: &[wgpu::BindGroup],
+    ranges: &[std::ops::Range<u32>],
 ) {
-    let ranges = [
-        0..scene.culled_count,
-        scene.culled_count..scene.triangle_count,
-    ];
-    for ((pipeline, bind_group), range) in pipelines.iter().zip(bind_groups).zip(ranges) {
+    for ((pipeline, bind_group), range) in pipelines
+        .iter()
+        .zip(bind_groups)
+        .zip(ranges.iter().cloned())
+    {
         if range.is_empty() {
             continue;
         }
@@ -401,7 +469,7 @@ pub(crate) fn scene_layout(device: &wgpu::Device) -> wgpu::PipelineLayout {
     })
 }
 
-/// A raster pipeline over the scene's vertices (`vs_main` of gbuffer.wgsl, pulled from storage).
+/// A raster pipeline over the scene's vertices (pulled from storage by gbuffer.wgsl).
 pub(crate) struct ScenePipeline<'a> {
     /// `None`: an automatic layout (passes that bind more than the scene).
     pub layout: Option<&'a wgpu::PipelineLayout>,
@@ -409,6 +477,8 @@ pub(crate) struct ScenePipeline<'a> {
     pub cull_mode: Option<wgpu::Face>,
     pub depth_stencil: wgpu::DepthStencilState,
     pub multisample: wgpu::MultisampleState,
+    /// The vertex entry point: `vs_main` (every interpolated value) or `vs_visibility`.
+    pub vertex: &'a str,
     pub fragment: &'a str,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
     /// Pipeline-overridable constants of both stages (e.g. gbuffer.wgsl's `SHADING_NORMALS`).
@@ -422,7 +492,7 @@ impl ScenePipeline<'_> {
             layout: self.layout,
             vertex: wgpu::VertexState {
                 module: self.module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(self.vertex),
                 compilation_options: wgpu::PipelineCompilationOptions {
                     constants: self.constants,
                     ..Default::default()

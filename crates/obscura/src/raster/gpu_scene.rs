@@ -34,7 +34,8 @@ pub struct GpuScene {
     pub attributes: wgpu::Buffer,
     /// The scene uses its vertex normals (the G-buffer interpolates them).
     pub shading_normals: bool,
-    /// `(i0, i1, i2, material)` per triangle; back-face-culled triangles come first.
+    /// `(i0, i1, i2, material)` per triangle: back-face-culled triangles first, then double-sided
+    /// ones without an alpha test, then the alpha-tested ones.
     pub triangles: wgpu::Buffer,
     /// One `Material` of `shaders/gbuffer.wgsl` per scene material (colour, texture layer, alpha
     /// cutoff, back-face flag).
@@ -44,6 +45,8 @@ pub struct GpuScene {
     pub textures: wgpu::TextureView,
     /// Triangles `0..culled_count` are drawn with back-face culling, the rest without.
     pub culled_count: u32,
+    /// Triangles `0..opaque_count` are never alpha-tested (no fragment of theirs is discarded).
+    pub opaque_count: u32,
     /// Number of triangles in `triangles`.
     pub triangle_count: u32,
     /// The scene's axis-aligned bounds (min, max corner), world units.
@@ -51,6 +54,21 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
+    /// The triangles drawn with back-face culling, then the ones that keep back faces.
+    pub fn cull_ranges(&self) -> [std::ops::Range<u32>; 2] {
+        [0..self.culled_count, self.culled_count..self.triangle_count]
+    }
+
+    /// The back-face-culled triangles, the double-sided ones without an alpha test, the
+    /// alpha-tested ones.
+    pub fn visibility_ranges(&self) -> [std::ops::Range<u32>; 3] {
+        [
+            0..self.culled_count,
+            self.culled_count..self.opaque_count,
+            self.opaque_count..self.triangle_count,
+        ]
+    }
+
     /// Uploads `scene`. Errors when a buffer or the texture count is over the adapter's `limits`.
     pub fn new(
         device: &wgpu::Device,
@@ -73,14 +91,18 @@ impl GpuScene {
                 scene.uvs[i].extend(normal.x).extend(normal.y).to_array()
             })
             .collect();
-        // Stable partition: culled triangles first, so each group is one contiguous draw.
-        let keeps_back =
-            |t: usize| scene.materials[scene.triangle_materials[t] as usize].keeps_back_faces();
-        let order: Vec<usize> = (0..scene.triangles.len())
-            .filter(|&t| !keeps_back(t))
-            .chain((0..scene.triangles.len()).filter(|&t| keeps_back(t)))
-            .collect();
-        let culled_count = order.iter().take_while(|&&t| !keeps_back(t)).count() as u32;
+        // Stable partition into contiguous draws: culled triangles (never alpha-tested), then
+        // double-sided ones without an alpha test, then the alpha-tested ones.
+        let material = |t: usize| &scene.materials[scene.triangle_materials[t] as usize];
+        let group = |t: usize| match material(t) {
+            m if m.is_alpha_tested() => 2,
+            m if m.keeps_back_faces() => 1,
+            _ => 0,
+        };
+        let mut order: Vec<usize> = (0..scene.triangles.len()).collect();
+        order.sort_by_key(|&t| group(t));
+        let count = |g| order.iter().filter(|&&t| group(t) < g).count() as u32;
+        let (culled_count, opaque_count) = (count(1), count(2));
         let triangles: Vec<[u32; 4]> = order
             .iter()
             .map(|&t| {
@@ -188,6 +210,7 @@ impl GpuScene {
             materials: storage("materials", bytemuck::cast_slice(&materials)),
             textures,
             culled_count,
+            opaque_count,
             triangle_count: triangles.len() as u32,
             bounds: scene.positions.iter().fold(
                 (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),

@@ -225,9 +225,14 @@ impl Material {
         }
     }
 
+    /// The material has an alpha test (`AlphaMode::Mask`): some of its texels may be cut away.
+    pub fn is_alpha_tested(&self) -> bool {
+        matches!(self.alpha_mode, AlphaMode::Mask { .. })
+    }
+
     /// Back faces count (rasteriser does not cull them, rays hit them): double-sided or
     /// alpha-tested materials, as in the authors' code (seed-code-notes §1.6).
     pub fn keeps_back_faces(&self) -> bool {
-        self.double_sided || matches!(self.alpha_mode, AlphaMode::Mask { .. })
+        self.double_sided || self.is_alpha_tested()
     }
 }

@@ -355,6 +355,7 @@ impl StochasticDepthMap {
                     bias: Default::default(),
                 },
                 multisample,
+                vertex: "vs_main",
                 fragment: if requested == Some(SdMask::Discard) {
                     "fs_stochastic_depth_requested"
                 } else {
@@ -506,7 +507,12 @@ impl StochasticDepthMap {
             if let Some(p) = profiler.as_deref_mut() {
                 p.begin_fragments(&mut pass, map_name);
             }
-            draw_scene(&mut pass, &self.scene, &self.pipelines, &bind_groups);
+            draw_scene(
+                &mut pass,
+                &self.pipelines,
+                &bind_groups,
+                &self.scene.cull_ranges(),
+            );
             if let Some(p) = profiler.as_deref() {
                 p.end_fragments(&mut pass);
             }
