@@ -15,7 +15,7 @@ for name in ["sponza", "sponza-high", "stairs", "colonnade"]:
     print("| technique | passes (ms) | all but G-buffer |")
     print("|---|---|---|")
     for r in data["results"]:
-        passes = {k: v for k, v in r["passes"].items() if k != "gbuffer"}
+        passes = {k: v for k, v in r["passes"].items() if not k.startswith("gbuffer")}
         shown = ", ".join(f"{k} {v:.4f}" for k, v in passes.items() if k not in ("blur_x", "blur_y"))
         rest = sum(v for k, v in passes.items() if k not in ("blur_x", "blur_y"))
         print(f"| `{r['technique']}` | {shown} | {rest:.4f} |")

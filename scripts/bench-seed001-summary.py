@@ -23,7 +23,7 @@ def sd_map(p):
 
 def total(p):
     """Everything but the G-buffer (blur_x/blur_y are inside blur)."""
-    return sum(v for k, v in p.items() if k not in ("gbuffer", "blur_x", "blur_y"))
+    return sum(v for k, v in p.items() if k not in ("gbuffer", "gbuffer_resolve", "blur_x", "blur_y"))
 
 
 first = results("tab1-regular")

@@ -1,6 +1,7 @@
-// G-buffer resolve: depth and normal of every pixel from the visibility buffer's triangle
+// Visibility-buffer resolve: the surface a pixel's visible triangle shows at the pixel centre
 // (Burns and Hunt, JCGT 2(2), 2013; why a visibility buffer: gbuffer.wgsl). Appended to
-// gbuffer.wgsl: the same camera, vertices, face normal and `gbuffer_out`.
+// gbuffer.wgsl (camera, vertices, face normal); the entry points are gbuffer_resolve_main.wgsl
+// (depth and normals) and depth_peel_resolve.wgsl (the peeled layer's depth).
 //
 // The surface point is the triangle's point seen through the pixel centre, which is what the
 // rasteriser's perspective-correct interpolation computes at that centre: the pixel's line meets
@@ -10,10 +11,6 @@
 // infinity of an infinite reversed-Z projection); the plane is π = (n, −n·v0). The meeting point
 // is (π·B) A − (π·A) B (e.g. Hartley and Zisserman, "Multiple View Geometry", 2nd ed., §3.2).
 // Barycentrics, for the vertex normals only, follow from the point by sub-triangle areas.
-
-@group(0) @binding(6) var visibility: texture_2d<u32>;
-@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
-@group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
 
 // The view-space point of the plane through `v0` with normal `n` seen through NDC point `ndc`.
 fn pixel_plane_point(ndc: vec2<f32>, v0: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
@@ -48,31 +45,27 @@ fn resolve_shading_normal(tri: vec4<u32>, b: vec3<f32>) -> vec3<f32> {
     return (camera.view * vec4<f32>(n, 0.0)).xyz;
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(visibility);
-    if (any(id.xy >= size)) {
-        return;
-    }
-    let visible = textureLoad(visibility, id.xy, 0).r;
-    if (visible == 0u) {
-        textureStore(depth_out, id.xy, vec4<f32>(0.0));
-        textureStore(normal_out, id.xy, vec4<f32>(0.0));
-        return;
-    }
-    let tri = triangles[visible - 1u];
-    let v0 = to_view(positions[tri.x].xyz);
-    let v1 = to_view(positions[tri.y].xyz);
-    let v2 = to_view(positions[tri.z].xyz);
-    // The pixel centre in NDC (y up, framebuffer rows down).
-    let ndc = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(size) * vec2<f32>(2.0, -2.0) + vec2<f32>(-1.0, 1.0);
-    let face = view_face_normal(tri);
-    let view_pos = pixel_plane_point(ndc, v0, face);
-    var shading = vec3<f32>(0.0);
-    if (SHADING_NORMALS) {
-        shading = resolve_shading_normal(tri, plane_barycentrics(view_pos, v0, v1, v2, face));
-    }
-    let out = gbuffer_out(view_pos, face, shading);
-    textureStore(depth_out, id.xy, vec4<f32>(out.depth, 0.0, 0.0, 0.0));
-    textureStore(normal_out, id.xy, out.normal);
+// The pixel centre of framebuffer pixel `pixel` (of `size`) in NDC (y up, rows down).
+fn pixel_ndc(pixel: vec2<u32>, size: vec2<u32>) -> vec2<f32> {
+    return (vec2<f32>(pixel) + 0.5) / vec2<f32>(size) * vec2<f32>(2.0, -2.0) + vec2<f32>(-1.0, 1.0);
+}
+
+// Where the pixel centre's line meets triangle `tri`: the view-space point, its corners and the
+// (unnormalised) face normal.
+struct PixelSurface {
+    view_pos: vec3<f32>,
+    v0: vec3<f32>,
+    v1: vec3<f32>,
+    v2: vec3<f32>,
+    face: vec3<f32>,
+}
+
+fn pixel_surface(tri: vec4<u32>, pixel: vec2<u32>, size: vec2<u32>) -> PixelSurface {
+    var s: PixelSurface;
+    s.v0 = to_view(positions[tri.x].xyz);
+    s.v1 = to_view(positions[tri.y].xyz);
+    s.v2 = to_view(positions[tri.z].xyz);
+    s.face = view_face_normal(tri);
+    s.view_pos = pixel_plane_point(pixel_ndc(pixel, size), s.v0, s.face);
+    return s;
 }

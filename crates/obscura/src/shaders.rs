@@ -49,7 +49,9 @@ pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
+pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
+pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/depth_peel_resolve.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
 pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/half_resolution/downsample.wgsl");
 pub const HALF_UPSAMPLE: &str = include_str!("../shaders/half_resolution/upsample.wgsl");

@@ -171,7 +171,8 @@ fn gpu_ms(
         .map(|frame| {
             frame
                 .iter()
-                .filter(|(pass, _)| pass.as_str() != "gbuffer")
+                // The G-buffer's raster pass and its resolve.
+                .filter(|(pass, _)| !pass.starts_with("gbuffer"))
                 .map(|(_, ms)| ms)
                 .sum()
         })

@@ -7,11 +7,14 @@
 //! Two passes make depth and normals: a raster pass that stores only the visible triangle per
 //! pixel (a visibility buffer, `R32Uint`, with a reversed-Z `Depth32Float` buffer), then a compute
 //! pass (`shaders/gbuffer_resolve.wgsl`) that computes the surface point at each pixel centre from
-//! that triangle. Fragment shading is the scarce resource on the compute GPUs we measure on
+//! that triangle. Rasterisation is the scarce resource on the compute GPUs we measure on
 //! (BENCHMARKS.md, issue 16); compute is not. The triangles that are never alpha-tested are drawn
 //! first with a fragment shader without `discard`, so the hardware may test their depth before
-//! shading them; the alpha-tested ones last.
+//! shading them; the alpha-tested ones last. Within each group the visibility pass draws the
+//! scene's chunks nearest first and skips those outside the view ([`super::chunks`]), so fewer
+//! hidden fragments are shaded.
 
+use super::chunks;
 use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
 use crate::shaders;
@@ -51,9 +54,13 @@ impl CameraUniform {
 
 /// The depth-peeling pass: the second layer and what it needs.
 struct Peel {
-    /// Back faces culled / kept, as the main pass.
-    pipelines: [wgpu::RenderPipeline; 2],
+    /// Back faces culled / double-sided / alpha-tested, as the visibility pass.
+    pipelines: [wgpu::RenderPipeline; 3],
     params: wgpu::Buffer,
+    /// The peeled layer's triangle per pixel ([`VISIBILITY_FORMAT`]).
+    visibility: wgpu::Texture,
+    /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
+    resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
 }
 
@@ -107,6 +114,12 @@ impl GBuffer {
         };
         let target = |label, format| target_with(label, format, wgpu::TextureUsages::empty());
         let scene_shaders = [shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER];
+        let resolve_shaders = [
+            shaders::MATERIAL,
+            shaders::VERTEX_NORMAL,
+            shaders::GBUFFER,
+            shaders::GBUFFER_RESOLVE,
+        ];
         let module = &device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
             source: wgpu::ShaderSource::Wgsl(
@@ -120,7 +133,7 @@ impl GBuffer {
             stencil: Default::default(),
             bias: Default::default(),
         };
-        let scene_layout = scene_layout(device);
+        let gbuffer_layout = scene_layout(device, &[]);
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let pipeline = |cull_mode,
                         (vertex, fragment): (&str, &str),
@@ -143,22 +156,59 @@ impl GBuffer {
         let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
         let main = |fragment| ("vs_main", fragment);
+        let opaque = ("vs_visibility", "fs_visibility");
         let peel = peel_separation.map(|separation| {
-            let targets = [Some(DEPTH_FORMAT.into())];
+            let fragment = wgpu::ShaderStages::FRAGMENT;
+            let layout = scene_layout(
+                device,
+                &[
+                    (
+                        fragment,
+                        wgpu::BindingType::Texture {
+                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                            view_dimension: wgpu::TextureViewDimension::D2,
+                            multisampled: false,
+                        },
+                    ),
+                    (
+                        fragment,
+                        wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Uniform,
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
+                        },
+                    ),
+                ],
+            );
+            let peel_pipeline =
+                |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&layout));
             Peel {
-                pipelines: [Some(wgpu::Face::Back), None]
-                    .map(|cull| pipeline(cull, main("fs_peel"), &targets, None)),
+                pipelines: [
+                    peel_pipeline(Some(wgpu::Face::Back), ("vs_visibility", "fs_peel")),
+                    peel_pipeline(None, ("vs_visibility", "fs_peel")),
+                    peel_pipeline(None, main("fs_peel_masked")),
+                ],
                 params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("peel params"),
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
                     usage: wgpu::BufferUsages::UNIFORM,
                 }),
-                depth: target("second depth layer", DEPTH_FORMAT),
+                visibility: target("second layer visibility", VISIBILITY_FORMAT),
+                resolve: crate::gpu::compute_pipeline_with(
+                    device,
+                    "depth peel resolve",
+                    &shaders::with_common(&resolve_shaders, shaders::DEPTH_PEEL_RESOLVE),
+                    &[],
+                ),
+                depth: target_with(
+                    "second depth layer",
+                    DEPTH_FORMAT,
+                    wgpu::TextureUsages::STORAGE_BINDING,
+                ),
             }
         });
-        let opaque = ("vs_visibility", "fs_visibility");
         let visibility_pipeline =
-            |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&scene_layout));
+            |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
         Self {
             depth: target_with(
                 "linear depth",
@@ -181,7 +231,7 @@ impl GBuffer {
             resolve: crate::gpu::compute_pipeline_with(
                 device,
                 "gbuffer resolve",
-                &shaders::with_common(&scene_shaders, shaders::GBUFFER_RESOLVE),
+                &shaders::with_common(&resolve_shaders, shaders::GBUFFER_RESOLVE_MAIN),
                 &normal_constants,
             ),
             albedo_pipelines: [Some(wgpu::Face::Back), None].map(|cull| {
@@ -189,7 +239,7 @@ impl GBuffer {
                     cull,
                     main("fs_albedo"),
                     &albedo_targets,
-                    Some(&scene_layout),
+                    Some(&gbuffer_layout),
                 )
             }),
             camera: device.create_buffer(&wgpu::BufferDescriptor {
@@ -219,19 +269,29 @@ impl GBuffer {
     ) {
         let camera = CameraUniform::new(view);
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
+        // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
+        let scene = &scene.draw_ordered();
         let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
         self.draw(
             device,
             encoder,
             &self.visibility_pipelines,
-            &scene.visibility_ranges(),
+            &visibility_draws(scene, view),
             &resources,
             &targets,
             "gbuffer",
             profiler.as_deref_mut(),
         );
-        self.resolve(device, encoder, scene, profiler.as_deref_mut());
+        self.resolve(
+            device,
+            encoder,
+            scene,
+            &self.resolve,
+            &[&self.visibility, &self.depth, &self.normals],
+            "gbuffer_resolve",
+            profiler.as_deref_mut(),
+        );
         if let Some(peel) = &self.peel {
             let first = self.depth.create_view(&Default::default());
             let resources = scene_resources(
@@ -242,15 +302,24 @@ impl GBuffer {
                     peel.params.as_entire_binding(),
                 ],
             );
-            let targets = [(&peel.depth, wgpu::Color::TRANSPARENT)];
+            let targets = [(&peel.visibility, wgpu::Color::TRANSPARENT)];
             self.draw(
                 device,
                 encoder,
                 &peel.pipelines,
-                &scene.cull_ranges(),
+                &visibility_draws(scene, view),
                 &resources,
                 &targets,
                 "depth_peel",
+                profiler.as_deref_mut(),
+            );
+            self.resolve(
+                device,
+                encoder,
+                scene,
+                &peel.resolve,
+                &[&peel.visibility, &peel.depth],
+                "depth_peel_resolve",
                 profiler,
             );
         }
@@ -270,7 +339,7 @@ impl GBuffer {
             device,
             encoder,
             &self.albedo_pipelines,
-            &scene.cull_ranges(),
+            &whole_ranges(scene.cull_ranges()),
             &resources,
             &targets,
             "albedo",
@@ -278,49 +347,53 @@ impl GBuffer {
         );
     }
 
-    /// Depth and normals of every pixel from the visibility buffer (timing `gbuffer_resolve`).
+    /// A visibility buffer's resolve `pipeline` over the framebuffer: `textures` (the visibility
+    /// buffer, then the outputs) at bindings 6, 7, …; timed as `name`.
+    #[allow(clippy::too_many_arguments)]
     fn resolve(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
+        pipeline: &wgpu::ComputePipeline,
+        textures: &[&wgpu::Texture],
+        name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
-        let views = [&self.visibility, &self.depth, &self.normals]
-            .map(|t| t.create_view(&Default::default()));
-        // The resolve reads no materials or textures (bindings 4 and 5).
-        let scene_part = scene_resources(&self.camera, scene, Vec::new())
-            .into_iter()
-            .take(4);
+        let views: Vec<_> = textures
+            .iter()
+            .map(|t| t.create_view(&Default::default()))
+            .collect();
+        // Resolves read no materials or textures (bindings 4 and 5); the peeled layer's no
+        // vertex attributes either (binding 2: only the G-buffer's normals interpolate them).
+        let reads_attributes = textures.len() == 3;
         let resources: Vec<_> = (0..)
-            .zip(scene_part)
+            .zip(scene_resources(&self.camera, scene, Vec::new()))
+            .take(4)
+            .filter(|(binding, _)| *binding != 2 || reads_attributes)
             .chain((6..).zip(views.iter().map(wgpu::BindingResource::TextureView)))
             .collect();
-        let bind_group = crate::gpu::bind_group_at(
-            device,
-            "gbuffer resolve",
-            &self.resolve.get_bind_group_layout(0),
-            &resources,
-        );
-        let timestamp_writes = profiler.map(|p| p.compute_pass("gbuffer_resolve"));
+        let bind_group =
+            crate::gpu::bind_group_at(device, name, &pipeline.get_bind_group_layout(0), &resources);
+        let timestamp_writes = profiler.map(|p| p.compute_pass(name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("gbuffer resolve"),
+            label: Some(name),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.resolve);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
-        let size = self.visibility.size();
+        let size = textures[0].size();
         pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
     }
 
-    /// One raster pass of the whole scene: `ranges[i]` of the triangles with `pipelines[i]`.
+    /// One raster pass of the scene: `draws` in order (see [`draw_scene`]).
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         pipelines: &[wgpu::RenderPipeline],
-        ranges: &[std::ops::Range<u32>],
+        draws: &[Draw],
         resources: &[wgpu::BindingResource],
         targets: &[(&wgpu::Texture, wgpu::Color)],
         name: &str,
@@ -370,32 +443,57 @@ impl GBuffer {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
-        draw_scene(&mut pass, pipelines, &bind_groups, ranges);
+        draw_scene(&mut pass, pipelines, &bind_groups, draws);
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
     }
 }
 
-/// Draw the scene's triangles `ranges[i]` with `pipelines[i]` and `bind_groups[i]` (e.g.
-/// [`GpuScene::cull_ranges`]: the back-face-culled triangles, then the ones that keep back faces).
+/// One draw: the triangles `.1` with pipeline (and bind group) number `.0`.
+pub(crate) type Draw = (usize, std::ops::Range<u32>);
+
+/// The scene's `ranges` (e.g. [`GpuScene::cull_ranges`]: the back-face-culled triangles, then
+/// the ones that keep back faces), range `i` with pipeline `i`.
+pub(crate) fn whole_ranges<const N: usize>(ranges: [std::ops::Range<u32>; N]) -> Vec<Draw> {
+    ranges.into_iter().enumerate().collect()
+}
+
+/// The visibility pass's draws: the chunks `view` may see ([`super::chunks`]), nearest first
+/// within each of [`GpuScene::visibility_ranges`]' groups, group `g` with pipeline `g`.
+fn visibility_draws(scene: &GpuScene, view: &FrameView) -> Vec<Draw> {
+    let visible = chunks::visible_front_to_back(
+        &scene.chunks,
+        view.projection() * view.view_matrix(),
+        view.camera.eye,
+    );
+    let groups = scene.visibility_ranges();
+    (0..groups.len())
+        .flat_map(|g| {
+            let group = groups[g].clone();
+            visible
+                .iter()
+                .filter(move |c| group.contains(&c.triangles.start))
+                .map(move |c| (g, c.triangles.clone()))
+        })
+        .collect()
+}
+
+/// Record `draws` in order: draw `(i, triangles)` with `pipelines[i]` and `bind_groups[i]`.
 pub(crate) fn draw_scene(
     pass: &mut wgpu::RenderPass,
     pipelines: &[wgpu::RenderPipeline],
     bind_groups: &[wgpu::BindGroup],
-    ranges: &[std::ops::Range<u32>],
+    draws: &[Draw],
 ) {
-    for ((pipeline, bind_group), range) in pipelines
-        .iter()
-        .zip(bind_groups)
-        .zip(ranges.iter().cloned())
-    {
-        if range.is_empty() {
-            continue;
+    let mut current = None;
+    for (i, triangles) in draws.iter().filter(|(_, t)| !t.is_empty()) {
+        if current != Some(*i) {
+            current = Some(*i);
+            pass.set_pipeline(&pipelines[*i]);
+            pass.set_bind_group(0, &bind_groups[*i], &[]);
         }
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.draw(range.start * 3..range.end * 3, 0..1);
+        pass.draw(triangles.start * 3..triangles.end * 3, 0..1);
     }
 }
 
@@ -418,9 +516,12 @@ pub(crate) fn scene_resources<'a>(
 }
 
 /// The explicit layout of gbuffer.wgsl's group 0 (camera and scene, bindings 0–5, the order of
-/// [`scene_resources`]): the G-buffer's fragment shaders use different subsets of it, which
-/// automatic layouts would leave out.
-pub(crate) fn scene_layout(device: &wgpu::Device) -> wgpu::PipelineLayout {
+/// [`scene_resources`]), then `extra` (stages and type) from binding 6 on: the G-buffer's
+/// shaders use different subsets of it, which automatic layouts would leave out.
+pub(crate) fn scene_layout(
+    device: &wgpu::Device,
+    extra: &[(wgpu::ShaderStages, wgpu::BindingType)],
+) -> wgpu::PipelineLayout {
     let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
     let storage = |binding| wgpu::BindGroupLayoutEntry {
         binding,
@@ -458,6 +559,15 @@ pub(crate) fn scene_layout(device: &wgpu::Device) -> wgpu::PipelineLayout {
             count: None,
         },
     ];
+    let extra = (6..)
+        .zip(extra)
+        .map(|(binding, &(visibility, ty))| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        });
+    let entries: Vec<_> = entries.into_iter().chain(extra).collect();
     let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("scene"),
         entries: &entries,

@@ -15,7 +15,9 @@ mod unpack;
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
-use crate::raster::gbuffer::{draw_scene, scene_resources, CameraUniform, ScenePipeline};
+use crate::raster::gbuffer::{
+    draw_scene, scene_resources, whole_ranges, CameraUniform, ScenePipeline,
+};
 use crate::raster::gpu_scene::GpuScene;
 use crate::settings::{SdMask, StochasticDepthSettings};
 use crate::view::FrameView;
@@ -511,7 +513,7 @@ impl StochasticDepthMap {
                 &mut pass,
                 &self.pipelines,
                 &bind_groups,
-                &self.scene.cull_ranges(),
+                &whole_ranges(self.scene.cull_ranges()),
             );
             if let Some(p) = profiler.as_deref() {
                 p.end_fragments(&mut pass);

@@ -1,0 +1,29 @@
+// G-buffer resolve: depth and normal of every pixel from the visibility buffer (appended to
+// gbuffer.wgsl and gbuffer_resolve.wgsl).
+
+@group(0) @binding(6) var visibility: texture_2d<u32>;
+@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(visibility);
+    if (any(id.xy >= size)) {
+        return;
+    }
+    let visible = textureLoad(visibility, id.xy, 0).r;
+    if (visible == 0u) {
+        textureStore(depth_out, id.xy, vec4<f32>(0.0));
+        textureStore(normal_out, id.xy, vec4<f32>(0.0));
+        return;
+    }
+    let tri = triangles[visible - 1u];
+    let s = pixel_surface(tri, id.xy, size);
+    var shading = vec3<f32>(0.0);
+    if (SHADING_NORMALS) {
+        shading = resolve_shading_normal(tri, plane_barycentrics(s.view_pos, s.v0, s.v1, s.v2, s.face));
+    }
+    let out = gbuffer_out(s.view_pos, s.face, shading);
+    textureStore(depth_out, id.xy, vec4<f32>(out.depth, 0.0, 0.0, 0.0));
+    textureStore(normal_out, id.xy, out.normal);
+}

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Markdown table from scripts/device-bench-gbuffer.sh's runs folder: per scene and build, the
+median over rounds of each raster pass (G-buffer = visibility pass + resolve, depth peeling = pass
++ resolve, SD map = reset + map) with fragments per framebuffer pixel, then the peer's prepass."""
+import json
+import pathlib
+import statistics
+import sys
+
+runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
+PASSES = {
+    "G-buffer": ("vao", ["gbuffer", "gbuffer_resolve"], "gbuffer"),
+    "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
+    "SD map S = 4": ("sd-vao", ["sd_reset", "sd_map"], "sd_map"),
+}
+cells = {}
+adapter = None
+for path in sorted(runs.glob("*-*-*.json")):
+    scene, side, _ = path.stem.rsplit("-", 2)
+    data = json.loads(path.read_text())
+    adapter = adapter or f"{data['adapter']}, driver {data['driver']}"
+    for r in data["results"]:
+        for label, (technique, passes, counted) in PASSES.items():
+            if r["technique"] != technique:
+                continue
+            ms = sum(r["passes"].get(p, 0.0) for p in passes)
+            parts = "+".join(f"{r['passes'][p]:.3f}" for p in passes if p in r["passes"])
+            frags = r.get("fragments", {}).get(counted, {}).get("per_pixel")
+            cells.setdefault((scene, label, side), []).append((ms, parts, frags))
+print(f"Adapter: {adapter}. Medians over rounds of per-run medians, ms.\n")
+print("| scene | pass | old | new | new/old | fragments per pixel old → new |")
+print("|---|---|---|---|---|---|")
+for scene in dict.fromkeys(k[0] for k in cells):
+    for label in PASSES:
+        old, new = cells.get((scene, label, "old")), cells.get((scene, label, "new"))
+        if not new:
+            continue
+        def med(v):
+            return statistics.median(x[0] for x in v) if v else None
+        o, n = med(old), med(new)
+        fo = old[0][2] if old else None
+        fn = new[0][2]
+        ratio = f"{n / o:.2f}" if o else "–"
+        frag = f"{fo:.2f} → {fn:.2f}" if fo is not None and fn is not None else "–"
+        print(f"| {scene} | {label} | {o and f'{o:.3f}' or '–'} | {n:.3f} ({new[0][1]}) | {ratio} | {frag} |")
+bevy = runs / "bevy_high.json"
+if bevy.exists():
+    peer = json.loads(bevy.read_text())
+    p = peer["passes"]
+    ssao = sum(p[k]["median_ms"] for k in p if k.startswith("ssao/"))
+    print(f"\nPeer, same call ({peer['adapter']['name']}): Bevy depth + normal prepass "
+          f"(`early prepass`) {p['early prepass']['median_ms']:.3f} ms; SSAO high, three passes, "
+          f"{ssao:.3f} ms.")
