@@ -21,6 +21,16 @@ fn pixel_plane_point(ndc: vec2<f32>, v0: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return x.xyz / x.w;
 }
 
+// `pixel_plane_point` for triangle corners `v0..v2` with face normal `n`, or their centroid where
+// the line and the plane give no finite point (a triangle too thin for its normal to be
+// computed, or seen exactly edge-on: the rasteriser covers such a pixel only by rounding).
+fn pixel_triangle_point(ndc: vec2<f32>, v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let p = pixel_plane_point(ndc, v0, n);
+    // Finite: NaN fails every comparison; infinities fail the bound.
+    let finite = all(abs(p) <= vec3<f32>(3.0e38));
+    return select((v0 + v1 + v2) / 3.0, p, finite);
+}
+
 // Barycentrics of point `p` in the plane of the triangle `v` with normal `n` (= (v1 − v0) ×
 // (v2 − v0) up to its length).
 fn plane_barycentrics(p: vec3<f32>, v0: vec3<f32>, v1: vec3<f32>, v2: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
@@ -66,6 +76,6 @@ fn pixel_surface(tri: vec4<u32>, pixel: vec2<u32>, size: vec2<u32>) -> PixelSurf
     s.v1 = to_view(positions[tri.y].xyz);
     s.v2 = to_view(positions[tri.z].xyz);
     s.face = view_face_normal(tri);
-    s.view_pos = pixel_plane_point(pixel_ndc(pixel, size), s.v0, s.face);
+    s.view_pos = pixel_triangle_point(pixel_ndc(pixel, size), s.v0, s.v1, s.v2, s.face);
     return s;
 }
