@@ -166,6 +166,10 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.mask", "--sd-mask"),
     ("stochastic_depth.query", "--sd-query"),
     ("stochastic_depth.compensation", "--sd-compensation"),
+    ("ray_sd.reservoir", "--reservoir"),
+    ("ray_sd.max_count", "--max-count"),
+    ("ray_sd.z_cull", "--no-z-cull"),
+    ("ray_sd.seed", "--ray-sd-seed"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
     ("multiview.angle", "--mv-angle"),
@@ -485,6 +489,27 @@ pub struct AoArgs {
     ))]
     pub sd_compensation: Option<f32>,
     #[arg(long, help = help(
+        "ray-sd-vao: depth slots per pixel of the ray-traced stochastic depth map, N in [1, 8] \
+         (seed 002 §3.1, reservoir sampling).",
+        "ray_sd.reservoir"
+    ))]
+    pub reservoir: Option<u32>,
+    #[arg(long, help = help(
+        "ray-sd-vao: hits a ray of the ray-traced map handles before it stops (MAX_COUNT), in \
+         [N, 64] (seed 002 §3.1).",
+        "ray_sd.max_count"
+    ))]
+    pub max_count: Option<u32>,
+    /// ray-sd-vao: plain reservoir sampling (every hit kept with probability N/count) instead of
+    /// the paper's z-culling, which overwrites a slot only with a nearer depth.
+    #[arg(long)]
+    pub no_z_cull: bool,
+    #[arg(long, help = help(
+        "ray-sd-vao: seed of the ray-traced map's reservoir hash.",
+        "ray_sd.seed"
+    ))]
+    pub ray_sd_seed: Option<u32>,
+    #[arg(long, help = help(
         "Run the technique at 'full' resolution (default) or at 'half' (a quarter of the pixels, \
          seed 001 Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
         "resolution"
@@ -620,6 +645,13 @@ impl AoArgs {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
+        let ray = &mut s.ray_sd;
+        set(&mut ray.reservoir, self.reservoir);
+        set(&mut ray.max_count, self.max_count);
+        if self.no_z_cull {
+            ray.z_cull = false;
+        }
+        set(&mut ray.seed, self.ray_sd_seed);
         if self.bent_normals {
             s.bent_normals = true;
         }
@@ -772,9 +804,10 @@ mod tests {
             }
         }
         // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
-        // (--vb-cosine) and bent_normals (--bent-normals), and blur.sigma (--blur-sigma) and
-        // multiview.focus (--mv-focus), whose defaults are to be left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 5);
+        // (--vb-cosine), bent_normals (--bent-normals) and ray_sd.z_cull (--no-z-cull), and
+        // blur.sigma (--blur-sigma) and multiview.focus (--mv-focus), whose defaults are to be
+        // left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 6);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

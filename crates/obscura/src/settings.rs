@@ -604,6 +604,56 @@ impl Default for StochasticDepthSettings {
 /// Depth samples per pixel the stochastic depth map accepts (before the adapter's own limits).
 pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
 
+/// The ray-traced stochastic depth map (`ray-sd-vao`; seed 002 §3.1): one camera ray per pixel
+/// through the BVH keeps `reservoir` of the depths behind the first layer by reservoir sampling.
+/// A hit must lie `peel_separation` behind the first layer, as for the raster map. Defaults: the
+/// paper's N = 4, MAX_COUNT = 8, z-culling on.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RaySdSettings {
+    /// Depth slots per pixel, N, in [1, 8].
+    pub reservoir: u32,
+    /// Hits a ray handles before it stops (MAX_COUNT), in [N, 64].
+    pub max_count: u32,
+    /// A slot is overwritten only by a nearer depth (the paper's z-culling; it favours near
+    /// layers). Off: plain reservoir sampling, every hit kept with probability N/count.
+    pub z_cull: bool,
+    /// Seed of the reservoir's hash (per map; `stochastic_depth.seed` is the raster map's).
+    pub seed: u32,
+}
+
+impl Default for RaySdSettings {
+    fn default() -> Self {
+        Self {
+            reservoir: 4,
+            max_count: 8,
+            z_cull: true,
+            seed: 0,
+        }
+    }
+}
+
+impl RaySdSettings {
+    /// Checks the ranges above.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if !(1..=8).contains(&self.reservoir) {
+            return Err(invalid(
+                "ray_sd.reservoir",
+                self.reservoir,
+                "must be in [1, 8] depth slots per pixel, e.g. 4",
+            ));
+        }
+        if !(self.reservoir..=64).contains(&self.max_count) {
+            return Err(invalid(
+                "ray_sd.max_count",
+                self.max_count,
+                "must be at least ray_sd.reservoir and at most 64, e.g. 8",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Everything a technique's kernels read, as data: every field has a default (the papers' /
 /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
 /// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
@@ -642,6 +692,8 @@ pub struct AoSettings {
     pub peel_separation: f32,
     /// The stochastic depth map (`sd-vao`, `sd-svao`).
     pub stochastic_depth: StochasticDepthSettings,
+    /// The ray-traced stochastic depth map (`ray-sd-vao`).
+    pub ray_sd: RaySdSettings,
     /// The classic HBAO estimator (`hbao`, `hbao-dual`).
     pub hbao: HbaoSettings,
     /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
@@ -750,6 +802,7 @@ impl Default for AoSettings {
             blur: BlurSettings::default(),
             peel_separation: 0.01,
             stochastic_depth: StochasticDepthSettings::default(),
+            ray_sd: RaySdSettings::default(),
             resolution: Resolution::Full,
             bent_normals: false,
             multiview: MultiviewSettings::default(),
@@ -816,6 +869,7 @@ impl AoSettings {
                 "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
             ));
         }
+        self.ray_sd.validate()?;
         let mv = &self.multiview;
         if !(mv.angle.is_finite() && mv.angle > 0.0 && mv.angle <= 60.0) {
             return Err(invalid(
@@ -1313,7 +1367,11 @@ impl AoSettings {
                     Preset::Ultra => sd.samples = 8,
                 }
             }
-            Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {}
+            Source::FirstLayer
+            | Source::DualDepth
+            | Source::ColumnRays
+            | Source::RayStochasticDepth
+            | Source::DepthPyramid => {}
         }
         s
     }
@@ -1697,7 +1755,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 60, "{paths:?}");
+        assert_eq!(paths.len(), 64, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1712,6 +1770,8 @@ mod tests {
         push(&|s| s.stochastic_depth.samples = 3);
         push(&|s| s.stochastic_depth.alpha = Some(1.5));
         push(&|s| s.stochastic_depth.compensation = 0.5);
+        push(&|s| s.ray_sd.reservoir = 9);
+        push(&|s| s.ray_sd.max_count = 2);
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

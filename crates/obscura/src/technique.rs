@@ -45,6 +45,11 @@ techniques!(
     SdVao,
     /// `sd-svao`: SD-VAO in two phases; the map is rasterised only where phase 1 asked.
     SdSvao,
+    /// `ray-sd-vao`: VAO in two phases over a stochastic depth map collected by rays through the
+    /// BVH where phase 1 asked (seed 002 §3.1).
+    RaySdVao,
+    /// `ray-sd-vao-full`: VAO in one pass over a ray-traced stochastic depth map of every pixel.
+    RaySdVaoFull,
     /// `hbao`: horizon-based AO, D directions × S steps (seed 001 §3.2, seed 004 §2.2.1).
     Hbao,
     /// `hbao-interleaved`: HBAO over 16 quarter-resolution depth layers.
@@ -127,6 +132,9 @@ pub enum Source {
     ColumnRays,
     /// The rasterised stratified stochastic depth map (seed 001 §3.1, seed 000 §3.7/§3.9).
     StochasticDepth,
+    /// The stochastic depth map collected by camera rays through the BVH, N depths per pixel by
+    /// reservoir sampling (seed 002 §3.1): no rasteriser.
+    RayStochasticDepth,
     /// Levels of mean linear depth (seed 004 §3.3): samples read the level their estimator names.
     /// Hides nothing; the source of the estimators that need levels (SAO, Pyramid HBAO).
     DepthPyramid,
@@ -243,6 +251,24 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::Vao,
         source: Source::StochasticDepth,
         schedule: Schedule::TwoPhase,
+    },
+    TechniqueRow {
+        technique: Technique::RaySdVao,
+        name: "ray-sd-vao",
+        summary: "SD-SVAO with the map collected by rays through the BVH (reservoir of 4)",
+        paper: "seed 002 §3.1",
+        estimator: Estimator::Vao,
+        source: Source::RayStochasticDepth,
+        schedule: Schedule::TwoPhase,
+    },
+    TechniqueRow {
+        technique: Technique::RaySdVaoFull,
+        name: "ray-sd-vao-full",
+        summary: "VAO over a stochastic depth map collected by rays for every pixel, one pass",
+        paper: "seed 002 §3.1",
+        estimator: Estimator::Vao,
+        source: Source::RayStochasticDepth,
+        schedule: Schedule::Single,
     },
     TechniqueRow {
         technique: Technique::Hbao,
@@ -458,6 +484,11 @@ impl Source {
                 stochastic_depth_map: true,
                 ..Needs::default()
             },
+            Source::RayStochasticDepth => Needs {
+                triangles: true,
+                bvh: true,
+                ..Needs::default()
+            },
             Source::DepthPyramid => Needs::default(),
         }
     }
@@ -468,9 +499,10 @@ impl Source {
         match self {
             Source::ColumnRays => estimator == Estimator::Vao,
             Source::DepthPyramid => estimator.reads_levels(),
-            Source::FirstLayer | Source::DualDepth | Source::StochasticDepth => {
-                !estimator.reads_levels()
-            }
+            Source::FirstLayer
+            | Source::DualDepth
+            | Source::StochasticDepth
+            | Source::RayStochasticDepth => !estimator.reads_levels(),
         }
     }
 
@@ -481,6 +513,7 @@ impl Source {
             Source::DualDepth => "dual depth",
             Source::ColumnRays => "column rays",
             Source::StochasticDepth => "stochastic depth",
+            Source::RayStochasticDepth => "ray stochastic depth",
             Source::DepthPyramid => "depth pyramid",
         }
     }

@@ -1,7 +1,7 @@
-//! Every dual-depth row, and every single-pass stochastic-depth row, gives the same image as its
-//! first-layer twin (same estimator and schedule) where nothing is hidden: a height field seen
-//! from above has no second layer and nothing for the stochastic depth map to keep, so the source
-//! has nothing to add. Table-driven: a new estimator's dual or stochastic-depth row is checked here
+//! Every dual-depth row, and every single-pass stochastic-depth row (raster or ray-traced map),
+//! gives the same image as its first-layer twin (same estimator and schedule) where nothing is
+//! hidden: a height field seen from above has no second layer and nothing for the stochastic depth
+//! map to keep, so the source has nothing to add. Table-driven: a new estimator's dual or stochastic-depth row is checked here
 //! without an edit. (`sd-svao`, two-phase, is held to `sd-vao` by tests/two_phase_twins.rs.)
 
 mod common;
@@ -20,7 +20,10 @@ fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
         .iter()
         .filter(|r| {
             r.source == Source::DualDepth
-                || (r.source == Source::StochasticDepth && r.schedule == Schedule::Single)
+                || (matches!(
+                    r.source,
+                    Source::StochasticDepth | Source::RayStochasticDepth
+                ) && r.schedule == Schedule::Single)
         })
         .collect();
     assert!(!rows.is_empty());
@@ -83,10 +86,12 @@ fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
     // only: where the map's extra occluders also darken, it can rise (sd-vao here: 0.058 → 0.060).
     let gpu = gpu();
     let scene = obscura::scene::builtin("stairs").unwrap();
-    for row in TABLE
-        .iter()
-        .filter(|r| r.source == Source::StochasticDepth && r.schedule == Schedule::Single)
-    {
+    for row in TABLE.iter().filter(|r| {
+        matches!(
+            r.source,
+            Source::StochasticDepth | Source::RayStochasticDepth
+        ) && r.schedule == Schedule::Single
+    }) {
         let twin = TABLE
             .iter()
             .find(|t| {

@@ -47,6 +47,16 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             out.push(("S=4 query always".into(), always));
             out
         }
+        Source::RayStochasticDepth => {
+            let mut small = base;
+            small.ray_sd.reservoir = 2;
+            small.ray_sd.max_count = 3;
+            small.ray_sd.z_cull = false;
+            vec![
+                ("defaults".into(), base),
+                ("N=2 MAX_COUNT=3 no z-cull".into(), small),
+            ]
+        }
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
             vec![("defaults".into(), base)]
         }

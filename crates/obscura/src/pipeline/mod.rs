@@ -393,10 +393,14 @@ impl AmbientOcclusion {
     /// two-phase row's map is defined only at the pixels phase 1 requested; it reads as empty
     /// elsewhere. Waits for the GPU.
     pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
-        let Some(map) = self.source.stochastic_depth() else {
-            return Ok(None);
+        let mut layers = match (
+            self.source.stochastic_depth(),
+            self.source.ray_stochastic_depth(),
+        ) {
+            (Some(map), _) => map.read_layers(&self.gpu)?,
+            (None, Some(map)) => map.read_layers(&self.gpu)?,
+            (None, None) => return Ok(None),
         };
-        let mut layers = map.read_layers(&self.gpu)?;
         if let Some(requests) = self.read_sd_requests()? {
             for layer in &mut layers {
                 for (z, &r) in layer.iter_mut().zip(&requests) {
@@ -407,6 +411,15 @@ impl AmbientOcclusion {
             }
         }
         Ok(Some(layers))
+    }
+
+    /// The ray-traced stochastic depth map's hits per ray of the last frame (`ray-sd-vao`,
+    /// `ray-sd-vao-full`; framebuffer-sized, 0 where nothing was traced). Waits for the GPU.
+    pub fn read_ray_sd_hits(&self) -> Result<Option<Vec<u32>>, Error> {
+        match self.source.ray_stochastic_depth() {
+            Some(map) => Ok(Some(map.read_hits(&self.gpu)?)),
+            None => Ok(None),
+        }
     }
 
     /// The depth pyramid of the last frame (`sao`, `pyramid-hbao`): levels 1 … L − 1, level l

@@ -181,11 +181,18 @@ impl Renderer {
         self.ao.as_ref()
     }
 
-    /// `sd-vao`, `sd-svao`: every sample layer of the last frame's stochastic depth map
+    /// `sd-vao`, `sd-svao` (and the ray-traced map's rows, one layer per reservoir slot): every
+    /// sample layer of the last frame's stochastic depth map
     /// (framebuffer-sized, linear depth, 0 = empty; layer `m · samples_per_map + s` is sample `s`
     /// of map `m`).
     pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
         self.last_ao()?.read_stochastic_depth()
+    }
+
+    /// `ray-sd-vao`, `ray-sd-vao-full`: the hits each pixel's ray handled in the last frame (see
+    /// [`AmbientOcclusion::read_ray_sd_hits`]).
+    pub fn read_ray_sd_hits(&self) -> Result<Option<Vec<u32>>, Error> {
+        self.last_ao()?.read_ray_sd_hits()
     }
 
     /// `sd-svao`: the last frame's SD-request mask (framebuffer-sized, non-zero = requested).

@@ -262,6 +262,7 @@ fn every_estimator_runs_over_every_source_it_supports() {
             Source::DualDepth,
             Source::ColumnRays,
             Source::StochasticDepth,
+            Source::RayStochasticDepth,
         ] {
             if source.supports(estimator) {
                 check_all_schedules(
@@ -281,6 +282,7 @@ fn a_new_estimator_needs_no_source_or_schedule_edit() {
         Source::FirstLayer,
         Source::DualDepth,
         Source::StochasticDepth,
+        Source::RayStochasticDepth,
     ] {
         check_all_schedules("stub estimator", (STUB, &["SAMPLE_COUNT"]), source, true);
     }

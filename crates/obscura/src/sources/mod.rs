@@ -11,6 +11,7 @@
 
 pub mod column_rays;
 pub mod depth_pyramid;
+pub mod ray_stochastic_depth;
 pub mod stochastic_depth;
 
 use crate::bindings::{self, entry, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
@@ -25,6 +26,7 @@ use crate::view::{FrameView, ScreenGeometry};
 use crate::Error;
 use column_rays::ColumnRays;
 use depth_pyramid::DepthPyramid;
+use ray_stochastic_depth::RayStochasticDepthMap;
 use stochastic_depth::{SdLayout, StochasticDepthMap};
 
 /// The scene data the scene-dependent sources need (the technique row's [`crate::technique::Needs`]).
@@ -37,7 +39,8 @@ pub struct SceneResources<'a> {
 }
 
 /// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
-/// depth maps are laid out (ignored by the other sources).
+/// depth maps are laid out (the ray-traced map: one map of N samples; ignored by the other
+/// sources).
 pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
     match source {
         Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
@@ -50,6 +53,12 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
         Source::StochasticDepth => format!(
             "{}\n{}\n{}",
             stochastic_depth::bindings_wgsl(sd_layout),
+            shaders::STOCHASTIC_DEPTH_SAMPLES,
+            shaders::SOURCE_STOCHASTIC_DEPTH
+        ),
+        Source::RayStochasticDepth => format!(
+            "{}\n{}\n{}",
+            ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
             shaders::SOURCE_STOCHASTIC_DEPTH
         ),
@@ -67,6 +76,7 @@ pub(crate) fn resolve_entries(
         Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
         Source::ColumnRays => column_rays::layout_entries(),
         Source::StochasticDepth => stochastic_depth::read_layout_entries(sd_layout),
+        Source::RayStochasticDepth => ray_stochastic_depth::read_layout_entries(),
         Source::DepthPyramid => depth_pyramid::layout_entries(),
     }
 }
@@ -74,7 +84,9 @@ pub(crate) fn resolve_entries(
 /// Group-2 layout entries of phase 1 of a two-phase schedule.
 pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
-        Source::StochasticDepth => vec![entry::storage(SOURCE_SD_REQUEST, false)],
+        Source::StochasticDepth | Source::RayStochasticDepth => {
+            vec![entry::storage(SOURCE_SD_REQUEST, false)]
+        }
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
             Vec::new()
         }
@@ -86,6 +98,7 @@ enum Held {
     DualDepth,
     ColumnRays(Box<ColumnRays>),
     StochasticDepth(Box<StochasticDepthMap>),
+    RayStochasticDepth(Box<RayStochasticDepthMap>),
     DepthPyramid(Box<DepthPyramid>),
 }
 
@@ -165,6 +178,20 @@ impl SourcePass {
                 sd_layout = map.layout();
                 Held::StochasticDepth(Box::new(map))
             }
+            Source::RayStochasticDepth => {
+                let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
+                let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;
+                let map = RayStochasticDepthMap::new(
+                    device,
+                    &settings.ray_sd,
+                    settings.peel_separation,
+                    full,
+                    scene_gpu,
+                    bvh,
+                )?;
+                sd_layout.samples_per_map = map.reservoir();
+                Held::RayStochasticDepth(Box::new(map))
+            }
             Source::DepthPyramid => {
                 Held::DepthPyramid(Box::new(DepthPyramid::new(device, &settings.pyramid, full)))
             }
@@ -173,7 +200,9 @@ impl SourcePass {
             .two_phase()
             .then(|| layout_of(request_entries(kind), "source request"))
             .flatten();
-        let request = (kind == Source::StochasticDepth && schedule.two_phase()).then(|| {
+        let maps_hidden_depth =
+            matches!(kind, Source::StochasticDepth | Source::RayStochasticDepth);
+        let request = (maps_hidden_depth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sd request"),
                 size: u64::from(full.0) * u64::from(full.1) * 4,
@@ -194,7 +223,7 @@ impl SourcePass {
         };
         let sd = &settings.stochastic_depth;
         let mut constants = Vec::new();
-        if kind == Source::StochasticDepth {
+        if maps_hidden_depth {
             if sd.query == crate::settings::SdQuery::Always {
                 constants.push(("SD_QUERY_ALWAYS", 1.0));
             }
@@ -239,6 +268,7 @@ impl SourcePass {
                 rays.set_camera(queue, view.view_matrix().inverse(), view.near)
             }
             Held::StochasticDepth(map) => map.set_camera(queue, view),
+            Held::RayStochasticDepth(map) => map.set_camera(queue, view, self.request.is_some()),
             Held::FirstLayer | Held::DualDepth | Held::DepthPyramid(_) => {}
         }
     }
@@ -264,6 +294,13 @@ impl SourcePass {
     ) {
         match &self.held {
             Held::StochasticDepth(map) => map.render(
+                device,
+                encoder,
+                frame.depth,
+                self.request.as_ref(),
+                profiler,
+            ),
+            Held::RayStochasticDepth(map) => map.render(
                 device,
                 encoder,
                 frame.depth,
@@ -307,6 +344,12 @@ impl SourcePass {
             Held::StochasticDepth(map) => {
                 bindings::group(device, "stochastic depth", layout, &map.read_resources())
             }
+            Held::RayStochasticDepth(map) => bindings::group(
+                device,
+                "ray stochastic depth",
+                layout,
+                &map.read_resources(),
+            ),
             Held::DepthPyramid(pyramid) => {
                 bindings::group(device, "depth pyramid", layout, &pyramid.read_resources())
             }
@@ -330,6 +373,14 @@ impl SourcePass {
     pub fn stochastic_depth(&self) -> Option<&StochasticDepthMap> {
         match &self.held {
             Held::StochasticDepth(map) => Some(map),
+            _ => None,
+        }
+    }
+
+    /// The ray-traced stochastic depth map, for read-backs.
+    pub fn ray_stochastic_depth(&self) -> Option<&RayStochasticDepthMap> {
+        match &self.held {
+            Held::RayStochasticDepth(map) => Some(map),
             _ => None,
         }
     }

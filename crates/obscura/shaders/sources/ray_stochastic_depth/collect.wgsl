@@ -1,0 +1,102 @@
+// Ray-traced stochastic depth map, collection by ray (seed 002 §3.1, Listing 1; the authors' code
+// as recorded in seed-code-notes §2.3): one camera ray per map texel through our BVH
+// (common/bvh.wgsl) in compute, every hit behind the first visible layer handled as the paper's
+// any-hit shader handles it. Reservoir sampling (Vitter 1985): the first N distinct depths fill
+// the N slots, each further hit takes a slot with probability N/count; with z-culling (the
+// paper's default) a slot is only overwritten by a nearer depth; after MAX_COUNT hits the ray
+// stops. The back-face and alpha rules are the BVH's (hits reach `bvh_on_hit` only after them).
+// The first visible layer is skipped as the raster map skips it: the ray starts `separation`
+// behind the G-buffer's linear depth, and a pixel without a first surface stores nothing.
+//
+// Ours: the reservoir's random number is a hash of the texel, the triangle and the map's seed
+// (the paper hashes the barycentrics; both are stable while nothing moves); the slots are stored
+// as reversed-Z `near / depth` (0 = empty), the raster map's encoding, so the AO passes read both
+// maps with the same code (samples.wgsl).
+
+// The BVH (common/bvh.wgsl) in group 1 from binding 0.
+const BVH_GROUP: u32 = 1u;
+const BVH_BINDING: u32 = 0u;
+
+struct RaySdParams {
+    // First: what the AO passes bind as `sd_near` (samples.wgsl).
+    near: f32,
+    separation: f32,
+    seed: u32,
+    // Non-zero: trace only the texels whose request flag is set (two-phase schedules).
+    requested_only: u32,
+    camera_to_world: mat4x4<f32>,
+    inverse_projection: mat4x4<f32>,
+    // Framebuffer (= map) size in pixels.
+    size: vec2<u32>,
+    _pad: vec2<u32>,
+}
+
+// Slots per texel (N, at most 8).
+override RESERVOIR: u32 = 4u;
+// Hits a ray handles before it stops.
+override MAX_COUNT: u32 = 8u;
+// Overwrite a slot only with a nearer depth (seed 002 §3.1).
+override Z_CULL: bool = true;
+
+@group(0) @binding(0) var<uniform> params: RaySdParams;
+@group(0) @binding(1) var first_layer: texture_2d<f32>;
+// One u32 per framebuffer pixel, non-zero = requested (read when `requested_only`).
+@group(0) @binding(2) var<storage, read> sd_request: array<u32>;
+// RESERVOIR floats per texel, row-major.
+@group(0) @binding(3) var<storage, read_write> sd_depths: array<f32>;
+// Hits handled per texel (the debug output "hits per ray").
+@group(0) @binding(4) var<storage, read_write> sd_hits: array<u32>;
+
+var<private> slots: array<f32, 8>;
+var<private> count: u32;
+var<private> texel_hash: u32;
+
+fn bvh_on_hit(hit: BvhHit) -> u32 {
+    // Distinct depths only: a ray through a shared edge meets both triangles at one depth.
+    for (var i = 0u; i < min(count, RESERVOIR); i++) {
+        if (abs(slots[i] - hit.t) <= 1e-6 * hit.t) {
+            return BVH_CONTINUE;
+        }
+    }
+    var slot = count;
+    count += 1u;
+    if (count > RESERVOIR) {
+        let xi = hash_to_unit(pcg_hash(texel_hash ^ pcg_hash(hit.slot ^ pcg_hash(count))));
+        slot = min(u32(xi * f32(count)), count - 1u);
+    }
+    if (slot < RESERVOIR && (!Z_CULL || hit.t < slots[slot])) {
+        slots[slot] = hit.t;
+    }
+    return select(BVH_CONTINUE, BVH_STOP, count >= MAX_COUNT);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (any(id.xy >= params.size)) {
+        return;
+    }
+    let texel = id.y * params.size.x + id.x;
+    if (params.requested_only != 0u && sd_request[texel] == 0u) {
+        return;
+    }
+    for (var i = 0u; i < 8u; i++) {
+        slots[i] = 3.0e38;
+    }
+    count = 0u;
+    texel_hash = pcg_hash(texel ^ pcg_hash(params.seed));
+    let first = textureLoad(first_layer, id.xy, 0).r;
+    if (first > 0.0) {
+        // The pixel centre's ray, its direction scaled so that t is linear view depth.
+        let ndc = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(params.size) * vec2<f32>(2.0, -2.0)
+            + vec2<f32>(-1.0, 1.0);
+        let far_point = params.inverse_projection * vec4<f32>(ndc, 0.0, 1.0);
+        let view_dir = far_point.xyz / -far_point.z;
+        let origin = (params.camera_to_world * vec4<f32>(0.0, 0.0, 0.0, 1.0)).xyz;
+        let dir = (params.camera_to_world * vec4<f32>(view_dir, 0.0)).xyz;
+        bvh_traverse(origin, dir, first + params.separation, 3.0e38);
+    }
+    for (var i = 0u; i < RESERVOIR; i++) {
+        sd_depths[texel * RESERVOIR + i] = select(0.0, params.near / slots[i], slots[i] < 3.0e38);
+    }
+    sd_hits[texel] = count;
+}
