@@ -546,3 +546,25 @@ pub fn corner_slice(view: glam::Mat4, theta: f32) -> CornerSlice {
         into_wall: view.inverse().transform_vector3(floor_line).z < 0.0,
     }
 }
+
+/// Full-screen layers facing a camera at the origin that looks down −z: one triangle per layer at
+/// each depth (a single triangle, so every sample of a pixel sees the same fragment).
+pub fn facing_layers(depths: &[f32]) -> Scene {
+    let mut scene = Scene {
+        name: "layers".into(),
+        materials: vec![Material::default()],
+        ..Default::default()
+    };
+    for &d in depths {
+        let base = scene.positions.len() as u32;
+        scene.positions.extend([
+            Vec3::new(-10.0 * d, -10.0 * d, -d),
+            Vec3::new(10.0 * d, -10.0 * d, -d),
+            Vec3::new(0.0, 10.0 * d, -d),
+        ]);
+        scene.uvs.extend([glam::Vec2::ZERO; 3]);
+        scene.triangles.push([base, base + 1, base + 2]);
+        scene.triangle_materials.push(0);
+    }
+    scene
+}

@@ -9,30 +9,9 @@ use obscura::bvh::Bvh;
 use obscura::metrics::{mse, Image};
 use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
-use obscura::scene::{Material, Scene};
+use obscura::scene::Scene;
 use obscura::settings::RaySdSettings;
 use obscura::{scene, AoSettings, Gpu, Renderer, Technique};
-
-/// Full-screen layers facing a camera at the origin that looks down −z, one triangle each.
-fn layers(depths: &[f32]) -> Scene {
-    let mut scene = Scene {
-        name: "layers".into(),
-        materials: vec![Material::default()],
-        ..Default::default()
-    };
-    for &d in depths {
-        let base = scene.positions.len() as u32;
-        scene.positions.extend([
-            Vec3::new(-10.0 * d, -10.0 * d, -d),
-            Vec3::new(10.0 * d, -10.0 * d, -d),
-            Vec3::new(0.0, 10.0 * d, -d),
-        ]);
-        scene.uvs.extend([glam::Vec2::ZERO; 3]);
-        scene.triangles.push([base, base + 1, base + 2]);
-        scene.triangle_materials.push(0);
-    }
-    scene
-}
 
 const SIZE: u32 = 64;
 
@@ -81,7 +60,7 @@ fn every_hidden_layer_is_kept_at_its_exact_depth_when_the_reservoir_holds_them_a
     // visible layer is skipped as the raster map skips it.
     let gpu = gpu();
     let depths = [1.0, 2.0, 3.0, 5.0];
-    let (slots, hits) = ray_map(&gpu, &layers(&depths), RaySdSettings::default());
+    let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), RaySdSettings::default());
     let kept = kept_fraction(&slots, &depths);
     assert_eq!(kept, vec![0.0, 1.0, 1.0, 1.0], "{kept:?}");
     let empty = (0..slots[0].len())
@@ -102,7 +81,7 @@ fn without_z_culling_every_hidden_layer_is_kept_with_probability_n_over_k() {
         seed: 3,
         ..RaySdSettings::default()
     };
-    let (slots, hits) = ray_map(&gpu, &layers(&depths), settings);
+    let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), settings);
     let pixels = slots[0].len();
     let kept = kept_fraction(&slots, &depths);
     assert_eq!(kept[0], 0.0, "the visible layer is never stored");
@@ -126,7 +105,7 @@ fn z_culling_favours_near_layers() {
     // N nearest and z-culling keeps exactly them (measured: [0, 1, 1, 1, 1, 0, 0, 0, 0]).
     let gpu = gpu();
     let depths: Vec<f32> = (0..9).map(|i| 1.0 + 0.5 * i as f32).collect();
-    let (slots, _) = ray_map(&gpu, &layers(&depths), RaySdSettings::default());
+    let (slots, _) = ray_map(&gpu, &facing_layers(&depths), RaySdSettings::default());
     let kept = kept_fraction(&slots, &depths);
     println!("kept per layer with z-culling: {kept:?}");
     assert!(kept[1] > 0.6 && kept[8] < 0.4, "{kept:?}");
@@ -144,7 +123,7 @@ fn a_ray_stops_after_max_count_hits() {
         z_cull: false,
         seed: 0,
     };
-    let (slots, hits) = ray_map(&gpu, &layers(&depths), settings);
+    let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), settings);
     assert_eq!(slots.len(), 2);
     assert!(
         hits.iter().all(|&h| h == 3),
@@ -163,7 +142,7 @@ fn a_ray_stops_after_max_count_hits() {
 #[test]
 fn settings_out_of_range_are_clear_errors() {
     let gpu = gpu();
-    let scene = layers(&[1.0, 2.0]);
+    let scene = facing_layers(&[1.0, 2.0]);
     for (ray_sd, field) in [
         (
             RaySdSettings {

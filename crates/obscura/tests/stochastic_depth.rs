@@ -8,7 +8,7 @@ use obscura::bvh::Bvh;
 use obscura::metrics::{mse, Image};
 use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
-use obscura::scene::{Material, Scene};
+use obscura::scene::Scene;
 use obscura::settings::{SdMask, StochasticDepthSettings};
 use obscura::sources::stochastic_depth::{map_sample_counts, SdLayout};
 use obscura::{scene, AoSettings, Gpu, Renderer, Technique};
@@ -26,28 +26,6 @@ fn settings(technique: Technique, samples: u32, alpha: f32) -> AoSettings {
     };
     s.blur.enabled = false;
     s
-}
-
-/// Full-screen layers facing a camera at the origin that looks down −z: one triangle per layer at
-/// each depth (a single triangle, so every sample of a pixel sees the same fragment).
-fn layers(depths: &[f32]) -> Scene {
-    let mut scene = Scene {
-        name: "layers".into(),
-        materials: vec![Material::default()],
-        ..Default::default()
-    };
-    for &d in depths {
-        let base = scene.positions.len() as u32;
-        scene.positions.extend([
-            Vec3::new(-10.0 * d, -10.0 * d, -d),
-            Vec3::new(10.0 * d, -10.0 * d, -d),
-            Vec3::new(0.0, 10.0 * d, -d),
-        ]);
-        scene.uvs.extend([glam::Vec2::ZERO; 3]);
-        scene.triangles.push([base, base + 1, base + 2]);
-        scene.triangle_materials.push(0);
-    }
-    scene
 }
 
 const SIZE: u32 = 64;
@@ -88,7 +66,7 @@ fn within_5_sigma(observed: f64, p: f64, n: usize, what: &str) {
 fn each_hidden_fragment_is_stored_in_floor_alpha_s_plus_xi_samples() {
     let gpu = gpu();
     let depths = [1.0, 2.0];
-    let scene = layers(&depths);
+    let scene = facing_layers(&depths);
     let s = 4u32;
     for alpha in [0.2f32, 0.6, 1.0] {
         let layers = sd_layers(&gpu, &scene, &settings(Technique::SdVao, s, alpha));
@@ -144,7 +122,7 @@ fn samples_keep_the_nearest_chosen_layer() {
     // 16 from 4× maps on lavapipe), whose seeds are independent.
     let gpu = gpu();
     let depths = [1.0, 2.0, 3.0, 4.0];
-    let scene = layers(&depths);
+    let scene = facing_layers(&depths);
     let alpha = 0.375f32;
     for s in [4u32, 8, 16] {
         let layers = sd_layers(&gpu, &scene, &settings(Technique::SdVao, s, alpha));
@@ -357,7 +335,7 @@ fn sd_vao_beats_vao_dual_beats_vao_against_the_ground_truth() {
 #[test]
 fn unsupported_settings_are_clear_errors() {
     let gpu = gpu();
-    let scene = layers(&[1.0, 2.0]);
+    let scene = facing_layers(&[1.0, 2.0]);
     let supported = map_sample_counts(&gpu.adapter, &gpu.device);
     let try_render = |settings: &AoSettings| -> Result<(), obscura::Error> {
         let mut r = Renderer::new(&gpu, &scene, settings, 32, 32, 0)?;
