@@ -170,6 +170,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.max_count", "--max-count"),
     ("ray_sd.z_cull", "--no-z-cull"),
     ("ray_sd.seed", "--ray-sd-seed"),
+    ("ray_sd.resolution", "--ray-sd-res"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
     ("multiview.angle", "--mv-angle"),
@@ -510,6 +511,12 @@ pub struct AoArgs {
     ))]
     pub ray_sd_seed: Option<u32>,
     #[arg(long, help = help(
+        "ray-sd-vao: resolution divisor of the ray-traced map, 1, 2 or 4 (a ray per 1, 4 or 16 \
+         pixels through a jittered point of its block, seed 002 §3.3).",
+        "ray_sd.resolution"
+    ))]
+    pub ray_sd_res: Option<u32>,
+    #[arg(long, help = help(
         "Run the technique at 'full' resolution (default) or at 'half' (a quarter of the pixels, \
          seed 001 Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
         "resolution"
@@ -652,6 +659,7 @@ impl AoArgs {
             ray.z_cull = false;
         }
         set(&mut ray.seed, self.ray_sd_seed);
+        set(&mut ray.resolution, self.ray_sd_res);
         if self.bent_normals {
             s.bent_normals = true;
         }

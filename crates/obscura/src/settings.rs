@@ -620,6 +620,9 @@ pub struct RaySdSettings {
     pub z_cull: bool,
     /// Seed of the reservoir's hash (per map; `stochastic_depth.seed` is the raster map's).
     pub seed: u32,
+    /// The map's resolution divisor: 1 (a ray per pixel), 2 or 4 (a ray per 2×2 or 4×4 pixels,
+    /// through a jittered point of its block; seed 002 §3.3).
+    pub resolution: u32,
 }
 
 impl Default for RaySdSettings {
@@ -629,6 +632,7 @@ impl Default for RaySdSettings {
             max_count: 8,
             z_cull: true,
             seed: 0,
+            resolution: 1,
         }
     }
 }
@@ -648,6 +652,13 @@ impl RaySdSettings {
                 "ray_sd.max_count",
                 self.max_count,
                 "must be at least ray_sd.reservoir and at most 64, e.g. 8",
+            ));
+        }
+        if ![1, 2, 4].contains(&self.resolution) {
+            return Err(invalid(
+                "ray_sd.resolution",
+                self.resolution,
+                "must be 1, 2 or 4 (the map's resolution divisor)",
             ));
         }
         Ok(())
@@ -1755,7 +1766,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 64, "{paths:?}");
+        assert_eq!(paths.len(), 65, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1772,6 +1783,7 @@ mod tests {
         push(&|s| s.stochastic_depth.compensation = 0.5);
         push(&|s| s.ray_sd.reservoir = 9);
         push(&|s| s.ray_sd.max_count = 2);
+        push(&|s| s.ray_sd.resolution = 3);
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

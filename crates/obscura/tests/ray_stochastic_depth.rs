@@ -57,17 +57,26 @@ fn kept_fraction(slots: &[Vec<f32>], depths: &[f32]) -> Vec<f64> {
 fn every_hidden_layer_is_kept_at_its_exact_depth_when_the_reservoir_holds_them_all() {
     // Seed 002 §3.1: the first N distinct depths fill the reservoir. Three hidden layers, N = 4:
     // each pixel holds all three (to f32 rounding of the ray's t) and one empty slot; the
-    // visible layer is skipped as the raster map skips it.
+    // visible layer is skipped as the raster map skips it. At 1/2 and 1/4 resolution (§3.3) the
+    // jittered rays meet the same planes, and every pixel reads its texel's slots.
     let gpu = gpu();
     let depths = [1.0, 2.0, 3.0, 5.0];
-    let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), RaySdSettings::default());
-    let kept = kept_fraction(&slots, &depths);
-    assert_eq!(kept, vec![0.0, 1.0, 1.0, 1.0], "{kept:?}");
-    let empty = (0..slots[0].len())
-        .filter(|&p| slots.iter().filter(|l| l[p] == 0.0).count() == 1)
-        .count();
-    assert_eq!(empty, slots[0].len(), "one empty slot per pixel");
-    assert!(hits.iter().all(|&h| h == 3), "three hits per ray");
+    for resolution in [1, 2, 4] {
+        let settings = RaySdSettings {
+            resolution,
+            ..RaySdSettings::default()
+        };
+        let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), settings);
+        let kept = kept_fraction(&slots, &depths);
+        assert_eq!(kept, vec![0.0, 1.0, 1.0, 1.0], "1/{resolution}: {kept:?}");
+        let empty = (0..slots[0].len())
+            .filter(|&p| slots.iter().filter(|l| l[p] == 0.0).count() == 1)
+            .count();
+        assert_eq!(empty, slots[0].len(), "one empty slot per pixel");
+        let texels = (SIZE / resolution).pow(2) as usize;
+        assert_eq!(hits.len(), texels);
+        assert!(hits.iter().all(|&h| h == 3), "three hits per ray");
+    }
 }
 
 #[test]
@@ -121,7 +130,7 @@ fn a_ray_stops_after_max_count_hits() {
         reservoir: 2,
         max_count: 3,
         z_cull: false,
-        seed: 0,
+        ..RaySdSettings::default()
     };
     let (slots, hits) = ray_map(&gpu, &facing_layers(&depths), settings);
     assert_eq!(slots.len(), 2);
@@ -190,11 +199,18 @@ fn ray_sd_vao_beats_vao_and_raster_sd_svao_against_the_ground_truth() {
         let (w, h, guard_band) = (160, 96, 32);
         let mut errors = Vec::new();
         let mut reference = Vec::new();
-        for technique in [Technique::Vao, Technique::SdSvao, Technique::RaySdVao] {
-            let s = AoSettings {
+        let runs = [
+            (Technique::Vao, 1),
+            (Technique::SdSvao, 1),
+            (Technique::RaySdVao, 1),
+            (Technique::RaySdVao, 4),
+        ];
+        for (technique, resolution) in runs {
+            let mut s = AoSettings {
                 technique,
                 ..Default::default()
             };
+            s.ray_sd.resolution = resolution;
             let mut r = Renderer::new(&gpu, &scene, &s, w, h, guard_band).unwrap();
             r.render(&scene.cameras[0].camera, None).unwrap();
             if reference.is_empty() {
@@ -208,10 +224,17 @@ fn ray_sd_vao_beats_vao_and_raster_sd_svao_against_the_ground_truth() {
             let img = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
             errors.push(mse(&img(&ao), &img(&reference)).unwrap());
         }
-        let [vao, raster, ray] = errors[..] else {
+        let [vao, raster, ray, quarter] = errors[..] else {
             unreachable!()
         };
-        println!("{name}: MSE vao {vao:.3e}, sd-svao {raster:.3e}, ray-sd-vao {ray:.3e}");
+        println!(
+            "{name}: MSE vao {vao:.3e}, sd-svao {raster:.3e}, ray-sd-vao {ray:.3e}, \
+             at 1/4 resolution {quarter:.3e}"
+        );
+        // At 1/4 resolution a texel is 4×4 pixels of this small image, and near edges its ray
+        // stores what lies behind a neighbour (§3.3's aliasing); measured: stairs 1.03e-4, tower
+        // 4.9e-5. Held to beating `vao` only.
+        assert!(quarter < vao, "{name}: 1/4 {quarter:e} vs vao {vao:e}");
         assert!(
             ray <= raster,
             "{name}: ray-sd-vao {ray:e} vs sd-svao {raster:e}"

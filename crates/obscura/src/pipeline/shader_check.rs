@@ -190,7 +190,7 @@ fn check_stage(
 ) {
     let wgsl = schedules::compose(
         estimator,
-        &stage.source_wgsl(sources::wgsl(source, sd)),
+        &stage.source_wgsl(sources::wgsl(source, sd, 4)),
         &stage.parts,
     );
     let source_entries = match stage.source_group {

@@ -39,9 +39,9 @@ pub struct SceneResources<'a> {
 }
 
 /// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
-/// depth maps are laid out (the ray-traced map: one map of N samples; ignored by the other
-/// sources).
-pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
+/// depth maps are laid out (the ray-traced map: one map of N samples); `ray_divisor`: the
+/// ray-traced map's resolution divisor (both ignored by the other sources).
+pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_divisor: u32) -> String {
     match source {
         Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
         Source::DualDepth => shaders::SOURCE_DUAL_DEPTH.to_string(),
@@ -58,7 +58,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout) -> String {
         ),
         Source::RayStochasticDepth => format!(
             "{}\n{}\n{}",
-            ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map),
+            ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_divisor),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
             shaders::SOURCE_STOCHASTIC_DEPTH
         ),
@@ -107,6 +107,8 @@ pub(crate) struct SourcePass {
     kind: Source,
     held: Held,
     sd_layout: SdLayout,
+    /// The ray-traced map's resolution divisor (1 for the other sources).
+    ray_divisor: u32,
     resolve_layout: Option<wgpu::BindGroupLayout>,
     request_layout: Option<wgpu::BindGroupLayout>,
     /// Two-phase stochastic depth: the SD-request mask, one u32 per framebuffer pixel (seed 000
@@ -139,6 +141,7 @@ impl SourcePass {
             maps: 1,
             samples_per_map: 1,
         };
+        let mut ray_divisor = 1;
         let layout_of = |entries: Vec<wgpu::BindGroupLayoutEntry>, label| {
             (!entries.is_empty()).then(|| bindings::layout(device, label, &entries))
         };
@@ -155,6 +158,7 @@ impl SourcePass {
                     kind,
                     held: Held::ColumnRays(Box::new(rays)),
                     sd_layout,
+                    ray_divisor,
                     resolve_layout: Some(layout),
                     request_layout: None,
                     request: None,
@@ -190,6 +194,7 @@ impl SourcePass {
                     bvh,
                 )?;
                 sd_layout.samples_per_map = map.reservoir();
+                ray_divisor = map.divisor();
                 Held::RayStochasticDepth(Box::new(map))
             }
             Source::DepthPyramid => {
@@ -236,6 +241,7 @@ impl SourcePass {
             kind,
             held,
             sd_layout,
+            ray_divisor,
             resolve_layout: layout_of(resolve_entries(kind, sd_layout), "source"),
             request_layout,
             request,
@@ -250,7 +256,7 @@ impl SourcePass {
     }
 
     pub fn wgsl(&self) -> String {
-        wgsl(self.kind, self.sd_layout)
+        wgsl(self.kind, self.sd_layout, self.ray_divisor)
     }
 
     pub fn resolve_layout(&self) -> Option<&wgpu::BindGroupLayout> {

@@ -8,6 +8,11 @@
 // The first visible layer is skipped as the raster map skips it: the ray starts `separation`
 // behind the G-buffer's linear depth, and a pixel without a first surface stores nothing.
 //
+// Low resolution (§3.3, Fig. 5): with divisor d > 1 a texel of the map covers d×d pixels and its
+// ray passes through a jittered point of that block: texel t's point is (t + j) d, j from a 4×4
+// tile of 16 positions (index (t.y % 4) · 4 + t.x % 4) of the 2D Sobol sequence, which lie one
+// per row and column of the tile's 16×16 grid. At d = 1 the ray passes through the pixel centre.
+//
 // Ours: the reservoir's random number is a hash of the texel, the triangle and the map's seed
 // (the paper hashes the barycentrics; both are stable while nothing moves); the slots are stored
 // as reversed-Z `near / depth` (0 = empty), the raster map's encoding, so the AO passes read both
@@ -26,9 +31,16 @@ struct RaySdParams {
     requested_only: u32,
     camera_to_world: mat4x4<f32>,
     inverse_projection: mat4x4<f32>,
-    // Framebuffer (= map) size in pixels.
+    // Framebuffer size in pixels.
     size: vec2<u32>,
-    _pad: vec2<u32>,
+    // The map's size in texels, ⌈size / divisor⌉.
+    map_size: vec2<u32>,
+    divisor: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+    // xy: the jitter of texels with (t.y % 4) · 4 + t.x % 4 = index, in [0, 1)².
+    jitter: array<vec4<f32>, 16>,
 }
 
 // Slots per texel (N, at most 8).
@@ -40,9 +52,10 @@ override Z_CULL: bool = true;
 
 @group(0) @binding(0) var<uniform> params: RaySdParams;
 @group(0) @binding(1) var first_layer: texture_2d<f32>;
-// One u32 per framebuffer pixel, non-zero = requested (read when `requested_only`).
+// One u32 per framebuffer pixel, non-zero = requested (read when `requested_only`; a texel is
+// traced when any pixel of its block is requested).
 @group(0) @binding(2) var<storage, read> sd_request: array<u32>;
-// RESERVOIR floats per texel, row-major.
+// RESERVOIR floats per map texel, row-major.
 @group(0) @binding(3) var<storage, read_write> sd_depths: array<f32>;
 // Hits handled per texel (the debug output "hits per ray").
 @group(0) @binding(4) var<storage, read_write> sd_hits: array<u32>;
@@ -72,23 +85,37 @@ fn bvh_on_hit(hit: BvhHit) -> u32 {
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (any(id.xy >= params.size)) {
+    if (any(id.xy >= params.map_size)) {
         return;
     }
-    let texel = id.y * params.size.x + id.x;
-    if (params.requested_only != 0u && sd_request[texel] == 0u) {
-        return;
+    let texel = id.y * params.map_size.x + id.x;
+    let d = params.divisor;
+    let block = id.xy * d;
+    if (params.requested_only != 0u) {
+        var requested = false;
+        for (var y = block.y; y < min(block.y + d, params.size.y); y++) {
+            for (var x = block.x; x < min(block.x + d, params.size.x); x++) {
+                requested = requested || sd_request[y * params.size.x + x] != 0u;
+            }
+        }
+        if (!requested) {
+            return;
+        }
     }
     for (var i = 0u; i < 8u; i++) {
         slots[i] = 3.0e38;
     }
     count = 0u;
     texel_hash = pcg_hash(texel ^ pcg_hash(params.seed));
-    let first = textureLoad(first_layer, id.xy, 0).r;
+    var offset = vec2<f32>(0.5);
+    if (d > 1u) {
+        offset = params.jitter[(id.y % 4u) * 4u + id.x % 4u].xy;
+    }
+    let point = min((vec2<f32>(id.xy) + offset) * f32(d), vec2<f32>(params.size) - 0.5);
+    let first = textureLoad(first_layer, vec2<u32>(point), 0).r;
     if (first > 0.0) {
-        // The pixel centre's ray, its direction scaled so that t is linear view depth.
-        let ndc = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(params.size) * vec2<f32>(2.0, -2.0)
-            + vec2<f32>(-1.0, 1.0);
+        // The ray through `point`, its direction scaled so that t is linear view depth.
+        let ndc = point / vec2<f32>(params.size) * vec2<f32>(2.0, -2.0) + vec2<f32>(-1.0, 1.0);
         let far_point = params.inverse_projection * vec4<f32>(ndc, 0.0, 1.0);
         let view_dir = far_point.xyz / -far_point.z;
         let origin = (params.camera_to_world * vec4<f32>(0.0, 0.0, 0.0, 1.0)).xyz;
