@@ -171,6 +171,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.z_cull", "--no-z-cull"),
     ("ray_sd.seed", "--ray-sd-seed"),
     ("ray_sd.resolution", "--ray-sd-res"),
+    ("ray_sd.radius_cutoff", "--radius-cutoff"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
     ("multiview.angle", "--mv-angle"),
@@ -517,6 +518,12 @@ pub struct AoArgs {
     ))]
     pub ray_sd_res: Option<u32>,
     #[arg(long, help = help(
+        "ray-sd-vao: samples nearer than this many pixels to their pixel keep the first layer's \
+         answer and never request the ray-traced map (seed 002 §3.4 used 6; 0 = off).",
+        "ray_sd.radius_cutoff"
+    ))]
+    pub radius_cutoff: Option<f32>,
+    #[arg(long, help = help(
         "Run the technique at 'full' resolution (default) or at 'half' (a quarter of the pixels, \
          seed 001 Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
         "resolution"
@@ -660,6 +667,7 @@ impl AoArgs {
         }
         set(&mut ray.seed, self.ray_sd_seed);
         set(&mut ray.resolution, self.ray_sd_res);
+        set(&mut ray.radius_cutoff, self.radius_cutoff);
         if self.bent_normals {
             s.bent_normals = true;
         }

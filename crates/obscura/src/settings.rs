@@ -623,6 +623,10 @@ pub struct RaySdSettings {
     /// The map's resolution divisor: 1 (a ray per pixel), 2 or 4 (a ray per 2×2 or 4×4 pixels,
     /// through a jittered point of its block; seed 002 §3.3).
     pub resolution: u32,
+    /// Radius cutoff in pixels (seed 002 §3.4; the paper's t = 6): a sample nearer than this to
+    /// its shading pixel keeps the first layer's answer and never requests the map. 0: off (the
+    /// default, so the map is read wherever the raster map's rows read theirs).
+    pub radius_cutoff: f32,
 }
 
 impl Default for RaySdSettings {
@@ -633,6 +637,7 @@ impl Default for RaySdSettings {
             z_cull: true,
             seed: 0,
             resolution: 1,
+            radius_cutoff: 0.0,
         }
     }
 }
@@ -659,6 +664,13 @@ impl RaySdSettings {
                 "ray_sd.resolution",
                 self.resolution,
                 "must be 1, 2 or 4 (the map's resolution divisor)",
+            ));
+        }
+        if !(self.radius_cutoff.is_finite() && self.radius_cutoff >= 0.0) {
+            return Err(invalid(
+                "ray_sd.radius_cutoff",
+                self.radius_cutoff,
+                "must be zero (off) or a positive number of pixels, e.g. 6",
             ));
         }
         Ok(())
@@ -1766,7 +1778,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 65, "{paths:?}");
+        assert_eq!(paths.len(), 66, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1784,6 +1796,7 @@ mod tests {
         push(&|s| s.ray_sd.reservoir = 9);
         push(&|s| s.ray_sd.max_count = 2);
         push(&|s| s.ray_sd.resolution = 3);
+        push(&|s| s.ray_sd.radius_cutoff = -1.0);
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

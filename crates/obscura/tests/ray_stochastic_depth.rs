@@ -246,3 +246,42 @@ fn ray_sd_vao_beats_vao_and_raster_sd_svao_against_the_ground_truth() {
         );
     }
 }
+
+#[test]
+fn the_radius_cutoff_only_removes_requests_near_the_shading_pixel() {
+    // Seed 002 §3.4: samples nearer than t pixels to their pixel never request the map. A cutoff
+    // larger than the image leaves nothing to request, and the two-phase image is `vao`'s; the
+    // paper's t = 6 requests fewer pixels than no cutoff.
+    let gpu = gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let camera = scene.cameras[0].camera;
+    let run = |technique, cutoff: f32| {
+        let mut s = AoSettings {
+            technique,
+            ..Default::default()
+        };
+        s.blur.enabled = false;
+        s.ray_sd.radius_cutoff = cutoff;
+        let mut r = Renderer::new(&gpu, &scene, &s, 160, 96, 16).unwrap();
+        r.render(&camera, None).unwrap();
+        let requested = r
+            .read_sd_requests()
+            .unwrap()
+            .map_or(0, |m| m.iter().filter(|&&v| v != 0).count());
+        (r.read_raw_ao().unwrap(), requested)
+    };
+    let (vao, _) = run(Technique::Vao, 0.0);
+    let (all, requested_all) = run(Technique::RaySdVao, 0.0);
+    let (cut, requested_cut) = run(Technique::RaySdVao, 6.0);
+    let (none, requested_none) = run(Technique::RaySdVao, 1.0e6);
+    println!("requested pixels: no cutoff {requested_all}, 6 px {requested_cut}, 1e6 px {requested_none}");
+    assert!(requested_all > 0 && requested_cut < requested_all && requested_none == 0);
+    let worst = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0f32, f32::max)
+    };
+    assert!(worst(&none, &vao) <= 1e-5, "{}", worst(&none, &vao));
+    assert!(worst(&cut, &all) > 0.0, "the cutoff changes something");
+}

@@ -236,6 +236,10 @@ impl SourcePass {
             if sd.compensation != 1.0 {
                 constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
             }
+            let cutoff = settings.ray_sd.radius_cutoff;
+            if kind == Source::RayStochasticDepth && cutoff > 0.0 {
+                constants.push(("SD_RADIUS_CUTOFF", f64::from(cutoff)));
+            }
         }
         Ok(Self {
             kind,

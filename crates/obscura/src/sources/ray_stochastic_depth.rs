@@ -6,9 +6,9 @@
 //! `sd_load` differ ([`bindings_wgsl`]).
 //!
 //! Built so far: collection by ray at full, 1/2 and 1/4 resolution with the jittered positions of
-//! §3.3 (not varied per frame), limited to the requested pixels on a two-phase schedule. Not yet:
-//! the ray interval optimisation (§3.2), the radius cutoff (§3.4) and the guard band of the map
-//! (§3.5).
+//! §3.3 (not varied per frame), limited to the requested pixels on a two-phase schedule, and the
+//! radius cutoff of §3.4 (`read.wgsl`'s `SD_RADIUS_CUTOFF`). Not yet: the ray interval
+//! optimisation (§3.2) and the guard band of the map (§3.5).
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::bvh::gpu::GpuBvh;

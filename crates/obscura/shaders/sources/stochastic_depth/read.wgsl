@@ -10,6 +10,11 @@
 // the default); a switch to measure what the heuristic saves and what it changes.
 override SD_QUERY_ALWAYS: bool = false;
 
+// The ray-traced map's radius cutoff (seed 002 §3.4, `ray_sd.radius_cutoff`): a sample closer
+// than this many pixels to its shading pixel keeps the first layer's answer and never reads (or,
+// in phase 1, requests) the map. 0: off (the raster map's rows).
+override SD_RADIUS_CUTOFF: f32 = 0.0;
+
 // `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
 // exactly these samples.
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
@@ -18,6 +23,10 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
         let pixel = vec2<u32>(l.px);
         l.trace = any(pixel != estimator_shading_pixel(p))
             && !is_background(textureLoad(depth_tex, pixel, 0).r);
+    }
+    if (SD_RADIUS_CUTOFF > 0.0 && l.trace) {
+        let shading = vec2<f32>(estimator_shading_pixel(p)) + 0.5;
+        l.trace = distance(l.px, shading) >= SD_RADIUS_CUTOFF;
     }
     return l;
 }
