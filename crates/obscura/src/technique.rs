@@ -66,6 +66,9 @@ techniques!(
     HbaoPlusInterleaved,
     /// `hbao+-dual`: HBAO+; samples behind a too-near first surface also read the second layer.
     HbaoPlusDual,
+    /// `ray-sd-hbao`: HBAO; a step above the tangent plane beyond R reads the ray-traced
+    /// stochastic depth map (seed 002 §3.1 with seed 001's Algorithm 2).
+    RaySdHbao,
     /// `sd-hbao+`: HBAO+ over the stochastic depth map (seed 001 §3.2, the authors' HBAO+SD).
     SdHbaoPlus,
     /// `sd-hbao+-stenciled`: SD-HBAO+ in two phases; the map is rasterised only where phase 1
@@ -95,7 +98,10 @@ techniques!(
     SdGtaoVb,
     /// `sd-gtao-vb-stenciled`: SD-GTAO-VB in two phases; the map is rasterised only where phase 1
     /// asked.
-    SdGtaoVbStenciled
+    SdGtaoVbStenciled,
+    /// `ray-sd-gtao-vb`: GTAO-VB; every sample also marks the sectors of every depth of the
+    /// ray-traced stochastic depth map.
+    RaySdGtaoVb
 );
 
 /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
@@ -307,6 +313,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::RaySdHbao,
+        name: "ray-sd-hbao",
+        summary: "HBAO; a step above the tangent plane beyond R reads the ray-traced map",
+        paper: "seed 002 §3.1, seed 001 §3.2 (Algorithm 2)",
+        estimator: Estimator::Hbao,
+        source: Source::RayStochasticDepth,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::HbaoPlus,
         name: "hbao+",
         summary: "HBAO+: per-sample horizon AO, 8 directions × 4 steps (the authors' baseline)",
@@ -449,6 +464,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::GtaoVb,
         source: Source::StochasticDepth,
         schedule: Schedule::TwoPhase,
+    },
+    TechniqueRow {
+        technique: Technique::RaySdGtaoVb,
+        name: "ray-sd-gtao-vb",
+        summary: "GTAO-VB; every sample also marks the sectors of every ray-traced map depth",
+        paper: "seed 003, seed 002 §3.1",
+        estimator: Estimator::GtaoVb,
+        source: Source::RayStochasticDepth,
+        schedule: Schedule::Single,
     },
 ];
 
