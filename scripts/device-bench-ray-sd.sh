@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The ray-traced stochastic depth map (issue 12, seed 002) against the raster map, in one device
 # call: `obscura bench --techniques vao,sd-vao,sd-svao,ray-sd-vao-full,ray-sd-vao` (then
-# `sd-svao --sd-mask discard`, and the ray-traced rows at 1/2 and 1/4 resolution) at 1920x1080
+# `sd-svao --sd-mask discard`, the ray-traced rows at 1/2 and 1/4 resolution, and `ray-sd-vao`
+# without ray intervals at 1/1 and 1/4) at 1920x1080
 # on Crytek Sponza (camera of BENCHMARKS.md) and the built-in tower and stairs close-ups, medians
 # of 100 frames after 20 warm-up frames. Writes $OUT/summary.md and $OUT/runs.tar.gz.
 # Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza) and .gl.
@@ -24,6 +25,10 @@ for scene in sponza tower stairs; do
   for res in 2 4; do
     bench "$scene-res$res" "${args[@]}" --techniques ray-sd-vao-full,ray-sd-vao --ray-sd-res $res
   done
+  for res in 1 4; do
+    bench "$scene-nointervals-res$res" "${args[@]}" --techniques ray-sd-vao --ray-sd-res $res \
+      --no-intervals
+  done
 done
 python3 - "$runs" <<'PY' | tee "$out/summary.md"
 import json, pathlib, sys
@@ -41,6 +46,8 @@ for path in sorted(runs.glob("*.json")):
         name = r["technique"] + (" (discard)" if "discard" in path.stem else "")
         if "-res" in path.stem:
             name += " 1/" + path.stem.rsplit("res", 1)[1]
+        if "nointervals" in path.stem:
+            name += " (no intervals)"
         print(f"| {path.stem.split('-')[0]} | {name} | {sd:.3f} | {ao:.3f} | {total:.3f} |")
 PY
 tar -C "$out" -czf "$out/runs.tar.gz" runs && rm -rf "$runs"

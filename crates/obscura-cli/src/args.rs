@@ -172,6 +172,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.seed", "--ray-sd-seed"),
     ("ray_sd.resolution", "--ray-sd-res"),
     ("ray_sd.radius_cutoff", "--radius-cutoff"),
+    ("ray_sd.intervals", "--no-intervals"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
     ("multiview.angle", "--mv-angle"),
@@ -523,6 +524,11 @@ pub struct AoArgs {
         "ray_sd.radius_cutoff"
     ))]
     pub radius_cutoff: Option<f32>,
+    /// ray-sd-vao: trace each ray of the ray-traced map from the first layer to the scene's end
+    /// instead of over the depths phase 1's samples need (seed 002 §3.2's ray intervals, on by
+    /// default).
+    #[arg(long)]
+    pub no_intervals: bool,
     #[arg(long, help = help(
         "Run the technique at 'full' resolution (default) or at 'half' (a quarter of the pixels, \
          seed 001 Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
@@ -668,6 +674,9 @@ impl AoArgs {
         set(&mut ray.seed, self.ray_sd_seed);
         set(&mut ray.resolution, self.ray_sd_res);
         set(&mut ray.radius_cutoff, self.radius_cutoff);
+        if self.no_intervals {
+            ray.intervals = false;
+        }
         if self.bent_normals {
             s.bent_normals = true;
         }
@@ -820,10 +829,10 @@ mod tests {
             }
         }
         // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
-        // (--vb-cosine), bent_normals (--bent-normals) and ray_sd.z_cull (--no-z-cull), and
-        // blur.sigma (--blur-sigma) and multiview.focus (--mv-focus), whose defaults are to be
-        // left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 6);
+        // (--vb-cosine), bent_normals (--bent-normals), ray_sd.z_cull (--no-z-cull) and
+        // ray_sd.intervals (--no-intervals), and blur.sigma (--blur-sigma) and multiview.focus
+        // (--mv-focus), whose defaults are to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 7);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

@@ -49,6 +49,9 @@ pub const SOURCE_SD_NEAR: u32 = 0;
 pub const SOURCE_SD_REQUEST: u32 = 1;
 /// One multisampled depth texture per stacked stochastic depth map from here on.
 pub const SOURCE_SD_MAPS: u32 = 2;
+/// Ray-traced stochastic depth: two `u32` per framebuffer pixel, the depth interval phase 1's
+/// samples need there (`shaders/sources/ray_stochastic_depth/request.wgsl`).
+pub const SOURCE_SD_INTERVAL: u32 = 6;
 /// The multi-view schedule's second view: the camera's view and the transform into the second
 /// (`shaders/schedules/multiview/point.wgsl`), after the maps' bindings.
 pub const SOURCE_MULTIVIEW: u32 = 12;
@@ -98,6 +101,7 @@ const NAMED: &[(&str, u32)] = &[
     ("SOURCE_SD_NEAR", SOURCE_SD_NEAR),
     ("SOURCE_SD_REQUEST", SOURCE_SD_REQUEST),
     ("SOURCE_SD_MAPS", SOURCE_SD_MAPS),
+    ("SOURCE_SD_INTERVAL", SOURCE_SD_INTERVAL),
     ("SOURCE_MULTIVIEW", SOURCE_MULTIVIEW),
     ("SOURCE_PYRAMID_PARAMS", SOURCE_PYRAMID_PARAMS),
     ("SOURCE_PYRAMID_LEVELS", SOURCE_PYRAMID_LEVELS),

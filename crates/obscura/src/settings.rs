@@ -627,6 +627,10 @@ pub struct RaySdSettings {
     /// its shading pixel keeps the first layer's answer and never requests the map. 0: off (the
     /// default, so the map is read wherever the raster map's rows read theirs).
     pub radius_cutoff: f32,
+    /// Ray intervals (seed 002 §3.2, the authors' default): on a two-phase schedule a ray is
+    /// traced only over the depths phase 1's samples need there. Off: from the first layer to the
+    /// scene's end.
+    pub intervals: bool,
 }
 
 impl Default for RaySdSettings {
@@ -638,6 +642,7 @@ impl Default for RaySdSettings {
             seed: 0,
             resolution: 1,
             radius_cutoff: 0.0,
+            intervals: true,
         }
     }
 }
@@ -1778,7 +1783,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 66, "{paths:?}");
+        assert_eq!(paths.len(), 67, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();

@@ -29,6 +29,10 @@ pub const STOCHASTIC_DEPTH_SAMPLES: &str =
     include_str!("../shaders/sources/stochastic_depth/samples.wgsl");
 pub const RAY_SD_COLLECT: &str =
     include_str!("../shaders/sources/ray_stochastic_depth/collect.wgsl");
+pub const RAY_SD_REQUEST: &str =
+    include_str!("../shaders/sources/ray_stochastic_depth/request.wgsl");
+pub const STOCHASTIC_DEPTH_REQUEST: &str =
+    include_str!("../shaders/sources/stochastic_depth/request.wgsl");
 pub const STOCHASTIC_DEPTH_MAP: &str = include_str!("../shaders/sources/stochastic_depth/map.wgsl");
 pub const STOCHASTIC_DEPTH_RESET: &str =
     include_str!("../shaders/sources/stochastic_depth/reset.wgsl");

@@ -47,14 +47,23 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             out.push(("S=4 query always".into(), always));
             out
         }
+        // The two-phase row's rays cover only the depths phase 1's samples need (ray intervals),
+        // the single-pass twin's the whole ray, so their reservoirs see other hits: the images
+        // agree without intervals, or with a reservoir that keeps every hit.
         Source::RayStochasticDepth => {
-            let mut small = base;
+            let mut plain = base;
+            plain.ray_sd.intervals = false;
+            let mut small = plain;
             small.ray_sd.reservoir = 2;
             small.ray_sd.max_count = 3;
             small.ray_sd.z_cull = false;
+            let mut large = base;
+            large.ray_sd.reservoir = 8;
+            large.ray_sd.max_count = 64;
             vec![
-                ("defaults".into(), base),
-                ("N=2 MAX_COUNT=3 no z-cull".into(), small),
+                ("no intervals".into(), plain),
+                ("N=2 MAX_COUNT=3 no z-cull, no intervals".into(), small),
+                ("N=8 MAX_COUNT=64 with intervals".into(), large),
             ]
         }
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {

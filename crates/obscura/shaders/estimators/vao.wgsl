@@ -248,6 +248,31 @@ fn estimator_combine(a: f32, b: f32) -> f32 {
 
 // Missing-occlusion compensation (seed 001 §4; read.wgsl's SD_COMPENSATION): a stochastic
 // sample's occluded part of the column, length − free, counts `factor` times (never below 0 free).
+// The linear depths along the camera ray through framebuffer point `px` at which a surface can
+// lower the sample's value (for the ray-traced stochastic depth map's ray intervals, seed 002
+// §3.2). column_visibility is the whole column (no change) for heights at or below the column's
+// end and for heights at or above the halo's end, (1 + thickness) R + the column length, so only
+// heights strictly between matter. The height of a point is affine in its position
+// (column_height), and a point of the ray is affine in its depth, so the height along the ray is
+// h(depth) = h0 + depth (h1 − h0); the interval is where it lies in (end, halo end), widened by
+// a relative 1e-3 for rounding.
+fn estimator_depth_interval(p: VaoPixel, s: VaoSample, px: vec2<f32>) -> vec2<f32> {
+    let h0 = column_height(p.frame, s.column, vec3<f32>(0.0));
+    let h1 = column_height(p.frame, s.column, pixel_to_view(view, px, 1.0));
+    let slope = h1 - h0;
+    let low = s.column.end;
+    let high = (1.0 + params.thickness) * params.radius + (s.column.start - s.column.end);
+    if (abs(slope) < 1e-12) {
+        return vec2<f32>(0.0, 3.0e38);
+    }
+    let a = (low - h0) / slope;
+    let b = (high - h0) / slope;
+    let lo = max(min(a, b), 0.0);
+    let hi = max(a, b);
+    let slack = 1e-3 * hi + 1e-3 * params.radius;
+    return vec2<f32>(max(lo - slack, 0.0), hi + slack);
+}
+
 fn estimator_compensate(p: VaoPixel, s: VaoSample, value: f32, factor: f32) -> f32 {
     let length = s.column.start - s.column.end;
     return max(length - factor * (length - value), 0.0);

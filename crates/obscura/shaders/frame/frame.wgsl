@@ -39,6 +39,9 @@ struct DepthLookup {
     trace: bool,
     px: vec2<f32>,
     t_after: f32,
+    // The ray-traced stochastic depth map with ray intervals: the linear depths along the ray
+    // through `px` that can change the value (estimator_depth_interval); unused elsewhere.
+    interval: vec2<f32>,
 }
 
 // The first depth layer's answer for a sample, shared by the depth-buffer sources (first layer,

@@ -12,6 +12,7 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao.wgsl"),
     include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
 );
 /// Its `override` constants: the sample count, slices × 2 × steps, and the steps per side.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "STEPS"];

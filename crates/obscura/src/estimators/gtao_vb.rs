@@ -11,6 +11,7 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/slice_visibility.wgsl"),
     include_str!("../../shaders/estimators/gtao_vb.wgsl"),
     include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
 );
 /// Its `override` constants: the sample count, slices × 2 × steps, and whether sectors are
 /// cosine-weighted (1) or counted alike (0, seed 003).

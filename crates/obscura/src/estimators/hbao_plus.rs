@@ -11,6 +11,7 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
     include_str!("../../shaders/estimators/hbao_plus.wgsl"),
     include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
     include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the sample count, directions × steps.

@@ -11,6 +11,7 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/spiral.wgsl"),
     include_str!("../../shaders/estimators/ssao.wgsl"),
     include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
     include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the sample count.

@@ -48,6 +48,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
 fn estimator_combine(a: f32, b: f32) -> f32 { return min(a, b); }
 fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, v: f32, factor: f32) -> f32 { return v; }
 fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, v: f32) -> vec3<f32> { return vec3<f32>(0.0); }
+fn estimator_depth_interval(p: EstimatorPixel, s: EstimatorSample, px: vec2<f32>) -> vec2<f32> { return vec2<f32>(0.0, 3.0e38); }
 fn estimator_bent_normal(p: EstimatorPixel, acc: EstimatorAccum, v: vec3<f32>, o: vec3<f32>) -> vec3<f32> { return vec3<f32>(0.0); }
 fn estimator_accum_init() -> EstimatorAccum { return EstimatorAccum(0.0, 0.0, 0.0); }
 fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorAccum {

@@ -14,7 +14,7 @@ pub mod depth_pyramid;
 pub mod ray_stochastic_depth;
 pub mod stochastic_depth;
 
-use crate::bindings::{self, entry, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
+use crate::bindings::{self, entry, SOURCE_SD_INTERVAL, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
 use crate::bvh::gpu::GpuBvh;
 use crate::frame::FrameInputs;
 use crate::gpu::{Gpu, PassProfiler};
@@ -50,18 +50,20 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_divisor: u32) -> Str
             parts.push(shaders::SOURCE_COLUMN_RAYS);
             parts.join("\n")
         }
-        Source::StochasticDepth => format!(
-            "{}\n{}\n{}",
-            stochastic_depth::bindings_wgsl(sd_layout),
+        Source::StochasticDepth => [
+            &stochastic_depth::bindings_wgsl(sd_layout),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
-            shaders::SOURCE_STOCHASTIC_DEPTH
-        ),
-        Source::RayStochasticDepth => format!(
-            "{}\n{}\n{}",
-            ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_divisor),
+            shaders::SOURCE_STOCHASTIC_DEPTH,
+            shaders::STOCHASTIC_DEPTH_REQUEST,
+        ]
+        .join("\n"),
+        Source::RayStochasticDepth => [
+            &ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_divisor),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
-            shaders::SOURCE_STOCHASTIC_DEPTH
-        ),
+            shaders::SOURCE_STOCHASTIC_DEPTH,
+            shaders::RAY_SD_REQUEST,
+        ]
+        .join("\n"),
         Source::DepthPyramid => shaders::SOURCE_DEPTH_PYRAMID.to_string(),
     }
 }
@@ -84,9 +86,11 @@ pub(crate) fn resolve_entries(
 /// Group-2 layout entries of phase 1 of a two-phase schedule.
 pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
-        Source::StochasticDepth | Source::RayStochasticDepth => {
-            vec![entry::storage(SOURCE_SD_REQUEST, false)]
-        }
+        Source::StochasticDepth => vec![entry::storage(SOURCE_SD_REQUEST, false)],
+        Source::RayStochasticDepth => vec![
+            entry::storage(SOURCE_SD_REQUEST, false),
+            entry::storage(SOURCE_SD_INTERVAL, false),
+        ],
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
             Vec::new()
         }
@@ -114,6 +118,9 @@ pub(crate) struct SourcePass {
     /// Two-phase stochastic depth: the SD-request mask, one u32 per framebuffer pixel (seed 000
     /// §3.9), written by phase 1, read by the map's raster passes.
     request: Option<wgpu::Buffer>,
+    /// Two-phase ray-traced stochastic depth: the depth interval phase 1's samples need per
+    /// framebuffer pixel (two u32, `ray_stochastic_depth/request.wgsl`).
+    interval: Option<wgpu::Buffer>,
     request_group: Option<wgpu::BindGroup>,
     /// The source's pipeline constants (the stochastic depth map's query switch).
     constants: Vec<(&'static str, f64)>,
@@ -162,6 +169,7 @@ impl SourcePass {
                     resolve_layout: Some(layout),
                     request_layout: None,
                     request: None,
+                    interval: None,
                     request_group: None,
                     constants: Vec::new(),
                 });
@@ -217,13 +225,24 @@ impl SourcePass {
                 mapped_at_creation: false,
             })
         });
+        let interval = (kind == Source::RayStochasticDepth && schedule.two_phase()).then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ray sd intervals"),
+                size: u64::from(full.0) * u64::from(full.1) * 8,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        });
         let request_group = match (&request_layout, &request) {
-            (Some(layout), Some(buffer)) => Some(bindings::group(
-                device,
-                "sd request",
-                layout,
-                &[(SOURCE_SD_REQUEST, buffer.as_entire_binding())],
-            )),
+            (Some(layout), Some(buffer)) => {
+                let mut resources = vec![(SOURCE_SD_REQUEST, buffer.as_entire_binding())];
+                resources.extend(
+                    interval
+                        .as_ref()
+                        .map(|b| (SOURCE_SD_INTERVAL, b.as_entire_binding())),
+                );
+                Some(bindings::group(device, "sd request", layout, &resources))
+            }
             _ => None,
         };
         let sd = &settings.stochastic_depth;
@@ -240,6 +259,9 @@ impl SourcePass {
             if kind == Source::RayStochasticDepth && cutoff > 0.0 {
                 constants.push(("SD_RADIUS_CUTOFF", f64::from(cutoff)));
             }
+            if interval.is_some() && settings.ray_sd.intervals {
+                constants.push(("SD_INTERVALS", 1.0));
+            }
         }
         Ok(Self {
             kind,
@@ -249,6 +271,7 @@ impl SourcePass {
             resolve_layout: layout_of(resolve_entries(kind, sd_layout), "source"),
             request_layout,
             request,
+            interval: interval.filter(|_| settings.ray_sd.intervals),
             request_group,
             constants,
         })
@@ -291,6 +314,9 @@ impl SourcePass {
         if let Some(request) = &self.request {
             encoder.clear_buffer(request, 0, None);
         }
+        if let Some(interval) = &self.interval {
+            encoder.clear_buffer(interval, 0, None);
+        }
     }
 
     /// Renders what the resolving pass reads (the stochastic depth map; for a two-phase schedule
@@ -314,7 +340,7 @@ impl SourcePass {
                 device,
                 encoder,
                 frame.depth,
-                self.request.as_ref(),
+                self.request.as_ref().map(|r| (r, self.interval.as_ref())),
                 profiler,
             ),
             Held::DepthPyramid(pyramid) => pyramid.build(device, encoder, frame.depth, profiler),

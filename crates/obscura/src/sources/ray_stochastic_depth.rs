@@ -7,8 +7,10 @@
 //!
 //! Built so far: collection by ray at full, 1/2 and 1/4 resolution with the jittered positions of
 //! §3.3 (not varied per frame), limited to the requested pixels on a two-phase schedule, and the
-//! radius cutoff of §3.4 (`read.wgsl`'s `SD_RADIUS_CUTOFF`). Not yet: the ray interval
-//! optimisation (§3.2) and the guard band of the map (§3.5).
+//! radius cutoff of §3.4 (`read.wgsl`'s `SD_RADIUS_CUTOFF`), and the ray intervals of §3.2
+//! (phase 1 records per pixel the depths its samples need, `estimator_depth_interval`; VAO
+//! narrows them, the other estimators trace the whole ray). Not yet: the guard band of the map
+//! (§3.5).
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::bvh::gpu::GpuBvh;
@@ -32,7 +34,8 @@ struct RaySdParams {
     size: [u32; 2],
     map_size: [u32; 2],
     divisor: u32,
-    _pad: [u32; 3],
+    intervals: u32,
+    _pad: [u32; 2],
     jitter: [[f32; 4]; 16],
 }
 
@@ -147,7 +150,7 @@ impl RayStochasticDepthMap {
             }),
             depths: storage("ray sd depths", pixels * u64::from(settings.reservoir) * 4),
             hits: storage("ray sd hits", pixels * 4),
-            no_request: storage("ray sd no request", 4),
+            no_request: storage("ray sd no request", 8),
             pipeline: crate::gpu::compute_pipeline_with(
                 device,
                 "ray sd collect",
@@ -175,7 +178,8 @@ impl RayStochasticDepthMap {
             size: [self.size.0, self.size.1],
             map_size: [self.map_size().0, self.map_size().1],
             divisor: self.settings.resolution,
-            _pad: [0; 3],
+            intervals: u32::from(self.settings.intervals && requested_only),
+            _pad: [0; 2],
             jitter: sobol_jitter().map(|[x, y]| [x, y, 0.0, 0.0]),
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
@@ -183,16 +187,19 @@ impl RayStochasticDepthMap {
     }
 
     /// Trace the map behind `first_layer` (the G-buffer's linear depth); with `request`, only
-    /// the pixels whose u32 in it is non-zero (elsewhere the map keeps what earlier frames left).
-    /// Timing: `sd_map`.
+    /// the pixels whose u32 in it is non-zero (elsewhere the map keeps what earlier frames left),
+    /// and with its interval buffer only the depths those pixels' samples need (ray intervals,
+    /// seed 002 §3.2). Timing: `sd_map`.
     pub fn render(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         first_layer: &wgpu::TextureView,
-        request: Option<&wgpu::Buffer>,
+        request: Option<(&wgpu::Buffer, Option<&wgpu::Buffer>)>,
         profiler: Option<&mut PassProfiler>,
     ) {
+        let interval = request.and_then(|(_, interval)| interval);
+        let request = request.map(|(request, _)| request);
         let group0 = crate::gpu::bind_group(
             device,
             "ray sd collect",
@@ -203,6 +210,7 @@ impl RayStochasticDepthMap {
                 request.unwrap_or(&self.no_request).as_entire_binding(),
                 self.depths.as_entire_binding(),
                 self.hits.as_entire_binding(),
+                interval.unwrap_or(&self.no_request).as_entire_binding(),
             ],
         );
         let group1 = crate::bindings::group(

@@ -36,7 +36,8 @@ struct RaySdParams {
     // The map's size in texels, ⌈size / divisor⌉.
     map_size: vec2<u32>,
     divisor: u32,
-    _pad0: u32,
+    // Non-zero: trace only the depth interval phase 1's samples need (seed 002 §3.2).
+    intervals: u32,
     _pad1: u32,
     _pad2: u32,
     // xy: the jitter of texels with (t.y % 4) · 4 + t.x % 4 = index, in [0, 1)².
@@ -59,6 +60,9 @@ override Z_CULL: bool = true;
 @group(0) @binding(3) var<storage, read_write> sd_depths: array<f32>;
 // Hits handled per texel (the debug output "hits per ray").
 @group(0) @binding(4) var<storage, read_write> sd_hits: array<u32>;
+// Per framebuffer pixel, read when `intervals`: the complement of the nearest needed depth's
+// bits (0: none) and the farthest needed depth's bits (ray_stochastic_depth/request.wgsl).
+@group(0) @binding(5) var<storage, read> sd_interval: array<u32>;
 
 var<private> slots: array<f32, 8>;
 var<private> count: u32;
@@ -91,15 +95,27 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let texel = id.y * params.map_size.x + id.x;
     let d = params.divisor;
     let block = id.xy * d;
+    // The depths the block's requests need (all of them without intervals).
+    var needed = vec2<f32>(0.0, 3.0e38);
     if (params.requested_only != 0u) {
         var requested = false;
+        var nearest = 0u;
+        var farthest = 0u;
         for (var y = block.y; y < min(block.y + d, params.size.y); y++) {
             for (var x = block.x; x < min(block.x + d, params.size.x); x++) {
-                requested = requested || sd_request[y * params.size.x + x] != 0u;
+                let i = y * params.size.x + x;
+                requested = requested || sd_request[i] != 0u;
+                if (params.intervals != 0u) {
+                    nearest = max(nearest, sd_interval[2u * i]);
+                    farthest = max(farthest, sd_interval[2u * i + 1u]);
+                }
             }
         }
         if (!requested) {
             return;
+        }
+        if (params.intervals != 0u) {
+            needed = vec2<f32>(bitcast<f32>(~nearest), bitcast<f32>(farthest));
         }
     }
     for (var i = 0u; i < 8u; i++) {
@@ -120,7 +136,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let view_dir = far_point.xyz / -far_point.z;
         let origin = (params.camera_to_world * vec4<f32>(0.0, 0.0, 0.0, 1.0)).xyz;
         let dir = (params.camera_to_world * vec4<f32>(view_dir, 0.0)).xyz;
-        bvh_traverse(origin, dir, first + params.separation, 3.0e38);
+        let t_min = max(first + params.separation, needed.x);
+        if (t_min <= needed.y) {
+            bvh_traverse(origin, dir, t_min, needed.y);
+        }
     }
     for (var i = 0u; i < RESERVOIR; i++) {
         sd_depths[texel * RESERVOIR + i] = select(0.0, params.near / slots[i], slots[i] < 3.0e38);

@@ -15,6 +15,11 @@ override SD_QUERY_ALWAYS: bool = false;
 // in phase 1, requests) the map. 0: off (the raster map's rows).
 override SD_RADIUS_CUTOFF: f32 = 0.0;
 
+// The ray-traced map's ray intervals (seed 002 §3.2, `ray_sd.intervals`): a traced sample also
+// carries the depths along its ray that can change its value (estimator_depth_interval), which
+// phase 1's request records for the map's rays. Off: the raster map's rows.
+override SD_INTERVALS: bool = false;
+
 // `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
 // exactly these samples.
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
@@ -28,6 +33,9 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
         let shading = vec2<f32>(estimator_shading_pixel(p)) + 0.5;
         l.trace = distance(l.px, shading) >= SD_RADIUS_CUTOFF;
     }
+    if (SD_INTERVALS && l.trace) {
+        l.interval = estimator_depth_interval(p, s, l.px);
+    }
     return l;
 }
 
@@ -35,13 +43,4 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
 // (samples.wgsl).
 fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     return sd_resolve(p, s, l);
-}
-
-// Two-phase phase 1: mark the sample's pixel (not the shading pixel) so the map is rasterised there
-// (seed 000 §3.9). One u32 per framebuffer pixel; every writer stores 1.
-@group(GROUP_SOURCE) @binding(SOURCE_SD_REQUEST) var<storage, read_write> sd_request: array<u32>;
-
-fn source_request(l: DepthLookup) {
-    let pixel = vec2<u32>(l.px);
-    sd_request[pixel.y * view.full_size.x + pixel.x] = 1u;
 }
