@@ -649,6 +649,53 @@ fn no_matching_adapter_says_how_to_get_one() {
 }
 
 #[test]
+fn debug_out_shows_the_ray_traced_map() {
+    // ray-sd-vao at 1/2 resolution: the map's layers at the framebuffer's size, its hits per ray
+    // at the map's (each between 1 and MAX_COUNT where a ray met a surface), and the request.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ao.png");
+    let debug = dir.path().join("debug");
+    let o = obscura(&[
+        "render",
+        "--scene",
+        "stairs",
+        "--size",
+        "96x64",
+        "--guard-band",
+        "8",
+        "--technique",
+        "ray-sd-vao",
+        "--ray-sd-res",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--debug-out",
+        debug.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(debug.join("stats.json")).unwrap()).unwrap();
+    assert_eq!(stats["ray_sd"]["resolution"], 2);
+    assert_eq!(
+        (stats["map_width"].as_u64(), stats["map_height"].as_u64()),
+        (Some(56), Some(40))
+    );
+    let mean = stats["hits_per_ray_mean"].as_f64().unwrap();
+    assert!((1.0..=8.0).contains(&mean), "{stats}");
+    assert!(stats["requested_pixels"].as_u64().unwrap() > 0, "{stats}");
+    for (file, size) in [
+        ("sd_layer.png", (112, 80)),
+        ("sd_counts.png", (112, 80)),
+        ("sd_request.png", (112, 80)),
+        ("sd_hits.png", (56, 40)),
+        ("samples.png", (96, 64)),
+    ] {
+        let img = image::open(debug.join(file)).unwrap();
+        assert_eq!((img.width(), img.height()), size, "{file}");
+    }
+}
+
+#[test]
 fn debug_out_shows_the_flagged_samples() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ao.png");

@@ -677,7 +677,10 @@ impl TechniqueRow {
     /// image ([`Estimator::debug_image`]).
     pub fn has_debug_output(&self) -> bool {
         self.schedule.two_phase()
-            || self.source == Source::StochasticDepth
+            || matches!(
+                self.source,
+                Source::StochasticDepth | Source::RayStochasticDepth
+            )
             || self.estimator_debug_image().is_some()
     }
 

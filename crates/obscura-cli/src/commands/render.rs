@@ -2,6 +2,7 @@ use crate::args::{parse_size, parse_technique, AoArgs, SceneArgs};
 use crate::progress::spinner;
 use anyhow::Result;
 use clap::Args;
+use obscura::technique::Source;
 use obscura::{output, Renderer, Technique};
 use std::path::PathBuf;
 
@@ -33,7 +34,8 @@ pub struct RenderArgs {
     /// Write the technique's intermediate images and statistics into this folder. Two-phase
     /// techniques: the per-pixel count of flagged samples (samples.png). Stochastic-depth
     /// techniques: one stochastic depth layer (sd_layer.png), the stored samples per pixel
-    /// (sd_counts.png) and, two-phase, the SD-request mask (sd_request.png). Always stats.json.
+    /// (sd_counts.png) and, two-phase, the SD-request mask (sd_request.png); the ray-traced map
+    /// also its hits per ray (sd_hits.png). Always stats.json.
     #[arg(long, help = debug_out_help())]
     debug_out: Option<PathBuf>,
 }
@@ -92,7 +94,7 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
             .map(|ao| ao.work_screen())
             .ok_or_else(|| anyhow::anyhow!("nothing rendered"))?;
         let (w, h, g) = (work.width, work.height, work.guard_band);
-        if row.needs().stochastic_depth_map {
+        if row.needs().stochastic_depth_map || row.source == Source::RayStochasticDepth {
             write_sd_debug(dir, &renderer, &settings, (w, h), g)?
         } else if row.schedule.two_phase() {
             let samples = obscura::estimators::samples_per_pixel(row.estimator, &settings);
@@ -226,7 +228,10 @@ fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
 /// - `sd_counts.png`: stored samples per pixel / S (black: none, white: all S);
 /// - two-phase only: `sd_request.png` (white = phase 1 requested the map there) and the phase-1
 ///   flagged samples per visible pixel `samples.png` (count / VAO samples, as for rt-svao);
-/// - `stats.json`: settings, layout and the fractions.
+/// - `stats.json`: settings, layout and the fractions;
+/// - the ray-traced map (`ray-sd-*`, one layer per reservoir slot): also `sd_hits.png`, the hits
+///   each texel's ray handled / MAX_COUNT at the map's resolution (seed 002's "hits per ray"),
+///   and their mean over the traced texels in `stats.json`.
 fn write_sd_debug(
     dir: &std::path::Path,
     renderer: &Renderer,
@@ -284,12 +289,23 @@ fn write_sd_debug(
     let stored_samples: u64 = counts.iter().map(|&c| u64::from(c)).sum();
     let all_samples = texels as u64 * layers.len() as u64;
     let stored_fraction = stored_samples as f64 / all_samples.max(1) as f64;
-    let mut stats = serde_json::json!({
-        "technique": settings.technique.name(),
-        "sd_samples": sd.samples,
-        // Through its shortest decimal form: 0.2, not 0.20000000298023224.
-        "sd_alpha": sd.alpha().to_string().parse::<f64>().ok(),
-        "sd_seed": sd.seed,
+    let ray = settings.technique.row().source == Source::RayStochasticDepth;
+    let mut stats = if ray {
+        let r = settings.ray_sd;
+        serde_json::json!({
+            "technique": settings.technique.name(),
+            "ray_sd": serde_json::to_value(r)?,
+        })
+    } else {
+        serde_json::json!({
+            "technique": settings.technique.name(),
+            "sd_samples": sd.samples,
+            // Through its shortest decimal form: 0.2, not 0.20000000298023224.
+            "sd_alpha": sd.alpha().to_string().parse::<f64>().ok(),
+            "sd_seed": sd.seed,
+        })
+    };
+    let common = serde_json::json!({
         "layout": { "maps": layout.maps, "samples_per_map": layout.samples_per_map },
         "framebuffer_width": fw,
         "framebuffer_height": fh,
@@ -302,15 +318,43 @@ fn write_sd_debug(
             far,
         ],
     });
+    if let (Some(stats), serde_json::Value::Object(common)) = (stats.as_object_mut(), common) {
+        stats.extend(common);
+    }
     let maps = match layout.maps {
         1 => "one map".to_string(),
         n => format!("{n} maps of {}", layout.samples_per_map),
     };
-    let mut summary = format!(
-        "debug: S = {} ({maps}), {:.2} % of all samples stored",
-        sd.samples,
-        100.0 * stored_fraction
-    );
+    let mut summary = if ray {
+        format!(
+            "debug: N = {} slots per texel, {:.2} % of all slots filled",
+            layout.samples(),
+            100.0 * stored_fraction
+        )
+    } else {
+        format!(
+            "debug: S = {} ({maps}), {:.2} % of all samples stored",
+            layout.samples(),
+            100.0 * stored_fraction
+        )
+    };
+    if let Some(hits) = renderer.read_ray_sd_hits()? {
+        let r = settings.ray_sd;
+        let (mw, mh) = (fw.div_ceil(r.resolution), fh.div_ceil(r.resolution));
+        let image: Vec<f32> = hits
+            .iter()
+            .map(|&h| h as f32 / r.max_count as f32)
+            .collect();
+        output::write_ao(&dir.join("sd_hits.png"), mw, mh, &image)?;
+        let traced: Vec<u32> = hits.iter().copied().filter(|&h| h > 0).collect();
+        let mean = traced.iter().map(|&h| f64::from(h)).sum::<f64>() / traced.len().max(1) as f64;
+        if let Some(stats) = stats.as_object_mut() {
+            stats.insert("map_width".into(), mw.into());
+            stats.insert("map_height".into(), mh.into());
+            stats.insert("hits_per_ray_mean".into(), mean.into());
+        }
+        summary += &format!(", {mean:.2} hits per ray (rays that met one)");
+    }
     if let Some(requests) = renderer.read_sd_requests()? {
         let mask: Vec<f32> = requests
             .iter()

@@ -381,11 +381,18 @@ impl AmbientOcclusion {
         &self.raw
     }
 
-    /// The stochastic depth map's layout (stochastic-depth rows only).
+    /// The stochastic depth map's layout (stochastic-depth rows only; the ray-traced map: one
+    /// map of N slots).
     pub fn stochastic_depth_layout(&self) -> Option<SdLayout> {
         self.source
             .stochastic_depth()
             .map(StochasticDepthMap::layout)
+            .or_else(|| {
+                self.source.ray_stochastic_depth().map(|map| SdLayout {
+                    maps: 1,
+                    samples_per_map: map.reservoir(),
+                })
+            })
     }
 
     /// The stochastic depth map of the last frame (stochastic-depth rows): every sample layer of
