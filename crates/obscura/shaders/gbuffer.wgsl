@@ -9,9 +9,9 @@
 // The G-buffer itself is a visibility buffer (Burns and Hunt, "The Visibility Buffer: A
 // Cache-Friendly Approach to Deferred Shading", JCGT 2(2), 2013): the raster pass stores only
 // the visible triangle of each pixel (`fs_visibility*`), and gbuffer_resolve.wgsl computes depth
-// and normal from it in compute. Why: on the H100/H200 fragment shaders run on a few
-// graphics-capable units while compute runs on all of them (BENCHMARKS.md, issue 16), so the
-// less a fragment does, the faster the G-buffer. `vs_main` and `VertexOut` serve the passes that
+// and normal from it in compute. Why: on the H100/H200 we measure on, raster work (fragment
+// shading and depth testing alike) is slow and compute is fast (BENCHMARKS.md, issue 16), so
+// the raster pass does as little per fragment as it can. `vs_main` and `VertexOut` serve the passes that
 // need interpolated values per fragment (alpha test, base colour, depth peeling, the SD map).
 
 struct Camera {

@@ -148,8 +148,6 @@ impl GBuffer {
                 vertex,
                 fragment,
                 targets,
-                // The raster passes interpolate no vertex normals (the resolve does).
-                constants: &[],
             }
             .create(device)
         };
@@ -591,8 +589,6 @@ pub(crate) struct ScenePipeline<'a> {
     pub vertex: &'a str,
     pub fragment: &'a str,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
-    /// Pipeline-overridable constants of both stages (e.g. gbuffer.wgsl's `SHADING_NORMALS`).
-    pub constants: &'a [(&'a str, f64)],
 }
 
 impl ScenePipeline<'_> {
@@ -603,10 +599,7 @@ impl ScenePipeline<'_> {
             vertex: wgpu::VertexState {
                 module: self.module,
                 entry_point: Some(self.vertex),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: self.constants,
-                    ..Default::default()
-                },
+                compilation_options: Default::default(),
                 buffers: &[],
             },
             primitive: wgpu::PrimitiveState {
@@ -618,10 +611,7 @@ impl ScenePipeline<'_> {
             fragment: Some(wgpu::FragmentState {
                 module: self.module,
                 entry_point: Some(self.fragment),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: self.constants,
-                    ..Default::default()
-                },
+                compilation_options: Default::default(),
                 targets: self.targets,
             }),
             multiview_mask: None,

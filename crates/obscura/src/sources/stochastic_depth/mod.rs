@@ -345,7 +345,6 @@ impl StochasticDepthMap {
         };
         let pipelines = [Some(wgpu::Face::Back), None].map(|cull_mode| {
             ScenePipeline {
-                constants: &[],
                 layout: None,
                 module: &module,
                 cull_mode,
