@@ -653,28 +653,12 @@ fn debug_out_shows_the_ray_traced_map() {
     // ray-sd-vao at 1/2 resolution: the map's layers at the framebuffer's size, its hits per ray
     // at the map's (each between 1 and MAX_COUNT where a ray met a surface), and the request.
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ao.png");
-    let debug = dir.path().join("debug");
-    let o = obscura(&[
-        "render",
-        "--scene",
-        "stairs",
-        "--size",
-        "96x64",
-        "--guard-band",
-        "8",
-        "--technique",
+    let stats = sd_debug(
         "ray-sd-vao",
-        "--ray-sd-res",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-        "--debug-out",
-        debug.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let stats: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(debug.join("stats.json")).unwrap()).unwrap();
+        dir.path(),
+        &["--guard-band", "8", "--ray-sd-res", "2"],
+    );
+    let debug = dir.path().join("ray-sd-vao");
     assert_eq!(stats["ray_sd"]["resolution"], 2);
     assert_eq!(
         (stats["map_width"].as_u64(), stats["map_height"].as_u64()),
@@ -842,10 +826,10 @@ fn grey(path: &Path) -> (u32, u32, Vec<u8>) {
 }
 
 /// `render --debug-out` for one technique on the stairs close-up at 96x64; returns stats.json.
-fn sd_debug(technique: &str, dir: &Path) -> serde_json::Value {
+fn sd_debug(technique: &str, dir: &Path, extra: &[&str]) -> serde_json::Value {
     let out = dir.join(format!("{technique}.png"));
     let debug = dir.join(technique);
-    let o = obscura(&[
+    let mut args = vec![
         "render",
         "--scene",
         "stairs",
@@ -857,7 +841,9 @@ fn sd_debug(technique: &str, dir: &Path) -> serde_json::Value {
         out.to_str().unwrap(),
         "--debug-out",
         debug.to_str().unwrap(),
-    ]);
+    ];
+    args.extend(extra);
+    let o = obscura(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     serde_json::from_str(&std::fs::read_to_string(debug.join("stats.json")).unwrap()).unwrap()
 }
@@ -865,7 +851,7 @@ fn sd_debug(technique: &str, dir: &Path) -> serde_json::Value {
 #[test]
 fn debug_out_shows_the_stochastic_depth_map() {
     let dir = tempfile::tempdir().unwrap();
-    let stats = sd_debug("sd-svao", dir.path());
+    let stats = sd_debug("sd-svao", dir.path(), &[]);
     let debug = dir.path().join("sd-svao");
     assert_eq!(
         (stats["sd_samples"].as_u64(), stats["sd_alpha"].as_f64()),
@@ -942,7 +928,7 @@ fn debug_out_shows_the_stochastic_depth_map() {
 
     // sd-vao: the same map everywhere (no request mask, no phase 1), so at least what the
     // stenciled map stored.
-    let full = sd_debug("sd-vao", dir.path());
+    let full = sd_debug("sd-vao", dir.path(), &[]);
     let debug = dir.path().join("sd-vao");
     assert!(debug.join("sd_layer.png").is_file() && debug.join("sd_counts.png").is_file());
     assert!(!debug.join("sd_request.png").exists() && !debug.join("samples.png").exists());

@@ -289,6 +289,34 @@ pub fn hemisphere_metrics(
     )
 }
 
+/// MSE of each of `runs`' blurred AO (160×96, guard band 32, the scene's first camera) against
+/// the `vao` ground truth through the same bilateral blur (on the same depth, with the first
+/// run's blur settings), as `obscura compare` measures it: only hidden geometry differs.
+pub fn mse_against_blurred_vao_truth(gpu: &Gpu, scene: &Scene, runs: &[AoSettings]) -> Vec<f64> {
+    use obscura::bvh::Bvh;
+    use obscura::metrics::{mse, Image};
+    use obscura::reference::cpu_blur::cpu_blur;
+    use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
+    let (w, h, guard_band) = (160, 96, 32);
+    let bvh = Bvh::build(scene);
+    let mut reference = Vec::new();
+    let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
+    runs.iter()
+        .map(|s| {
+            let mut r = Renderer::new(gpu, scene, s, w, h, guard_band).unwrap();
+            r.render(&scene.cameras[0].camera, None).unwrap();
+            if reference.is_empty() {
+                let view = *r.view().unwrap();
+                let raw =
+                    render_reference(scene, &bvh, view, &ReferenceSettings::default(), &|_| {});
+                let gbuffer = r.read_gbuffer().unwrap();
+                reference = cpu_blur(&raw, &gbuffer, &view.screen(), &runs[0].blur);
+            }
+            mse(&image(&r.read_ao().unwrap()), &image(&reference)).unwrap()
+        })
+        .collect()
+}
+
 /// [`hemisphere_metrics`]' MAE, and that of no occlusion.
 pub fn hemisphere_mae(gpu: &Gpu, scene: &Scene, settings: &AoSettings, radius: f32) -> (f64, f64) {
     let (summary, baseline) = hemisphere_metrics(gpu, scene, settings, radius);

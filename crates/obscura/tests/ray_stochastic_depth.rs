@@ -5,10 +5,6 @@
 mod common;
 use common::*;
 use glam::Vec3;
-use obscura::bvh::Bvh;
-use obscura::metrics::{mse, Image};
-use obscura::reference::cpu_blur::cpu_blur;
-use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
 use obscura::scene::Scene;
 use obscura::settings::RaySdSettings;
 use obscura::{scene, AoSettings, Gpu, Renderer, Technique};
@@ -196,35 +192,21 @@ fn ray_sd_vao_beats_vao_and_raster_sd_svao_against_the_ground_truth() {
     let gpu = gpu();
     for name in ["stairs", "tower"] {
         let scene = scene::builtin(name).unwrap();
-        let bvh = Bvh::build(&scene);
-        let (w, h, guard_band) = (160, 96, 32);
-        let mut errors = Vec::new();
-        let mut reference = Vec::new();
         let runs = [
             (Technique::Vao, 1),
             (Technique::SdSvao, 1),
             (Technique::RaySdVao, 1),
             (Technique::RaySdVao, 4),
-        ];
-        for (technique, resolution) in runs {
+        ]
+        .map(|(technique, resolution)| {
             let mut s = AoSettings {
                 technique,
                 ..Default::default()
             };
             s.ray_sd.resolution = resolution;
-            let mut r = Renderer::new(&gpu, &scene, &s, w, h, guard_band).unwrap();
-            r.render(&scene.cameras[0].camera, None).unwrap();
-            if reference.is_empty() {
-                let view = *r.view().unwrap();
-                let raw =
-                    render_reference(&scene, &bvh, view, &ReferenceSettings::default(), &|_| {});
-                let gbuffer = r.read_gbuffer().unwrap();
-                reference = cpu_blur(&raw, &gbuffer, &view.screen(), &s.blur);
-            }
-            let ao = r.read_ao().unwrap();
-            let img = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
-            errors.push(mse(&img(&ao), &img(&reference)).unwrap());
-        }
+            s
+        });
+        let errors = mse_against_blurred_vao_truth(&gpu, &scene, &runs);
         let [vao, raster, ray, quarter] = errors[..] else {
             unreachable!()
         };

@@ -297,26 +297,12 @@ fn sd_vao_beats_vao_dual_beats_vao_against_the_ground_truth() {
     let gpu = gpu();
     for name in ["stairs", "colonnade"] {
         let scene = scene::builtin(name).unwrap();
-        let bvh = Bvh::build(&scene);
-        let (w, h, guard_band) = (160, 96, 32);
-        let mut errors = Vec::new();
-        let mut reference = Vec::new();
-        for technique in [Technique::Vao, Technique::VaoDual, Technique::SdVao] {
+        let runs = [Technique::Vao, Technique::VaoDual, Technique::SdVao].map(|technique| {
             let mut s = settings(technique, 4, 0.375);
             s.blur.enabled = true;
-            let mut r = Renderer::new(&gpu, &scene, &s, w, h, guard_band).unwrap();
-            r.render(&scene.cameras[0].camera, None).unwrap();
-            if reference.is_empty() {
-                let view = *r.view().unwrap();
-                let raw =
-                    render_reference(&scene, &bvh, view, &ReferenceSettings::default(), &|_| {});
-                let gbuffer = r.read_gbuffer().unwrap();
-                reference = cpu_blur(&raw, &gbuffer, &view.screen(), &s.blur);
-            }
-            let ao = r.read_ao().unwrap();
-            let img = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
-            errors.push(mse(&img(&ao), &img(&reference)).unwrap());
-        }
+            s
+        });
+        let errors = mse_against_blurred_vao_truth(&gpu, &scene, &runs);
         let [vao, dual, sd] = errors[..] else {
             unreachable!()
         };
