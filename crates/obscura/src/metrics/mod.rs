@@ -42,6 +42,10 @@
 //! [`halo_error`] measures bright/dark halos next to depth discontinuities — the
 //! characteristic artefact of screen-space AO. See [`discontinuity_mask`] and
 //! [`halo_band`] for the exact definitions.
+//!
+//! # Temporal metrics
+//! [`temporal`]: temporal error and popping along a camera path, pixels matched between frames
+//! by reprojection (definitions in that module).
 
 mod error;
 mod halo;
@@ -51,6 +55,7 @@ mod input;
 mod pointwise;
 mod ssim;
 mod sum;
+pub mod temporal;
 
 // `self::` keeps these imports unambiguous whatever extern crates the host
 // crate has.

@@ -14,6 +14,7 @@ mod camera;
 mod error;
 mod gltf_loader;
 mod obj_loader;
+mod path;
 mod procedural;
 mod scene_impl;
 mod texture;
@@ -24,6 +25,7 @@ mod real_scenes_tests;
 use std::path::{Path, PathBuf};
 
 pub use error::{CameraError, ExtentError, SceneError, MAX_EXTENT};
+pub use path::{CameraPath, Interpolation, Keyframe, PathError};
 pub use procedural::{builtin, builtin_names, layers_with_shells};
 pub use texture::MAX_TEXTURE_SIZE;
 

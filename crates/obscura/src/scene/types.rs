@@ -187,6 +187,9 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     /// Named cameras; the first one is the default (for built-ins: the close-up).
     pub cameras: Vec<NamedCamera>,
+    /// Camera paths ([`crate::scene::CameraPath`]): the built-ins' (each moves past the scene's
+    /// occluders); empty for files, which get an automatic orbit ([`Scene::path`]).
+    pub paths: Vec<super::CameraPath>,
 }
 
 impl Texture {

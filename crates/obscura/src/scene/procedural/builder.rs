@@ -8,7 +8,7 @@ use std::f32::consts::TAU;
 
 use glam::{Quat, Vec2, Vec3};
 
-use super::super::{Camera, Material, NamedCamera, Scene};
+use super::super::{Camera, CameraPath, Interpolation, Keyframe, Material, NamedCamera, Scene};
 
 /// A closed solid the builder emitted (used by tests: cameras must not be inside one).
 #[derive(Clone, Copy, Debug)]
@@ -249,6 +249,24 @@ impl Builder {
             name: name.to_string(),
             camera,
         });
+    }
+
+    /// A named camera path through `(time, eye, target, fov)` keyframes (Catmull–Rom). A bad
+    /// built-in path is a bug: the scene tests build every path.
+    pub(crate) fn path(&mut self, name: &str, keys: &[(f32, Vec3, Vec3, f32)]) {
+        let keyframes = keys
+            .iter()
+            .map(|&(time, eye, target, fov)| Keyframe {
+                time,
+                eye,
+                target,
+                fov,
+            })
+            .collect();
+        match CameraPath::new(name, Interpolation::CatmullRom, keyframes) {
+            Ok(path) => self.scene.paths.push(path),
+            Err(e) => log::error!("built-in scene '{}': {e}", self.scene.name),
+        }
     }
 
     pub(crate) fn finish(self) -> (Scene, Vec<Solid>) {

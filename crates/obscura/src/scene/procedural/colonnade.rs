@@ -75,6 +75,37 @@ pub(super) fn build() -> Builder {
         Vec3::new(0.3, 1.7, -7.0),
         45.0,
     );
+    // Truck along the front row of pillars: each pillar passes before the window frame and the
+    // wall, up to three occluders deep (seed 000 Fig. 10).
+    b.path(
+        "truck",
+        &[
+            (
+                0.0,
+                Vec3::new(-2.4, 1.6, 0.6),
+                Vec3::new(-2.4, 1.6, -4.1),
+                50.0,
+            ),
+            (
+                1.0,
+                Vec3::new(-0.8, 1.6, 0.6),
+                Vec3::new(-0.8, 1.6, -4.1),
+                50.0,
+            ),
+            (
+                2.0,
+                Vec3::new(0.8, 1.6, 0.6),
+                Vec3::new(0.8, 1.6, -4.1),
+                50.0,
+            ),
+            (
+                3.0,
+                Vec3::new(2.4, 1.6, 0.6),
+                Vec3::new(2.4, 1.6, -4.1),
+                50.0,
+            ),
+        ],
+    );
     b
 }
 

@@ -74,5 +74,15 @@ pub(super) fn build() -> Builder {
         Vec3::new(0.0, 1.0, 0.0),
         40.0,
     );
+    // Pan across the open front: the blocks' edges move over the walls behind them.
+    let look = Vec3::new(0.0, 0.55, -0.5);
+    b.path(
+        "pan",
+        &[
+            (0.0, Vec3::new(-0.75, 0.5, 1.6), look, 45.0),
+            (1.0, Vec3::new(0.0, 0.55, 1.7), look, 45.0),
+            (2.0, Vec3::new(0.75, 0.5, 1.6), look, 45.0),
+        ],
+    );
     b
 }

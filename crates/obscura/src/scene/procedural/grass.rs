@@ -77,6 +77,37 @@ pub(super) fn build() -> Builder {
         Vec3::new(0.0, 0.2, 0.0),
         45.0,
     );
+    // Walk into the patch at knee height: blades pass close to the camera, the worst case for
+    // a single depth layer (seed 000 Fig. 14).
+    b.path(
+        "walk",
+        &[
+            (
+                0.0,
+                Vec3::new(-0.4, 0.6, 1.8),
+                Vec3::new(0.2, 0.15, -0.4),
+                50.0,
+            ),
+            (
+                1.0,
+                Vec3::new(0.0, 0.55, 1.4),
+                Vec3::new(0.3, 0.15, -0.6),
+                50.0,
+            ),
+            (
+                2.0,
+                Vec3::new(0.35, 0.55, 1.15),
+                Vec3::new(0.3, 0.15, -0.6),
+                50.0,
+            ),
+            (
+                3.0,
+                Vec3::new(0.7, 0.5, 0.9),
+                Vec3::new(0.1, 0.15, -0.7),
+                50.0,
+            ),
+        ],
+    );
     b
 }
 

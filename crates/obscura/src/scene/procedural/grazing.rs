@@ -42,5 +42,16 @@ pub(super) fn build() -> Builder {
         Vec3::new(0.0, 0.3, -1.0),
         50.0,
     );
+    // Pan sideways: the panel seen edge-on turns towards the camera, the case seed 001 Fig. 3
+    // builds its second view for.
+    let look = Vec3::new(0.0, 0.2, -1.5);
+    b.path(
+        "pan",
+        &[
+            (0.0, Vec3::new(-1.5, 1.0, 3.3), look, 45.0),
+            (1.0, Vec3::new(0.0, 1.0, 3.5), look, 45.0),
+            (2.0, Vec3::new(1.5, 1.0, 3.3), look, 45.0),
+        ],
+    );
     b
 }

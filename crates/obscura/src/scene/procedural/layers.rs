@@ -67,5 +67,17 @@ pub(super) fn build_with(shells: usize) -> Builder {
         Vec3::new(0.0, 1.0, -0.8),
         55.0,
     );
+    // Swing around the wrapped pillar: the shells' silhouettes move across the background
+    // occluder (seed 001 Fig. 8).
+    let look = Vec3::new(0.0, 1.0, -1.0);
+    b.path(
+        "orbit",
+        &[
+            (0.0, Vec3::new(-1.6, 1.5, 1.6), look, 45.0),
+            (1.0, Vec3::new(-0.5, 1.5, 2.2), look, 45.0),
+            (2.0, Vec3::new(0.7, 1.5, 2.1), look, 45.0),
+            (3.0, Vec3::new(1.7, 1.5, 1.5), look, 45.0),
+        ],
+    );
     b
 }

@@ -82,6 +82,18 @@ pub(super) fn build() -> Builder {
         Vec3::new(0.0, 0.9, -1.0),
         50.0,
     );
+    // Dolly sideways past the figure: its silhouette sweeps across the steps behind it, where a
+    // single depth layer makes halos appear and vanish (seed 001 §1).
+    let look = Vec3::new(0.1, 0.85, -1.2);
+    b.path(
+        "dolly",
+        &[
+            (0.0, Vec3::new(-1.3, 1.35, 1.3), look, 50.0),
+            (1.0, Vec3::new(-0.4, 1.3, 1.2), look, 50.0),
+            (2.0, Vec3::new(0.5, 1.3, 1.2), look, 50.0),
+            (3.0, Vec3::new(1.4, 1.35, 1.3), look, 50.0),
+        ],
+    );
     b
 }
 

@@ -257,3 +257,34 @@ fn layers_can_have_fewer_shells() {
         assert!(err.contains(&format!("{bad} shells")), "{err}");
     }
 }
+
+#[test]
+fn every_builtin_has_a_path_that_stays_outside_solids() {
+    for &name in builtin_names() {
+        let (scene, solids) = build_ok(name);
+        assert!(!scene.paths.is_empty(), "{name}: no camera path");
+        let b = scene.bounds();
+        for path in &scene.paths {
+            let frames = path
+                .sample(64)
+                .unwrap_or_else(|e| panic!("{name}/{}: {e}", path.name));
+            for (t, c) in frames {
+                assert!(
+                    c.eye.cmpge(b.min).all() && c.eye.cmple(b.max).all()
+                        || c.eye.distance(b.center()) < b.diagonal(),
+                    "{name}/{} t = {t}: eye {} far from the scene",
+                    path.name,
+                    c.eye
+                );
+                for s in &solids {
+                    assert!(
+                        !s.contains(c.eye),
+                        "{name}/{} t = {t}: eye {} inside {s:?}",
+                        path.name,
+                        c.eye
+                    );
+                }
+            }
+        }
+    }
+}

@@ -72,5 +72,23 @@ pub(super) fn build() -> Builder {
         Vec3::new(-0.5, 5.5, 0.5),
         60.0,
     );
+    // Climb the spiral: the eye walks 1.5 turns up the steps, 1.4 m above them, looking ahead
+    // along the stairs (seed 002 Fig. 1).
+    let keys: Vec<(f32, Vec3, Vec3, f32)> = (0..7)
+        .map(|k| {
+            let phi = 0.6 + k as f32 * 0.25 * TAU;
+            let height = |phi: f32| (phi / (TAU / STEPS_PER_TURN as f32) + 1.0) * RISE + 1.4;
+            let at = |phi: f32, radius: f32, lift: f32| {
+                Vec3::new(radius * phi.cos(), height(phi) + lift, radius * phi.sin())
+            };
+            (
+                k as f32 * 0.5,
+                at(phi, 1.9, 0.0),
+                at(phi + 1.2, 1.4, -0.3),
+                60.0,
+            )
+        })
+        .collect();
+    b.path("climb", &keys);
     b
 }
