@@ -86,7 +86,7 @@ impl Reprojection {
                 let px = Vec2::new((i % w) as f32 + 0.5 + g_cur, (i / w) as f32 + 0.5 + g_cur);
                 let p_prev = to_prev.transform_point3(cur_screen.pixel_to_view(px, z));
                 let z_prev = -p_prev.z;
-                if !(z_prev > 0.0) {
+                if z_prev.is_nan() || z_prev <= 0.0 {
                     return None;
                 }
                 // Visible-image coordinates of the point in the previous frame, texel centres at

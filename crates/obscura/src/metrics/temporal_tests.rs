@@ -53,10 +53,10 @@ fn a_pattern_fixed_on_the_surface_does_not_flicker_when_the_camera_moves() {
         .collect();
     let still = vec![vec![0.7; W * H]; 2];
     let m = path_metrics(&frames, &ao, &still).unwrap();
-    // Only bilinear interpolation error of a smooth pattern (about 0.4·9·h²/8 with h = 0.09 m
-    // per pixel at 5 m).
+    // Only the bilinear interpolation error of a smooth pattern: at most |f''|·h²/8 = 0.0065
+    // with f'' ≤ 3.6 and h = 0.12 m per pixel at 5 m (measured: 0.0037 on average).
     println!("world-fixed pattern: {m:?}");
-    assert!(m.temporal_error < 4e-3, "{m:?}");
+    assert!(m.temporal_error < 6e-3, "{m:?}");
     assert_eq!(m.popping, 0.0);
     // The strip that entered the view on the right is unmatched: 0.2 m of the 2·5·tan 30° · 64/48
     // m wide visible image.
@@ -75,10 +75,10 @@ fn a_pattern_fixed_on_the_surface_does_not_flicker_when_the_camera_moves() {
     let reprojection = Reprojection::new(&frames[0], &frames[1]).unwrap();
     let x1 = world_x(&v1);
     let (mut sum, mut n) = (0.0f64, 0);
-    for i in 0..W * H {
+    for (i, &x) in x1.iter().enumerate() {
         if reprojection.sample(&ao[0], i).is_some() {
             // Frame 1 shows pattern(x - 0.2) at the surface point x, frame 0 showed pattern(x).
-            sum += f64::from((pattern(x1[i] - 0.2) - pattern(x1[i])).abs());
+            sum += f64::from((pattern(x - 0.2) - pattern(x)).abs());
             n += 1;
         }
     }
@@ -172,13 +172,13 @@ fn pairs_pool_by_matched_pixels() {
         view: v,
         depth: &depth,
     }; 3];
-    let ao = vec![vec![0.5; W * H], vec![0.6; W * H], vec![0.6; W * H]];
+    let ao = vec![vec![0.5; W * H], vec![0.58; W * H], vec![0.58; W * H]];
     let r = vec![vec![0.5; W * H]; 3];
     let m = path_metrics(&frames, &ao, &r).unwrap();
     assert_eq!(m.pairs.len(), 2);
-    assert!((m.pairs[0].temporal_error - 0.1).abs() < 1e-6);
+    assert!((m.pairs[0].temporal_error - 0.08).abs() < 1e-6);
     assert!(m.pairs[1].temporal_error < 1e-6);
-    assert!((m.temporal_error - 0.05).abs() < 1e-6);
+    assert!((m.temporal_error - 0.04).abs() < 1e-6);
     assert_eq!((m.pairs[0].popping, m.pairs[1].popping), (0.0, 0.0));
 }
 
@@ -219,7 +219,11 @@ fn bad_inputs_are_errors() {
         })
     ));
     assert!(matches!(
-        path_metrics(&[frame, frame], &[ok.clone()], &[ok.clone(), ok.clone()]),
+        path_metrics(
+            &[frame, frame],
+            std::slice::from_ref(&ok),
+            &[ok.clone(), ok.clone()]
+        ),
         Err(MetricsError::InvalidParameter { .. })
     ));
 }
