@@ -137,6 +137,7 @@ pub fn compare(
         adapter: &gpu.summary.name,
         software_adapter: gpu.summary.device_type == "Cpu",
         diff_scale: c.diff_scale,
+        temporal: None,
     };
     Ok(write_report(out, &input)?)
 }

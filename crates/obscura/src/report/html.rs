@@ -177,6 +177,9 @@ fn write_page(page: &mut String, report: &Report, input: &ReportInput, scale: f6
     )?;
     writeln!(page, "</ul>")?;
 
+    if let Some(t) = &report.temporal {
+        write_temporal(page, report, t)?;
+    }
     writeln!(page, "<h2>Images</h2>")?;
     writeln!(
         page,
@@ -236,4 +239,60 @@ fn write_figure(
         w = report.width,
         h = report.height
     )
+}
+
+/// The camera-path section: the temporal table, the two plots and the animated previews.
+fn write_temporal(
+    page: &mut String,
+    report: &Report,
+    t: &super::temporal::TemporalReport,
+) -> fmt::Result {
+    use super::temporal::{temporal_cells, temporal_explanation, TEMPORAL_HEADERS};
+    writeln!(
+        page,
+        "<h2>Along the camera path <code>{}</code></h2>",
+        escape(&t.path)
+    )?;
+    writeln!(
+        page,
+        "<table class=\"metrics\">\n<thead><tr><th>technique</th>"
+    )?;
+    for h in TEMPORAL_HEADERS {
+        write!(page, "<th>{h}</th>")?;
+    }
+    writeln!(page, "</tr></thead>\n<tbody>")?;
+    for r in &t.results {
+        write!(page, "<tr><td><code>{}</code></td>", r.technique)?;
+        for cell in temporal_cells(r, t) {
+            write!(page, "<td class=\"num\">{cell}</td>")?;
+        }
+        writeln!(page, "</tr>")?;
+    }
+    writeln!(page, "</tbody>\n</table>")?;
+    writeln!(page, "<p>{}</p>", escape(&temporal_explanation(t)))?;
+    for (file, alt) in [
+        (super::TEMPORAL_MSE_SVG, "MSE per frame per technique"),
+        (
+            super::TEMPORAL_ERROR_SVG,
+            "temporal error per frame pair per technique",
+        ),
+    ] {
+        writeln!(
+            page,
+            "<figure><img src=\"{file}\" alt=\"{alt}\" style=\"max-width: 640px\"></figure>"
+        )?;
+    }
+    writeln!(page, "<h3>Animated</h3>\n<div class=\"row\">")?;
+    write_figure(page, report, "reference.gif", "reference", "")?;
+    for r in &t.results {
+        let name = &r.technique;
+        write_figure(
+            page,
+            report,
+            &format!("{name}.gif"),
+            &format!("<code>{name}</code>"),
+            "",
+        )?;
+    }
+    writeln!(page, "</div>")
 }

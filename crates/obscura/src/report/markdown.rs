@@ -56,6 +56,31 @@ fn write_md(md: &mut String, report: &Report, input: &ReportInput, scale: f64) -
         writeln!(md, "{}", escape(&super::verdict(report)))?;
         writeln!(md)?;
     }
+    if let Some(t) = &report.temporal {
+        use super::temporal::{temporal_cells, temporal_explanation, TEMPORAL_HEADERS};
+        writeln!(md, "## Along the camera path {}", escape(&t.path))?;
+        writeln!(md)?;
+        writeln!(md, "| technique | {} |", TEMPORAL_HEADERS.join(" | "))?;
+        writeln!(md, "|:--|{}", "--:|".repeat(TEMPORAL_HEADERS.len()))?;
+        for r in &t.results {
+            writeln!(
+                md,
+                "| `{}` | {} |",
+                r.technique,
+                temporal_cells(r, t).join(" | ")
+            )?;
+        }
+        writeln!(md)?;
+        writeln!(md, "{}", escape(&temporal_explanation(t)))?;
+        writeln!(md)?;
+        writeln!(
+            md,
+            "Plots: `{}`, `{}`; animated previews: `reference.gif`, `<technique>.gif`.",
+            super::TEMPORAL_MSE_SVG,
+            super::TEMPORAL_ERROR_SVG
+        )?;
+        writeln!(md)?;
+    }
     writeln!(
         md,
         "Guard band {} px. Scene options: {}. GPU adapter: {}.",

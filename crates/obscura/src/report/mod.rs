@@ -13,6 +13,8 @@
 //! | `<technique>.png` | each technique's AO, 8-bit grey |
 //! | `<technique>.diff.png` | heat map of technique − reference (see [`heatmap_rgb`]) |
 //! | `cost.svg` | MSE against time per technique with the Pareto front, when techniques were timed |
+//! | `temporal-mse.svg`, `temporal-error.svg` | along a camera path ([`ReportInput::temporal`]): per-frame MSE and per-pair temporal error of every technique (plotted with `plotters`) |
+//! | `<technique>.gif`, `reference.gif` | along a camera path: every frame, animated |
 //! | `index.html` | a self-contained page: metrics table, the quality-against-cost chart, and per technique the reference, the technique and its heat map side by side with a colour legend |
 //!
 //! # Images
@@ -60,11 +62,13 @@ mod heatmap;
 mod html;
 mod json;
 mod markdown;
+pub mod temporal;
 #[cfg(test)]
 mod tests;
 
 pub use self::chart::{cost_chart_svg, pareto_front};
 pub use self::heatmap::heatmap_rgb;
+pub use self::temporal::{TemporalInput, TemporalReport, TemporalResult};
 
 use crate::metrics::{self, Image, MetricsError};
 use std::fmt;
@@ -126,6 +130,9 @@ pub struct ReportInput<'a> {
     /// The heat maps' scale `±s`; `None`: chosen from the differences (see the module docs).
     /// A page comparing several reports passes one scale to all of them.
     pub diff_scale: Option<f64>,
+    /// Along a camera path (`compare --path`): every frame of every technique and of the
+    /// reference, for the temporal section; `None` for a single view.
+    pub temporal: Option<TemporalInput<'a>>,
 }
 
 /// The metrics of one technique against the reference.
@@ -200,6 +207,9 @@ pub struct Report {
     pub diff_scale: f64,
     /// One entry per technique, in input order.
     pub results: Vec<TechniqueResult>,
+    /// Along a camera path: temporal error, popping and per-frame metrics.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temporal: Option<TemporalReport>,
 }
 
 /// Why a report could not be built or written.
@@ -299,6 +309,11 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
             heatmap::diff_scale(input.reference, input.techniques.iter().map(|t| t.ao))
         }),
         results,
+        temporal: input
+            .temporal
+            .as_ref()
+            .map(|t| temporal::build_temporal(t, input.halo_radius_px, input.halo_relative_jump))
+            .transpose()?,
     })
 }
 
@@ -356,6 +371,9 @@ pub fn write_report(dir: &Path, input: &ReportInput) -> Result<Report, ReportErr
         serde_json::to_writer_pretty(&mut *out, &report).map_err(|e| e.to_string())?;
         out.write_all(b"\n").map_err(|e| e.to_string())
     })?;
+    if let (Some(t), Some(tr)) = (&input.temporal, &report.temporal) {
+        stage_temporal(&mut staging, t, tr, w, h)?;
+    }
     if let Some(svg) = chart::cost_chart_svg(&report) {
         staging.stage("cost.svg", |out| {
             out.write_all(svg.as_bytes()).map_err(|e| e.to_string())
@@ -373,6 +391,62 @@ pub fn write_report(dir: &Path, input: &ReportInput) -> Result<Report, ReportErr
     staging.commit()?;
     Ok(report)
 }
+
+/// The temporal section's files: two plots and an animated preview per technique and of the
+/// reference.
+fn stage_temporal(
+    staging: &mut files::Staging,
+    input: &TemporalInput,
+    report: &TemporalReport,
+    w: u32,
+    h: u32,
+) -> Result<(), ReportError> {
+    let plots = [
+        (
+            TEMPORAL_MSE_SVG,
+            "MSE against the reference, per frame",
+            temporal::series_svg(
+                report,
+                "MSE against the reference, per frame",
+                |r| &r.mse,
+                false,
+            ),
+        ),
+        (
+            TEMPORAL_ERROR_SVG,
+            "temporal error, per frame pair",
+            temporal::series_svg(
+                report,
+                "temporal error (flicker beyond the reference's), per frame pair",
+                |r| &r.temporal_error_pairs,
+                true,
+            ),
+        ),
+    ];
+    for (file, what, svg) in plots {
+        let svg =
+            svg.map_err(|e| ReportError::Input(format!("plotting the {what} failed: {e}")))?;
+        staging.stage(file, |out| {
+            out.write_all(svg.as_bytes()).map_err(|e| e.to_string())
+        })?;
+    }
+    let span = input.times.last().copied().unwrap_or(0.0) - input.times[0];
+    let delay_ms =
+        ((1000.0 * span / (input.times.len() - 1).max(1) as f32).round() as u32).clamp(20, 1000);
+    let previews = std::iter::once(("reference", input.reference))
+        .chain(input.techniques.iter().map(|&(name, ao)| (name, ao)));
+    for (name, frames) in previews {
+        staging.stage(&format!("{name}.gif"), |out| {
+            temporal::write_gif(out, w, h, frames, delay_ms)
+        })?;
+    }
+    Ok(())
+}
+
+/// File name of the per-frame MSE plot.
+pub const TEMPORAL_MSE_SVG: &str = "temporal-mse.svg";
+/// File name of the per-pair temporal error plot.
+pub const TEMPORAL_ERROR_SVG: &str = "temporal-error.svg";
 
 /// The one place that decides which file names are allowed.
 fn is_valid_name(name: &str) -> bool {
@@ -501,6 +575,25 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
     check_finite("reference", input.reference, w)?;
     for t in &input.techniques {
         check_finite(&format!("technique {:?}", t.name), t.ao, w)?;
+    }
+    if let Some(temporal) = &input.temporal {
+        let names: Vec<&str> = input.techniques.iter().map(|t| t.name).collect();
+        let path_names: Vec<&str> = temporal.techniques.iter().map(|t| t.0).collect();
+        if names != path_names {
+            return Err(ReportError::Input(format!(
+                "the camera path's techniques {path_names:?} differ from the report's {names:?}: \
+                 pass the same techniques in the same order"
+            )));
+        }
+        for frame in temporal.frames {
+            if (frame.view.width, frame.view.height) != (w, h) {
+                return Err(ReportError::Input(format!(
+                    "a camera path frame is {}x{} but the report is {w}x{h}: render the path at \
+                     the report's size",
+                    frame.view.width, frame.view.height
+                )));
+            }
+        }
     }
     Ok(())
 }

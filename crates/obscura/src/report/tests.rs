@@ -92,6 +92,7 @@ impl Fixture {
             adapter: "Test Adapter <CPU & friends>",
             software_adapter: false,
             diff_scale: None,
+            temporal: None,
         }
     }
 }
