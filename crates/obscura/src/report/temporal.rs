@@ -327,7 +327,7 @@ mod tests {
         let svg = series_svg(&report, "MSE per frame", |r| &r.mse, false).unwrap();
         assert!(svg.starts_with("<svg") && svg.contains("flicker") && svg.contains("exact"));
         let mut gif = Vec::new();
-        write_gif(&mut gif, w, h, &input.reference.to_vec(), 100).unwrap();
+        write_gif(&mut gif, w, h, input.reference, 100).unwrap();
         assert!(gif.starts_with(b"GIF89a"), "{:?}", &gif[..6]);
 
         // Through write_report: the section, its plots and previews land beside the report.
