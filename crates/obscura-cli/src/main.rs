@@ -36,6 +36,9 @@ enum Command {
     Reference(commands::reference::ReferenceCmdArgs),
     /// Compare techniques with the ground truth: report.json, report.md and index.html.
     Compare(commands::compare::CompareArgs),
+    /// Render AO along a camera path: numbered frames, animations, per-frame JSON and, with
+    /// --with-reference, temporal error and popping against the ground truth.
+    Path(commands::path::PathArgs),
     /// Render every built-in scene's close-up with every technique into a folder with an index.html.
     Demo(commands::demo::DemoArgs),
     /// Time every pass with GPU timestamp queries (medians over frames).
@@ -90,6 +93,7 @@ fn main() -> ExitCode {
         Command::Render(a) => commands::render::run(&gpu_options, &a),
         Command::Reference(a) => commands::reference::run(&gpu_options, &a),
         Command::Compare(a) => commands::compare::run(&gpu_options, &a),
+        Command::Path(a) => commands::path::run(&gpu_options, &a),
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
         Command::Diff(a) => commands::diff::run(&a),

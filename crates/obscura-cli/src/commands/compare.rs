@@ -1,12 +1,13 @@
 //! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
 
+use super::path::{check_no_camera, render_path, PathChoice, PathJob};
 use super::reference::{compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
 use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::ground_truth::ReferenceModel;
-use obscura::report::{write_report, Report, ReportInput, TechniqueImage};
+use obscura::report::{write_report, Report, ReportInput, TechniqueImage, TemporalInput};
 use obscura::scene::Scene;
 use obscura::{FrameView, Gpu, PassProfiler, Renderer};
 use std::path::{Path, PathBuf};
@@ -32,6 +33,10 @@ pub struct CompareArgs {
     out: PathBuf,
     #[command(flatten)]
     timing: TimingArgs,
+    /// Along a camera path (--path NAME or file.json, --frames N): the report adds each
+    /// technique's temporal error, popping and per-frame error; its images are the middle frame.
+    #[command(flatten)]
+    path: PathChoice,
 }
 
 /// How techniques are timed for the report's cost column and chart.
@@ -208,6 +213,24 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     let _ = std::fs::remove_file(&probe);
     let (width, height) = args.size;
     let scene = args.scene.load()?;
+    if args.path.path.is_some() {
+        check_no_camera(&args.scene)?;
+        let path = args.path.resolve(&scene, width as f32 / height as f32)?;
+        let gpu = Gpu::new(options)?;
+        let job = PathJob {
+            scene: &scene,
+            path,
+            frames: args.path.frames,
+            width,
+            height,
+            guard_band: args.ao.guard_band(height),
+            techniques: &techniques,
+            ao: &args.ao,
+            reference: Some((&args.reference, args.reference_model)),
+        };
+        compare_path(&gpu, &job, args.timing.timing_frames, &args.out)?;
+        return print_report(&args.out, techniques.len());
+    }
     let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
     let camera_name = args.scene.camera_name(&scene);
     let gpu = Gpu::new(options)?;
@@ -231,14 +254,95 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         &args.out,
         &mut |_, _| Ok(()),
     )?;
+    print_report(&args.out, report.results.len())
+}
+
+fn print_report(out: &Path, techniques: usize) -> Result<()> {
     println!(
         "{}",
-        std::fs::read_to_string(args.out.join("report.md")).unwrap_or_default()
+        std::fs::read_to_string(out.join("report.md")).unwrap_or_default()
     );
     eprintln!(
-        "wrote {} ({} techniques)",
-        args.out.join("index.html").display(),
-        report.results.len()
+        "wrote {} ({techniques} techniques)",
+        out.join("index.html").display(),
     );
     Ok(())
+}
+
+/// `compare --path`: every frame of every technique and of the reference; the report's images
+/// and single-frame metrics are the middle frame's, its temporal section covers the whole path.
+fn compare_path(gpu: &Gpu, job: &PathJob, timing_frames: u32, out: &Path) -> Result<Report> {
+    let run = render_path(gpu, job)?;
+    let reference = run
+        .reference
+        .as_ref()
+        .context("the reference was asked for")?;
+    let mid = run.times.len() / 2;
+    let view = run.views[mid];
+    let mut timings = Vec::new();
+    for (technique, _, _) in &run.techniques {
+        let settings = job.ao.settings(*technique)?;
+        let mut renderer = Renderer::new(
+            gpu,
+            job.scene,
+            &settings,
+            job.width,
+            job.height,
+            job.guard_band,
+        )?;
+        renderer.render(&view.camera, None)?;
+        timings.push(gpu_ms(gpu, &mut renderer, &view.camera, timing_frames)?);
+    }
+    let frames = run.frames();
+    let camera = format!(
+        "path {}, frame {mid} of {} (t = {:.2} s)",
+        run.path.name,
+        run.times.len(),
+        run.times[mid]
+    );
+    let model = job.reference.map(|(_, m)| m).context("reference model")?;
+    let spp = match job.reference {
+        Some((args, ReferenceModel::Hemisphere)) => Some(args.settings(model, job.ao)?.spp),
+        _ => None,
+    };
+    let input = ReportInput {
+        scene: &job.scene.name,
+        camera: &camera,
+        scene_options: &job.scene.options_description(),
+        width: job.width,
+        height: job.height,
+        guard_band: job.guard_band,
+        reference_model: model.name(),
+        spp,
+        reference: &reference[mid],
+        depth: &run.depths[mid],
+        techniques: run
+            .techniques
+            .iter()
+            .zip(&timings)
+            .map(|((t, settings, images), ms)| TechniqueImage {
+                name: t.name(),
+                ao: &images[mid],
+                settings: Some(settings),
+                gpu_ms: *ms,
+            })
+            .collect(),
+        halo_radius_px: 4,
+        halo_relative_jump: 0.1,
+        adapter: &gpu.summary.name,
+        software_adapter: gpu.summary.device_type == "Cpu",
+        diff_scale: None,
+        temporal: Some(TemporalInput {
+            path: &run.path.name,
+            times: &run.times,
+            frames: &frames,
+            reference,
+            techniques: run
+                .techniques
+                .iter()
+                .map(|(t, _, images)| (t.name(), images.as_slice()))
+                .collect(),
+        }),
+    };
+    Ok(write_report(out, &input)?)
 }

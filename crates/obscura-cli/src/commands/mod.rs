@@ -3,6 +3,7 @@ pub mod compare;
 pub mod demo;
 pub mod diff;
 pub mod info;
+pub mod path;
 pub mod reference;
 pub mod render;
 pub mod scenes;

@@ -14,6 +14,8 @@ struct SceneInfo {
     name: String,
     triangles: usize,
     cameras: Vec<String>,
+    /// Camera paths (`--path NAME`).
+    paths: Vec<String>,
 }
 
 pub fn run(args: &ScenesArgs) -> Result<()> {
@@ -24,6 +26,7 @@ pub fn run(args: &ScenesArgs) -> Result<()> {
             name: name.to_string(),
             triangles: s.triangle_count(),
             cameras: s.cameras.iter().map(|c| c.name.clone()).collect(),
+            paths: s.path_names(),
         });
     }
     if args.json {
@@ -31,13 +34,14 @@ pub fn run(args: &ScenesArgs) -> Result<()> {
     } else {
         for s in &list {
             println!(
-                "{:<10} {:>7} triangles   cameras: {}",
+                "{:<10} {:>7} triangles   cameras: {}   paths: {}",
                 s.name,
                 s.triangles,
-                s.cameras.join(", ")
+                s.cameras.join(", "),
+                s.paths.join(", ")
             );
         }
-        println!("\nFiles: --scene path/to/scene.glb|.gltf|.obj (cameras: the file's, else an automatic framing).");
+        println!("\nFiles: --scene path/to/scene.glb|.gltf|.obj (cameras: the file's, else an automatic framing; path: orbit).");
     }
     Ok(())
 }

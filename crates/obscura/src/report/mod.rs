@@ -430,9 +430,7 @@ fn stage_temporal(
             out.write_all(svg.as_bytes()).map_err(|e| e.to_string())
         })?;
     }
-    let span = input.times.last().copied().unwrap_or(0.0) - input.times[0];
-    let delay_ms =
-        ((1000.0 * span / (input.times.len() - 1).max(1) as f32).round() as u32).clamp(20, 1000);
+    let delay_ms = temporal::frame_delay_ms(input.times);
     let previews = std::iter::once(("reference", input.reference))
         .chain(input.techniques.iter().map(|&(name, ao)| (name, ao)));
     for (name, frames) in previews {

@@ -199,6 +199,14 @@ pub fn series_svg(
     Ok(svg)
 }
 
+/// An animation's frame time: the path's time between frames, kept within what GIF viewers
+/// show (20 ms to 1 s).
+pub fn frame_delay_ms(times: &[f32]) -> u32 {
+    let span = times.last().copied().unwrap_or(0.0) - times.first().copied().unwrap_or(0.0);
+    let per_frame = 1000.0 * span / times.len().saturating_sub(1).max(1) as f32;
+    (per_frame.round() as u32).clamp(20, 1000)
+}
+
 /// The frames of `ao` as an animated grey GIF, `delay_ms` per frame, looping.
 pub fn write_gif(
     out: &mut dyn std::io::Write,

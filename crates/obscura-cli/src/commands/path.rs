@@ -1,0 +1,406 @@
+//! `obscura path`: AO along a camera path (issue 13): every frame of every technique, and of the
+//! reference when asked, as numbered images, animated previews and per-frame JSON with the
+//! temporal metrics (`obscura::metrics::temporal`). `compare --path` shares the rendering.
+
+use super::reference::{compute_or_load, ReferenceArgs};
+use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
+use crate::progress::bar;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
+use obscura::metrics::{self, Image};
+use obscura::reference::cpu_blur::cpu_blur;
+use obscura::reference::cpu_vao::GBufferImage;
+use obscura::reference::ground_truth::ReferenceModel;
+use obscura::report::temporal::frame_delay_ms;
+use obscura::scene::{CameraPath, Scene};
+use obscura::{output, FrameView, Gpu, Renderer, Technique};
+use std::path::{Path, PathBuf};
+
+/// Which path and how many frames of it (shared by `path` and `compare --path`).
+#[derive(Args, Clone, Debug)]
+pub struct PathChoice {
+    /// Camera path: a name the scene lists (`obscura scenes`; files without paths of their own
+    /// have `orbit`), or a .json keyframe file (docs/PATHS.md).
+    #[arg(long = "path")]
+    pub path: Option<String>,
+    /// Frames sampled evenly along the path, first and last keyframe included.
+    #[arg(long, default_value_t = 24)]
+    pub frames: u32,
+}
+
+impl PathChoice {
+    /// The path asked for; `None` (no `--path`) gives the scene's first.
+    pub fn resolve(&self, scene: &Scene, aspect: f32) -> Result<CameraPath> {
+        let path = match self.path.as_deref() {
+            Some(spec) if spec.to_ascii_lowercase().ends_with(".json") => {
+                CameraPath::from_json_file(Path::new(spec))?
+            }
+            Some(name) => scene.path(name, aspect)?,
+            None => {
+                let first = scene
+                    .path_names()
+                    .into_iter()
+                    .next()
+                    .expect("orbit at least");
+                scene.path(&first, aspect)?
+            }
+        };
+        if self.frames < 2 {
+            bail!(
+                "--frames {} is too few to see motion: give at least 2 frames (default 24)",
+                self.frames
+            );
+        }
+        Ok(path)
+    }
+}
+
+/// Refuses single-camera options next to a path, which would silently do nothing.
+pub fn check_no_camera(scene: &SceneArgs) -> Result<()> {
+    if scene.camera.is_some() || scene.eye.is_some() || scene.fov.is_some() {
+        bail!(
+            "--camera, --eye/--target and --fov choose one view, but a camera path moves the \
+             camera: leave them out, or put the views into a path file (--path file.json)"
+        );
+    }
+    Ok(())
+}
+
+/// Everything rendered along a path.
+pub struct PathRun {
+    pub path: CameraPath,
+    pub times: Vec<f32>,
+    pub views: Vec<FrameView>,
+    /// Visible linear depth of each frame (0: background).
+    pub depths: Vec<Vec<f32>>,
+    /// Each technique's AO, one visible image per frame.
+    pub techniques: Vec<(Technique, serde_json::Value, Vec<Vec<f32>>)>,
+    /// The reference's AO per frame, when asked for.
+    pub reference: Option<Vec<Vec<f32>>>,
+}
+
+impl PathRun {
+    /// The frames as the temporal metrics take them.
+    pub fn frames(&self) -> Vec<PathFrame<'_>> {
+        self.views
+            .iter()
+            .zip(&self.depths)
+            .map(|(&view, depth)| PathFrame { view, depth })
+            .collect()
+    }
+}
+
+/// How to render a path: sizes, techniques, settings, and the reference model if any.
+pub struct PathJob<'a> {
+    pub scene: &'a Scene,
+    pub path: CameraPath,
+    pub frames: u32,
+    pub width: u32,
+    pub height: u32,
+    pub guard_band: u32,
+    pub techniques: &'a [Technique],
+    pub ao: &'a AoArgs,
+    pub reference: Option<(&'a ReferenceArgs, ReferenceModel)>,
+}
+
+/// Renders every frame of every technique (one renderer per technique, reused along the
+/// path), then the reference of every frame when asked.
+pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
+    let samples = job.path.sample(job.frames)?;
+    let near = obscura::near_plane(job.scene);
+    let views: Vec<FrameView> = samples
+        .iter()
+        .map(|(_, c)| FrameView::new(*c, job.width, job.height, job.guard_band, near))
+        .collect();
+    let progress = bar(
+        u64::from(job.frames) * job.techniques.len() as u64,
+        "rendering",
+    );
+    let mut gbuffers: Vec<GBufferImage> = Vec::new();
+    let mut techniques = Vec::new();
+    for &technique in job.techniques {
+        let settings = job.ao.settings(technique)?;
+        let mut renderer = Renderer::new(
+            gpu,
+            job.scene,
+            &settings,
+            job.width,
+            job.height,
+            job.guard_band,
+        )?;
+        let mut images = Vec::with_capacity(samples.len());
+        for (_, camera) in &samples {
+            renderer.render(camera, None)?;
+            images.push(renderer.read_ao()?);
+            if gbuffers.len() < samples.len() {
+                gbuffers.push(renderer.read_gbuffer()?);
+            }
+            progress.inc(1);
+        }
+        crate::args::warn_stack_overflows(&renderer)?;
+        techniques.push((
+            technique,
+            serde_json::to_value(settings.resolved())?,
+            images,
+        ));
+    }
+    progress.finish_and_clear();
+    let depths = gbuffers
+        .iter()
+        .map(|g| g.visible_depth(job.guard_band))
+        .collect();
+    let reference = match job.reference {
+        None => None,
+        Some((args, model)) => {
+            let settings = args.settings(model, job.ao)?;
+            let blur = job.ao.settings(Technique::Vao)?.blur;
+            let tracer = args.tracer(Some(gpu));
+            let mut frames = Vec::with_capacity(views.len());
+            for (k, (view, gbuffer)) in views.iter().zip(&gbuffers).enumerate() {
+                eprintln!("reference: frame {} of {}", k + 1, views.len());
+                let mut image =
+                    compute_or_load(tracer, job.scene, *view, &settings, !args.no_cache)?;
+                // As in `compare`: the vao model keeps the kernel's rotation noise and goes
+                // through the techniques' blur on the same depth.
+                if model == ReferenceModel::Vao && blur.enabled {
+                    image = cpu_blur(&image, gbuffer, &view.screen(), &blur);
+                }
+                frames.push(image);
+            }
+            Some(frames)
+        }
+    };
+    Ok(PathRun {
+        path: job.path.clone(),
+        times: samples.iter().map(|(t, _)| *t).collect(),
+        views,
+        depths,
+        techniques,
+        reference,
+    })
+}
+
+#[derive(Args)]
+pub struct PathArgs {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    choice: PathChoice,
+    /// Visible image size WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "320x180")]
+    size: (u32, u32),
+    #[arg(long, default_value = "vao", value_parser = parse_technique_list, help = crate::args::techniques_help())]
+    techniques: TechniqueList,
+    /// Also trace the reference of every frame, and report each technique's temporal error,
+    /// popping and per-frame error against it.
+    #[arg(long = "with-reference")]
+    with_reference: bool,
+    /// Ground-truth model for --with-reference: vao or hemisphere.
+    #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
+    reference_model: ReferenceModel,
+    #[command(flatten)]
+    reference: ReferenceArgs,
+    #[command(flatten)]
+    ao: AoArgs,
+    /// Also write every frame as a float EXR beside its PNG.
+    #[arg(long)]
+    exr: bool,
+    /// Output folder (created if missing): one folder of numbered frames and an animation.gif
+    /// per technique (and `reference/`), and path.json.
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// One frame in path.json.
+#[derive(serde::Serialize)]
+struct FrameInfo {
+    index: usize,
+    time: f32,
+    eye: [f32; 3],
+    target: [f32; 3],
+    fov: f32,
+    /// Fraction of pixels matched to the previous frame by reprojection (from frame 1 on).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    matched: Option<f64>,
+}
+
+/// One technique in path.json.
+#[derive(serde::Serialize)]
+struct TechniqueInfo {
+    technique: String,
+    settings: serde_json::Value,
+    /// Mean AO of each frame.
+    mean_ao: Vec<f64>,
+    /// MSE against the reference per frame (with --with-reference).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mse: Option<Vec<f64>>,
+    /// Temporal error and popping, pooled and per frame pair (with --with-reference).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    temporal: Option<PathMetrics>,
+}
+
+pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
+    check_no_camera(&args.scene)?;
+    let techniques = args.techniques.0.clone();
+    for &t in &techniques {
+        args.ao.settings(t)?;
+    }
+    if args.with_reference {
+        args.reference.settings(args.reference_model, &args.ao)?;
+    }
+    let (width, height) = args.size;
+    let scene = args.scene.load()?;
+    let path = args.choice.resolve(&scene, width as f32 / height as f32)?;
+    if args.out.is_file() {
+        bail!(
+            "--out '{}' is a file: give a folder for the frames",
+            args.out.display()
+        );
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| {
+        format!(
+            "cannot create output folder '{}': check the path and permissions",
+            args.out.display()
+        )
+    })?;
+    let gpu = Gpu::new(options)?;
+    let job = PathJob {
+        scene: &scene,
+        path,
+        frames: args.choice.frames,
+        width,
+        height,
+        guard_band: args.ao.guard_band(height),
+        techniques: &techniques,
+        ao: &args.ao,
+        reference: args
+            .with_reference
+            .then_some((&args.reference, args.reference_model)),
+    };
+    let run = render_path(&gpu, &job)?;
+    write_run(&run, &scene, args, width, height)?;
+    print_summary(&run)
+}
+
+/// Frames, previews and path.json.
+fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: u32) -> Result<()> {
+    let delay_ms = frame_delay_ms(&run.times);
+    let named = run
+        .techniques
+        .iter()
+        .map(|(t, _, images)| (t.name(), images))
+        .chain(run.reference.iter().map(|r| ("reference", r)));
+    for (name, images) in named {
+        let dir = args.out.join(name);
+        std::fs::create_dir_all(&dir)
+            .with_context(|| format!("cannot create '{}'", dir.display()))?;
+        for (k, ao) in images.iter().enumerate() {
+            output::write_ao(&dir.join(format!("frame_{k:04}.png")), width, height, ao)?;
+            if args.exr {
+                output::write_ao(&dir.join(format!("frame_{k:04}.exr")), width, height, ao)?;
+            }
+        }
+        output::write_atomically(&dir.join("animation.gif"), |tmp| {
+            let mut file =
+                std::io::BufWriter::new(std::fs::File::create(tmp).map_err(|e| e.to_string())?);
+            obscura::report::temporal::write_gif(&mut file, width, height, images, delay_ms)
+        })?;
+    }
+    let frames = run.frames();
+    let metrics: Vec<Option<PathMetrics>> = run
+        .techniques
+        .iter()
+        .map(|(_, _, images)| {
+            run.reference
+                .as_ref()
+                .map(|r| path_metrics(&frames, images, r))
+                .transpose()
+        })
+        .collect::<Result<_, _>>()?;
+    let matched = metrics.iter().flatten().next().map(|m| &m.pairs);
+    let json = serde_json::json!({
+        "scene": scene.name,
+        "path": run.path,
+        "width": width,
+        "height": height,
+        "guard_band": args.ao.guard_band(height),
+        "reference": run.reference.as_ref().map(|_| serde_json::json!({
+            "model": args.reference_model.name(),
+            "spp": (args.reference_model == ReferenceModel::Hemisphere)
+                .then(|| args.reference.settings(args.reference_model, &args.ao).map(|s| s.spp).ok())
+                .flatten(),
+        })),
+        "frames": run.views.iter().zip(&run.times).enumerate().map(|(k, (v, &time))| FrameInfo {
+            index: k,
+            time,
+            eye: v.camera.eye.into(),
+            target: v.camera.target.into(),
+            fov: v.camera.fov_y_deg,
+            matched: k.checked_sub(1).and_then(|p| matched.map(|m| m[p].matched)),
+        }).collect::<Vec<_>>(),
+        "techniques": run.techniques.iter().zip(metrics).map(|((t, settings, images), temporal)| Ok(TechniqueInfo {
+            technique: t.name().to_string(),
+            settings: settings.clone(),
+            mean_ao: images.iter().map(|a| mean(a)).collect(),
+            mse: run.reference.as_ref().map(|r| frame_mse(run, images, r)).transpose()?,
+            temporal,
+        })).collect::<Result<Vec<_>>>()?,
+    });
+    let file = args.out.join("path.json");
+    output::write_atomically(&file, |tmp| {
+        std::fs::write(
+            tmp,
+            serde_json::to_string_pretty(&json).map_err(|e| e.to_string())? + "\n",
+        )
+        .map_err(|e| e.to_string())
+    })?;
+    eprintln!(
+        "wrote {} frames of {} technique(s){} into {}",
+        run.times.len(),
+        run.techniques.len(),
+        if run.reference.is_some() {
+            " and the reference"
+        } else {
+            ""
+        },
+        args.out.display()
+    );
+    Ok(())
+}
+
+fn print_summary(run: &PathRun) -> Result<()> {
+    let Some(reference) = &run.reference else {
+        return Ok(());
+    };
+    let frames = run.frames();
+    println!("| technique | temporal error | popping | mean MSE | worst-frame MSE |");
+    println!("|:--|--:|--:|--:|--:|");
+    for (t, _, images) in &run.techniques {
+        let m = path_metrics(&frames, images, reference)?;
+        let errors = frame_mse(run, images, reference)?;
+        println!(
+            "| `{}` | {:.5} | {:.2} % | {:.3e} | {:.3e} |",
+            t.name(),
+            m.temporal_error,
+            100.0 * m.popping,
+            errors.iter().sum::<f64>() / errors.len() as f64,
+            errors.iter().copied().fold(0.0, f64::max)
+        );
+    }
+    Ok(())
+}
+
+fn mean(a: &[f32]) -> f64 {
+    a.iter().map(|&v| f64::from(v)).sum::<f64>() / a.len().max(1) as f64
+}
+
+/// MSE of every frame against the reference's.
+fn frame_mse(run: &PathRun, images: &[Vec<f32>], reference: &[Vec<f32>]) -> Result<Vec<f64>> {
+    let (w, h) = (run.views[0].width as usize, run.views[0].height as usize);
+    images
+        .iter()
+        .zip(reference)
+        .map(|(a, r)| Ok(metrics::mse(&Image::new(w, h, a)?, &Image::new(w, h, r)?)?))
+        .collect()
+}
