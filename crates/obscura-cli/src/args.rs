@@ -178,6 +178,13 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("multiview.angle", "--mv-angle"),
     ("multiview.focus", "--mv-focus"),
     ("multiview.resolution", "--mv-resolution"),
+    ("temporal.enabled", "--temporal"),
+    ("temporal.frames", "--temporal-frames"),
+    ("temporal.depth_tolerance", "--temporal-depth-tolerance"),
+    (
+        "temporal.normal_tolerance_deg",
+        "--temporal-normal-tolerance",
+    ),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
@@ -556,6 +563,26 @@ pub struct AoArgs {
         "multiview.resolution"
     ))]
     pub mv_resolution: Option<String>,
+    /// Temporal accumulation: each pixel's AO averaged with its history over frames, reprojected
+    /// by the camera motion and rejected where the surface differs; the estimators turn their
+    /// 4×4 pattern per frame (docs/PATHS.md). For paths and the viewer.
+    #[arg(long)]
+    pub temporal: bool,
+    #[arg(long, help = help(
+        "--temporal: the most frames averaged (1..256).",
+        "temporal.frames"
+    ))]
+    pub temporal_frames: Option<u32>,
+    #[arg(long, help = help(
+        "--temporal: relative depth difference within which the history is the same surface.",
+        "temporal.depth_tolerance"
+    ))]
+    pub temporal_depth_tolerance: Option<f32>,
+    #[arg(long, help = help(
+        "--temporal: degrees between normals within which the history is the same surface.",
+        "temporal.normal_tolerance_deg"
+    ))]
+    pub temporal_normal_tolerance: Option<f32>,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -690,6 +717,18 @@ impl AoArgs {
         if let Some(r) = &self.resolution {
             s.resolution = r.parse::<Resolution>().map_err(with_flags)?;
         }
+        if self.temporal {
+            s.temporal.enabled = true;
+        }
+        set(&mut s.temporal.frames, self.temporal_frames);
+        set(
+            &mut s.temporal.depth_tolerance,
+            self.temporal_depth_tolerance,
+        );
+        set(
+            &mut s.temporal.normal_tolerance_deg,
+            self.temporal_normal_tolerance,
+        );
         // The preset and the file were valid: anything invalid now came from a flag.
         s.validate().map_err(with_flags)?;
         Ok(s)
@@ -829,10 +868,10 @@ mod tests {
             }
         }
         // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
-        // (--vb-cosine), bent_normals (--bent-normals), ray_sd.z_cull (--no-z-cull) and
-        // ray_sd.intervals (--no-intervals), and blur.sigma (--blur-sigma) and multiview.focus
-        // (--mv-focus), whose defaults are to be left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 7);
+        // (--vb-cosine), bent_normals (--bent-normals), ray_sd.z_cull (--no-z-cull),
+        // ray_sd.intervals (--no-intervals) and temporal.enabled (--temporal), and blur.sigma
+        // (--blur-sigma) and multiview.focus (--mv-focus), whose defaults are to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 8);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

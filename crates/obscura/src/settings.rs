@@ -748,6 +748,38 @@ pub struct AoSettings {
     pub bent_normals: bool,
     /// The multi-view schedule's second view (`sd-hbao+-multiview`).
     pub multiview: MultiviewSettings,
+    /// Temporal accumulation of the AO over frames (off by default).
+    pub temporal: TemporalSettings,
+}
+
+/// Temporal accumulation (issue 13; src/filter/temporal.rs): after the blur, each pixel's AO is
+/// averaged with its history from the previous frames, reprojected by depth and camera motion,
+/// and the estimators turn their 4×4 sample pattern by one entry per frame, so a still camera
+/// converges to the mean over all 16 rotations. History is rejected where the surface differs
+/// (disocclusion): its depth or normal is out of tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TemporalSettings {
+    /// Whether the pass runs (and the pattern turns per frame).
+    pub enabled: bool,
+    /// The most frames averaged: a running mean up to this many, then an exponential blend with
+    /// weight 1/frames. 16 covers the pattern's 16 rotations once.
+    pub frames: u32,
+    /// Relative depth difference within which the history holds the same surface.
+    pub depth_tolerance: f32,
+    /// Degrees between normals within which the history holds the same surface.
+    pub normal_tolerance_deg: f32,
+}
+
+impl Default for TemporalSettings {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            frames: 16,
+            depth_tolerance: 0.03,
+            normal_tolerance_deg: 30.0,
+        }
+    }
 }
 
 /// The second view of the multi-view schedule (seed 001 §3.4: "at a set distance to the side of
@@ -834,6 +866,7 @@ impl Default for AoSettings {
             resolution: Resolution::Full,
             bent_normals: false,
             multiview: MultiviewSettings::default(),
+            temporal: TemporalSettings::default(),
         }
     }
 }
@@ -1167,6 +1200,28 @@ impl AoSettings {
                 "gtao_vb.steps",
                 g.steps,
                 "must be at least 1 with slices × 2 × steps ≤ 32 (one bit per sample), e.g. 2",
+            ));
+        }
+        let t = &self.temporal;
+        if !(1..=256).contains(&t.frames) {
+            return Err(invalid(
+                "temporal.frames",
+                t.frames,
+                "must be between 1 and 256, e.g. 16",
+            ));
+        }
+        if !(t.depth_tolerance > 0.0 && t.depth_tolerance < 1.0) {
+            return Err(invalid(
+                "temporal.depth_tolerance",
+                t.depth_tolerance,
+                "must be a fraction of the depth in (0, 1), e.g. 0.03",
+            ));
+        }
+        if !(t.normal_tolerance_deg > 0.0 && t.normal_tolerance_deg <= 180.0) {
+            return Err(invalid(
+                "temporal.normal_tolerance_deg",
+                t.normal_tolerance_deg,
+                "must be degrees in (0, 180], e.g. 30",
             ));
         }
         let b = &self.blur;
@@ -1783,7 +1838,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 67, "{paths:?}");
+        assert_eq!(paths.len(), 71, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1805,6 +1860,9 @@ mod tests {
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);
+        push(&|s| s.temporal.frames = 0);
+        push(&|s| s.temporal.depth_tolerance = 1.0);
+        push(&|s| s.temporal.normal_tolerance_deg = f32::NAN);
         push(&|s| s.blur.sharpness = -2.0);
         push(&|s| s.blur.sigma = Some(0.0));
         push(&|s| s.hbao_plus.radius = -1.0);

@@ -59,6 +59,7 @@ pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
 pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/depth_peel_resolve.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
+pub const TEMPORAL_ACCUMULATION: &str = include_str!("../shaders/temporal_accumulation.wgsl");
 pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/half_resolution/downsample.wgsl");
 pub const HALF_UPSAMPLE: &str = include_str!("../shaders/half_resolution/upsample.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");

@@ -335,6 +335,8 @@ impl ScreenGeometry {
             orthographic: u32::from(self.orthographic),
             ndc_per_pixel: (2.0 / size).to_array(),
             projection_scale: (0.5 * size / self.tan_half_fov).to_array(),
+            pattern_offset: 0,
+            _pad: [0; 3],
         }
     }
 }
@@ -358,6 +360,11 @@ pub struct ViewUniform {
     pub ndc_per_pixel: [f32; 2],
     /// `0.5 · full_size / tan_half_fov`: pixels per unit of x/z (y/z) from the image centre.
     pub projection_scale: [f32; 2],
+    /// How far the estimators' 4×4 pattern is turned this frame (0 to 15; 0 unless temporal
+    /// accumulation is on).
+    pub pattern_offset: u32,
+    /// Padding to the WGSL struct's 64 bytes.
+    pub _pad: [u32; 3],
 }
 
 #[cfg(test)]

@@ -15,6 +15,18 @@ fn decode_vertex_normal(e: vec2<f32>) -> vec3<f32> {
     return normalize(n);
 }
 
+// The octahedral encoding of unit `n` (the twin of `encode_normal` in src/raster/gpu_scene.rs),
+// which decode_vertex_normal turns back; the temporal accumulation stores its history's normals
+// so.
+fn encode_octahedral(n: vec3<f32>) -> vec2<f32> {
+    let p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if (n.z >= 0.0) {
+        return p;
+    }
+    let sign = select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
+    return (vec2<f32>(1.0) - abs(p.yx)) * sign;
+}
+
 // The interpolated vertex normal `shading` (any length) turned to the side of the unit face
 // normal `face`; `face` itself where `shading` is zero (a vertex without a normal).
 fn oriented_shading_normal(shading: vec3<f32>, face: vec3<f32>) -> vec3<f32> {

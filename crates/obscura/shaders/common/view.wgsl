@@ -14,6 +14,13 @@ struct View {
     ndc_per_pixel: vec2<f32>,
     // 0.5 * full_size / tan_half_fov: pixels per unit of x/z (y/z) from the image centre.
     projection_scale: vec2<f32>,
+    // How far the estimators' 4×4 pattern is turned this frame (common/pattern.wgsl): 0 unless
+    // temporal accumulation is on, which turns it by one entry per frame.
+    pattern_offset: u32,
+    // Pads the struct to 64 bytes, as a struct member of a uniform struct is laid out.
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // An orthographic projection (parallel view rays along -Z): a pipeline constant rather than a

@@ -43,7 +43,8 @@ impl HalfResolution {
         let half_view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("half-resolution view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
-            usage: wgpu::BufferUsages::UNIFORM,
+            // COPY_DST: temporal accumulation turns the pattern offset per frame.
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let frame_texture = |label, format, width, height, storage: bool| {
             let mut usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;

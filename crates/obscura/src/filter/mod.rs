@@ -2,6 +2,7 @@
 
 pub mod bilateral;
 pub mod half_resolution;
+pub mod temporal;
 
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
@@ -20,4 +21,13 @@ pub trait AoFilter {
         output: &wgpu::TextureView,
         profiler: Option<&mut PassProfiler>,
     );
+
+    /// The camera of the coming frame (`AmbientOcclusion::set_camera`), for filters that
+    /// reproject; the others ignore it.
+    fn set_camera(&self, _queue: &wgpu::Queue, _view: &crate::view::FrameView) {}
+
+    /// The filter as temporal accumulation, if it is that (for its history and pattern offset).
+    fn as_temporal(&self) -> Option<&temporal::TemporalAccumulation> {
+        None
+    }
 }

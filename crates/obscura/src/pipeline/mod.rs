@@ -15,7 +15,10 @@ mod shader_check;
 
 use crate::bindings;
 use crate::estimators::EstimatorPass;
-use crate::filter::{bilateral::BilateralBlur, half_resolution::HalfResolution, AoFilter};
+use crate::filter::{
+    bilateral::BilateralBlur, half_resolution::HalfResolution, temporal::TemporalAccumulation,
+    AoFilter,
+};
 use crate::frame::{check_float_texture, check_texture, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::schedules::{FrameContext, SchedulePass};
@@ -114,7 +117,8 @@ impl AmbientOcclusion {
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
-            usage: wgpu::BufferUsages::UNIFORM,
+            // COPY_DST: temporal accumulation turns the pattern offset per frame.
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let half = match settings.resolution {
             crate::settings::Resolution::Full => None,
@@ -174,6 +178,18 @@ impl AmbientOcclusion {
                 output: ao_texture("ao blurred"),
             });
         }
+        if settings.temporal.enabled && !estimator_debug {
+            filters.push(FilterStage {
+                filter: Box::new(TemporalAccumulation::new(
+                    device,
+                    &settings.temporal,
+                    work_view,
+                    work.width,
+                    work.height,
+                )),
+                output: ao_texture("ao accumulated"),
+            });
+        }
         Ok(Self {
             gpu: gpu.clone(),
             settings: *settings,
@@ -210,7 +226,47 @@ impl AmbientOcclusion {
         };
         self.source.set_camera(queue, &work);
         self.schedule.set_camera(queue, &work);
+        for stage in &self.filters {
+            stage.filter.set_camera(queue, &work);
+        }
+        if let Some(temporal) = self.temporal() {
+            // The estimators' pattern turns by one entry per frame (View pattern_offset).
+            let mut uniform = work.screen().uniform();
+            uniform.pattern_offset = temporal.pattern_offset();
+            let buffer = self.half.as_ref().map_or(&self.view, HalfResolution::view);
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
+        }
         self.camera_set.set(true);
+    }
+
+    /// Temporal accumulation, when `temporal.enabled`.
+    fn temporal(&self) -> Option<&TemporalAccumulation> {
+        self.filters.iter().find_map(|f| f.filter.as_temporal())
+    }
+
+    /// `temporal.enabled`: forgets the accumulated history, so the next frame starts afresh (a
+    /// camera cut, a changed scene). Does nothing otherwise.
+    pub fn reset_temporal(&self) {
+        if let Some(temporal) = self.temporal() {
+            temporal.reset();
+        }
+    }
+
+    /// `temporal.enabled`: the history the last frame wrote, per visible pixel (at the working
+    /// resolution): the accumulated AO, the number of frames in it (1: history rejected, e.g.
+    /// disoccluded) and the linear depth. Waits for the GPU; for tests and tools.
+    pub fn read_temporal_history(&self) -> Result<Option<Vec<(f32, u32, f32)>>, Error> {
+        let Some(temporal) = self.temporal() else {
+            return Ok(None);
+        };
+        let bytes = crate::gpu::read_texture_bytes(&self.gpu, temporal.history().texture(), 16)?;
+        let words: &[u32] = bytemuck::cast_slice(&bytes);
+        Ok(Some(
+            words
+                .chunks_exact(4)
+                .map(|w| (f32::from_bits(w[0]), w[1], f32::from_bits(w[2])))
+                .collect(),
+        ))
     }
 
     /// The settings it was built with (validated).
@@ -253,6 +309,13 @@ impl AmbientOcclusion {
                  AmbientOcclusion::set_camera before the first encode",
                 self.settings.technique
             )));
+        }
+        if self.settings.temporal.enabled && !self.camera_set.get() {
+            return Err(Error::Input(
+                "temporal accumulation reprojects its history by the camera motion: call \
+                 AmbientOcclusion::set_camera before every encode"
+                    .into(),
+            ));
         }
         let needs_second = needs.second_layer;
         if needs_second && textures.second_layer.is_none() {

@@ -1,0 +1,104 @@
+// Temporal accumulation of the AO image (issue 13; the temporal filters engines ship, e.g. the
+// history reprojection of TAA, applied to AO alone): every visible pixel is reprojected into the
+// previous frame by its depth and the camera motion (the scene is static), the history there is
+// read bilinearly from the texels that hold the same surface (depth within `depth_tolerance` of
+// the reprojected depth, world normal within `normal_cos`), and the new AO is the running mean
+// of up to `max_frames` frames: ao = mix(history, current, 1 / n), n = min(n_history + 1,
+// max_frames). With the estimators' 4×4 pattern turned by one entry per frame (View
+// pattern_offset), a still camera converges to the mean over all 16 rotations in 16 frames.
+// Pixels with no matching history (disocclusion, off screen, first frame) restart at n = 1.
+//
+// History (rgba32uint, visible size, ping-pong): x = AO bits, y = n, z = linear depth bits,
+// w = the world normal, octahedral, pack2x16snorm. Unsigned, so no bit pattern is a NaN that a
+// float texture could rewrite.
+//
+// Needs common/view.wgsl and common/vertex_normal.wgsl in front.
+
+struct TemporalParams {
+    // View space of this frame to view space of the previous frame.
+    current_to_previous: mat4x4<f32>,
+    // View space of this frame to world space (the normals' rotation).
+    current_to_world: mat4x4<f32>,
+    depth_tolerance: f32,
+    normal_cos: f32,
+    max_frames: f32,
+    // 0: no previous frame (the first, or after a reset): every pixel restarts.
+    history_valid: u32,
+}
+
+@group(0) @binding(0) var<uniform> view: View;
+@group(0) @binding(1) var<uniform> params: TemporalParams;
+@group(0) @binding(2) var depth_tex: texture_2d<f32>;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+@group(0) @binding(4) var ao_in: texture_2d<f32>;
+@group(0) @binding(5) var history_in: texture_2d<u32>;
+@group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(7) var history_out: texture_storage_2d<rgba32uint, write>;
+
+// The history's AO and frame count at visible position `q` (texel centres at integers), from the
+// texels that hold the surface at linear depth `z` with world normal `n`; count 0 when none.
+fn read_history(q: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
+    let size = vec2<i32>(view.visible_size);
+    let base = vec2<i32>(floor(q));
+    let f = q - floor(q);
+    var ao = 0.0;
+    var count = 0.0;
+    var total = 0.0;
+    for (var k = 0; k < 4; k++) {
+        let offset = vec2<i32>(k & 1, k >> 1u);
+        let texel = base + offset;
+        let w = select(1.0 - f.x, f.x, offset.x == 1) * select(1.0 - f.y, f.y, offset.y == 1);
+        if (any(texel < vec2<i32>(0)) || any(texel >= size) || !(w > 0.0)) {
+            continue;
+        }
+        let h = textureLoad(history_in, texel, 0);
+        let h_depth = bitcast<f32>(h.z);
+        let h_normal = decode_vertex_normal(unpack2x16snorm(h.w));
+        if (h.y == 0u || abs(h_depth - z) > params.depth_tolerance * z || dot(h_normal, n) < params.normal_cos) {
+            continue;
+        }
+        ao += w * bitcast<f32>(h.x);
+        count += w * f32(h.y);
+        total += w;
+    }
+    if (total < 1e-4) {
+        return vec2<f32>(0.0);
+    }
+    return vec2<f32>(ao, count) / total;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if (any(gid.xy >= view.visible_size)) {
+        return;
+    }
+    let id = gid.xy;
+    let full = id + vec2<u32>(view.guard_band);
+    let current = textureLoad(ao_in, id, 0).x;
+    let z = textureLoad(depth_tex, full, 0).x;
+    if (is_background(z)) {
+        textureStore(ao_out, id, vec4<f32>(current));
+        textureStore(history_out, id, vec4<u32>(bitcast<u32>(current), 0u, 0u, 0u));
+        return;
+    }
+    let p = pixel_to_view(view, vec2<f32>(full) + 0.5, z);
+    let n_view = normalize(textureLoad(normal_tex, full, 0).xyz);
+    let n_world = normalize((params.current_to_world * vec4<f32>(n_view, 0.0)).xyz);
+    var history = vec2<f32>(0.0);
+    if (params.history_valid != 0u) {
+        let p_prev = (params.current_to_previous * vec4<f32>(p, 1.0)).xyz;
+        let z_prev = -p_prev.z;
+        if (z_prev > 0.0) {
+            let q = view_to_pixel(view, p_prev) - vec2<f32>(f32(view.guard_band) + 0.5);
+            history = read_history(q, z_prev, n_world);
+        }
+    }
+    let n = min(round(history.y) + 1.0, params.max_frames);
+    let ao = select(current, mix(history.x, current, 1.0 / n), history.y > 0.0);
+    textureStore(ao_out, id, vec4<f32>(ao));
+    textureStore(
+        history_out,
+        id,
+        vec4<u32>(bitcast<u32>(ao), u32(n), bitcast<u32>(z), pack2x16snorm(encode_octahedral(n_world))),
+    );
+}

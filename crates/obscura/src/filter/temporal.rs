@@ -1,0 +1,174 @@
+//! Temporal accumulation (issue 13; `shaders/temporal_accumulation.wgsl`): the AO of the last
+//! frames, reprojected by depth and camera motion, averaged with this frame's, history rejected
+//! where the surface differs (depth or normal). The estimators turn their 4×4 pattern by one
+//! entry per frame meanwhile ([`TemporalAccumulation::pattern_offset`]), so a still camera
+//! converges to the mean over all 16 rotations.
+//!
+//! The filter keeps the previous camera itself: [`TemporalAccumulation::set_camera`] is called
+//! once per frame (by [`crate::AmbientOcclusion::set_camera`]), before the frame is encoded.
+
+use std::cell::Cell;
+
+use crate::frame::FrameInputs;
+use crate::gpu::PassProfiler;
+use crate::settings::TemporalSettings;
+use crate::shaders;
+use crate::view::FrameView;
+use glam::Mat4;
+
+/// The 16 entries of the estimators' 4×4 pattern (`common/pattern.wgsl`).
+pub const PATTERN_PERIOD: u32 = 16;
+
+/// `TemporalParams` of the shader.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct TemporalParams {
+    current_to_previous: [[f32; 4]; 4],
+    current_to_world: [[f32; 4]; 4],
+    depth_tolerance: f32,
+    normal_cos: f32,
+    max_frames: f32,
+    history_valid: u32,
+}
+
+/// One compute pass per frame, with two history images it alternates between.
+pub struct TemporalAccumulation {
+    pipeline: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    view: wgpu::Buffer,
+    history: [wgpu::TextureView; 2],
+    settings: TemporalSettings,
+    /// The camera of the last frame (`None`: no history yet).
+    previous: Cell<Option<FrameView>>,
+    /// Frames since creation or the last reset; picks the history image and the pattern offset.
+    frame: Cell<u32>,
+}
+
+impl TemporalAccumulation {
+    /// The pass and its history images for a visible `width`×`height` AO image; `view` is the
+    /// frame's `View` uniform.
+    pub fn new(
+        device: &wgpu::Device,
+        settings: &TemporalSettings,
+        view: &wgpu::Buffer,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        let source = shaders::with_common(
+            &[shaders::VIEW, shaders::VERTEX_NORMAL],
+            shaders::TEMPORAL_ACCUMULATION,
+        );
+        let pipeline =
+            crate::gpu::compute_pipeline_with(device, "temporal accumulation", &source, &[]);
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("temporal params"),
+            size: std::mem::size_of::<TemporalParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let history = ["temporal history a", "temporal history b"].map(|label| {
+            crate::gpu::texture_2d(
+                device,
+                label,
+                width,
+                height,
+                wgpu::TextureFormat::Rgba32Uint,
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+            )
+            .create_view(&Default::default())
+        });
+        Self {
+            pipeline,
+            params,
+            view: view.clone(),
+            history,
+            settings: *settings,
+            previous: Cell::new(None),
+            frame: Cell::new(0),
+        }
+    }
+
+    /// Starts a new frame seen from `view`: uploads the motion from the previous frame's camera.
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        let current_to_world = view.view_matrix().inverse();
+        let (current_to_previous, valid) = match self.previous.get() {
+            Some(previous) => (previous.view_matrix() * current_to_world, 1),
+            None => (Mat4::IDENTITY, 0),
+        };
+        let params = TemporalParams {
+            current_to_previous: current_to_previous.to_cols_array_2d(),
+            current_to_world: current_to_world.to_cols_array_2d(),
+            depth_tolerance: self.settings.depth_tolerance,
+            normal_cos: self.settings.normal_tolerance_deg.to_radians().cos(),
+            max_frames: self.settings.frames as f32,
+            history_valid: valid,
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        self.previous.set(Some(*view));
+        self.frame.set(self.frame.get().wrapping_add(1));
+    }
+
+    /// Forgets the history: the next frame starts the average afresh (a camera cut).
+    pub fn reset(&self) {
+        self.previous.set(None);
+    }
+
+    /// How far the estimators' 4×4 pattern is turned this frame (0 to 15).
+    pub fn pattern_offset(&self) -> u32 {
+        self.frame.get() % PATTERN_PERIOD
+    }
+
+    /// The history image this frame writes (AO bits, frame count, depth bits, normal).
+    pub fn history(&self) -> &wgpu::TextureView {
+        &self.history[(self.frame.get() % 2) as usize]
+    }
+}
+
+impl super::AoFilter for TemporalAccumulation {
+    /// Accumulate `input` into `output` (both R32Float, visible size). Timing: `temporal`.
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs,
+        input: &wgpu::TextureView,
+        output: &wgpu::TextureView,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        let parity = (self.frame.get() % 2) as usize;
+        let bind_group = crate::gpu::bind_group(
+            device,
+            "temporal",
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                self.view.as_entire_binding(),
+                self.params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(inputs.depth),
+                wgpu::BindingResource::TextureView(inputs.normals),
+                wgpu::BindingResource::TextureView(input),
+                wgpu::BindingResource::TextureView(&self.history[1 - parity]),
+                wgpu::BindingResource::TextureView(output),
+                wgpu::BindingResource::TextureView(&self.history[parity]),
+            ],
+        );
+        let timestamp_writes = profiler.map(|p| p.compute_pass("temporal"));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("temporal"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        let (w, h) = (inputs.screen.width, inputs.screen.height);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+    }
+
+    fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+        TemporalAccumulation::set_camera(self, queue, view);
+    }
+
+    fn as_temporal(&self) -> Option<&TemporalAccumulation> {
+        Some(self)
+    }
+}
