@@ -19,6 +19,18 @@ use glam::Mat4;
 /// The 16 entries of the estimators' 4×4 pattern (`common/pattern.wgsl`).
 pub const PATTERN_PERIOD: u32 = 16;
 
+/// One texel of the history ([`crate::AmbientOcclusion::read_temporal_history`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HistoryTexel {
+    /// The accumulated AO.
+    pub ao: f32,
+    /// Frames in it: 1 where the history was rejected (disocclusion, first frame), 0 on
+    /// background.
+    pub frames: u32,
+    /// The linear depth it was accumulated at.
+    pub depth: f32,
+}
+
 /// `TemporalParams` of the shader.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]

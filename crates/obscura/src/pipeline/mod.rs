@@ -16,7 +16,9 @@ mod shader_check;
 use crate::bindings;
 use crate::estimators::EstimatorPass;
 use crate::filter::{
-    bilateral::BilateralBlur, half_resolution::HalfResolution, temporal::TemporalAccumulation,
+    bilateral::BilateralBlur,
+    half_resolution::HalfResolution,
+    temporal::{HistoryTexel, TemporalAccumulation},
     AoFilter,
 };
 use crate::frame::{check_float_texture, check_texture, FrameInputs};
@@ -255,7 +257,7 @@ impl AmbientOcclusion {
     /// `temporal.enabled`: the history the last frame wrote, per visible pixel (at the working
     /// resolution): the accumulated AO, the number of frames in it (1: history rejected, e.g.
     /// disoccluded) and the linear depth. Waits for the GPU; for tests and tools.
-    pub fn read_temporal_history(&self) -> Result<Option<Vec<(f32, u32, f32)>>, Error> {
+    pub fn read_temporal_history(&self) -> Result<Option<Vec<HistoryTexel>>, Error> {
         let Some(temporal) = self.temporal() else {
             return Ok(None);
         };
@@ -264,7 +266,11 @@ impl AmbientOcclusion {
         Ok(Some(
             words
                 .chunks_exact(4)
-                .map(|w| (f32::from_bits(w[0]), w[1], f32::from_bits(w[2])))
+                .map(|w| HistoryTexel {
+                    ao: f32::from_bits(w[0]),
+                    frames: w[1],
+                    depth: f32::from_bits(w[2]),
+                })
                 .collect(),
         ))
     }
