@@ -37,8 +37,11 @@ struct TemporalParams {
 
 // The history's AO and frame count at visible position `q` (texel centres at integers), from the
 // texels that hold the surface at linear depth `z` with world normal `n`; count 0 when none.
-fn read_history(q: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
+fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
     let size = vec2<i32>(view.visible_size);
+    // Within 1/100 px of a texel centre (a still camera, up to the rounding of the matrices):
+    // that texel alone, so a still image is not resampled, and blurred, every frame.
+    let q = select(q_in, round(q_in), all(abs(q_in - round(q_in)) < vec2<f32>(0.01)));
     let base = vec2<i32>(floor(q));
     let f = q - floor(q);
     var ao = 0.0;
