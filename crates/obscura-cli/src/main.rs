@@ -42,6 +42,9 @@ enum Command {
     Bench(commands::bench::BenchArgs),
     /// Compare two AO images: largest and mean absolute difference.
     Diff(commands::diff::DiffArgs),
+    /// Interactive viewer: fly camera, every technique and setting, debug views, split screen,
+    /// the reference on demand and per-pass GPU timings (F1 in the window lists the keys).
+    View(Box<commands::view::ViewArgs>),
 }
 
 /// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
@@ -93,6 +96,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
         Command::Diff(a) => commands::diff::run(&a),
+        Command::View(a) => commands::view::run(&gpu_options, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

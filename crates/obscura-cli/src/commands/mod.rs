@@ -6,3 +6,4 @@ pub mod info;
 pub mod reference;
 pub mod render;
 pub mod scenes;
+pub mod view;
