@@ -197,6 +197,8 @@ struct ViewerApp {
     pending_size: Option<((u32, u32), Instant)>,
     message: Option<String>,
     error: Option<String>,
+    /// The whole window, once eframe has captured it (`--screenshot`).
+    window_image: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
 }
 
 impl ViewerApp {
@@ -225,6 +227,7 @@ impl ViewerApp {
             pending_size: None,
             message: None,
             error: None,
+            window_image: Arc::default(),
             frame: None,
             texture: None,
             gpu,
@@ -574,7 +577,8 @@ impl ViewerApp {
         Ok(())
     }
 
-    /// After `--frames` frames: save `--screenshot` and close.
+    /// After `--frames` frames: save `--screenshot` (the image), ask eframe for the whole window
+    /// (`NAME.window.png`, the panels included), and close once it came (or 30 frames later).
     fn finish_run(&mut self, ctx: &egui::Context) {
         let Some(limit) = self.start.frames else {
             return;
@@ -582,13 +586,40 @@ impl ViewerApp {
         if self.frames < limit {
             return;
         }
-        let result = match (&self.start.screenshot, &self.frame) {
-            (Some(path), Some(frame)) => save(path.clone(), frame),
-            _ => Ok(()),
+        let Some(path) = self.start.screenshot.clone() else {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            return;
         };
-        match result {
-            Ok(()) => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
-            Err(e) => self.fail(ctx, e),
+        if self.frames == limit {
+            let saved = match &self.frame {
+                Some(frame) => save(path.clone(), frame),
+                None => Err(anyhow!("no frame was rendered")),
+            };
+            if let Err(e) = saved {
+                self.fail(ctx, e);
+                return;
+            }
+            let slot = self.window_image.clone();
+            ctx.request_screenshot(move |image| {
+                if let Ok(mut s) = slot.lock() {
+                    *s = Some(image);
+                }
+            });
+            return;
+        }
+        let image = self.window_image.lock().ok().and_then(|mut s| s.take());
+        if let Some(image) = image {
+            let window = path.with_extension("window.png");
+            let [w, h] = image.size;
+            let result = super::save_png(&window, w as u32, h as u32, image.as_raw().to_vec());
+            match result {
+                Ok(()) => eprintln!("wrote {}", window.display()),
+                Err(e) => eprintln!("warning: could not save the window image: {e:#}"),
+            }
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        } else if self.frames > limit + 30 {
+            eprintln!("warning: no window image came back from eframe; only the image was saved");
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
     }
 }

@@ -313,8 +313,13 @@ impl Frame {
         let Some(left) = cpu_image(a, view, self.width, self.height)? else {
             return Ok(None);
         };
+        // B without this image: its half shows the background.
         let right = match (split, self.b.as_ref().and_then(|b| b.renderer.as_ref())) {
-            (Some(x), Some(b)) => cpu_image(b, view, self.width, self.height)?.map(|r| (x, r)),
+            (Some(x), Some(b)) => Some((
+                x,
+                cpu_image(b, view, self.width, self.height)?
+                    .unwrap_or_else(|| vec![f32::NAN; left.len()]),
+            )),
             _ => None,
         };
         Ok(Some(match right {
