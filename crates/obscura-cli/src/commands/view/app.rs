@@ -554,7 +554,7 @@ impl ViewerApp {
         let reference = self
             .reference
             .image_for(&self.camera, frame.width, frame.height);
-        let profile = self.frames % 30 == 0;
+        let profile = self.frames.is_multiple_of(30);
         frame.render(&self.camera, self.view, split_x, reference, profile)?;
         let view = frame.display.texture().create_view(&Default::default());
         let mut renderer = self.egui_renderer.write();
