@@ -275,7 +275,8 @@ impl ViewerApp {
     /// Keyboard and wheel (when no text field has the focus); returns the camera motion.
     fn keys(&mut self, ctx: &egui::Context) -> Motion {
         let mut motion = Motion::default();
-        if ctx.egui_wants_keyboard_input() {
+        // Sliders keep the focus after a click: only a text field being edited takes the keys.
+        if ctx.text_edit_focused() {
             return motion;
         }
         let axis = |i: &egui::InputState, plus: Key, minus: Key| {
@@ -746,7 +747,20 @@ impl eframe::App for ViewerApp {
             );
         });
         self.help(&ctx);
-        self.frames += 1;
+        // `--view reference`: trace it for the first frame's view. A `--frames` run waits for it,
+        // so its screenshot shows the reference.
+        let tracing = self.reference.poll().is_some();
+        if self.view == DebugView::Reference
+            && !tracing
+            && self.reference.done.is_none()
+            && self.reference.error.is_none()
+            && self.frame.is_some()
+        {
+            self.start_reference();
+        }
+        if !(tracing && self.start.frames.is_some()) {
+            self.frames += 1;
+        }
         self.finish_run(&ctx);
         ctx.request_repaint();
     }

@@ -149,8 +149,17 @@ mod tests {
         let fly = FlyCamera::from_camera(&camera, 10.0);
         assert_eq!(fly.flags(), "--eye 0,1,5 --target 0,1,0 --fov 60");
         let key: serde_json::Value = serde_json::from_str(&fly.keyframe(0.0)).unwrap();
-        assert_eq!(key["eye"], serde_json::json!([0.0, 1.0, 5.0]));
-        assert_eq!(key["fov"], serde_json::json!(60.0));
+        let numbers = |v: &serde_json::Value| -> Vec<f64> {
+            v.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        };
+        assert_eq!(numbers(&key["eye"]), [0.0, 1.0, 5.0]);
+        assert_eq!(numbers(&key["target"]), [0.0, 1.0, 0.0]);
+        assert_eq!(key["fov"].as_f64(), Some(60.0));
+        assert_eq!(key["time"].as_f64(), Some(0.0));
     }
 
     #[test]
