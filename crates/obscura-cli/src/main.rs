@@ -75,7 +75,11 @@ fn quiet_headless_vulkan() {
 
 fn main() -> ExitCode {
     quiet_headless_vulkan();
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    // eframe logs a failed start itself; `view` says it once, with what to do.
+    env_logger::Builder::from_env(
+        env_logger::Env::default().default_filter_or("warn,eframe::native::run=off"),
+    )
+    .init();
     // Ctrl-C: remove any output still being written, so nothing half-written is left behind.
     let _ = ctrlc::set_handler(|| {
         obscura::output::remove_partial_files();
