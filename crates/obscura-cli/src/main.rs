@@ -45,6 +45,9 @@ enum Command {
     Bench(commands::bench::BenchArgs),
     /// Compare two AO images: largest and mean absolute difference.
     Diff(commands::diff::DiffArgs),
+    /// Interactive viewer: fly camera, every technique and setting, debug views, split screen,
+    /// the reference on demand and per-pass GPU timings (F1 in the window lists the keys).
+    View(Box<commands::view::ViewArgs>),
 }
 
 /// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
@@ -75,7 +78,11 @@ fn quiet_headless_vulkan() {
 
 fn main() -> ExitCode {
     quiet_headless_vulkan();
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    // eframe logs a failed start itself; `view` says it once, with what to do.
+    env_logger::Builder::from_env(
+        env_logger::Env::default().default_filter_or("warn,eframe::native::run=off"),
+    )
+    .init();
     // Ctrl-C: remove any output still being written, so nothing half-written is left behind.
     let _ = ctrlc::set_handler(|| {
         obscura::output::remove_partial_files();
@@ -97,6 +104,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
         Command::Diff(a) => commands::diff::run(&a),
+        Command::View(a) => commands::view::run(&gpu_options, &a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,3 +7,4 @@ pub mod path;
 pub mod reference;
 pub mod render;
 pub mod scenes;
+pub mod view;

@@ -156,6 +156,32 @@ impl Renderer {
             .ok_or_else(|| Error::Input("nothing rendered yet: call render() first".into()))
     }
 
+    /// The settings this renderer was made with.
+    pub fn settings(&self) -> &AoSettings {
+        &self.settings
+    }
+
+    /// The guard band in pixels on every side of the visible image.
+    pub fn guard_band(&self) -> u32 {
+        self.guard_band
+    }
+
+    /// The G-buffer of the last frame as textures, for a viewer's display pass (no read-back):
+    /// linear depth (`R32Float`, 0 = background) and view-space normals (`Rgba16Float`), both over
+    /// the whole framebuffer, guard band included.
+    pub fn gbuffer_textures(&self) -> (&wgpu::Texture, &wgpu::Texture) {
+        (&self.gbuffer.depth, &self.gbuffer.normals)
+    }
+
+    /// Record the base-colour pass of the last frame's view into `encoder` and return its target
+    /// (framebuffer-sized `Rgba8UnormSrgb`, white where nothing is): [`Self::read_albedo`]
+    /// without the read-back, for a viewer's composite.
+    pub fn encode_albedo(&self, encoder: &mut wgpu::CommandEncoder) -> &wgpu::Texture {
+        self.gbuffer
+            .render_albedo(&self.gpu.device, encoder, &self.scene);
+        &self.gbuffer.albedo
+    }
+
     /// The last frame's view (camera, sizes, projection).
     pub fn view(&self) -> Option<&FrameView> {
         self.view.as_ref()
