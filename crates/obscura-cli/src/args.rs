@@ -583,6 +583,10 @@ pub struct AoArgs {
         "temporal.normal_tolerance_deg"
     ))]
     pub temporal_normal_tolerance: Option<f32>,
+    /// --temporal: keep the history unclamped (by default it is clamped to the range of this
+    /// frame's AO around the pixel, which stops view-dependent occlusion from lagging).
+    #[arg(long)]
+    pub temporal_no_clamp: bool,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
     #[arg(long)]
     pub guard_band: Option<u32>,
@@ -729,6 +733,9 @@ impl AoArgs {
             &mut s.temporal.normal_tolerance_deg,
             self.temporal_normal_tolerance,
         );
+        if self.temporal_no_clamp {
+            s.temporal.clamp = false;
+        }
         // The preset and the file were valid: anything invalid now came from a flag.
         s.validate().map_err(with_flags)?;
         Ok(s)
@@ -869,9 +876,10 @@ mod tests {
         }
         // Every field but the switches' blur.enabled (--no-blur), gtao_vb.cosine_weighted
         // (--vb-cosine), bent_normals (--bent-normals), ray_sd.z_cull (--no-z-cull),
-        // ray_sd.intervals (--no-intervals) and temporal.enabled (--temporal), and blur.sigma
-        // (--blur-sigma) and multiview.focus (--mv-focus), whose defaults are to be left out.
-        assert_eq!(stated, FIELD_FLAGS.len() - 8);
+        // ray_sd.intervals (--no-intervals), temporal.enabled (--temporal) and temporal.clamp
+        // (--temporal-no-clamp), and blur.sigma (--blur-sigma) and multiview.focus (--mv-focus),
+        // whose defaults are to be left out.
+        assert_eq!(stated, FIELD_FLAGS.len() - 9);
         for t in Technique::all() {
             assert_eq!(
                 ao(&[]).settings(t).unwrap(),

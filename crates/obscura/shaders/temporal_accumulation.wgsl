@@ -1,10 +1,12 @@
 // Temporal accumulation of the AO image (issue 13; the temporal filters engines ship, e.g. the
-// history reprojection of TAA, applied to AO alone): every visible pixel is reprojected into the
+// history reprojection of TAA, applied to AO alone). It runs on the raw AO, before the bilateral
+// blur, so it averages the estimators' rotation noise itself. Every visible pixel is reprojected into the
 // previous frame by its depth and the camera motion (the scene is static), the history there is
 // read bilinearly from the texels that hold the same surface (depth within `depth_tolerance` of
 // the reprojected depth, world normal within `normal_cos`), and the new AO is the running mean
 // of up to `max_frames` frames: ao = mix(history, current, 1 / n), n = min(n_history + 1,
-// max_frames). With the estimators' 4×4 pattern turned by one entry per frame (View
+// max_frames), the history first clipped to the current 3×3 neighbourhood's spread (`clamp`).
+// With the estimators' 4×4 pattern turned by one entry per frame (View
 // pattern_offset), a still camera converges to the mean over all 16 rotations in 16 frames.
 // Pixels with no matching history (disocclusion, off screen, first frame) restart at n = 1.
 //
@@ -14,6 +16,12 @@
 //
 // Needs common/view.wgsl and common/vertex_normal.wgsl in front.
 
+// Variance clipping (Salvi, "An Excursion in Temporal Supersampling", GDC 2016): the history is
+// clamped to mean ± GAMMA·σ of the current 3×3 neighbourhood; 1 is the usual choice.
+const GAMMA: f32 = 1.0;
+// Within this many pixels of a texel centre, the history is read from that texel alone.
+const SNAP: f32 = 0.01;
+
 struct TemporalParams {
     // View space of this frame to view space of the previous frame.
     current_to_previous: mat4x4<f32>,
@@ -22,8 +30,13 @@ struct TemporalParams {
     depth_tolerance: f32,
     normal_cos: f32,
     max_frames: f32,
+    // 1: clamp the history to this frame's 3×3 neighbourhood range.
+    clamp: u32,
     // 0: no previous frame (the first, or after a reset): every pixel restarts.
     history_valid: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> view: View;
@@ -41,7 +54,7 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
     let size = vec2<i32>(view.visible_size);
     // Within 1/100 px of a texel centre (a still camera, up to the rounding of the matrices):
     // that texel alone, so a still image is not resampled, and blurred, every frame.
-    let q = select(q_in, round(q_in), all(abs(q_in - round(q_in)) < vec2<f32>(0.01)));
+    let q = select(q_in, round(q_in), all(abs(q_in - round(q_in)) < vec2<f32>(SNAP)));
     let base = vec2<i32>(floor(q));
     let f = q - floor(q);
     var ao = 0.0;
@@ -97,7 +110,27 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
     }
     let n = min(round(history.y) + 1.0, params.max_frames);
-    let ao = select(current, mix(history.x, current, 1.0 / n), history.y > 0.0);
+    var past = history.x;
+    if (params.clamp != 0u) {
+        // Neighbourhood clamp (as engines' TAA does): the history may not leave the spread of
+        // this frame's unfiltered AO around the pixel. Its 3×3 texels hold 9 of the pattern's
+        // rotations, so rotation noise passes and is averaged, while occlusion the view no longer
+        // has (the halos move with parallax) cannot linger for `max_frames` frames.
+        var m1 = 0.0;
+        var m2 = 0.0;
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let t = clamp(vec2<i32>(id) + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(view.visible_size) - 1);
+                let v = textureLoad(ao_in, t, 0).x;
+                m1 += v;
+                m2 += v * v;
+            }
+        }
+        let mean = m1 / 9.0;
+        let sigma = sqrt(max(m2 / 9.0 - mean * mean, 0.0));
+        past = clamp(past, mean - GAMMA * sigma, mean + GAMMA * sigma);
+    }
+    let ao = select(current, mix(past, current, 1.0 / n), history.y > 0.0);
     textureStore(ao_out, id, vec4<f32>(ao));
     textureStore(
         history_out,

@@ -752,7 +752,7 @@ pub struct AoSettings {
     pub temporal: TemporalSettings,
 }
 
-/// Temporal accumulation (issue 13; src/filter/temporal.rs): after the blur, each pixel's AO is
+/// Temporal accumulation (issue 13; src/filter/temporal.rs): before the blur, each pixel's AO is
 /// averaged with its history from the previous frames, reprojected by depth and camera motion,
 /// and the estimators turn their 4×4 sample pattern by one entry per frame, so a still camera
 /// converges to the mean over all 16 rotations. History is rejected where the surface differs
@@ -769,6 +769,10 @@ pub struct TemporalSettings {
     pub depth_tolerance: f32,
     /// Degrees between normals within which the history holds the same surface.
     pub normal_tolerance_deg: f32,
+    /// Clamp the history to the range of this frame's AO in the pixel's 3×3 neighbourhood (as
+    /// engines' TAA does): screen-space AO changes with the view (halos move with parallax), and
+    /// without the clamp that change lags `frames` frames behind.
+    pub clamp: bool,
 }
 
 impl Default for TemporalSettings {
@@ -778,6 +782,7 @@ impl Default for TemporalSettings {
             frames: 16,
             depth_tolerance: 0.03,
             normal_tolerance_deg: 30.0,
+            clamp: true,
         }
     }
 }
@@ -1838,7 +1843,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 71, "{paths:?}");
+        assert_eq!(paths.len(), 72, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();

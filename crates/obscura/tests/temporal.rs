@@ -4,9 +4,9 @@
 
 mod common;
 
-use obscura::bvh::Bvh;
 use obscura::metrics::temporal::{path_metrics, PathFrame, Reprojection};
-use obscura::reference::ground_truth::{render_reference, ReferenceModel, ReferenceSettings};
+use obscura::reference::cpu_blur::cpu_blur;
+use obscura::reference::cpu_vao::cpu_vao_turned;
 use obscura::scene::{self, Camera};
 use obscura::{AoSettings, FrameView, Renderer, Technique};
 
@@ -30,8 +30,10 @@ fn a_still_camera_converges_to_the_mean_over_all_rotations() {
     let scene = scene::builtin("stairs").unwrap();
     let camera = scene.cameras[0].camera;
     for technique in [Technique::Vao, Technique::Hbao, Technique::Gtao] {
-        // Unblurred, so the accumulator's input is the raw AO of each frame.
-        let settings = temporal_settings(technique, false);
+        // Unclamped: the plain running mean over the frames (the output is blurred afterwards,
+        // so the blur is off here to read the mean itself).
+        let mut settings = temporal_settings(technique, false);
+        settings.temporal.clamp = false;
         let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
         let mut frames = Vec::new();
         for _ in 0..16 {
@@ -157,53 +159,103 @@ fn disocclusions_restart_their_history() {
     );
 }
 
+/// The corner scene (floor meeting a wall) seen from a camera trucking along it, `frames` views.
+fn corner_truck(frames: usize) -> Vec<Camera> {
+    (0..frames)
+        .map(|k| {
+            let x = 0.04 * k as f32;
+            common::camera(
+                glam::Vec3::new(0.6 + x, 2.0, 3.0),
+                glam::Vec3::new(x, 0.3, 0.0),
+                50.0,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn each_frame_turns_the_pattern_as_the_cpu_oracle_does() {
+    let gpu = common::gpu();
+    let scene = common::corner_scene();
+    let settings = temporal_settings(Technique::Vao, false);
+    let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
+    let camera = corner_truck(1)[0];
+    // The k-th frame (k = 1, 2, …) runs with the pattern turned by k entries.
+    for k in 1..=3u32 {
+        r.render(&camera, None).unwrap();
+        let g = r.read_gbuffer().unwrap();
+        let screen = r.view().unwrap().screen();
+        let cpu = cpu_vao_turned(&g, &screen, &settings.vao, k);
+        common::assert_mirrors(&format!("frame {k}"), &raw(&r), (cpu.ao, cpu.ambiguous));
+    }
+}
+
+/// The moving-camera test runs without the blur: on this plain corner the blur alone already
+/// removes most of the pattern (measured with it on: temporal error 0.00027 → 0.00021, MAE
+/// 0.0010 → 0.0015, the accumulation's lag), so the test looks at what the accumulation itself
+/// does to the raw AO.
+const BLUR: bool = false;
+
 #[test]
 fn a_moving_camera_flickers_less_with_accumulation() {
+    // Single-frame VAO carries its 4×4 rotation pattern, fixed on the screen, so as the camera
+    // moves the pattern slides over the surfaces and flickers; accumulated frames average the
+    // rotations. The reference is what both estimate: VAO averaged over all 16 rotations (the
+    // CPU oracle; one depth layer, so nothing is hidden).
     let gpu = common::gpu();
-    let (scene, cameras) = dolly(12);
-    let near = obscura::near_plane(&scene);
-    let views: Vec<FrameView> = cameras
-        .iter()
-        .map(|c| FrameView::new(*c, W, H, GUARD, near))
-        .collect();
+    let scene = common::corner_scene();
+    let cameras = corner_truck(16);
     let run = |temporal: bool| {
-        let mut settings = common::technique_settings(Technique::Vao, true);
+        let mut settings = common::technique_settings(Technique::Vao, BLUR);
         settings.temporal.enabled = temporal;
         let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
-        let mut ao = Vec::new();
-        let mut depth = Vec::new();
+        let mut out = Vec::new();
         for c in &cameras {
             r.render(c, None).unwrap();
-            ao.push(r.read_ao().unwrap());
-            depth.push(r.read_gbuffer().unwrap().visible_depth(GUARD));
+            let g = r.read_gbuffer().unwrap();
+            out.push((r.read_ao().unwrap(), g, *r.view().unwrap()));
         }
-        (ao, depth)
+        (out, settings)
     };
-    let (plain, depth) = run(false);
+    let (plain, settings) = run(false);
     let (accumulated, _) = run(true);
-    // The ground truth of AO within VAO's radius: cosine-weighted hemisphere rays.
-    let bvh = Bvh::build(&scene);
-    let reference_settings = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 256,
-        vao: AoSettings::default().vao,
-        ..ReferenceSettings::default()
-    };
-    let reference: Vec<Vec<f32>> = views
+    let mut reference = Vec::new();
+    let mut frames_depth = Vec::new();
+    for (_, g, view) in &plain {
+        let screen = view.screen();
+        let mut mean = vec![0.0f32; (W * H) as usize];
+        for offset in 0..16 {
+            for (m, v) in mean
+                .iter_mut()
+                .zip(cpu_vao_turned(g, &screen, &settings.vao, offset).ao)
+            {
+                *m += v / 16.0;
+            }
+        }
+        reference.push(match BLUR {
+            true => cpu_blur(&mean, g, &screen, &settings.blur),
+            false => mean,
+        });
+        frames_depth.push(g.visible_depth(GUARD));
+    }
+    let frames: Vec<PathFrame> = plain
         .iter()
-        .map(|v| render_reference(&scene, &bvh, *v, &reference_settings, &|_| {}))
+        .zip(&frames_depth)
+        .map(|((_, _, view), depth)| PathFrame { view: *view, depth })
         .collect();
-    let frames: Vec<PathFrame> = views
-        .iter()
-        .zip(&depth)
-        .map(|(&view, depth)| PathFrame { view, depth })
-        .collect();
+    let images = |run: &[(
+        Vec<f32>,
+        obscura::reference::cpu_vao::GBufferImage,
+        FrameView,
+    )]| { run.iter().map(|(ao, _, _)| ao.clone()).collect::<Vec<_>>() };
+    let (plain, accumulated) = (images(&plain), images(&accumulated));
     let plain_m = path_metrics(&frames, &plain, &reference).unwrap();
     let acc_m = path_metrics(&frames, &accumulated, &reference).unwrap();
+    // Over the second half of the path, once the history has filled.
     let mae = |images: &[Vec<f32>]| -> f64 {
-        images
+        images[8..]
             .iter()
-            .zip(&reference)
+            .zip(&reference[8..])
             .map(|(a, r)| {
                 a.iter()
                     .zip(r)
@@ -212,7 +264,7 @@ fn a_moving_camera_flickers_less_with_accumulation() {
                     / a.len() as f64
             })
             .sum::<f64>()
-            / images.len() as f64
+            / 8.0
     };
     println!(
         "temporal error {:.5} -> {:.5}, popping {:.5} -> {:.5}, MAE {:.5} -> {:.5}",
@@ -224,12 +276,18 @@ fn a_moving_camera_flickers_less_with_accumulation() {
         mae(&accumulated)
     );
     assert!(
-        acc_m.temporal_error < 0.75 * plain_m.temporal_error,
+        plain_m.popping > 0.01,
+        "the pattern should pop: {}",
+        plain_m.popping
+    );
+    assert!(acc_m.popping < 1e-3, "{}", acc_m.popping);
+    assert!(
+        acc_m.temporal_error < plain_m.temporal_error / 3.0,
         "{} vs {}",
         acc_m.temporal_error,
         plain_m.temporal_error
     );
-    assert!(mae(&accumulated) <= 1.02 * mae(&plain));
+    assert!(mae(&accumulated) < mae(&plain));
 }
 
 #[test]

@@ -40,7 +40,9 @@ struct TemporalParams {
     depth_tolerance: f32,
     normal_cos: f32,
     max_frames: f32,
+    clamp: u32,
     history_valid: u32,
+    _pad: [u32; 3],
 }
 
 /// One compute pass per frame, with two history images it alternates between.
@@ -115,7 +117,9 @@ impl TemporalAccumulation {
             depth_tolerance: self.settings.depth_tolerance,
             normal_cos: self.settings.normal_tolerance_deg.to_radians().cos(),
             max_frames: self.settings.frames as f32,
+            clamp: u32::from(self.settings.clamp),
             history_valid: valid,
+            _pad: [0; 3],
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.previous.set(Some(*view));

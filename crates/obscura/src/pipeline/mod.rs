@@ -168,18 +168,8 @@ impl AmbientOcclusion {
             false => (1, 1),
         };
         let mut filters = Vec::new();
-        if settings.blur.enabled && !estimator_debug {
-            filters.push(FilterStage {
-                filter: Box::new(BilateralBlur::new(
-                    device,
-                    &settings.blur,
-                    work_view,
-                    work.width,
-                    work.height,
-                )),
-                output: ao_texture("ao blurred"),
-            });
-        }
+        // Temporal accumulation first: it averages the raw AO's rotation noise over frames and
+        // clamps its history to the raw neighbourhood's range; the blur smooths what is left.
         if settings.temporal.enabled && !estimator_debug {
             filters.push(FilterStage {
                 filter: Box::new(TemporalAccumulation::new(
@@ -190,6 +180,18 @@ impl AmbientOcclusion {
                     work.height,
                 )),
                 output: ao_texture("ao accumulated"),
+            });
+        }
+        if settings.blur.enabled && !estimator_debug {
+            filters.push(FilterStage {
+                filter: Box::new(BilateralBlur::new(
+                    device,
+                    &settings.blur,
+                    work_view,
+                    work.width,
+                    work.height,
+                )),
+                output: ao_texture("ao blurred"),
             });
         }
         Ok(Self {

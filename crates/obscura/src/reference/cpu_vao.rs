@@ -46,6 +46,17 @@ pub struct CpuVao {
 /// VAO of every visible pixel of `g` with settings `s`, as `vao.wgsl` computes it from the first
 /// depth layer (no blur): the oracle the GPU `vao` pass is tested against.
 pub fn cpu_vao(g: &GBufferImage, screen: &ScreenGeometry, s: &VaoSettings) -> CpuVao {
+    cpu_vao_turned(g, screen, s, 0)
+}
+
+/// [`cpu_vao`] with the 4×4 rotation pattern turned by `pattern_offset` entries, as the GPU
+/// turns it per frame under temporal accumulation (`pattern_index` in common/pattern.wgsl).
+pub fn cpu_vao_turned(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    s: &VaoSettings,
+    pattern_offset: u32,
+) -> CpuVao {
     let n_pixels = (screen.width * screen.height) as usize;
     let mut ao = vec![1.0; n_pixels];
     let mut ambiguous = vec![false; n_pixels];
@@ -59,8 +70,14 @@ pub fn cpu_vao(g: &GBufferImage, screen: &ScreenGeometry, s: &VaoSettings) -> Cp
                 continue;
             }
             let pos = screen.pixel_to_view(pixel.as_vec2() + 0.5, z);
-            let frame =
-                PixelFrame::new(pos, g.normals[(pixel.y * g.width + pixel.x) as usize], x, y);
+            // The pattern entry this pixel uses, as the (x % 4, y % 4) that names it.
+            let entry = (x % 4 + 4 * (y % 4) + pattern_offset) % 16;
+            let frame = PixelFrame::new(
+                pos,
+                g.normals[(pixel.y * g.width + pixel.x) as usize],
+                entry % 4,
+                entry / 4,
+            );
             let mut acc = Accumulator::default();
             for &k in &kernel {
                 let Some(column) = frame.column(k, s, screen) else {
