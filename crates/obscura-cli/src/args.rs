@@ -185,6 +185,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
         "temporal.normal_tolerance_deg",
         "--temporal-normal-tolerance",
     ),
+    ("temporal.clamp", "--temporal-no-clamp"),
     ("hbao.radius", "--horizon-radius"),
     ("hbao.angle_bias", "--horizon-bias"),
     ("hbao.exponent", "--horizon-exponent"),
