@@ -570,7 +570,7 @@ pub struct AoArgs {
     #[arg(long)]
     pub temporal: bool,
     #[arg(long, help = help(
-        "--temporal: the most frames averaged (1..256).",
+        "--temporal: the most frames averaged (1..255).",
         "temporal.frames"
     ))]
     pub temporal_frames: Option<u32>,

@@ -10,9 +10,9 @@
 // pattern_offset), a still camera converges to the mean over all 16 rotations in 16 frames.
 // Pixels with no matching history (disocclusion, off screen, first frame) restart at n = 1.
 //
-// History (rgba32uint, visible size, ping-pong): x = AO bits, y = n, z = linear depth bits,
-// w = the world normal, octahedral, pack2x16snorm. Unsigned, so no bit pattern is a NaN that a
-// float texture could rewrite.
+// History (rg32uint, visible size, ping-pong; 8 bytes, as the pass is bound by memory traffic):
+// x = AO as 24-bit fixed point << 8 | n (n ≤ 255); y = linear depth as f16 (low half; 0.05 %
+// precision against a 3 % tolerance) | the world normal, octahedral, two snorm bytes (high half).
 //
 // Needs common/view.wgsl and common/vertex_normal.wgsl in front.
 
@@ -21,6 +21,8 @@
 const GAMMA: f32 = 1.0;
 // Within this many pixels of a texel centre, the history is read from that texel alone.
 const SNAP: f32 = 0.01;
+// The history's AO in 24-bit fixed point.
+const AO_SCALE: f32 = 16777215.0;
 
 struct TemporalParams {
     // View space of this frame to view space of the previous frame.
@@ -46,7 +48,7 @@ struct TemporalParams {
 @group(0) @binding(4) var ao_in: texture_2d<f32>;
 @group(0) @binding(5) var history_in: texture_2d<u32>;
 @group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
-@group(0) @binding(7) var history_out: texture_storage_2d<rgba32uint, write>;
+@group(0) @binding(7) var history_out: texture_storage_2d<rg32uint, write>;
 
 // The history's AO and frame count at visible position `q` (texel centres at integers), from the
 // texels that hold the surface at linear depth `z` with world normal `n`; count 0 when none.
@@ -67,14 +69,15 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
         if (any(texel < vec2<i32>(0)) || any(texel >= size) || !(w > 0.0)) {
             continue;
         }
-        let h = textureLoad(history_in, texel, 0);
-        let h_depth = bitcast<f32>(h.z);
-        let h_normal = decode_vertex_normal(unpack2x16snorm(h.w));
-        if (h.y == 0u || abs(h_depth - z) > params.depth_tolerance * z || dot(h_normal, n) < params.normal_cos) {
+        let h = textureLoad(history_in, texel, 0).xy;
+        let h_count = h.x & 255u;
+        let h_depth = unpack2x16float(h.y).x;
+        let h_normal = decode_vertex_normal(unpack4x8snorm(h.y >> 16u).xy);
+        if (h_count == 0u || abs(h_depth - z) > params.depth_tolerance * z || dot(h_normal, n) < params.normal_cos) {
             continue;
         }
-        ao += w * bitcast<f32>(h.x);
-        count += w * f32(h.y);
+        ao += w * f32(h.x >> 8u) * (1.0 / AO_SCALE);
+        count += w * f32(h_count);
         total += w;
     }
     if (total < 1e-4) {
@@ -94,7 +97,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let z = textureLoad(depth_tex, full, 0).x;
     if (is_background(z)) {
         textureStore(ao_out, id, vec4<f32>(current));
-        textureStore(history_out, id, vec4<u32>(bitcast<u32>(current), 0u, 0u, 0u));
+        textureStore(history_out, id, vec4<u32>(0u));
         return;
     }
     let p = pixel_to_view(view, vec2<f32>(full) + 0.5, z);
@@ -132,9 +135,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let ao = select(current, mix(past, current, 1.0 / n), history.y > 0.0);
     textureStore(ao_out, id, vec4<f32>(ao));
-    textureStore(
-        history_out,
-        id,
-        vec4<u32>(bitcast<u32>(ao), u32(n), bitcast<u32>(z), pack2x16snorm(encode_octahedral(n_world))),
-    );
+    let packed_ao = (u32(round(saturate(ao) * AO_SCALE)) << 8u) | u32(n);
+    let packed_surface = (pack2x16float(vec2<f32>(z, 0.0)) & 0xffffu)
+        | (pack4x8snorm(vec4<f32>(encode_octahedral(n_world), 0.0, 0.0)) << 16u);
+    textureStore(history_out, id, vec4<u32>(packed_ao, packed_surface, 0u, 0u));
 }

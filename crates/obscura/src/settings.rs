@@ -1208,11 +1208,11 @@ impl AoSettings {
             ));
         }
         let t = &self.temporal;
-        if !(1..=256).contains(&t.frames) {
+        if !(1..=255).contains(&t.frames) {
             return Err(invalid(
                 "temporal.frames",
                 t.frames,
-                "must be between 1 and 256, e.g. 16",
+                "must be between 1 and 255, e.g. 16",
             ));
         }
         if !(t.depth_tolerance > 0.0 && t.depth_tolerance < 1.0) {

@@ -31,6 +31,18 @@ pub struct HistoryTexel {
     pub depth: f32,
 }
 
+impl HistoryTexel {
+    /// One texel as `temporal_accumulation.wgsl` packs it: AO in 24-bit fixed point above the
+    /// frame count in the low byte; the depth as f16 in the low half of the second word.
+    pub fn unpack(words: [u32; 2]) -> Self {
+        Self {
+            ao: (words[0] >> 8) as f32 / 16_777_215.0,
+            frames: words[0] & 255,
+            depth: half::f16::from_bits((words[1] & 0xffff) as u16).to_f32(),
+        }
+    }
+}
+
 /// `TemporalParams` of the shader.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -72,8 +84,14 @@ impl TemporalAccumulation {
             &[shaders::VIEW, shaders::VERTEX_NORMAL],
             shaders::TEMPORAL_ACCUMULATION,
         );
-        let pipeline =
-            crate::gpu::compute_pipeline_with(device, "temporal accumulation", &source, &[]);
+        // SAFETY: every texel the shader touches is in range by construction: it returns for
+        // ids outside the visible size; the 3×3 neighbourhood is clamped into the visible image;
+        // the depth and normals are read at id + guard band, inside the framebuffer whose size
+        // `AmbientOcclusion::encode` checks before binding them; history taps are bounds-tested
+        // before each load; the AO and history images are this filter's own, of the visible size.
+        let pipeline = unsafe {
+            crate::gpu::compute_pipeline_unchecked(device, "temporal accumulation", &source, &[])
+        };
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("temporal params"),
             size: std::mem::size_of::<TemporalParams>() as u64,
@@ -86,7 +104,7 @@ impl TemporalAccumulation {
                 label,
                 width,
                 height,
-                wgpu::TextureFormat::Rgba32Uint,
+                wgpu::TextureFormat::Rg32Uint,
                 wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
@@ -136,7 +154,7 @@ impl TemporalAccumulation {
         self.frame.get() % PATTERN_PERIOD
     }
 
-    /// The history image this frame writes (AO bits, frame count, depth bits, normal).
+    /// The history image this frame writes (`Rg32Uint`: see [`HistoryTexel::unpack`]).
     pub fn history(&self) -> &wgpu::TextureView {
         &self.history[(self.frame.get() % 2) as usize]
     }

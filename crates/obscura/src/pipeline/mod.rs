@@ -263,16 +263,12 @@ impl AmbientOcclusion {
         let Some(temporal) = self.temporal() else {
             return Ok(None);
         };
-        let bytes = crate::gpu::read_texture_bytes(&self.gpu, temporal.history().texture(), 16)?;
+        let bytes = crate::gpu::read_texture_bytes(&self.gpu, temporal.history().texture(), 8)?;
         let words: &[u32] = bytemuck::cast_slice(&bytes);
         Ok(Some(
             words
-                .chunks_exact(4)
-                .map(|w| HistoryTexel {
-                    ao: f32::from_bits(w[0]),
-                    frames: w[1],
-                    depth: f32::from_bits(w[2]),
-                })
+                .chunks_exact(2)
+                .map(|w| HistoryTexel::unpack([w[0], w[1]]))
                 .collect(),
         ))
     }
