@@ -584,7 +584,7 @@ pub struct AoArgs {
         "temporal.normal_tolerance_deg"
     ))]
     pub temporal_normal_tolerance: Option<f32>,
-    /// --temporal: keep the history unclamped (by default it is clamped to the range of this
+    /// --temporal: keep the history unclipped (by default it is clipped to the spread of this
     /// frame's AO around the pixel, which stops view-dependent occlusion from lagging).
     #[arg(long)]
     pub temporal_no_clamp: bool,

@@ -769,7 +769,7 @@ pub struct TemporalSettings {
     pub depth_tolerance: f32,
     /// Degrees between normals within which the history holds the same surface.
     pub normal_tolerance_deg: f32,
-    /// Clamp the history to the range of this frame's AO in the pixel's 3×3 neighbourhood (as
+    /// Clip the history to mean ± σ of this frame's AO at the pixel and its four neighbours (as
     /// engines' TAA does): screen-space AO changes with the view (halos move with parallax), and
     /// without the clamp that change lags `frames` frames behind.
     pub clamp: bool,
