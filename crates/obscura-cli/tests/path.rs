@@ -230,3 +230,44 @@ fn scenes_list_their_paths() {
     }
     assert_eq!(list[0]["paths"][0], "dolly");
 }
+
+#[test]
+fn bench_along_a_path_reports_the_spread() {
+    let dir = tempfile::tempdir().unwrap();
+    let json_file = dir.path().join("bench.json");
+    let o = obscura(
+        &[
+            "bench",
+            "--scene",
+            "layers",
+            "--path",
+            "orbit",
+            "--size",
+            "64x48",
+            "--frames",
+            "4",
+            "--warmup",
+            "1",
+            "--techniques",
+            "vao",
+            "--temporal",
+            "--json",
+            json_file.to_str().unwrap(),
+        ],
+        dir.path(),
+    );
+    ok(&o);
+    let r = &json(&json_file)["results"][0];
+    assert_eq!(r["camera"], "path orbit");
+    let path = &r["path"];
+    assert_eq!(path["times"].as_array().unwrap().len(), 4);
+    assert_eq!(path["times"][3], 3.0);
+    assert_eq!(path["totals"].as_array().unwrap().len(), 4);
+    for pass in ["vao", "temporal", "blur_x"] {
+        let [lo, hi] = [0, 1].map(|i| path["spread"][pass][i].as_f64().unwrap());
+        let median = r["passes"][pass].as_f64().unwrap();
+        assert!(lo <= median && median <= hi, "{pass}: {lo} {median} {hi}");
+    }
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("along the path"), "{stdout}");
+}

@@ -29,6 +29,11 @@ pub struct BenchArgs {
     /// Also write the results as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Time along a camera path (a scene's path name or a .json file, docs/PATHS.md): the timed
+    /// frames play the path from its first keyframe to its last, and each pass is reported as
+    /// its median with the spread over the path (seed 002 Fig. 14–15).
+    #[arg(long = "path")]
+    path: Option<String>,
 }
 
 #[derive(serde::Serialize)]
@@ -49,10 +54,25 @@ struct BenchResult {
     layout: Option<Layout>,
     passes: BTreeMap<String, f64>,
     total_ms: f64,
+    /// Along a camera path (`--path`): each pass's fastest and slowest frame, and every frame's
+    /// time along the path and total.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    path: Option<PathTiming>,
     /// Raster passes: the median fragment-shader invocations per frame, and per framebuffer pixel
     /// (overdraw); absent where the adapter has no pipeline statistics queries.
     #[serde(skip_serializing_if = "Option::is_none")]
     fragments: Option<BTreeMap<String, Fragments>>,
+}
+
+#[derive(serde::Serialize)]
+struct PathTiming {
+    name: String,
+    /// Per pass: [fastest, slowest] frame along the path, ms.
+    spread: BTreeMap<String, [f64; 2]>,
+    /// Each timed frame's time along the path, seconds.
+    times: Vec<f32>,
+    /// Each timed frame's total, ms.
+    totals: Vec<f64>,
 }
 
 #[derive(serde::Serialize)]
@@ -108,17 +128,39 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
     let (width, height) = args.size;
     let guard_band = args.ao.guard_band(height);
     let scene = args.scene.load()?;
-    let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
-    let camera_name = args.scene.camera.clone().unwrap_or_else(|| {
-        if args.scene.eye.is_some() {
-            "custom".into()
-        } else {
-            scene
-                .cameras
-                .first()
-                .map_or("auto".into(), |c| c.name.clone())
+    let path = match &args.path {
+        Some(spec) => {
+            super::path::check_no_camera(&args.scene)?;
+            let choice = super::path::PathChoice {
+                path: Some(spec.clone()),
+                frames: args.frames,
+            };
+            Some(choice.resolve(&scene, width as f32 / height as f32)?)
         }
-    });
+        None => None,
+    };
+    // Without a path, every frame is seen from the one camera.
+    let cameras: Vec<(f32, obscura::scene::Camera)> = match &path {
+        Some(p) => p.sample(args.frames)?,
+        None => vec![(
+            0.0,
+            args.scene.camera(&scene, width as f32 / height as f32)?,
+        )],
+    };
+    let camera = cameras[0].1;
+    let camera_name = match &path {
+        Some(p) => format!("path {}", p.name),
+        None => args.scene.camera.clone().unwrap_or_else(|| {
+            if args.scene.eye.is_some() {
+                "custom".into()
+            } else {
+                scene
+                    .cameras
+                    .first()
+                    .map_or("auto".into(), |c| c.name.clone())
+            }
+        }),
+    };
     let gpu = obscura::Gpu::new(options)?;
     if gpu.summary.device_type == "Cpu" {
         eprintln!(
@@ -137,7 +179,8 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             gpu.finish()?;
             progress.inc(1);
         }
-        for _ in 0..args.frames {
+        for k in 0..args.frames as usize {
+            let camera = cameras[k % cameras.len()].1;
             renderer.render(&camera, Some(&mut profiler))?;
             // One frame in flight at a time, as a renderer presenting every frame would run.
             gpu.finish()?;
@@ -166,7 +209,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
                 .collect()
         });
         let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-        let mut totals = Vec::new();
+        let mut totals: Vec<f64> = Vec::new();
         for frame in &frames {
             for (pass, ms) in frame {
                 per_pass.entry(pass.clone()).or_default().push(*ms);
@@ -188,6 +231,19 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
                 maps: l.maps,
                 samples_per_map: l.samples_per_map,
             });
+        let path_timing = path.as_ref().map(|p| PathTiming {
+            name: p.name.clone(),
+            spread: per_pass
+                .iter()
+                .map(|(pass, v)| {
+                    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+                    let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    (pass.clone(), [lo, hi])
+                })
+                .collect(),
+            times: cameras.iter().map(|(t, _)| *t).collect(),
+            totals: totals.clone(),
+        });
         results.push(BenchResult {
             technique: technique.name().into(),
             settings: settings.resolved(),
@@ -200,6 +256,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             frames: args.frames,
             passes: per_pass.into_iter().map(|(k, v)| (k, median(v))).collect(),
             total_ms: median(totals),
+            path: path_timing,
             fragments,
         });
     }
@@ -240,9 +297,24 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             r.technique, r.scene, r.camera, r.width, r.height, r.guard_band, r.frames
         );
         for (pass, ms) in &r.passes {
-            println!("  {pass:<20} {ms:>9.4} ms");
+            match r.path.as_ref().and_then(|p| p.spread.get(pass)) {
+                Some([lo, hi]) => {
+                    println!("  {pass:<20} {ms:>9.4} ms  ({lo:.4} to {hi:.4} along the path)")
+                }
+                None => println!("  {pass:<20} {ms:>9.4} ms"),
+            }
         }
-        println!("  {:<20} {:>9.4} ms", "total", r.total_ms);
+        match &r.path {
+            Some(p) => {
+                let lo = p.totals.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = p.totals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                println!(
+                    "  {:<20} {:>9.4} ms  ({lo:.4} to {hi:.4} along the path)",
+                    "total", r.total_ms
+                );
+            }
+            None => println!("  {:<20} {:>9.4} ms", "total", r.total_ms),
+        }
         for (pass, f) in r.fragments.iter().flatten() {
             println!(
                 "  {pass:<20} {:>9} fragments ({:.2} per framebuffer pixel)",
