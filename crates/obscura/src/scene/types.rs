@@ -188,7 +188,8 @@ pub struct Scene {
     /// Named cameras; the first one is the default (for built-ins: the close-up).
     pub cameras: Vec<NamedCamera>,
     /// Camera paths ([`crate::scene::CameraPath`]): the built-ins' (each moves past the scene's
-    /// occluders); empty for files, which get an automatic orbit ([`Scene::path`]).
+    /// occluders) and a glTF file's animated cameras; a scene without any gets an automatic
+    /// orbit ([`Scene::path`]).
     pub paths: Vec<super::CameraPath>,
 }
 

@@ -5,6 +5,7 @@
 //! cameras. `gltf::import` is used in its three steps (parse, buffers, images) so that the checks
 //! in [`checks`] can run between them: some malformed files otherwise panic inside the crate.
 
+mod camera_path;
 mod checks;
 mod materials;
 #[cfg(test)]
@@ -125,7 +126,7 @@ impl Loader<'_> {
                 }
             }
             if node.camera().is_some() {
-                self.add_camera(&node, world);
+                self.add_camera(&node, parent, world);
             }
             let children: Vec<Node> = node.children().collect();
             stack.extend(children.into_iter().rev().map(|c| (c, world)));
@@ -269,8 +270,9 @@ impl Loader<'_> {
         })
     }
 
-    /// A perspective camera on a node: eye at the node's origin, looking down its -Z, up its +Y.
-    fn add_camera(&mut self, node: &Node, world: Mat4) {
+    /// A perspective camera on a node: eye at the node's origin, looking down its -Z, up its +Y;
+    /// and its camera path where an animation moves the node ([`camera_path`]).
+    fn add_camera(&mut self, node: &Node, parent: Mat4, world: Mat4) {
         let index = self.scene.cameras.len();
         let name = node
             .name()
@@ -291,9 +293,21 @@ impl Loader<'_> {
             up: world.transform_vector3(Vec3::Y).normalize_or_zero(),
             fov_y_deg: perspective.yfov.to_degrees(),
         };
+        let fov_y_deg = camera.fov_y_deg;
         match camera.validate() {
-            Ok(()) => self.scene.cameras.push(NamedCamera { name, camera }),
+            Ok(()) => self.scene.cameras.push(NamedCamera {
+                name: name.clone(),
+                camera,
+            }),
             Err(e) => log::warn!("{}: camera '{name}' skipped: {e}", self.path.display()),
+        }
+        match camera_path::camera_path(self.doc, self.buffers, node, parent, &name, fov_y_deg) {
+            Some(Ok(path)) => self.scene.paths.push(path),
+            Some(Err(e)) => log::warn!(
+                "{}: the animation of camera '{name}' is not used as a camera path: {e}",
+                self.path.display()
+            ),
+            None => {}
         }
     }
 }

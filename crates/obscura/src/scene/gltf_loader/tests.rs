@@ -612,3 +612,110 @@ fn vertex_normals_follow_the_node_transform() {
     let path = triangle_with_normals(&dir, [[0.0; 3]; 3], "");
     assert!(load_path(&path).unwrap().normals.is_empty());
 }
+
+/// A triangle and a camera (under a parent moved by (10, 0, 0)) whose node an animation moves:
+/// translation keys at 0, 1, 2 s with `interpolation`, rotation keys at 0 and 2 s (90° about +Y).
+/// CUBICSPLINE translations get zero tangents.
+fn animated_camera_gltf(interpolation: &str) -> String {
+    let cubic = interpolation == "CUBICSPLINE";
+    let mut b: Vec<u8> = Vec::new();
+    let mut floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
+    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], &mut b); // triangle @0, 36
+    floats(&[0.0, 1.0, 2.0], &mut b); // translation times @36, 12
+    let keys = [[0.0, 1.0, 5.0], [2.0, 1.0, 5.0], [4.0, 1.0, 3.0]];
+    for k in keys {
+        if cubic {
+            floats(&[0.0; 3], &mut b);
+        }
+        floats(&k, &mut b);
+        if cubic {
+            floats(&[0.0; 3], &mut b);
+        }
+    }
+    let translations = b.len() - 48; // @48
+    floats(&[0.0, 2.0], &mut b); // rotation times
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, s, 0.0, s], &mut b); // rotations
+    let count = if cubic { 9 } else { 3 };
+    format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "scene": 0,
+  "scenes": [{{"nodes": [0, 1]}}],
+  "nodes": [
+    {{"name": "tri", "mesh": 0}},
+    {{"name": "rig", "translation": [10, 0, 0], "children": [2]}},
+    {{"name": "cam", "camera": 0, "translation": [0, 1, 5]}}
+  ],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+  "animations": [{{
+    "samplers": [
+      {{"input": 1, "output": 2, "interpolation": "{interpolation}"}},
+      {{"input": 3, "output": 4, "interpolation": "LINEAR"}}
+    ],
+    "channels": [
+      {{"sampler": 0, "target": {{"node": 2, "path": "translation"}}}},
+      {{"sampler": 1, "target": {{"node": 2, "path": "rotation"}}}}
+    ]
+  }}],
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}"}}],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 36}},
+    {{"buffer": 0, "byteOffset": 36, "byteLength": 12}},
+    {{"buffer": 0, "byteOffset": 48, "byteLength": {translations}}},
+    {{"buffer": 0, "byteOffset": {rot_times}, "byteLength": 8}},
+    {{"buffer": 0, "byteOffset": {rots}, "byteLength": 32}}
+  ],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]}},
+    {{"bufferView": 2, "componentType": 5126, "count": {count}, "type": "VEC3"}},
+    {{"bufferView": 3, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [2]}},
+    {{"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC4"}}
+  ]
+}}"#,
+        len = b.len(),
+        data = base64(&b),
+        rot_times = 48 + translations,
+        rots = 48 + translations + 8,
+    )
+}
+
+#[test]
+fn animated_cameras_become_camera_paths() {
+    let dir = temp_dir("animated-camera");
+    for interpolation in ["LINEAR", "CUBICSPLINE"] {
+        let file = dir.join(format!("{interpolation}.gltf"));
+        std::fs::write(&file, animated_camera_gltf(interpolation)).unwrap();
+        let scene = load(file.to_str().unwrap()).unwrap();
+        assert_eq!(scene.path_names(), vec!["cam".to_string()]);
+        let path = scene.path("cam", 1.0).unwrap();
+        let times: Vec<f32> = path.keyframes().iter().map(|k| k.time).collect();
+        let (rig, s) = (Vec3::new(10.0, 0.0, 0.0), std::f32::consts::FRAC_1_SQRT_2);
+        // The keys, under the parent's translation; the rotation slerped: 45° at 1 s.
+        let at = |t: f32| path.camera_at(t).unwrap();
+        assert!((at(0.0).eye - (rig + Vec3::new(0.0, 1.0, 5.0))).length() < 1e-5);
+        assert!((at(1.0).eye - (rig + Vec3::new(2.0, 1.0, 5.0))).length() < 1e-5);
+        assert!((at(2.0).eye - (rig + Vec3::new(4.0, 1.0, 3.0))).length() < 1e-5);
+        assert!((at(0.0).forward() - Vec3::NEG_Z).length() < 1e-5);
+        assert!((at(1.0).forward() - Vec3::new(-s, 0.0, -s)).length() < 1e-4);
+        assert!((at(2.0).forward() - Vec3::NEG_X).length() < 1e-5);
+        assert!((at(1.0).fov_y_deg - 0.8f32.to_degrees()).abs() < 1e-4);
+        if interpolation == "LINEAR" {
+            assert_eq!(times, vec![0.0, 1.0, 2.0]);
+        } else {
+            // Zero tangents: the Hermite curve eases in and out, so at a quarter of the first
+            // segment the eye has covered h01(0.25) = 0.15625 of it (glTF Appendix C).
+            assert_eq!(times.len(), 2 + 1 + 2 * 3);
+            let eye = at(0.25).eye - rig;
+            assert!((eye.x - 2.0 * 0.15625).abs() < 1e-4, "{eye}");
+        }
+    }
+    // Still cameras give no path; the scene offers its automatic orbit instead.
+    let file = Asset::default().write(&dir, Kind::Embedded);
+    let scene = load(file.to_str().unwrap()).unwrap();
+    assert_eq!(scene.cameras.len(), 1);
+    assert!(scene.paths.is_empty());
+    assert_eq!(scene.path_names(), vec!["orbit".to_string()]);
+}
