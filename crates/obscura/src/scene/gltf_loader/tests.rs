@@ -619,7 +619,7 @@ fn vertex_normals_follow_the_node_transform() {
 fn animated_camera_gltf(interpolation: &str) -> String {
     let cubic = interpolation == "CUBICSPLINE";
     let mut b: Vec<u8> = Vec::new();
-    let mut floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
+    let floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
     floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], &mut b); // triangle @0, 36
     floats(&[0.0, 1.0, 2.0], &mut b); // translation times @36, 12
     let keys = [[0.0, 1.0, 5.0], [2.0, 1.0, 5.0], [4.0, 1.0, 3.0]];
