@@ -3,6 +3,7 @@
 // - model 0 (`vao`): the VAO estimator at the primary ray's surface through the single-pass loop
 //   (schedules/single.wgsl) over the all-layers source: every sample's camera ray traced over its
 //   interval from the near plane (sources/all_layers.wgsl, column_trace.wgsl).
+//   `vao-mean` runs model 0 once per turn of the 4×4 pattern and sums a sixteenth of each.
 // - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
 //   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
 //   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
@@ -15,7 +16,9 @@ struct ReferenceParams {
     spp_total: u32,
     falloff: u32,
     seed: u32,
-    _pad0: u32,
+    // Model 0: the share of this dispatch in the pixel's AO (1; 1/16 for `vao-mean`, one
+    // dispatch per turn of the pattern, View pattern_offset).
+    weight: f32,
     _pad1: u32,
 }
 
@@ -71,7 +74,7 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
             ray_camera.camera_to_world[2].xyz,
         ));
         let p = vao_pixel_at(id, dir_view * hit.t, to_view * n);
-        reference_out[index] = single_pass_ao(p);
+        reference_out[index] += reference.weight * single_pass_ao(p);
         return;
     }
     // Hemisphere: offset along the normal as the CPU model does.

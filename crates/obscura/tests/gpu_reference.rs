@@ -20,7 +20,11 @@ fn gpu_reference_matches_the_cpu_oracle() {
             16,
             obscura::near_plane(&scene),
         );
-        for (model, spp) in [(ReferenceModel::Vao, 1), (ReferenceModel::Hemisphere, 100)] {
+        for (model, spp) in [
+            (ReferenceModel::Vao, 1),
+            (ReferenceModel::VaoMean, 1),
+            (ReferenceModel::Hemisphere, 100),
+        ] {
             let settings = ReferenceSettings {
                 model,
                 spp,

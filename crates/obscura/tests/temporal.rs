@@ -4,9 +4,11 @@
 
 mod common;
 
+use obscura::bvh::Bvh;
 use obscura::metrics::temporal::{path_metrics, PathFrame, Reprojection};
 use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::cpu_vao::cpu_vao_turned;
+use obscura::reference::ground_truth::{render_reference, ReferenceModel, ReferenceSettings};
 use obscura::scene::{self, Camera};
 use obscura::{AoSettings, FrameView, Renderer, Technique};
 
@@ -221,7 +223,7 @@ fn a_moving_camera_flickers_less_with_accumulation() {
     let (accumulated, _) = run(true);
     let mut reference = Vec::new();
     let mut frames_depth = Vec::new();
-    for (_, g, view) in &plain {
+    for (k, (_, g, view)) in plain.iter().enumerate() {
         let screen = view.screen();
         let mut mean = vec![0.0f32; (W * H) as usize];
         for offset in 0..16 {
@@ -231,6 +233,26 @@ fn a_moving_camera_flickers_less_with_accumulation() {
             {
                 *m += v / 16.0;
             }
+        }
+        if k == 0 {
+            // The `vao-mean` reference model is this mean, traced from the triangles.
+            let traced = render_reference(
+                &scene,
+                &Bvh::build(&scene),
+                *view,
+                &ReferenceSettings {
+                    model: ReferenceModel::VaoMean,
+                    vao: settings.vao,
+                    ..Default::default()
+                },
+                &|_| {},
+            );
+            let off = traced
+                .iter()
+                .zip(&mean)
+                .filter(|(a, b)| (*a - *b).abs() > 1.0 / 255.0)
+                .count();
+            assert!(off * 100 <= traced.len(), "vao-mean: {off} pixels off");
         }
         reference.push(match BLUR {
             true => cpu_blur(&mean, g, &screen, &settings.blur),

@@ -21,7 +21,8 @@ pub struct CompareArgs {
     size: (u32, u32),
     #[arg(long, default_value = "vao", value_parser = parse_technique_list, help = crate::args::techniques_help())]
     techniques: TechniqueList,
-    /// Ground-truth model: vao or hemisphere.
+    /// Ground-truth model: vao, vao-mean (vao averaged over its pattern's 16 turns, for
+    /// --temporal) or hemisphere.
     #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
     reference_model: ReferenceModel,
     #[command(flatten)]
@@ -112,7 +113,7 @@ pub fn compare(
     // The `vao` model keeps the kernel's per-pixel rotation noise; it goes through the same
     // bilateral blur as the techniques (on the same depth) so that only hidden geometry differs.
     let blur = ao.settings(obscura::Technique::Vao)?.blur;
-    if model == ReferenceModel::Vao && blur.enabled {
+    if model != ReferenceModel::Hemisphere && blur.enabled {
         reference_image = cpu_blur(&reference_image, &gbuffer, &view.screen(), &blur);
     }
     std::fs::create_dir_all(out)

@@ -163,7 +163,7 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
                     compute_or_load(tracer, job.scene, *view, &settings, !args.no_cache)?;
                 // As in `compare`: the vao model keeps the kernel's rotation noise and goes
                 // through the techniques' blur on the same depth.
-                if model == ReferenceModel::Vao && blur.enabled {
+                if model != ReferenceModel::Hemisphere && blur.enabled {
                     image = cpu_blur(&image, gbuffer, &view.screen(), &blur);
                 }
                 frames.push(image);
@@ -196,7 +196,8 @@ pub struct PathArgs {
     /// popping and per-frame error against it.
     #[arg(long = "with-reference")]
     with_reference: bool,
-    /// Ground-truth model for --with-reference: vao or hemisphere.
+    /// Ground-truth model for --with-reference: vao, vao-mean (vao averaged over its pattern's 16
+    /// turns, for --temporal) or hemisphere.
     #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
     reference_model: ReferenceModel,
     #[command(flatten)]

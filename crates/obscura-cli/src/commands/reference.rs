@@ -57,12 +57,12 @@ impl ReferenceArgs {
     }
 
     pub fn settings(&self, model: ReferenceModel, ao: &AoArgs) -> Result<ReferenceSettings> {
-        if model == ReferenceModel::Vao
+        if model != ReferenceModel::Hemisphere
             && (self.spp.is_some() || self.falloff || self.seed.is_some())
         {
             bail!(
                 "--spp, --falloff and --seed apply to the hemisphere reference model only (the vao \
-                 model traces every sample column exactly): leave them out, or use the hemisphere \
+                 models trace every sample column exactly): leave them out, or use the hemisphere \
                  model"
             );
         }
@@ -88,7 +88,8 @@ pub struct ReferenceCmdArgs {
     /// Visible image size WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "640x360")]
     size: (u32, u32),
-    /// Ground-truth model: vao (the quantity VAO estimates, nothing hidden) or hemisphere.
+    /// Ground-truth model: vao (the quantity VAO estimates, nothing hidden), vao-mean (that,
+    /// averaged over the 16 turns of VAO's pattern) or hemisphere.
     #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
     model: ReferenceModel,
     #[command(flatten)]

@@ -79,11 +79,17 @@ pub fn render_reference_gpu(
     );
     let rays = ColumnRays::new(device, &source_layout, &gpu_scene, &gpu_bvh);
     rays.set_camera(&gpu.queue, view.view_matrix().inverse(), view.near);
-    let view_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("view"),
-        contents: bytemuck::bytes_of(&view.screen().uniform()),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
+    // `vao-mean`: one dispatch per turn of the 4×4 pattern (View pattern_offset), each adding a
+    // sixteenth of its AO.
+    let view_buffer = |pattern_offset: u32| {
+        let mut uniform = view.screen().uniform();
+        uniform.pattern_offset = pattern_offset;
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("view"),
+            contents: bytemuck::bytes_of(&uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        })
+    };
     let pixels = u64::from(view.width) * u64::from(view.height);
     let output = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("reference"),
@@ -93,8 +99,10 @@ pub fn render_reference_gpu(
             | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
+    // Batches: (first ray, rays) of the hemisphere, or (pattern offset, 0) of the vao models.
     let (model, batches) = match settings.model {
         ReferenceModel::Vao => (0u32, vec![(0, 0)]),
+        ReferenceModel::VaoMean => (0u32, (0..16).map(|offset| (offset, 0)).collect()),
         ReferenceModel::Hemisphere => (
             1,
             (0..settings.spp)
@@ -103,13 +111,16 @@ pub fn render_reference_gpu(
                 .collect(),
         ),
     };
-    let frame_group = bindings::group(
-        device,
-        "reference view",
-        &frame_layout,
-        &[(FRAME_VIEW, view_buffer.as_entire_binding())],
-    );
+    let weight = 1.0 / batches.len() as f32;
     for (done, &(spp_start, spp_count)) in batches.iter().enumerate() {
+        let offset = if model == 0 { spp_start } else { 0 };
+        let view_buffer = view_buffer(offset);
+        let frame_group = bindings::group(
+            device,
+            "reference view",
+            &frame_layout,
+            &[(FRAME_VIEW, view_buffer.as_entire_binding())],
+        );
         let reference = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("reference params"),
             contents: bytemuck::cast_slice(&[
@@ -119,7 +130,8 @@ pub fn render_reference_gpu(
                 settings.spp,
                 u32::from(settings.falloff),
                 settings.seed as u32,
-                0,
+                // The vao models' share of each dispatch (1, or 1/16 for vao-mean).
+                weight.to_bits(),
                 0,
             ]),
             usage: wgpu::BufferUsages::UNIFORM,
@@ -169,7 +181,7 @@ pub fn render_reference_gpu(
         log::warn!("{overflows} reference rays overflowed the GPU BVH stack; their results may be incomplete");
     }
     let image = match settings.model {
-        ReferenceModel::Vao => values,
+        ReferenceModel::Vao | ReferenceModel::VaoMean => values,
         ReferenceModel::Hemisphere => values
             .iter()
             .map(|&occlusion| 1.0 - occlusion / settings.spp as f32)

@@ -8,6 +8,10 @@
 //!   pixel crosses, not only the first: the sample's visibility is the minimum of the per-hit
 //!   visibilities. Heights are measured exactly as the kernel measures them, so on a scene with a
 //!   single depth layer the technique and this reference agree.
+//! - [`ReferenceModel::VaoMean`]: the `vao` model averaged over all 16 rotations of the 4×4
+//!   pattern: what a VAO technique converges to when its pattern turns every frame (temporal
+//!   accumulation, issue 13), free of the pattern's per-pixel noise. 16 times the `vao` model's
+//!   rays.
 //! - [`ReferenceModel::Hemisphere`]: classic AO, the fraction of cosine-weighted rays from the
 //!   surface point (geometric normal, small offset) that hit nothing within R (optionally with the
 //!   linear falloff W(t) = max(0, 1 − t/R)), `spp` rays per pixel (1024 by default, as Pyramid
@@ -31,6 +35,9 @@ pub enum ReferenceModel {
     /// `vao`: the VAO kernel with every surface along each sample's camera ray as occluder
     /// (seed 000 §3.6): what the `vao` techniques estimate with nothing hidden.
     Vao,
+    /// `vao-mean`: the `vao` model averaged over the 16 rotations of its 4×4 pattern (the
+    /// pattern's noise averaged out, as temporal accumulation averages it).
+    VaoMean,
     /// `hemisphere`: the fraction of cosine-weighted rays from the surface that hit nothing
     /// within R.
     Hemisphere,
@@ -41,6 +48,7 @@ impl ReferenceModel {
     pub fn name(self) -> &'static str {
         match self {
             ReferenceModel::Vao => "vao",
+            ReferenceModel::VaoMean => "vao-mean",
             ReferenceModel::Hemisphere => "hemisphere",
         }
     }
@@ -57,9 +65,10 @@ impl FromStr for ReferenceModel {
     fn from_str(s: &str) -> Result<Self, String> {
         match s.trim().to_ascii_lowercase().as_str() {
             "vao" => Ok(ReferenceModel::Vao),
+            "vao-mean" => Ok(ReferenceModel::VaoMean),
             "hemisphere" => Ok(ReferenceModel::Hemisphere),
             _ => Err(format!(
-                "unknown reference model '{s}': use vao or hemisphere"
+                "unknown reference model '{s}': use vao, vao-mean or hemisphere"
             )),
         }
     }
@@ -113,6 +122,7 @@ impl ReferenceSettings {
     pub fn rays_per_pixel(&self) -> u64 {
         match self.model {
             ReferenceModel::Vao => 1 + u64::from(self.vao.samples),
+            ReferenceModel::VaoMean => 1 + 16 * u64::from(self.vao.samples),
             ReferenceModel::Hemisphere => 1 + u64::from(self.spp),
         }
     }
@@ -188,16 +198,26 @@ impl<'a> Tracer<'a> {
 
 /// `vao` model AO of one visible pixel (`x`, `y`) whose first surface is `surface`.
 pub fn vao_ao_at(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings) -> f32 {
-    vao_ao_at_counted(t, surface, x, y, s).0
+    vao_ao_at_counted(t, surface, x, y, s, 0).0
 }
 
-/// [`vao_ao_at`] and the number of sample rays it traced.
-fn vao_ao_at_counted(t: &Tracer, surface: &Surface, x: u32, y: u32, s: &VaoSettings) -> (f32, u64) {
+/// [`vao_ao_at`] with the pattern turned by `pattern_offset` entries (as the GPU turns it per
+/// frame), and the number of sample rays it traced.
+fn vao_ao_at_counted(
+    t: &Tracer,
+    surface: &Surface,
+    x: u32,
+    y: u32,
+    s: &VaoSettings,
+    pattern_offset: u32,
+) -> (f32, u64) {
     let mut traced = 0;
     let screen = t.view.screen();
     let pixel = UVec2::new(x, y) + screen.guard_band;
     let pos = t.to_view(surface.world);
-    let frame = PixelFrame::new(pos, t.to_view_dir(surface.normal), x, y);
+    // The pattern entry this pixel uses, as the (x % 4, y % 4) that names it.
+    let entry = (x % 4 + 4 * (y % 4) + pattern_offset) % 16;
+    let frame = PixelFrame::new(pos, t.to_view_dir(surface.normal), entry % 4, entry / 4);
     let mut acc = Accumulator::default();
     for k in kernel(s) {
         let Some(column) = frame.column(k, s, &screen) else {
@@ -359,9 +379,25 @@ pub fn render_reference_counted(
                     match settings.model {
                         ReferenceModel::Vao => {
                             let (ao, traced) =
-                                vao_ao_at_counted(&tracer, &surface, x, y, &settings.vao);
+                                vao_ao_at_counted(&tracer, &surface, x, y, &settings.vao, 0);
                             count(traced);
                             ao
+                        }
+                        ReferenceModel::VaoMean => {
+                            let mut sum = 0.0;
+                            for offset in 0..16 {
+                                let (ao, traced) = vao_ao_at_counted(
+                                    &tracer,
+                                    &surface,
+                                    x,
+                                    y,
+                                    &settings.vao,
+                                    offset,
+                                );
+                                count(traced);
+                                sum += ao;
+                            }
+                            sum / 16.0
                         }
                         ReferenceModel::Hemisphere => {
                             count(u64::from(settings.spp));

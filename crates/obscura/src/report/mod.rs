@@ -107,10 +107,10 @@ pub struct ReportInput<'a> {
     pub height: u32,
     /// Guard band the frame was rendered with, in pixels (printed only).
     pub guard_band: u32,
-    /// How the reference was computed: `"vao"` or `"hemisphere"`.
+    /// How the reference was computed: `"vao"`, `"vao-mean"` or `"hemisphere"`.
     pub reference_model: &'a str,
     /// Hemisphere rays per pixel; `Some` exactly when `reference_model` is
-    /// `"hemisphere"`, `None` for the `"vao"` model.
+    /// `"hemisphere"`, `None` for the `"vao"` and `"vao-mean"` models.
     pub spp: Option<u32>,
     /// Reference AO, the ground truth every technique is compared against.
     pub reference: &'a [f32],
@@ -172,9 +172,9 @@ pub struct TechniqueResult {
 /// How the reference image was computed.
 #[derive(serde::Serialize, serde::Deserialize, Clone, Debug, PartialEq)]
 pub struct ReferenceInfo {
-    /// `"vao"` or `"hemisphere"`.
+    /// `"vao"`, `"vao-mean"` or `"hemisphere"`.
     pub model: String,
-    /// Hemisphere rays per pixel (`None` for `"vao"`).
+    /// Hemisphere rays per pixel (`None` for the vao models).
     pub spp: Option<u32>,
 }
 
@@ -514,8 +514,8 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
     })?;
 
     match (input.reference_model, input.spp) {
-        ("vao", None) => {}
-        ("vao", Some(spp)) => {
+        ("vao" | "vao-mean", None) => {}
+        ("vao" | "vao-mean", Some(spp)) => {
             return Err(ReportError::Input(format!(
                 "spp is Some({spp}) but the \"vao\" reference model has no rays per pixel: \
                  pass spp: None"
@@ -530,7 +530,7 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
         }
         (model, _) => {
             return Err(ReportError::Input(format!(
-                "unknown reference_model {model:?}: use \"vao\" or \"hemisphere\""
+                "unknown reference_model {model:?}: use \"vao\", \"vao-mean\" or \"hemisphere\""
             )))
         }
     }
