@@ -362,3 +362,31 @@ fn encoding_without_a_camera_is_an_error_and_reset_restarts() {
         .to_string();
     assert!(err.contains("set_camera"), "{err}");
 }
+
+#[test]
+fn the_stochastic_maps_change_per_frame_only_under_accumulation() {
+    // With accumulation the maps' random choices (coverage masks; the ray-traced map's
+    // reservoir and low-resolution jitter) change every frame, so their noise averages out as the
+    // pattern's does; without it every frame is the same (the determinism the tests rely on).
+    let gpu = common::gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let camera = scene.cameras[0].camera;
+    for (technique, ray_sd_res) in [(Technique::SdVao, 1), (Technique::RaySdVaoFull, 4)] {
+        for temporal in [false, true] {
+            let mut settings = common::technique_settings(technique, true);
+            settings.temporal.enabled = temporal;
+            settings.ray_sd.resolution = ray_sd_res;
+            let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
+            let mut maps = Vec::new();
+            for _ in 0..2 {
+                r.render(&camera, None).unwrap();
+                maps.push(r.read_stochastic_depth().unwrap().unwrap());
+            }
+            assert_eq!(
+                maps[0] != maps[1],
+                temporal,
+                "{technique}, temporal {temporal}: the map should change only with accumulation"
+            );
+        }
+    }
+}

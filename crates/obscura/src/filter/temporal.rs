@@ -149,6 +149,12 @@ impl TemporalAccumulation {
         self.previous.set(None);
     }
 
+    /// Frames since creation (1 for the first); the stochastic maps turn their random choices
+    /// by it.
+    pub fn frame(&self) -> u32 {
+        self.frame.get()
+    }
+
     /// How far the estimators' 4×4 pattern is turned this frame (0 to 15).
     pub fn pattern_offset(&self) -> u32 {
         self.frame.get() % PATTERN_PERIOD

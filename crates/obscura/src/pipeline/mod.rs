@@ -228,11 +228,13 @@ impl AmbientOcclusion {
             Some(_) => view.half(),
             None => *view,
         };
-        self.source.set_camera(queue, &work);
-        self.schedule.set_camera(queue, &work);
+        // Filters first: temporal accumulation counts the frame the sources then turn by.
         for stage in &self.filters {
             stage.filter.set_camera(queue, &work);
         }
+        let frame = self.temporal().map_or(0, TemporalAccumulation::frame);
+        self.source.set_camera(queue, &work, frame);
+        self.schedule.set_camera(queue, &work);
         if let Some(temporal) = self.temporal() {
             // The estimators' pattern turns by one entry per frame (View pattern_offset).
             let mut uniform = work.screen().uniform();

@@ -231,7 +231,7 @@ impl Multiview {
             to_second: to_second.to_cols_array_2d(),
         };
         queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame));
-        self.map.set_camera(queue, &second);
+        self.map.set_camera(queue, &second, 0);
     }
 
     pub fn encode(

@@ -294,14 +294,18 @@ impl SourcePass {
         self.request_layout.as_ref()
     }
 
-    /// The camera of the coming frame (rays and the map's rasterisation use it).
-    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+    /// The camera of the coming frame (rays and the map's rasterisation use it). `frame` turns
+    /// the stochastic maps' random choices (0 without temporal accumulation, which counts frames
+    /// so that their noise averages out over time as the estimators' pattern does).
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView, frame: u32) {
         match &self.held {
             Held::ColumnRays(rays) => {
                 rays.set_camera(queue, view.view_matrix().inverse(), view.near)
             }
-            Held::StochasticDepth(map) => map.set_camera(queue, view),
-            Held::RayStochasticDepth(map) => map.set_camera(queue, view, self.request.is_some()),
+            Held::StochasticDepth(map) => map.set_camera(queue, view, frame),
+            Held::RayStochasticDepth(map) => {
+                map.set_camera(queue, view, self.request.is_some(), frame)
+            }
             Held::FirstLayer | Held::DualDepth | Held::DepthPyramid(_) => {}
         }
     }

@@ -161,12 +161,21 @@ impl RayStochasticDepthMap {
         })
     }
 
-    /// The camera of the coming frame; `requested_only`: trace only requested pixels.
-    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView, requested_only: bool) {
+    /// The camera of the coming frame; `requested_only`: trace only requested pixels. `frame`
+    /// (0: none) turns the jitter table and changes the reservoir's seed per frame under temporal
+    /// accumulation (seed 002 §3.3 jitters per frame).
+    pub fn set_camera(
+        &self,
+        queue: &wgpu::Queue,
+        view: &FrameView,
+        requested_only: bool,
+        frame: u32,
+    ) {
+        let table = sobol_jitter();
         let params = RaySdParams {
             near: view.near,
             separation: self.separation,
-            seed: self.settings.seed,
+            seed: self.settings.seed ^ frame.wrapping_mul(0x85eb_ca6b),
             requested_only: u32::from(requested_only),
             camera_to_world: view.view_matrix().inverse().to_cols_array_2d(),
             inverse_projection: view
@@ -180,7 +189,10 @@ impl RayStochasticDepthMap {
             divisor: self.settings.resolution,
             intervals: u32::from(self.settings.intervals && requested_only),
             _pad: [0; 2],
-            jitter: sobol_jitter().map(|[x, y]| [x, y, 0.0, 0.0]),
+            jitter: std::array::from_fn(|i| {
+                let [x, y] = table[(i + frame as usize) % table.len()];
+                [x, y, 0.0, 0.0]
+            }),
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.near.store(view.near.to_bits(), Ordering::Relaxed);

@@ -437,8 +437,9 @@ impl StochasticDepthMap {
         (self.maps[0].width(), self.maps[0].height())
     }
 
-    /// The camera of the coming frame.
-    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
+    /// The camera of the coming frame; `frame` (0: none) changes the seed of the coverage masks
+    /// per frame under temporal accumulation.
+    pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView, frame: u32) {
         queue.write_buffer(
             &self.camera,
             0,
@@ -449,9 +450,11 @@ impl StochasticDepthMap {
                 near: view.near,
                 alpha: self.settings.alpha(),
                 separation: self.separation,
-                // Stacked maps: independent seeds.
+                // Stacked maps: independent seeds; frames (under temporal accumulation) too.
                 seed: crate::hash::pcg_hash(
-                    self.settings.seed ^ (m as u32).wrapping_mul(0x9e37_79b9),
+                    self.settings.seed
+                        ^ (m as u32).wrapping_mul(0x9e37_79b9)
+                        ^ frame.wrapping_mul(0x85eb_ca6b),
                 ),
                 samples: self.layout.samples_per_map,
                 all_layers: u32::from(self.all_layers),
