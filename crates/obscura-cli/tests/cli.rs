@@ -672,11 +672,37 @@ fn debug_out_shows_the_ray_traced_map() {
         ("sd_counts.png", (112, 80)),
         ("sd_request.png", (112, 80)),
         ("sd_hits.png", (56, 40)),
+        ("sd_intervals.png", (112, 80)),
         ("samples.png", (96, 64)),
     ] {
         let img = image::open(debug.join(file)).unwrap();
         assert_eq!((img.width(), img.height()), size, "{file}");
     }
+    // Ray intervals (seed 002 Fig. 12): only where a sample asked, each a stretch of depth no
+    // longer than the longest, which is what the image is scaled by.
+    let pixels = stats["interval_pixels"].as_u64().unwrap();
+    assert!(
+        pixels > 0 && pixels <= stats["requested_pixels"].as_u64().unwrap(),
+        "{stats}"
+    );
+    let (mean, longest) = (
+        stats["interval_mean_length"].as_f64().unwrap(),
+        stats["interval_longest"].as_f64().unwrap(),
+    );
+    assert!(mean > 0.0 && mean <= longest, "{stats}");
+    let img = image::open(debug.join("sd_intervals.png"))
+        .unwrap()
+        .to_luma8();
+    assert_eq!(img.pixels().map(|p| p.0[0]).max(), Some(255));
+    // Without ray intervals there is no such image.
+    let plain = dir.path().join("no-intervals");
+    std::fs::create_dir_all(&plain).unwrap();
+    let stats = sd_debug(
+        "ray-sd-vao",
+        &plain,
+        &["--guard-band", "8", "--no-intervals"],
+    );
+    assert!(stats.get("interval_pixels").is_none(), "{stats}");
 }
 
 #[test]

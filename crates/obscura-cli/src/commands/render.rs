@@ -229,6 +229,9 @@ fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
 /// - two-phase only: `sd_request.png` (white = phase 1 requested the map there) and the phase-1
 ///   flagged samples per visible pixel `samples.png` (count / VAO samples, as for rt-svao);
 /// - `stats.json`: settings, layout and the fractions;
+/// - the ray-traced map with ray intervals (two-phase `ray-sd-*`): `sd_intervals.png`, each
+///   framebuffer pixel's interval length over the frame's longest (seed 002 Fig. 12), and in
+///   `stats.json` `interval_pixels`, `interval_mean_length`, `interval_longest`;
 /// - the ray-traced map (`ray-sd-*`, one layer per reservoir slot): also `sd_hits.png`, the hits
 ///   each texel's ray handled / MAX_COUNT at the map's resolution (seed 002's "hits per ray"),
 ///   and their mean over the traced texels in `stats.json`.
@@ -354,6 +357,35 @@ fn write_sd_debug(
             stats.insert("hits_per_ray_mean".into(), mean.into());
         }
         summary += &format!(", {mean:.2} hits per ray (rays that met one)");
+    }
+    if let Some(intervals) = renderer.read_sd_intervals()? {
+        // Seed 002 Fig. 12: how long a stretch of each pixel's ray the map must trace, as a
+        // fraction of the longest in the frame (black: no sample asked).
+        let lengths: Vec<f32> = intervals
+            .iter()
+            .map(|i| i.map_or(0.0, |[near, far]| (far - near).max(0.0)))
+            .collect();
+        let longest = lengths.iter().copied().fold(0.0f32, f32::max);
+        let image: Vec<f32> = lengths
+            .iter()
+            .map(|&l| if longest > 0.0 { l / longest } else { 0.0 })
+            .collect();
+        output::write_ao(&dir.join("sd_intervals.png"), fw, fh, &image)?;
+        let asked: Vec<f32> = intervals
+            .iter()
+            .zip(&lengths)
+            .filter_map(|(i, &l)| i.map(|_| l))
+            .collect();
+        let mean = asked.iter().map(|&l| f64::from(l)).sum::<f64>() / asked.len().max(1) as f64;
+        if let Some(stats) = stats.as_object_mut() {
+            stats.insert("interval_pixels".into(), asked.len().into());
+            stats.insert("interval_mean_length".into(), mean.into());
+            stats.insert("interval_longest".into(), f64::from(longest).into());
+        }
+        summary += &format!(
+            ", ray intervals at {} pixels, {mean:.3} world units long on average",
+            asked.len()
+        );
     }
     if let Some(requests) = renderer.read_sd_requests()? {
         let mask: Vec<f32> = requests

@@ -520,6 +520,26 @@ impl AmbientOcclusion {
         )))
     }
 
+    /// Two-phase ray-traced stochastic depth with ray intervals (seed 002 §3.2): per framebuffer
+    /// pixel (guard band included), the linear depth interval `[near, far]` phase 1's samples
+    /// need from the map there, or `None` where no sample asked. Waits for the GPU.
+    pub fn read_sd_intervals(&self) -> Result<Option<Vec<Option<[f32; 2]>>>, Error> {
+        let Some(buffer) = self.source.intervals() else {
+            return Ok(None);
+        };
+        let words: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer_copy(&self.gpu, buffer)?);
+        Ok(Some(
+            words
+                .chunks_exact(2)
+                // request.wgsl stores max(~near bits) and max(far bits): 0 where nothing asked.
+                .map(|w| {
+                    (w[0] != 0 || w[1] != 0).then(|| [f32::from_bits(!w[0]), f32::from_bits(w[1])])
+                })
+                .collect(),
+        ))
+    }
+
     /// Rays of the last frame whose BVH traversal overflowed its stack (0 for techniques without
     /// rays). Waits for the GPU.
     pub fn read_stack_overflows(&self) -> Result<u32, Error> {

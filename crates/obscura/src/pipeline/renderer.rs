@@ -221,6 +221,11 @@ impl Renderer {
         self.last_ao()?.read_ray_sd_hits()
     }
 
+    /// [`AmbientOcclusion::read_sd_intervals`] of the last frame.
+    pub fn read_sd_intervals(&self) -> Result<Option<Vec<Option<[f32; 2]>>>, Error> {
+        self.last_ao()?.read_sd_intervals()
+    }
+
     /// `sd-svao`: the last frame's SD-request mask (framebuffer-sized, non-zero = requested).
     pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
         self.last_ao()?.read_sd_requests()

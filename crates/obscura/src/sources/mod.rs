@@ -229,7 +229,10 @@ impl SourcePass {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray sd intervals"),
                 size: u64::from(full.0) * u64::from(full.1) * 8,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                // COPY_SRC: `render --debug-out` reads it (sd_intervals.png).
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             })
         });
@@ -436,5 +439,11 @@ impl SourcePass {
     /// Two-phase stochastic depth: the SD-request mask of the last frame.
     pub fn requests(&self) -> Option<&wgpu::Buffer> {
         self.request.as_ref()
+    }
+
+    /// Two-phase ray-traced stochastic depth with ray intervals: the interval buffer (two u32
+    /// per framebuffer pixel: the nearest depth's bits inverted, the farthest depth's bits).
+    pub fn intervals(&self) -> Option<&wgpu::Buffer> {
+        self.interval.as_ref()
     }
 }
