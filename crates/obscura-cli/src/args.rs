@@ -543,7 +543,7 @@ pub struct AoArgs {
         "resolution"
     ))]
     pub resolution: Option<String>,
-    /// Also compute the bent normal (seed 001 §4): the single-pass GTAO, GTAO-VB and VAO rows;
+    /// Also compute the bent normal (seed 001 §4): the single-pass GTAO, GTAO-VB, VAO and HBAO+ rows;
     /// `render` writes it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or
     /// NAME.bent.exr.
     #[arg(long)]

@@ -743,8 +743,8 @@ pub struct AoSettings {
     pub resolution: Resolution,
     /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
     /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
-    /// GTAO-VB, VAO and their dual and stochastic-depth rows), on the single-pass schedule at full
-    /// resolution.
+    /// GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the single-pass schedule
+    /// at full resolution.
     pub bent_normals: bool,
     /// The multi-view schedule's second view (`sd-hbao+-multiview`).
     pub multiview: MultiviewSettings,

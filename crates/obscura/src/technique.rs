@@ -659,10 +659,14 @@ impl Estimator {
     }
 
     /// Whether the estimator reports a bent normal with its AO (`bent_normals`, seed 001 §4):
-    /// the slice estimators, whose visible directions are known per slice, and VAO, whose free
-    /// column parts locate the free volume.
+    /// the slice estimators, whose visible directions are known per slice, VAO, whose free
+    /// column parts locate the free volume, and HBAO+, whose per-sample occlusion reads as a
+    /// horizon elevation per direction.
     pub fn bent_normals(self) -> bool {
-        matches!(self, Estimator::Gtao | Estimator::GtaoVb | Estimator::Vao)
+        matches!(
+            self,
+            Estimator::Gtao | Estimator::GtaoVb | Estimator::Vao | Estimator::HbaoPlus
+        )
     }
 }
 

@@ -151,3 +151,35 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     return select(0.0, acc.occlusion / acc.count, acc.count > 0.0);
 }
+
+// Bent normals (`bent_normals`, seed 001 §4; the rule is ours): a sample's occlusion
+// o = sin h − bias (attenuated) reads as the sine of the horizon elevation h it sees in its
+// direction. The visible arc of that direction's half-slice runs from h to the normal. Its
+// cosine-weighted mean direction lies at elevation m = (h + π/2)/2, with weight
+// ∫_h^{π/2} sin θ dθ = cos h. With sin h = o and no trigonometry:
+//     cos h · (cos m · t + sin m · n),  cos m = sqrt((1 − o)/2),  sin m = sqrt((1 + o)/2),
+// where t is the sample's screen direction laid into the tangent plane. The schedule sums this
+// over the samples' values and over their unoccluded values (o = 0: (t + n)/√2), and
+// common/bent.wgsl forms the bent normal from the two sums. An open hemisphere gives the normal
+// exactly; if every direction were blocked to the zenith on one side (o = 1 there), the normal
+// would tilt by atan(2/π) away from that side, the cosine-weighted hemisphere's limit.
+fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: f32) -> vec3<f32> {
+    // Screen y runs down, view y up.
+    let step = s.px - (vec2<f32>(p.pixel) + 0.5);
+    let d = vec3<f32>(step.x, -step.y, 0.0);
+    let along = d - p.normal * dot(p.normal, d);
+    let len = length(along);
+    let t = select(vec3<f32>(0.0), along / len, len > 1e-12);
+    let o = saturate(value);
+    return sqrt(1.0 - o * o) * (sqrt((1.0 - o) * 0.5) * t + sqrt((1.0 + o) * 0.5) * p.normal);
+}
+
+// The bent normal from the samples' sums (common/bent.wgsl), view space.
+fn estimator_bent_normal(
+    p: EstimatorPixel,
+    acc: EstimatorAccum,
+    sample_visible: vec3<f32>,
+    sample_open: vec3<f32>,
+) -> vec3<f32> {
+    return bent_from_sums(p.normal, sample_visible, sample_open);
+}

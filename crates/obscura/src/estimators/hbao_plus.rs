@@ -10,9 +10,7 @@ use std::f32::consts::TAU;
 pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/screen_space.wgsl"),
     include_str!("../../shaders/estimators/hbao_plus.wgsl"),
-    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
     include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
-    include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 /// Its `override` constants: the sample count, directions × steps.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
