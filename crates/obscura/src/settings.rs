@@ -498,13 +498,19 @@ pub struct StochasticDepthSettings {
 }
 
 /// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
-/// `"needed"` or `"always"`.
+/// `"needed"`, `"first-layer"` or `"always"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "kebab-case")]
 pub enum SdQuery {
-    /// Only where the estimator says the first surface may hide more ("needs hidden depth?").
+    /// Only where the estimator says the first surface may hide more ("needs hidden depth?");
+    /// for SSAO also only where a deeper surface on the sample's camera ray could occlude at all
+    /// (an exact test: the same image as `FirstLayer`, fewer reads).
     #[default]
     Needed,
+    /// Seed 001 §3.3 as worded: wherever the first surface does not decide (for SSAO: does not
+    /// occlude), without SSAO's exact test (to measure what that test saves). The same as
+    /// `Needed` for the other estimators.
+    FirstLayer,
     /// For every sample whose pixel shows a surface.
     Always,
 }
@@ -514,11 +520,12 @@ impl FromStr for SdQuery {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.trim().to_ascii_lowercase().as_str() {
             "needed" => Ok(SdQuery::Needed),
+            "first-layer" => Ok(SdQuery::FirstLayer),
             "always" => Ok(SdQuery::Always),
             _ => Err(invalid(
                 "stochastic_depth.query",
                 s,
-                "must be 'needed' (default, seed 001 §3.3) or 'always'",
+                "must be 'needed' (default, seed 001 §3.3), 'first-layer' or 'always'",
             )),
         }
     }

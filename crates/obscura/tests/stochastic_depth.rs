@@ -445,6 +445,43 @@ fn reading_the_map_only_where_needed_changes_only_what_the_heuristic_allows() {
 }
 
 #[test]
+fn ssaos_exact_query_test_skips_reads_but_not_occlusion() {
+    // SSAO's "needed" query also skips the samples where no surface deeper along the sample's
+    // camera ray can occlude (ssao.wgsl): the same image as seed 001 §3.3's wording
+    // ("first-layer"), on scenes with many hidden layers, and fewer samples flagged for the map
+    // in the two-phase row.
+    use obscura::settings::SdQuery;
+    let gpu = gpu();
+    for name in ["stairs", "layers", "grass"] {
+        let scene = obscura::scene::builtin(name).unwrap();
+        let camera = scene.cameras[0].camera;
+        let render = |technique: Technique, query: SdQuery| {
+            let mut s = settings(technique, 4, 0.375);
+            s.stochastic_depth.query = query;
+            let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
+            r.render(&camera, None).unwrap();
+            let masks = r.read_sample_masks().unwrap();
+            (r.read_raw_ao().unwrap(), masks)
+        };
+        let (needed, _) = render(Technique::SdSsao, SdQuery::Needed);
+        let (literal, _) = render(Technique::SdSsao, SdQuery::FirstLayer);
+        let worst = needed
+            .iter()
+            .zip(&literal)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        assert!(worst <= 1e-6, "{name}: images differ by {worst}");
+        let flagged = |masks: Option<Vec<u32>>| -> u32 {
+            masks.unwrap().iter().map(|m| m.count_ones()).sum()
+        };
+        let few = flagged(render(Technique::SdSsaoStenciled, SdQuery::Needed).1);
+        let many = flagged(render(Technique::SdSsaoStenciled, SdQuery::FirstLayer).1);
+        println!("{name}: samples flagged for the map {many} -> {few}");
+        assert!(few < many, "{name}: {few} flagged, the literal rule {many}");
+    }
+}
+
+#[test]
 fn compensation_restores_occlusion_lost_behind_many_layers() {
     // Seed 001 §4, Figs. 7–8: behind the shells of `layers` (5 of them, and all 10, as Fig. 8
     // adds 5 and 10 layers to a pillar) few stochastic samples reach the pillar and wall, so

@@ -18,6 +18,11 @@
 // turns, tap i at (i + 0.5)/N of the radius) turned by the pixel's 4×4 Bayer rotation, rather
 // than the paper's per-pixel random disc. β = 10⁻⁴ and ε = 10⁻⁴ are the paper's values.
 
+// `stochastic_depth.query = "first-layer"`: read the map wherever the first surface does not
+// occlude, as seed 001 §3.3 words it, without the exact test below that skips samples no deeper
+// surface can change (same image, more reads).
+override SSAO_LITERAL_QUERY: bool = false;
+
 struct SsaoParams {
     radius: f32,
     radius2: f32,
@@ -76,8 +81,21 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let term = max(dot(v, p.normal) + p.pos.z * params.bias, 0.0) / (vv + params.epsilon);
     var o: Occluder;
     o.value = select(0.0, term, vv < params.radius2);
-    // Beyond R or below the tangent plane: a deeper surface may still occlude.
+    // Beyond R or below the tangent plane: a deeper surface may still occlude (seed 001 §3.3).
     o.hidden = o.value <= 0.0;
+    if (o.hidden && !SSAO_LITERAL_QUERY) {
+        // Ours, exact: every deeper surface at this pixel lies on the camera ray through `pos`,
+        // at pos + t·r (t > 0, r the ray's direction). Its v·n + z·β changes by t·(r·n), so it
+        // can rise above 0 only if it already is or if r·n > 0; and its distance to the shading
+        // point can fall within R only if the ray's closest approach does. Where neither can
+        // happen no deeper surface occludes, and the map is not read: the image is the same
+        // (`stochastic_depth.query = "first-layer"` reads it anyway, to show that).
+        let r = -toward_camera(view, pos);
+        let along = dot(v, r);
+        let closest2 = select(vv, vv - along * along, along < 0.0);
+        let can_rise = dot(v, p.normal) + p.pos.z * params.bias > 0.0 || dot(r, p.normal) > 0.0;
+        o.hidden = closest2 < params.radius2 && can_rise;
+    }
     return o;
 }
 

@@ -75,7 +75,7 @@ fn params(estimator: Estimator, settings: &AoSettings) -> (Vec<u8>, Vec<f64>) {
         Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
         Estimator::Gtao => gtao::params(&settings.gtao),
         Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
-        Estimator::Ssao => ssao::params(&settings.ssao),
+        Estimator::Ssao => ssao::params(&settings.ssao, settings.stochastic_depth.query),
         Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid),
         Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
     }

@@ -1,7 +1,7 @@
 //! The SSAO estimator of seed 001 §3.2 (`shaders/estimators/ssao.wgsl`): Alchemy AO (McGuire et
 //! al. 2011), N samples on a spiral within the world radius.
 
-use crate::settings::SsaoSettings;
+use crate::settings::{SdQuery, SsaoSettings};
 use std::f32::consts::TAU;
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
@@ -14,8 +14,10 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
     include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
-/// Its `override` constants: the sample count.
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+/// Its `override` constants: the sample count, and whether the map is read where the first
+/// surface does not occlude even if no deeper surface can (`stochastic_depth.query =
+/// "first-layer"`).
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "SSAO_LITERAL_QUERY"];
 
 /// The spiral's turns (SAO's, McGuire et al. 2012).
 pub const SPIRAL_TURNS: f32 = 7.0;
@@ -40,7 +42,7 @@ struct SsaoParams {
 }
 
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &SsaoSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &SsaoSettings, query: SdQuery) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(TAU).map(|[c, sn, _, _]| [sn.atan2(c), 0.0, 0.0, 0.0]);
     let params = SsaoParams {
         radius: s.radius,
@@ -55,6 +57,9 @@ pub(crate) fn params(s: &SsaoSettings) -> (Vec<u8>, Vec<f64>) {
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
-        vec![f64::from(s.samples)],
+        vec![
+            f64::from(s.samples),
+            f64::from(u8::from(query == SdQuery::FirstLayer)),
+        ],
     )
 }
