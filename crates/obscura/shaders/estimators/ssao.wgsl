@@ -85,27 +85,16 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     o.hidden = o.value <= 0.0;
     if (o.hidden && !SSAO_LITERAL_QUERY) {
         // Ours, exact: every deeper surface at this pixel lies on the camera ray through `pos`,
-        // at pos + t·r (t > 0, r the ray's unit direction). There v·n + z·β = c + t·k (k = r·n)
-        // is positive on an interval of t, and |v + t·r|² is a parabola in t: a deeper surface
-        // can occlude only if the parabola dips below R² somewhere on that interval. Where it
-        // cannot, the map is not read: the image is the same (`stochastic_depth.query =
-        // "first-layer"` reads it anyway, to show that).
+        // at pos + t·r (t > 0, r the ray's direction). Its v·n + z·β changes by t·(r·n), so it
+        // can rise above 0 only if it already is or if r·n > 0; and its distance to the shading
+        // point can fall within R only if the ray's closest approach does. Where neither can
+        // happen no deeper surface occludes, and the map is not read: the image is the same
+        // (`stochastic_depth.query = "first-layer"` reads it anyway, to show that).
         let r = -toward_camera(view, pos);
         let along = dot(v, r);
-        let c = dot(v, p.normal) + p.pos.z * params.bias;
-        let k = dot(r, p.normal);
-        // The interval [lo, hi] of t > 0 where the surface would lie above the tangent plane.
-        var lo = 0.0;
-        var hi = 3.0e38;
-        if (k > 0.0) {
-            lo = max(0.0, -c / k);
-        } else if (k < 0.0) {
-            hi = -c / k;
-        } else if (c <= 0.0) {
-            hi = -1.0;
-        }
-        let t = clamp(-along, lo, max(lo, hi));
-        o.hidden = hi > lo && vv + t * (2.0 * along + t) < params.radius2;
+        let closest2 = select(vv, vv - along * along, along < 0.0);
+        let can_rise = dot(v, p.normal) + p.pos.z * params.bias > 0.0 || dot(r, p.normal) > 0.0;
+        o.hidden = closest2 < params.radius2 && can_rise;
     }
     return o;
 }
