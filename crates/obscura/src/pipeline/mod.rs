@@ -169,7 +169,7 @@ impl AmbientOcclusion {
         };
         let mut filters = Vec::new();
         // Temporal accumulation first: it averages the raw AO's rotation noise over frames and
-        // clamps its history to the raw neighbourhood's range; the blur smooths what is left.
+        // clips its history to the raw neighbourhood's spread; the blur smooths what is left.
         if settings.temporal.enabled && !estimator_debug {
             filters.push(FilterStage {
                 filter: Box::new(TemporalAccumulation::new(
@@ -220,9 +220,11 @@ impl AmbientOcclusion {
         })
     }
 
-    /// The camera of the coming frame; sources that trace rays or rasterise use it (for the
-    /// others it does nothing). Those rows refuse to [`encode`](Self::encode) until it was set
-    /// once, and its screen geometry must be the one this was built for.
+    /// The camera of the coming frame; sources that trace rays or rasterise use it, and so does
+    /// temporal accumulation (`temporal.enabled`), which takes each call as a new frame: call it
+    /// once per frame, before [`encode`](Self::encode). Those rows (and temporal accumulation)
+    /// refuse to encode until it was set once; its screen geometry must be the one this was
+    /// built for.
     pub fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {
         let work = match &self.half {
             Some(_) => view.half(),
