@@ -104,8 +104,9 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let p = pixel_to_view(view, vec2<f32>(full) + 0.5, z);
-    let n_view = normalize(textureLoad(normal_tex, full, 0).xyz);
-    let n_world = normalize((params.current_to_world * vec4<f32>(n_view, 0.0)).xyz);
+    // Unit already (the G-buffer's normals; a rotation keeps the length).
+    let n_view = textureLoad(normal_tex, full, 0).xyz;
+    let n_world = (params.current_to_world * vec4<f32>(n_view, 0.0)).xyz;
     var history = vec2<f32>(0.0);
     if (params.history_valid != 0u) {
         let p_prev = (params.current_to_previous * vec4<f32>(p, 1.0)).xyz;
