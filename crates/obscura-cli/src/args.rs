@@ -1,6 +1,6 @@
 //! Parsers and shared option groups for the subcommands.
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, Context, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
@@ -790,6 +790,28 @@ pub fn techniques_help() -> String {
 
 /// Say so when rays of the last frame overflowed the GPU traversal stack (their AO may be too
 /// bright): never silently wrong.
+/// Makes `out` an existing, writable folder (created if missing) before any slow work; `holds`
+/// says what goes into it, for the message when `out` is a file.
+pub fn prepare_out_folder(out: &std::path::Path, holds: &str) -> Result<()> {
+    if out.is_file() {
+        anyhow::bail!(
+            "--out '{}' is a file: give a folder for {holds}",
+            out.display()
+        );
+    }
+    std::fs::create_dir_all(out).with_context(|| {
+        format!(
+            "cannot create output folder '{}': check the path and permissions",
+            out.display()
+        )
+    })?;
+    let probe = out.join(format!(".obscura-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("output folder '{}' is not writable", out.display()))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 pub fn warn_stack_overflows(renderer: &obscura::Renderer) -> Result<()> {
     let overflows = renderer.read_stack_overflows()?;
     if overflows > 0 {

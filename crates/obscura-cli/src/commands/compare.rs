@@ -1,11 +1,10 @@
 //! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
 
 use super::path::{check_no_camera, render_path, PathChoice, PathJob};
-use super::reference::{compute_or_load, ReferenceArgs};
+use super::reference::{as_compared, compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
-use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::{write_report, Report, ReportInput, TechniqueImage, TemporalInput};
 use obscura::scene::Scene;
@@ -103,19 +102,15 @@ pub fn compare(
         c.guard_band,
         obscura::near_plane(c.scene),
     );
-    let mut reference_image = compute_or_load(
+    let reference_image = compute_or_load(
         reference.tracer(Some(gpu)),
         c.scene,
         view,
         &reference_settings,
         !reference.no_cache,
     )?;
-    // The `vao` model keeps the kernel's per-pixel rotation noise; it goes through the same
-    // bilateral blur as the techniques (on the same depth) so that only hidden geometry differs.
     let blur = ao.settings(obscura::Technique::Vao)?.blur;
-    if model != ReferenceModel::Hemisphere && blur.enabled {
-        reference_image = cpu_blur(&reference_image, &gbuffer, &view.screen(), &blur);
-    }
+    let reference_image = as_compared(reference_image, model, &blur, &gbuffer, &view);
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output folder '{}'", out.display()))?;
     let input = ReportInput {
@@ -126,7 +121,7 @@ pub fn compare(
         height: c.height,
         guard_band: c.guard_band,
         reference_model: model.name(),
-        spp: (model == ReferenceModel::Hemisphere).then_some(reference_settings.spp),
+        spp: reference_settings.reported_spp(),
         reference: &reference_image,
         depth: &depth,
         techniques: images
@@ -194,24 +189,10 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     for &t in &techniques {
         args.ao.settings(t)?;
     }
-    if args.out.is_file() {
-        anyhow::bail!(
-            "--out '{}' is a file: give a folder for the report (report.json, report.md, index.html and the images go into it)",
-            args.out.display()
-        );
-    }
-    std::fs::create_dir_all(&args.out).with_context(|| {
-        format!(
-            "cannot create output folder '{}': check the path and permissions",
-            args.out.display()
-        )
-    })?;
-    let probe = args
-        .out
-        .join(format!(".obscura-write-test-{}", std::process::id()));
-    std::fs::write(&probe, b"")
-        .with_context(|| format!("output folder '{}' is not writable", args.out.display()))?;
-    let _ = std::fs::remove_file(&probe);
+    crate::args::prepare_out_folder(
+        &args.out,
+        "the report (report.json, report.md, index.html and the images go into it)",
+    )?;
     let (width, height) = args.size;
     let scene = args.scene.load()?;
     if args.path.path.is_some() {
@@ -282,15 +263,7 @@ fn compare_path(gpu: &Gpu, job: &PathJob, timing_frames: u32, out: &Path) -> Res
     let view = run.views[mid];
     let mut timings = Vec::new();
     for (technique, _, _) in &run.techniques {
-        let settings = job.ao.settings(*technique)?;
-        let mut renderer = Renderer::new(
-            gpu,
-            job.scene,
-            &settings,
-            job.width,
-            job.height,
-            job.guard_band,
-        )?;
+        let (mut renderer, _) = job.renderer(gpu, *technique)?;
         renderer.render(&view.camera, None)?;
         timings.push(gpu_ms(gpu, &mut renderer, &view.camera, timing_frames)?);
     }
@@ -301,11 +274,8 @@ fn compare_path(gpu: &Gpu, job: &PathJob, timing_frames: u32, out: &Path) -> Res
         run.times.len(),
         run.times[mid]
     );
-    let model = job.reference.map(|(_, m)| m).context("reference model")?;
-    let spp = match job.reference {
-        Some((args, ReferenceModel::Hemisphere)) => Some(args.settings(model, job.ao)?.spp),
-        _ => None,
-    };
+    let (reference_args, model) = job.reference.context("the reference was asked for")?;
+    let spp = reference_args.settings(model, job.ao)?.reported_spp();
     let input = ReportInput {
         scene: &job.scene.name,
         camera: &camera,

@@ -2,19 +2,18 @@
 //! reference when asked, as numbered images, animated previews and per-frame JSON with the
 //! temporal metrics (`obscura::metrics::temporal`). `compare --path` shares the rendering.
 
-use super::reference::{compute_or_load, ReferenceArgs};
+use super::reference::{as_compared, compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use crate::progress::bar;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
 use obscura::metrics::{self, Image};
-use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::temporal::frame_delay_ms;
 use obscura::scene::{CameraPath, Scene};
-use obscura::{output, FrameView, Gpu, Renderer, Technique};
+use obscura::{output, AoSettings, FrameView, Gpu, Renderer, Technique};
 use std::path::{Path, PathBuf};
 
 /// Which path and how many frames of it (shared by `path` and `compare --path`).
@@ -80,7 +79,33 @@ pub struct PathRun {
     pub reference: Option<Vec<Vec<f32>>>,
 }
 
+/// One technique's scores along the path against the reference.
+pub struct Score {
+    pub temporal: PathMetrics,
+    /// MSE against the reference, per frame.
+    pub mse: Vec<f64>,
+}
+
 impl PathRun {
+    /// Each technique's scores, computed once (`None` without a reference).
+    pub fn scores(&self) -> Result<Vec<Option<Score>>> {
+        let frames = self.frames();
+        self.techniques
+            .iter()
+            .map(|(_, _, images)| {
+                self.reference
+                    .as_ref()
+                    .map(|r| {
+                        Ok(Score {
+                            temporal: path_metrics(&frames, images, r)?,
+                            mse: frame_mse(self, images, r)?,
+                        })
+                    })
+                    .transpose()
+            })
+            .collect()
+    }
+
     /// The frames as the temporal metrics take them.
     pub fn frames(&self) -> Vec<PathFrame<'_>> {
         self.views
@@ -104,6 +129,22 @@ pub struct PathJob<'a> {
     pub reference: Option<(&'a ReferenceArgs, ReferenceModel)>,
 }
 
+impl PathJob<'_> {
+    /// A renderer of `technique` at the job's size, with its settings.
+    pub fn renderer(&self, gpu: &Gpu, technique: Technique) -> Result<(Renderer, AoSettings)> {
+        let settings = self.ao.settings(technique)?;
+        let renderer = Renderer::new(
+            gpu,
+            self.scene,
+            &settings,
+            self.width,
+            self.height,
+            self.guard_band,
+        )?;
+        Ok((renderer, settings))
+    }
+}
+
 /// Renders every frame of every technique (one renderer per technique, reused along the
 /// path), then the reference of every frame when asked.
 pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
@@ -120,15 +161,7 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
     let mut gbuffers: Vec<GBufferImage> = Vec::new();
     let mut techniques = Vec::new();
     for &technique in job.techniques {
-        let settings = job.ao.settings(technique)?;
-        let mut renderer = Renderer::new(
-            gpu,
-            job.scene,
-            &settings,
-            job.width,
-            job.height,
-            job.guard_band,
-        )?;
+        let (mut renderer, settings) = job.renderer(gpu, technique)?;
         let mut images = Vec::with_capacity(samples.len());
         for (_, camera) in &samples {
             renderer.render(camera, None)?;
@@ -159,14 +192,8 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
             let mut frames = Vec::with_capacity(views.len());
             for (k, (view, gbuffer)) in views.iter().zip(&gbuffers).enumerate() {
                 eprintln!("reference: frame {} of {}", k + 1, views.len());
-                let mut image =
-                    compute_or_load(tracer, job.scene, *view, &settings, !args.no_cache)?;
-                // As in `compare`: the vao model keeps the kernel's rotation noise and goes
-                // through the techniques' blur on the same depth.
-                if model != ReferenceModel::Hemisphere && blur.enabled {
-                    image = cpu_blur(&image, gbuffer, &view.screen(), &blur);
-                }
-                frames.push(image);
+                let image = compute_or_load(tracer, job.scene, *view, &settings, !args.no_cache)?;
+                frames.push(as_compared(image, model, &blur, gbuffer, view));
             }
             Some(frames)
         }
@@ -253,18 +280,7 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
     let (width, height) = args.size;
     let scene = args.scene.load()?;
     let path = args.choice.resolve(&scene, width as f32 / height as f32)?;
-    if args.out.is_file() {
-        bail!(
-            "--out '{}' is a file: give a folder for the frames",
-            args.out.display()
-        );
-    }
-    std::fs::create_dir_all(&args.out).with_context(|| {
-        format!(
-            "cannot create output folder '{}': check the path and permissions",
-            args.out.display()
-        )
-    })?;
+    crate::args::prepare_out_folder(&args.out, "the frames")?;
     let gpu = Gpu::new(options)?;
     let job = PathJob {
         scene: &scene,
@@ -280,12 +296,21 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
             .then_some((&args.reference, args.reference_model)),
     };
     let run = render_path(&gpu, &job)?;
-    write_run(&run, &scene, args, width, height)?;
-    print_summary(&run)
+    let scores = run.scores()?;
+    write_run(&run, &scores, &scene, args, width, height)?;
+    print_summary(&run, &scores);
+    Ok(())
 }
 
 /// Frames, previews and path.json.
-fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: u32) -> Result<()> {
+fn write_run(
+    run: &PathRun,
+    scores: &[Option<Score>],
+    scene: &Scene,
+    args: &PathArgs,
+    width: u32,
+    height: u32,
+) -> Result<()> {
     let delay_ms = frame_delay_ms(&run.times);
     let named = run
         .techniques
@@ -308,18 +333,11 @@ fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: 
             obscura::report::temporal::write_gif(&mut file, width, height, images, delay_ms)
         })?;
     }
-    let frames = run.frames();
-    let metrics: Vec<Option<PathMetrics>> = run
-        .techniques
-        .iter()
-        .map(|(_, _, images)| {
-            run.reference
-                .as_ref()
-                .map(|r| path_metrics(&frames, images, r))
-                .transpose()
-        })
-        .collect::<Result<_, _>>()?;
-    let matched = metrics.iter().flatten().next().map(|m| &m.pairs);
+    let matched = scores.iter().flatten().next().map(|s| &s.temporal.pairs);
+    let reference_spp = args
+        .reference
+        .settings(args.reference_model, &args.ao)?
+        .reported_spp();
     let json = serde_json::json!({
         "scene": scene.name,
         "path": run.path,
@@ -328,9 +346,7 @@ fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: 
         "guard_band": args.ao.guard_band(height),
         "reference": run.reference.as_ref().map(|_| serde_json::json!({
             "model": args.reference_model.name(),
-            "spp": (args.reference_model == ReferenceModel::Hemisphere)
-                .then(|| args.reference.settings(args.reference_model, &args.ao).map(|s| s.spp).ok())
-                .flatten(),
+            "spp": reference_spp,
         })),
         "frames": run.views.iter().zip(&run.times).enumerate().map(|(k, (v, &time))| FrameInfo {
             index: k,
@@ -340,13 +356,13 @@ fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: 
             fov: v.camera.fov_y_deg,
             matched: k.checked_sub(1).and_then(|p| matched.map(|m| m[p].matched)),
         }).collect::<Vec<_>>(),
-        "techniques": run.techniques.iter().zip(metrics).map(|((t, settings, images), temporal)| Ok(TechniqueInfo {
+        "techniques": run.techniques.iter().zip(scores).map(|((t, settings, images), score)| TechniqueInfo {
             technique: t.name().to_string(),
             settings: settings.clone(),
             mean_ao: images.iter().map(|a| mean(a)).collect(),
-            mse: run.reference.as_ref().map(|r| frame_mse(run, images, r)).transpose()?,
-            temporal,
-        })).collect::<Result<Vec<_>>>()?,
+            mse: score.as_ref().map(|s| s.mse.clone()),
+            temporal: score.as_ref().map(|s| s.temporal.clone()),
+        }).collect::<Vec<_>>(),
     });
     let file = args.out.join("path.json");
     output::write_atomically(&file, |tmp| {
@@ -370,26 +386,25 @@ fn write_run(run: &PathRun, scene: &Scene, args: &PathArgs, width: u32, height: 
     Ok(())
 }
 
-fn print_summary(run: &PathRun) -> Result<()> {
-    let Some(reference) = &run.reference else {
-        return Ok(());
-    };
-    let frames = run.frames();
+fn print_summary(run: &PathRun, scores: &[Option<Score>]) {
+    if run.reference.is_none() {
+        return;
+    }
     println!("| technique | temporal error | popping | mean MSE | worst-frame MSE |");
     println!("|:--|--:|--:|--:|--:|");
-    for (t, _, images) in &run.techniques {
-        let m = path_metrics(&frames, images, reference)?;
-        let errors = frame_mse(run, images, reference)?;
+    for ((t, _, _), score) in run.techniques.iter().zip(scores) {
+        let Some(Score { temporal, mse }) = score else {
+            continue;
+        };
         println!(
             "| `{}` | {:.5} | {:.2} % | {:.3e} | {:.3e} |",
             t.name(),
-            m.temporal_error,
-            100.0 * m.popping,
-            errors.iter().sum::<f64>() / errors.len() as f64,
-            errors.iter().copied().fold(0.0, f64::max)
+            temporal.temporal_error,
+            100.0 * temporal.popping,
+            mse.iter().sum::<f64>() / mse.len() as f64,
+            mse.iter().copied().fold(0.0, f64::max)
         );
     }
-    Ok(())
 }
 
 fn mean(a: &[f32]) -> f64 {

@@ -168,6 +168,23 @@ pub fn compute_or_load(
     Ok(image)
 }
 
+/// The reference as reports compare it: the vao models keep the kernel's per-pixel rotation
+/// noise, so they go through the techniques' bilateral blur (`blur`, on the same G-buffer) so
+/// that only hidden geometry differs; the hemisphere model as traced.
+pub fn as_compared(
+    image: Vec<f32>,
+    model: ReferenceModel,
+    blur: &obscura::BlurSettings,
+    gbuffer: &obscura::reference::cpu_vao::GBufferImage,
+    view: &FrameView,
+) -> Vec<f32> {
+    if model != ReferenceModel::Hemisphere && blur.enabled {
+        obscura::reference::cpu_blur::cpu_blur(&image, gbuffer, &view.screen(), blur)
+    } else {
+        image
+    }
+}
+
 fn rayon_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }

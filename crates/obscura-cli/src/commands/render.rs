@@ -260,25 +260,7 @@ fn write_sd_debug(
         );
     }
     let stored = |d: f32| d > 0.0 && d.is_finite();
-    let (near, far) = layers
-        .iter()
-        .flatten()
-        .copied()
-        .filter(|&d| stored(d))
-        .fold((f32::INFINITY, 0.0f32), |(lo, hi), d| {
-            (lo.min(d), hi.max(d))
-        });
-    let span = (far - near).max(f32::MIN_POSITIVE);
-    let layer: Vec<f32> = layers[0]
-        .iter()
-        .map(|&d| {
-            if stored(d) {
-                1.0 - 0.75 * (d - near) / span
-            } else {
-                0.0
-            }
-        })
-        .collect();
+    let (layer, near, far) = sd_layer_grey(&layers);
     output::write_ao(&dir.join("sd_layer.png"), fw, fh, &layer)?;
     let mut counts = vec![0u32; texels];
     for l in &layers {
@@ -428,4 +410,33 @@ fn write_sd_debug(
     write_json(&dir.join("stats.json"), &stats)?;
     eprintln!("{summary}; wrote {}", dir.display());
     Ok(())
+}
+
+/// `sd_layer.png` (and the viewer's sd-layer view): sample 0 of map 0 as grey, the nearest depth
+/// stored in any layer white, the farthest 0.25, linear in between, empty texels black; with that
+/// nearest and farthest depth (∞ and 0 when nothing is stored).
+pub(crate) fn sd_layer_grey(layers: &[Vec<f32>]) -> (Vec<f32>, f32, f32) {
+    let stored = |d: f32| d > 0.0 && d.is_finite();
+    let (near, far) = layers
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|&d| stored(d))
+        .fold((f32::INFINITY, 0.0f32), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    let span = (far - near).max(f32::MIN_POSITIVE);
+    let grey = layers.first().map_or_else(Vec::new, |layer| {
+        layer
+            .iter()
+            .map(|&d| {
+                if stored(d) {
+                    1.0 - 0.75 * (d - near) / span
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    });
+    (grey, near, far)
 }

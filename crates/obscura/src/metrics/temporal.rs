@@ -27,6 +27,7 @@
 //! Both are also reported per frame pair (the worst pair is what a viewer notices).
 
 use super::error::MetricsError;
+use super::input::Image;
 use crate::view::FrameView;
 use glam::Vec2;
 
@@ -58,12 +59,12 @@ impl Reprojection {
     /// Matches every pixel of `current` to `previous` (same size required).
     pub fn new(previous: &PathFrame, current: &PathFrame) -> Result<Self, MetricsError> {
         let (w, h) = (current.view.width as usize, current.view.height as usize);
-        check_len(
-            previous.depth,
+        Image::new(
             previous.view.width as usize,
             previous.view.height as usize,
+            previous.depth,
         )?;
-        check_len(current.depth, w, h)?;
+        Image::new(w, h, current.depth)?;
         if (previous.view.width, previous.view.height) != (current.view.width, current.view.height)
         {
             return Err(MetricsError::SizeMismatch {
@@ -141,20 +142,6 @@ fn bilinear_taps(
         }
     }
     (total > 1e-6).then(|| taps.map(|(j, w)| (j, w / total)))
-}
-
-fn check_len(data: &[f32], width: usize, height: usize) -> Result<(), MetricsError> {
-    if width == 0 || height == 0 {
-        return Err(MetricsError::Empty { width, height });
-    }
-    if data.len() != width * height {
-        return Err(MetricsError::DataLength {
-            width,
-            height,
-            len: data.len(),
-        });
-    }
-    Ok(())
 }
 
 /// The temporal metrics of one frame pair (frame `t − 1` to `t`).

@@ -118,6 +118,12 @@ impl ReferenceSettings {
         s.validate().map_err(|e| e.to_string())
     }
 
+    /// Rays per pixel as reports state them: `spp` for the hemisphere model, `None` for the
+    /// vao models (which trace every sample column exactly).
+    pub fn reported_spp(&self) -> Option<u32> {
+        (self.model == ReferenceModel::Hemisphere).then_some(self.spp)
+    }
+
     /// Rays traced per visible pixel with geometry (for rays/s figures).
     pub fn rays_per_pixel(&self) -> u64 {
         match self.model {

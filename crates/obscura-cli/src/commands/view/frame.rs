@@ -386,29 +386,11 @@ fn cpu_image(r: &Renderer, view: DebugView, width: u32, height: u32) -> Result<O
             let Some(layers) = r.read_stochastic_depth()? else {
                 return Ok(None);
             };
-            let Some(layer) = layers.into_iter().next() else {
+            if layers.is_empty() {
                 return Ok(None);
-            };
-            let stored = |d: f32| d > 0.0 && d.is_finite();
-            let (near, far) = layer
-                .iter()
-                .copied()
-                .filter(|&d| stored(d))
-                .fold((f32::INFINITY, 0.0f32), |(lo, hi), d| {
-                    (lo.min(d), hi.max(d))
-                });
-            let span = (far - near).max(f32::MIN_POSITIVE);
-            // As `render --debug-out`'s sd_layer.png: near white, farthest 0.25, empty black.
-            let grey = layer
-                .iter()
-                .map(|&d| {
-                    if stored(d) {
-                        1.0 - 0.75 * (d - near) / span
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
+            }
+            // As `render --debug-out`'s sd_layer.png.
+            let (grey, _, _) = crate::commands::render::sd_layer_grey(&layers);
             (grey, fw, wg)
         }
         DebugView::SampleMasks => {
