@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""Markdown table from scripts/device-bench-gbuffer.sh's runs folder: per scene and build, the
-median over rounds of each raster pass (G-buffer = visibility pass + resolve, depth peeling = pass
-+ resolve, SD map = reset + map) with fragments per framebuffer pixel, then the peer's prepass."""
+"""Markdown tables from the runs folder of scripts/device-bench-gbuffer.sh or
+scripts/device-bench-sd-map.sh: per scene and build, the median over rounds of each raster pass
+(G-buffer = visibility pass + resolve, depth peeling = pass + resolve, SD map = reset + map, for
+`sd-vao` and for `sd-svao`, whose map covers the requested pixels only) with fragments per
+framebuffer pixel; then each stochastic-depth technique's total without the G-buffer; then the
+peer's prepass. A run file is SCENE-SIDE-ROUND.json (SIDE: old or new)."""
 import json
 import pathlib
 import statistics
@@ -12,7 +15,11 @@ PASSES = {
     "G-buffer": ("vao", ["gbuffer", "gbuffer_resolve"], "gbuffer"),
     "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
     "SD map S = 4": ("sd-vao", ["sd_reset", "sd_map"], "sd_map"),
+    "SD map S = 4, requested pixels": ("sd-svao", ["sd_reset", "sd_map"], "sd_map"),
 }
+# Whole techniques without the G-buffer (what the stencil of sd-svao is for, seed 000 §3.9).
+TOTALS = ["sd-vao", "sd-svao"]
+totals = {}
 cells = {}
 adapter = None
 for path in sorted(runs.glob("*-*-*.json")):
@@ -20,6 +27,9 @@ for path in sorted(runs.glob("*-*-*.json")):
     data = json.loads(path.read_text())
     adapter = adapter or f"{data['adapter']}, driver {data['driver']}"
     for r in data["results"]:
+        if r["technique"] in TOTALS:
+            ms = sum(v for k, v in r["passes"].items() if not k.startswith("gbuffer"))
+            totals.setdefault((scene, r["technique"], side), []).append(ms)
         for label, (technique, passes, counted) in PASSES.items():
             if r["technique"] != technique:
                 continue
@@ -43,6 +53,18 @@ for scene in dict.fromkeys(k[0] for k in cells):
         ratio = f"{n / o:.2f}" if o else "–"
         frag = f"{fo:.2f} → {fn:.2f}" if fo is not None and fn is not None else "–"
         print(f"| {scene} | {label} | {o and f'{o:.3f}' or '–'} | {n:.3f} ({new[0][1]}) | {ratio} | {frag} |")
+if totals:
+    print("\nTechnique totals without the G-buffer (ms), medians over rounds:\n")
+    print("| scene | technique | old | new | new/old |")
+    print("|---|---|---|---|---|")
+    for scene in dict.fromkeys(k[0] for k in totals):
+        for t in TOTALS:
+            old, new = totals.get((scene, t, "old")), totals.get((scene, t, "new"))
+            if not new:
+                continue
+            o, n = (statistics.median(v) if v else None for v in (old, new))
+            ratio = f"{n / o:.2f}" if o else "–"
+            print(f"| {scene} | {t} | {o and f'{o:.3f}' or '–'} | {n:.3f} | {ratio} |")
 bevy = runs / "bevy_high.json"
 if bevy.exists():
     peer = json.loads(bevy.read_text())

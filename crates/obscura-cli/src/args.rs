@@ -464,8 +464,7 @@ pub struct AoArgs {
     ))]
     pub peel_separation: Option<f32>,
     #[arg(long, help = help(
-        "sd-vao, sd-svao: stochastic depth samples per pixel (1, 2, 4, 8 or 16; counts one \
-         target cannot hold on this adapter are stacked maps; `obscura info` lists them).",
+        "sd-vao, sd-svao: stochastic depth samples per pixel (1, 2, 4, 8 or 16).",
         "stochastic_depth.samples"
     ))]
     pub sd_samples: Option<u32>,

@@ -47,7 +47,8 @@ pub const SOURCE_SD_NEAR: u32 = 0;
 /// Stochastic depth: one `u32` per framebuffer pixel, set to 1 by the two-phase schedule's
 /// phase 1 where the map must be rasterised.
 pub const SOURCE_SD_REQUEST: u32 = 1;
-/// One multisampled depth texture per stacked stochastic depth map from here on.
+/// Stochastic depth: the map's depths (a storage buffer, S per pixel); the raster map binds its
+/// `SdRaster` again at the next binding, for its width.
 pub const SOURCE_SD_MAPS: u32 = 2;
 /// Ray-traced stochastic depth: two `u32` per framebuffer pixel, the depth interval phase 1's
 /// samples need there (`shaders/sources/ray_stochastic_depth/request.wgsl`).
@@ -77,10 +78,6 @@ pub const REFERENCE_PARAMS: u32 = 0;
 /// Per visible pixel: the AO (`vao` model) or the occlusion summed over the rays so far
 /// (`hemisphere` model).
 pub const REFERENCE_OUT: u32 = 1;
-/// Group 3 of the stochastic depth map's read-back.
-pub const UNPACK_LAYER: u32 = 0;
-/// The unpacked layer: one `f32` per framebuffer pixel, linear depth, 0 = empty.
-pub const UNPACK_OUT: u32 = 1;
 
 /// Every named binding, for [`wgsl_constants`].
 const NAMED: &[(&str, u32)] = &[
@@ -113,8 +110,6 @@ const NAMED: &[(&str, u32)] = &[
     ("INDIRECT_DISPATCH", INDIRECT_DISPATCH),
     ("REFERENCE_PARAMS", REFERENCE_PARAMS),
     ("REFERENCE_OUT", REFERENCE_OUT),
-    ("UNPACK_LAYER", UNPACK_LAYER),
-    ("UNPACK_OUT", UNPACK_OUT),
 ];
 
 /// The binding names as WGSL constants (`const SOURCE_BVH: u32 = 2u;`).

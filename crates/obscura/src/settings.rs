@@ -475,8 +475,8 @@ impl BlurSettings {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StochasticDepthSettings {
-    /// Depth samples per pixel, S: 1, 2, 4, 8 or 16. Counts the adapter cannot rasterise in one
-    /// multisampled target are made of several maps stacked (each with its own seed).
+    /// Depth samples per pixel, S: 1, 2, 4, 8 or 16 (on every adapter: the map is a storage
+    /// buffer).
     pub samples: u32,
     /// Global transparency α in (0, 1]: a hidden fragment is stored in ⌊αS + ξ⌋ samples. `None`
     /// (the default; a file that leaves it out, JSON `null`, `--sd-alpha auto`): 1.5/S, at most

@@ -36,8 +36,6 @@ pub const STOCHASTIC_DEPTH_REQUEST: &str =
 pub const STOCHASTIC_DEPTH_MAP: &str = include_str!("../shaders/sources/stochastic_depth/map.wgsl");
 pub const STOCHASTIC_DEPTH_RESET: &str =
     include_str!("../shaders/sources/stochastic_depth/reset.wgsl");
-pub const STOCHASTIC_DEPTH_UNPACK: &str =
-    include_str!("../shaders/sources/stochastic_depth/unpack.wgsl");
 
 pub const SCHEDULE_SINGLE: &str = include_str!("../shaders/schedules/single.wgsl");
 pub const SCHEDULE_SINGLE_MAIN: &str = include_str!("../shaders/schedules/single_main.wgsl");

@@ -16,7 +16,7 @@ use obscura::Renderer;
 const BOUND: f32 = 1e-5;
 
 /// The settings a source is checked with, per scene: its defaults, and for the stochastic depth
-/// map both ways of limiting it and single-sample (another binding type) and stacked maps.
+/// map both ways of limiting it and S = 1, 8 and 16.
 fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
     let base = AoSettings::default();
     match source {

@@ -21,20 +21,17 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
     }
     let gpu = obscura::Gpu::new(options)?;
     let s = &gpu.summary;
-    let sd = obscura::sources::stochastic_depth::SdCapabilities::of(&gpu.adapter, &gpu.device);
+    let sd = obscura::sources::stochastic_depth::SdCapabilities::of(&gpu.device);
     if args.json {
         let mut json = serde_json::to_value(s)?;
         if let Some(object) = json.as_object_mut() {
             object.insert("sd_format".into(), sd.format.clone().into());
-            object.insert(
-                "sd_map_sample_counts".into(),
-                serde_json::to_value(&sd.map_sample_counts)?,
-            );
+            object.insert("sd_early_tests".into(), sd.early_tests.into());
+            object.insert("sd_stencil".into(), sd.stencil.into());
             object.insert(
                 "sd_sample_counts".into(),
                 serde_json::to_value(&sd.sample_counts)?,
             );
-            object.insert("sd_layouts".into(), sd.layouts.clone().into());
             object.insert(
                 "techniques".into(),
                 serde_json::to_value(
@@ -81,17 +78,24 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
         s.max_compute_workgroup_size, s.max_compute_invocations_per_workgroup
     );
     println!("depth MSAA   {:?} samples", s.depth_msaa_sample_counts);
-    if sd.sample_counts.is_empty() {
-        println!(
-            "SD map       unavailable on this device: {} cannot run",
-            obscura::technique::names_where(|r| r.needs().stochastic_depth_map)
-        );
-    } else {
-        println!(
-            "SD map       {}, {:?} samples per target",
-            sd.format, sd.map_sample_counts
-        );
-        println!("--sd-samples {}", sd.layouts);
-    }
+    let yes_no = |b: bool, no: &'static str| if b { "yes" } else { no };
+    println!(
+        "SD map       {}, --sd-samples {:?}",
+        sd.format, sd.sample_counts
+    );
+    println!(
+        "SD early tests {}",
+        yes_no(
+            sd.early_tests,
+            "no (SHADER_EARLY_DEPTH_TEST missing: the same map, slower)"
+        )
+    );
+    println!(
+        "SD stencil   {}",
+        yes_no(
+            sd.stencil,
+            "no (DEPTH32FLOAT_STENCIL8 missing: --sd-mask discard only)"
+        )
+    );
     Ok(())
 }

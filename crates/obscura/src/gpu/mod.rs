@@ -201,11 +201,7 @@ impl Gpu {
 
     fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
-        let wanted = wgpu::Features::TIMESTAMP_QUERY
-            | wgpu::Features::PIPELINE_STATISTICS_QUERY
-            | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
-            | wgpu::Features::DEPTH32FLOAT_STENCIL8;
-        let features = adapter.features() & wanted;
+        let features = adapter.features() & WANTED_FEATURES;
         let limits = adapter.limits();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("obscura"),
@@ -222,8 +218,9 @@ impl Gpu {
 
     /// Wrap a device the caller made (an engine's), with its adapter and queue. obscura uses the
     /// features the device has: without `TIMESTAMP_QUERY` there are no pass timings, without
-    /// `DEPTH32FLOAT_STENCIL8` no stochastic depth map (its techniques then return an error
-    /// naming the feature). Validation errors the device does not capture are collected for
+    /// `DEPTH32FLOAT_STENCIL8` no stencil for the stochastic depth map (`--sd-mask stencil`
+    /// then returns an error naming the feature), without `SHADER_EARLY_DEPTH_TEST` the map is
+    /// the same but slower. Validation errors the device does not capture are collected for
     /// [`Gpu::check_errors`]: this installs the device's uncaptured-error handler.
     pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
         let info = adapter.get_info();
@@ -350,6 +347,15 @@ pub(crate) fn pipeline_from_module(
         cache: None,
     })
 }
+
+/// The optional features obscura uses where the adapter has them (and [`Gpu::new`] requests):
+/// pass timings, fragment counts, render targets of the formats WebGPU does not guarantee
+/// (the G-buffer's `R32Float`), the stochastic depth map's stencil and early tests.
+pub const WANTED_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
+    .union(wgpu::Features::PIPELINE_STATISTICS_QUERY)
+    .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
+    .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
+    .union(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
 
 /// A bind group for group 0 of `pipeline` with `resources` at bindings 0, 1, 2, … in order
 /// (the raster, blur and query passes, whose layouts are automatic; the AO passes name their

@@ -12,9 +12,6 @@ use crate::schedules::{self, SourceGroup};
 use crate::sources::{self, stochastic_depth::SdLayout};
 use crate::technique::{Schedule, Source, TABLE};
 
-/// Every layout the stochastic depth map can take: single-sample, one 4× or 8× target, stacked.
-const SD_LAYOUTS: [(u32, u32); 6] = [(1, 1), (1, 2), (1, 4), (1, 8), (2, 4), (4, 4)];
-
 /// A minimal estimator implementing the contract: eight samples on a ring of 2 px, each
 /// occluded (value 0) when its depth is nearer than the pixel's. Not a technique; it only shows
 /// what a new estimator has to provide.
@@ -168,17 +165,12 @@ fn frame_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
 
 /// The stochastic depth layouts to compose a source with (one dummy for the other sources).
 fn sd_layouts(source: Source) -> Vec<SdLayout> {
-    let all: &[(u32, u32)] = if source == Source::StochasticDepth {
-        &SD_LAYOUTS
+    let all: &[u32] = if source == Source::StochasticDepth {
+        &crate::settings::SD_SAMPLE_COUNTS
     } else {
-        &[(1, 1)]
+        &[1]
     };
-    all.iter()
-        .map(|&(maps, samples_per_map)| SdLayout {
-            maps,
-            samples_per_map,
-        })
-        .collect()
+    all.iter().filter_map(|&s| SdLayout::plan(s)).collect()
 }
 
 /// One pipeline of a schedule, composed and checked against the layouts it is built with.

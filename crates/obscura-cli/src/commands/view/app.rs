@@ -43,10 +43,7 @@ const KEYS: &[(&str, &str)] = &[
 
 /// Features obscura uses where the adapter has them (as `Gpu::new` asks for).
 fn wanted_features() -> wgpu::Features {
-    wgpu::Features::TIMESTAMP_QUERY
-        | wgpu::Features::PIPELINE_STATISTICS_QUERY
-        | wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES
-        | wgpu::Features::DEPTH32FLOAT_STENCIL8
+    obscura::gpu::WANTED_FEATURES
 }
 
 fn backend_from(name: &str) -> Result<wgpu::Backends> {

@@ -1,29 +1,31 @@
 // Stratified stochastic depth map (seed 001 §3.1, Alg. 1; the authors' raster pass as recorded in
 // seed-code-notes §1.5). Appended to gbuffer.wgsl (same vertices, alpha test and culling) and
-// common/hash.wgsl.
+// common/hash.wgsl; reset.wgsl follows it.
 //
-// The target is a multisampled depth buffer of S samples per pixel. Every fragment behind the
-// first layer (more than `separation` behind the G-buffer's linear depth, the same rule as depth
-// peeling) draws xi from a hash of its pixel, triangle, depth and the map's seed, is stored in
-// R = floor(alpha * S + xi) samples (mean alpha * S), chosen uniformly among the S-bit masks with R
-// bits set (`sd_lut`: all masks sorted by popcount), and writes `@builtin(sample_mask)`; the depth
-// test keeps the nearest fragment per sample.
+// The map is a storage buffer of S depths per pixel (`sd_depths`, pixel-major, the layout the
+// ray-traced map of seed 002 uses too): every fragment behind the first layer (more than
+// `separation` behind the G-buffer's linear depth, the same rule as depth peeling) draws xi from a
+// hash of its pixel, triangle, depth and the map's seed, is stored in R = floor(alpha * S + xi)
+// samples (mean alpha * S), chosen uniformly among the S-bit masks with R bits set (`sd_lut`: all
+// masks sorted by popcount), and each chosen sample keeps the nearest fragment (`atomicMax` of the
+// depth's bits: positive floats order as their bits do). That is Alg. 1's depth test per sample
+// with every sample at the pixel centre, as the paper places them (programmable sample positions,
+// which WebGPU lacks; the rasteriser runs at one sample per pixel, so the fragment is the pixel
+// centre's).
 //
-// Depth: the shader writes the fragment's linear depth at the pixel centre (so the map stores
-// positions, as the authors' code does, seed-code-notes §1.5), encoded as reversed-Z near / depth
-// in a 32-bit float target: float precision at any distance, no far plane needed, 0 = empty.
+// Depth: the fragment's linear depth at the pixel centre (so the map stores positions, as the
+// authors' code does, seed-code-notes §1.5), encoded as reversed-Z near / depth: float precision
+// at any distance, no far plane needed, 0 = empty.
 //
-// Sample positions: the paper puts all samples at the pixel centre (programmable sample
-// positions), which WebGPU cannot. Here the rasteriser's standard pattern decides coverage, while
-// the depth written is the pixel centre's for every sample (the shader runs once per pixel, at its
-// centre). Inside a triangle a sample stores its pixel's fragment as in the paper; at a triangle
-// edge it may take the neighbouring triangle of the same surface, which keeps every sample's
-// chance of storing the surface at alpha but not the exact count R of one fragment.
-//
-// A shader-written depth turns the hardware's early depth test off. Measured on the H100
-// (BENCHMARKS.md) the rasteriser's own depth (at the sample positions) made the map 9 % faster on
-// Sponza and its errors larger (colonnade, MSE against the ground truth 2.1e-6 to 3.4e-6 instead
-// of 0.9e-6 to 2.0e-6); we keep the positions exact.
+// Why not the multisampled depth target the paper draws into (our first map, BENCHMARKS.md,
+// issue 16): a shader that writes depth and `sample_mask` is never depth- or stencil-tested before
+// it runs, so the stencil of SD-SVAO saved nothing, and emptying a 4x target cost more than
+// drawing colonnade into it. Here the pass writes no depth: reset.wgsl first writes, per pixel,
+// the hardware depth of "first layer + separation" (and the SD-SVAO stencil), and the map's
+// fragment shaders run with forced early tests against it (`@early_depth_test(force)`, wgpu's
+// SHADER_EARLY_DEPTH_TEST; removed from the source where the device lacks it), so fragments in
+// front of the first layer and, with the stencil, at pixels nobody requested are never shaded.
+// The shaders make every decision themselves as well: the early tests only skip work.
 
 struct SdRaster {
     // The projection's near plane: stored depth = near / linear depth (readers invert it).
@@ -37,8 +39,9 @@ struct SdRaster {
     // Non-zero: store every layer, the first visible one included (the multi-view schedule's
     // second map, seed 001 §3.4; its view has no first layer of its own).
     all_layers: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // The map's width in pixels (`sd_depths` is row-major).
+    width: u32,
+    _pad: u32,
 }
 
 @group(0) @binding(6) var first_layer: texture_2d<f32>;
@@ -46,6 +49,15 @@ struct SdRaster {
 // [0, S + 1]: index in the mask list of the first mask with R bits (R = 0..S, then 2^S);
 // from S + 2 on: all 2^S masks sorted by popcount.
 @group(0) @binding(8) var<storage, read> sd_lut: array<u32>;
+// S depths per pixel, pixel-major (reversed-Z bits, 0 = empty).
+@group(0) @binding(9) var<storage, read_write> sd_depths: array<atomic<u32>>;
+// SD-SVAO's request mask: one u32 per framebuffer pixel, row-major, non-zero = requested.
+@group(0) @binding(10) var<storage, read> sd_request: array<u32>;
+
+// Index of the first of `pixel`'s S depths in `sd_depths`.
+fn sd_base(pixel: vec2<u32>) -> u32 {
+    return (pixel.y * sd.width + pixel.x) * sd.samples;
+}
 
 // The fragment's hash: pixel, triangle and depth (seed 001 §3.1: "using the pixel location,
 // sample index, and sample depth"), and the map's seed.
@@ -80,42 +92,28 @@ fn sd_coverage(in: VertexOut) -> u32 {
     return sd_lut[sd.samples + 2u + first_mask + pcg_hash(h) % choices];
 }
 
-struct SdOut {
-    @builtin(frag_depth) depth: f32,
-    @builtin(sample_mask) mask: u32,
-}
-
-// The stored samples with the pixel centre's depth.
-fn sd_out(in: VertexOut, mask: u32) -> SdOut {
-    var out: SdOut;
-    out.depth = sd.near / -in.view_pos.z;
-    out.mask = mask;
-    return out;
-}
-
-@fragment
-fn fs_stochastic_depth(in: VertexOut) -> SdOut {
-    let mask = sd_coverage(in);
-    if (mask == 0u) {
-        discard;
+// Alg. 1's depth test: each sample of `mask` keeps the nearest fragment.
+fn sd_store(in: VertexOut, mask: u32) {
+    let base = sd_base(vec2<u32>(in.clip.xy));
+    let depth = bitcast<u32>(sd.near / -in.view_pos.z);
+    var left = mask;
+    while (left != 0u) {
+        atomicMax(&sd_depths[base + firstTrailingBit(left)], depth);
+        left &= left - 1u;
     }
-    return sd_out(in, mask);
 }
 
-// SD-SVAO without the stencil (`--sd-mask discard`): the fragment reads the SD-request mask itself
-// and is dropped where it is not set, so no full-screen copy pass is needed (see
-// sd_reset.wgsl for the paper's stencil). One u32 per framebuffer pixel, non-zero = requested.
-@group(0) @binding(9) var<storage, read> sd_request: array<u32>;
+@fragment @early_depth_test(force)
+fn fs_stochastic_depth(in: VertexOut) {
+    sd_store(in, sd_coverage(in));
+}
 
-@fragment
-fn fs_stochastic_depth_requested(in: VertexOut) -> SdOut {
+// SD-SVAO (seed 000 §3.9): only the pixels phase 1 requested. With the stencil (reset.wgsl) the
+// early stencil test drops the others before this runs; `--sd-mask discard` leaves it to this test.
+@fragment @early_depth_test(force)
+fn fs_stochastic_depth_requested(in: VertexOut) {
     let pixel = vec2<u32>(in.clip.xy);
-    if (sd_request[pixel.y * textureDimensions(first_layer).x + pixel.x] == 0u) {
-        discard;
+    if (sd_request[pixel.y * sd.width + pixel.x] != 0u) {
+        sd_store(in, sd_coverage(in));
     }
-    let mask = sd_coverage(in);
-    if (mask == 0u) {
-        discard;
-    }
-    return sd_out(in, mask);
 }

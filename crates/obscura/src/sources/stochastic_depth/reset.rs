@@ -1,28 +1,26 @@
-//! Resetting the stochastic depth map each frame (`shaders/sources/stochastic_depth/reset.wgsl`): depth back to empty
-//! everywhere (`sd-vao`) or only at the pixels phase 1 requested (`sd-svao`, seed 000 §3.9), where
-//! a stenciled map also gets the frame's stencil value. A draw rather than a load-op clear:
-//! measured on the H100 (BENCHMARKS.md), clearing a 4× depth-stencil target of 1080p + 64 px cost
-//! 0.94 ms, more than rasterising colonnade's whole map into it.
+//! Resetting the stochastic depth map each frame (`shaders/sources/stochastic_depth/reset.wgsl`):
+//! one full-screen pass that empties every pixel's depths and writes the depth the map's fragments
+//! must lie behind (the first layer plus the separation), and for a stenciled map (`sd-svao`, seed
+//! 000 §3.9) the frame's stencil value at the pixels phase 1 requested. A pass rather than a
+//! buffer clear and a load-op clear: the depth comes from the first layer, and one pass does all.
 
 use crate::gpu::PassProfiler;
-use crate::shaders;
 use std::sync::atomic::{AtomicU32, Ordering};
-use wgpu::util::DeviceExt;
 
-/// Which pixels a reset touches.
+/// What a reset writes besides the empty map and the depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum ResetScope {
-    /// Every pixel (the full map).
+    /// No stencil.
     All,
-    /// Requested pixels only; `stencil`: also write the frame's stencil value there.
-    Requested { stencil: bool },
+    /// The frame's stencil value at the requested pixels.
+    Stenciled,
 }
 
 pub(crate) struct SdReset {
     pipeline: wgpu::RenderPipeline,
-    scope: ResetScope,
-    /// The framebuffer width, for indexing the request mask.
-    width: wgpu::Buffer,
+    /// The bindings of the map pass's group 0 that the reset reads (its automatic layout holds
+    /// only these): camera, first layer, `SdRaster`, depths, and the request mask if stenciled.
+    bindings: &'static [u32],
     /// Frames reset so far: the stencil value of a frame is `frames % 255 + 1`.
     frames: AtomicU32,
     /// Its timing name: `sd_reset` unless the map is renamed.
@@ -30,18 +28,14 @@ pub(crate) struct SdReset {
 }
 
 impl SdReset {
+    /// The reset for a map target of `format`; `module` is the map's (map.wgsl + reset.wgsl).
     pub fn new(
         device: &wgpu::Device,
+        module: &wgpu::ShaderModule,
         format: wgpu::TextureFormat,
-        multisample: wgpu::MultisampleState,
-        (width, height): (u32, u32),
         scope: ResetScope,
     ) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("sd reset"),
-            source: wgpu::ShaderSource::Wgsl(shaders::STOCHASTIC_DEPTH_RESET.into()),
-        });
-        let stencil = if scope == (ResetScope::Requested { stencil: true }) {
+        let stencil = if scope == ResetScope::Stenciled {
             let replace = wgpu::StencilFaceState {
                 compare: wgpu::CompareFunction::Always,
                 pass_op: wgpu::StencilOperation::Replace,
@@ -60,7 +54,7 @@ impl SdReset {
             label: Some("sd reset"),
             layout: None,
             vertex: wgpu::VertexState {
-                module: &module,
+                module,
                 entry_point: Some("vs_full_screen"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -73,12 +67,12 @@ impl SdReset {
                 stencil,
                 bias: Default::default(),
             }),
-            multisample,
+            multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &module,
+                module,
                 entry_point: Some(match scope {
                     ResetScope::All => "fs_reset_all",
-                    ResetScope::Requested { .. } => "fs_reset_requested",
+                    ResetScope::Stenciled => "fs_reset_requested",
                 }),
                 compilation_options: Default::default(),
                 targets: &[],
@@ -88,47 +82,39 @@ impl SdReset {
         });
         Self {
             pipeline,
-            scope,
-            width: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("sd reset width"),
-                contents: bytemuck::cast_slice(&[width, height, 0, 0]),
-                usage: wgpu::BufferUsages::UNIFORM,
-            }),
+            bindings: match scope {
+                ResetScope::All => &[0, 6, 7, 9],
+                ResetScope::Stenciled => &[0, 6, 7, 9, 10],
+            },
             frames: AtomicU32::new(0),
             name: "sd_reset",
         }
     }
 
-    /// The stencil value of the next frame (1–255; 0 is what a new texture holds). Call once per
-    /// frame, before [`SdReset::encode`] for each of its maps.
-    pub fn next_frame(&self) -> u32 {
-        self.frames.fetch_add(1, Ordering::Relaxed) % 255 + 1
-    }
-
-    /// Reset `target` (timing [`SdReset::name`], `sd_reset` unless renamed). `request`: the SD-request mask, needed
-    /// for [`ResetScope::Requested`].
+    /// Reset the map into `target` (timing [`SdReset::name`]); `resources`: the map pass's
+    /// bindings of group 0. Returns the frame's stencil value (1–255; 0 is what a new texture
+    /// holds), which the map pass tests for.
     pub fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
-        request: Option<&wgpu::Buffer>,
-        stencil_value: u32,
+        resources: &[wgpu::BindingResource],
         profiler: Option<&mut PassProfiler>,
-    ) {
+    ) -> u32 {
+        let stencil_value = self.frames.fetch_add(1, Ordering::Relaxed) % 255 + 1;
+        let used: Vec<_> = self
+            .bindings
+            .iter()
+            .map(|&b| (b, resources[b as usize].clone()))
+            .collect();
+        let bind_group = crate::gpu::bind_group_at(
+            device,
+            "sd reset",
+            &self.pipeline.get_bind_group_layout(0),
+            &used,
+        );
         let name = self.name;
-        let bind_group = match (self.scope, request) {
-            (ResetScope::Requested { .. }, Some(request)) => Some(crate::gpu::bind_group(
-                device,
-                "sd reset",
-                &self.pipeline.get_bind_group_layout(0),
-                &[request.as_entire_binding(), self.width.as_entire_binding()],
-            )),
-            (ResetScope::Requested { .. }, None) => {
-                panic!("a map limited to requested pixels is rendered with its request mask")
-            }
-            (ResetScope::All, _) => None,
-        };
         let mut profiler = profiler;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(name));
         let mut pass = super::begin(encoder, target, timestamp_writes);
@@ -136,13 +122,12 @@ impl SdReset {
             p.begin_fragments(&mut pass, name);
         }
         pass.set_pipeline(&self.pipeline);
-        if let Some(bind_group) = &bind_group {
-            pass.set_bind_group(0, bind_group, &[]);
-        }
+        pass.set_bind_group(0, &bind_group, &[]);
         pass.set_stencil_reference(stencil_value);
         pass.draw(0..3, 0..1);
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
+        stencil_value
     }
 }

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The stochastic depth map (issue 16) of two builds against each other, in one device call on one
+# card: `obscura bench --techniques sd-vao,sd-svao` with the stencil and with `--sd-mask discard`
+# (run files SCENE_discard-*), .devbin/obscura-old and .devbin/obscura alternating for ROUNDS
+# rounds, on Crytek Sponza (guard band 64 and 0), the built-in `colonnade` close-up and, when
+# carried, Sibenik, all at 1920x1080; then the G-buffer's peer (Bevy 0.19 depth + normal prepass,
+# ../shared/tools/peers/README.md) when carried. Writes $OUT/summary.md
+# (scripts/bench-raster-summary.py), $OUT/info.txt, $OUT/bench.txt and $OUT/runs.tar.gz.
+# Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza sibenik, plus the old binary)
+# and .gl.
+set -uo pipefail
+source "$(dirname "$0")/device-env.sh"
+new=$bin old=./.devbin/obscura-old
+rounds=${ROUNDS:-2}
+runs=$out/runs
+mkdir -p "$runs"
+$new info | tee "$out/info.txt"
+sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
+bench() { # name, binary, scene arguments...
+  local name=$1 b=$2
+  shift 2
+  $b bench "$@" --size 1920x1080 --frames 200 --warmup 20 --json "$runs/$name.json" \
+    >> "$out/bench.txt" 2>&1
+}
+for round in $(seq "$rounds"); do
+  for side in old new; do
+    b=$new; [ "$side" = old ] && b=$old
+    [ -x "$b" ] || continue
+    for scene in sponza sponza0 colonnade sibenik; do
+      case $scene in
+        sponza) args=("${sponza[@]}") ;;
+        sponza0) args=("${sponza[@]}" --guard-band 0) ;;
+        colonnade) args=(--scene colonnade --camera closeup) ;;
+        sibenik) [ -d .devbin/scenes/sibenik ] || continue; args=("${sibenik[@]}") ;;
+      esac
+      bench "$scene-$side-$round" "$b" "${args[@]}" --techniques sd-vao,sd-svao
+      bench "${scene}_discard-$side-$round" "$b" "${args[@]}" --techniques sd-svao \
+        --sd-mask discard
+    done
+  done
+done
+if [ -f .devbin/bevy_ssao_bench.xz ]; then
+  xz -dc .devbin/bevy_ssao_bench.xz > /tmp/bevy && chmod +x /tmp/bevy
+  /tmp/bevy .devbin/scenes/crytek-sponza/sponza.glb --size 1920x1080 --quality high --frames 200 \
+    --warmup 30 --json "$runs/bevy_high.json" > "$out/bevy.txt" 2>&1
+fi
+python3 "$(dirname "$0")/bench-raster-summary.py" "$runs" | tee "$out/summary.md"
+tar -C "$out" -czf "$out/runs.tar.gz" runs && rm -rf "$runs"
