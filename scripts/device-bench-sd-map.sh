@@ -6,11 +6,16 @@
 # carried, Sibenik, all at 1920x1080; then the G-buffer's peer (Bevy 0.19 depth + normal prepass,
 # ../shared/tools/peers/README.md) when carried. Writes $OUT/summary.md
 # (scripts/bench-raster-summary.py), $OUT/info.txt, $OUT/bench.txt and $OUT/runs.tar.gz.
-# Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza sibenik, plus the old binary)
+# Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza sibenik, plus the old binary as
+# .devbin/obscura-old or .devbin/obscura-old.xz)
 # and .gl.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 new=$bin old=./.devbin/obscura-old
+# The old build may come compressed (the carry limit): .devbin/obscura-old.xz.
+if [ -f .devbin/obscura-old.xz ]; then
+  xz -dc .devbin/obscura-old.xz > /tmp/obscura-old && chmod +x /tmp/obscura-old && old=/tmp/obscura-old
+fi
 rounds=${ROUNDS:-2}
 runs=$out/runs
 mkdir -p "$runs"
