@@ -128,7 +128,11 @@ impl Multiview {
             None,
         )?
         .keeping_every_layer()
-        .timed_as("multiview_sd_reset", "multiview_sd_map");
+        .timed_as(
+            "multiview_sd_clear",
+            "multiview_sd_reset",
+            "multiview_sd_map",
+        );
         let mut source_entries = vec![entry::uniform(bindings::SOURCE_MULTIVIEW)];
         source_entries.extend(read_layout_entries(map.layout()));
         let source_layout = bindings::layout(device, "multiview second view", &source_entries);

@@ -1,14 +1,15 @@
 // Resetting the stochastic depth map for a frame (src/sources/stochastic_depth/reset.rs). Appended
-// to map.wgsl (its bindings). A full-screen triangle, one fragment per pixel, that
-// - empties the pixel's S depths in `sd_depths`;
-// - writes the depth the map's early depth test compares with: the hardware depth of the point
-//   `separation` behind the first layer, so that only fragments behind it are shaded (0 where the
-//   pixel shows no surface: nothing is stored there; 1, everything passes, for a map that keeps
-//   every layer);
-// - `fs_reset_requested` (SD-SVAO with the stencil, seed 000 §3.9): writes the frame's stencil
-//   value only at the pixels phase 1 requested (it discards the others after emptying them), as
-//   the authors copy the request mask into the stencil with a full-screen pass
-//   (seed-code-notes §1.5).
+// to map.wgsl (its bindings). Two passes (timed `sd_clear` and `sd_reset`):
+// - `cs_clear` (compute) empties every pixel's S depths in `sd_depths`;
+// - a full-screen triangle, one fragment per pixel, writes the depth the map's early depth test
+//   compares with: the hardware depth of the point `separation` behind the first layer, so that
+//   only fragments behind it are shaded (0 where the pixel shows no surface: nothing is stored
+//   there). `fs_reset_requested` (SD-SVAO with the stencil, seed 000 §3.9) writes it, and the
+//   frame's stencil value, only at the pixels phase 1 requested, as the authors copy the request
+//   mask into the stencil with a full-screen pass (seed-code-notes §1.5).
+// A map that keeps every layer needs no depth: its pass clears the target to 1 (all pass).
+// Emptying the map in the fragment pass too measured 1.0 ms on the H200 at 1080p + 64 px
+// (BENCHMARKS.md, issue 16); compute does it in a fraction.
 
 // The early test may only skip fragments the shader would drop: the written depth is moved this
 // far (relative) towards the camera, past any difference between this expression and the
@@ -21,15 +22,19 @@ fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
-// Empty the pixel's depths; the depth the map's fragments must lie behind.
-fn sd_reset_pixel(pixel: vec2<u32>) -> f32 {
-    let base = sd_base(pixel);
+@compute @workgroup_size(8, 8)
+fn cs_clear(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (id.x >= sd.width || id.y * sd.width * sd.samples >= arrayLength(&sd_depths)) {
+        return;
+    }
+    let base = sd_base(id.xy);
     for (var k = 0u; k < sd.samples; k++) {
         atomicStore(&sd_depths[base + k], 0u);
     }
-    if (sd.all_layers != 0u) {
-        return 1.0;
-    }
+}
+
+// The depth the map's fragments at `pixel` must lie behind.
+fn sd_cull_depth(pixel: vec2<u32>) -> f32 {
     let first = textureLoad(first_layer, pixel, 0).r;
     if (!(first > 0.0)) {
         return 0.0;
@@ -42,15 +47,14 @@ fn sd_reset_pixel(pixel: vec2<u32>) -> f32 {
 
 @fragment
 fn fs_reset_all(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
-    return sd_reset_pixel(vec2<u32>(position.xy));
+    return sd_cull_depth(vec2<u32>(position.xy));
 }
 
 @fragment
 fn fs_reset_requested(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
     let pixel = vec2<u32>(position.xy);
-    let depth = sd_reset_pixel(pixel);
     if (sd_request[pixel.y * sd.width + pixel.x] == 0u) {
         discard;
     }
-    return depth;
+    return sd_cull_depth(pixel);
 }

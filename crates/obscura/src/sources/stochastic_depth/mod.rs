@@ -364,8 +364,10 @@ impl StochasticDepthMap {
         self
     }
 
-    /// This map timed as `reset` and `map` instead of `sd_reset` and `sd_map`.
-    pub fn timed_as(mut self, reset: &'static str, map: &'static str) -> Self {
+    /// This map timed as `clear`, `reset` and `map` instead of `sd_clear`, `sd_reset` and
+    /// `sd_map`.
+    pub fn timed_as(mut self, clear: &'static str, reset: &'static str, map: &'static str) -> Self {
+        self.reset.clear_name = clear;
         self.reset.name = reset;
         self.timing_name = map;
         self
@@ -409,7 +411,7 @@ impl StochasticDepthMap {
 
     /// Rasterise the map behind `first_layer` (the G-buffer's linear depth). With `request` (a
     /// map made with `requested`), only the pixels whose u32 in it is non-zero; the map is then
-    /// empty elsewhere. Timings: `sd_reset` (emptying the map and writing the depth, and for a
+    /// empty elsewhere. Timings: `sd_clear` (emptying the map), `sd_reset` (the depth, and for a
     /// stenciled map the stencil, its fragments are tested against) and `sd_map`.
     pub fn render(
         &self,
@@ -432,10 +434,12 @@ impl StochasticDepthMap {
         ];
         extra.extend(request.map(|r| r.as_entire_binding()));
         let resources = scene_resources(&self.camera, &self.scene, extra);
+        // A map keeping every layer tests against nothing: its pass clears the depth to 1.
         let stencil_value = self.reset.encode(
             device,
             encoder,
-            &self.cull,
+            self.size,
+            (!self.all_layers).then_some(&self.cull),
             &resources,
             profiler.as_deref_mut(),
         );
@@ -449,7 +453,12 @@ impl StochasticDepthMap {
         });
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
-        let mut pass = begin(encoder, &self.cull, timestamp_writes);
+        let load = if self.all_layers {
+            wgpu::LoadOp::Clear(1.0)
+        } else {
+            wgpu::LoadOp::Load
+        };
+        let mut pass = begin(encoder, &self.cull, load, timestamp_writes);
         pass.set_stencil_reference(stencil_value);
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, map_name);
@@ -495,10 +504,12 @@ impl StochasticDepthMap {
     }
 }
 
-/// A render pass on the map's depth(-stencil) target, keeping what the reset wrote.
+/// A render pass on the map's depth(-stencil) target: depth loaded as `depth` says, the stencil
+/// kept.
 pub(crate) fn begin<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     target: &wgpu::TextureView,
+    depth: wgpu::LoadOp<f32>,
     timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
 ) -> wgpu::RenderPass<'e> {
     fn keep<V>() -> wgpu::Operations<V> {
@@ -513,7 +524,10 @@ pub(crate) fn begin<'e>(
         color_attachments: &[],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: target,
-            depth_ops: Some(keep()),
+            depth_ops: Some(wgpu::Operations {
+                load: depth,
+                store: wgpu::StoreOp::Store,
+            }),
             stencil_ops: stencil,
         }),
         timestamp_writes,

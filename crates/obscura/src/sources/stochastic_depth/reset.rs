@@ -1,8 +1,9 @@
 //! Resetting the stochastic depth map each frame (`shaders/sources/stochastic_depth/reset.wgsl`):
-//! one full-screen pass that empties every pixel's depths and writes the depth the map's fragments
-//! must lie behind (the first layer plus the separation), and for a stenciled map (`sd-svao`, seed
-//! 000 §3.9) the frame's stencil value at the pixels phase 1 requested. A pass rather than a
-//! buffer clear and a load-op clear: the depth comes from the first layer, and one pass does all.
+//! a compute pass empties every pixel's depths, then a full-screen pass writes the depth the map's
+//! fragments must lie behind (the first layer plus the separation), and for a stenciled map
+//! (`sd-svao`, seed 000 §3.9) the frame's stencil value, at the pixels phase 1 requested. A map
+//! that keeps every layer skips the second pass (its map pass clears the depth to 1). Timed as
+//! `sd_clear` and `sd_reset`.
 
 use crate::gpu::PassProfiler;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -17,13 +18,15 @@ pub(crate) enum ResetScope {
 }
 
 pub(crate) struct SdReset {
+    clear: wgpu::ComputePipeline,
     pipeline: wgpu::RenderPipeline,
-    /// The bindings of the map pass's group 0 that the reset reads (its automatic layout holds
-    /// only these): camera, first layer, `SdRaster`, depths, and the request mask if stenciled.
+    /// The bindings of the map pass's group 0 that the depth pass reads (its automatic layout
+    /// holds only these): camera, first layer, `SdRaster`, and the request mask if stenciled.
     bindings: &'static [u32],
     /// Frames reset so far: the stencil value of a frame is `frames % 255 + 1`.
     frames: AtomicU32,
-    /// Its timing name: `sd_reset` unless the map is renamed.
+    /// Its timing names: `sd_clear` and `sd_reset` unless the map is renamed.
+    pub clear_name: &'static str,
     pub name: &'static str,
 }
 
@@ -80,44 +83,68 @@ impl SdReset {
             multiview_mask: None,
             cache: None,
         });
+        let clear = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("sd clear"),
+            layout: None,
+            module,
+            entry_point: Some("cs_clear"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
         Self {
+            clear,
             pipeline,
             bindings: match scope {
-                ResetScope::All => &[0, 6, 7, 9],
-                ResetScope::Stenciled => &[0, 6, 7, 9, 10],
+                ResetScope::All => &[0, 6, 7],
+                ResetScope::Stenciled => &[0, 6, 7, 10],
             },
             frames: AtomicU32::new(0),
+            clear_name: "sd_clear",
             name: "sd_reset",
         }
     }
 
-    /// Reset the map into `target` (timing [`SdReset::name`]); `resources`: the map pass's
+    /// Reset the map (`depths`, `size` pixels) and, with `target`, the depth (and stencil) its
+    /// fragments are tested against (timings [`SdReset::clear_name`], [`SdReset::name`]); `resources`: the map pass's
     /// bindings of group 0. Returns the frame's stencil value (1–255; 0 is what a new texture
     /// holds), which the map pass tests for.
     pub fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        target: &wgpu::TextureView,
+        (width, height): (u32, u32),
+        target: Option<&wgpu::TextureView>,
         resources: &[wgpu::BindingResource],
-        profiler: Option<&mut PassProfiler>,
+        mut profiler: Option<&mut PassProfiler>,
     ) -> u32 {
         let stencil_value = self.frames.fetch_add(1, Ordering::Relaxed) % 255 + 1;
-        let used: Vec<_> = self
-            .bindings
-            .iter()
-            .map(|&b| (b, resources[b as usize].clone()))
-            .collect();
-        let bind_group = crate::gpu::bind_group_at(
-            device,
-            "sd reset",
-            &self.pipeline.get_bind_group_layout(0),
-            &used,
-        );
         let name = self.name;
-        let mut profiler = profiler;
+        let group = |pipeline_layout: &wgpu::BindGroupLayout, bindings: &[u32]| {
+            let used: Vec<_> = bindings
+                .iter()
+                .map(|&b| (b, resources[b as usize].clone()))
+                .collect();
+            crate::gpu::bind_group_at(device, "sd reset", pipeline_layout, &used)
+        };
+        {
+            let bind_group = group(&self.clear.get_bind_group_layout(0), &[7, 9]);
+            let timestamp_writes = profiler
+                .as_deref_mut()
+                .map(|p| p.compute_pass(self.clear_name));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sd clear"),
+                timestamp_writes,
+            });
+            pass.set_pipeline(&self.clear);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        }
+        let Some(target) = target else {
+            return stencil_value;
+        };
+        let bind_group = group(&self.pipeline.get_bind_group_layout(0), self.bindings);
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(name));
-        let mut pass = super::begin(encoder, target, timestamp_writes);
+        let mut pass = super::begin(encoder, target, wgpu::LoadOp::Load, timestamp_writes);
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
