@@ -11,9 +11,10 @@
 # and .gl.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
-new=$bin old=./.devbin/obscura-old
-# The old build may come compressed (the carry limit): .devbin/obscura-old.xz.
-if [ -f .devbin/obscura-old.xz ]; then
+new=$bin old=${OLD_BIN:-./.devbin/obscura-old}
+# The old build may come compressed (the carry limit): .devbin/obscura-old.xz. OLD_BIN: any other
+# command in its place (e.g. a wrapper setting an environment variable).
+if [ -z "${OLD_BIN:-}" ] && [ -f .devbin/obscura-old.xz ]; then
   xz -dc .devbin/obscura-old.xz > /tmp/obscura-old && chmod +x /tmp/obscura-old && old=/tmp/obscura-old
 fi
 rounds=${ROUNDS:-2}

@@ -459,7 +459,7 @@ pub(crate) fn whole_ranges<const N: usize>(ranges: [std::ops::Range<u32>; N]) ->
 
 /// The visibility pass's draws: the chunks `view` may see ([`super::chunks`]), nearest first
 /// within each of [`GpuScene::visibility_ranges`]' groups, group `g` with pipeline `g`.
-fn visibility_draws(scene: &GpuScene, view: &FrameView) -> Vec<Draw> {
+pub(crate) fn visibility_draws(scene: &GpuScene, view: &FrameView) -> Vec<Draw> {
     let visible = chunks::visible_front_to_back(
         &scene.chunks,
         view.projection() * view.view_matrix(),

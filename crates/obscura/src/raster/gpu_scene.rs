@@ -62,11 +62,9 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
-    /// This scene with [`GpuScene::triangles`] in the chunks' order: for the depth-tested passes
-    /// that draw chunks nearest first (the G-buffer and depth peeling) and what reads their
-    /// triangle indices. The passes that cannot test depth early keep the scene's order, which
-    /// measured faster for the stochastic depth map on the H200 (Sponza 4.29 against 4.47 to
-    /// 4.69 ms for chunked orders; BENCHMARKS.md).
+    /// This scene with [`GpuScene::triangles`] in the chunks' order: for the raster passes that
+    /// draw chunks (the G-buffer, depth peeling, the stochastic depth map) and what reads their
+    /// triangle indices.
     pub fn draw_ordered(&self) -> GpuScene {
         GpuScene {
             triangles: self.draw_triangles.clone(),

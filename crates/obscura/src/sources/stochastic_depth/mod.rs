@@ -9,7 +9,8 @@
 //! The map writes no depth, so its fragments are depth- and stencil-tested before they are shaded
 //! (where the device has wgpu's `SHADER_EARLY_DEPTH_TEST`): the reset writes per pixel the depth
 //! a fragment must lie behind to be hidden, and the stencil. Any S of
-//! [`crate::settings::SD_SAMPLE_COUNTS`] runs on any adapter (no multisampled target).
+//! [`crate::settings::SD_SAMPLE_COUNTS`] runs on any adapter (no multisampled target). Like the
+//! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]).
 //! The AO passes read the map through `read.wgsl` (the source contract).
 
 mod reset;
@@ -17,7 +18,7 @@ mod reset;
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
 use crate::raster::gbuffer::{
-    draw_scene, scene_resources, whole_ranges, CameraUniform, ScenePipeline,
+    draw_scene, scene_resources, visibility_draws, CameraUniform, Draw, ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
 use crate::settings::{SdMask, StochasticDepthSettings, SD_SAMPLE_COUNTS};
@@ -25,6 +26,7 @@ use crate::view::FrameView;
 use crate::{shaders, Error};
 use reset::{ResetScope, SdReset};
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Mutex;
 use wgpu::util::DeviceExt;
 
 /// How the S depth samples per pixel are laid out. One map of S since the map is a storage
@@ -189,6 +191,8 @@ pub struct StochasticDepthMap {
     all_layers: bool,
     /// Timing name of the raster (`sd_map`; the reset's is its own).
     timing_name: &'static str,
+    /// The draws of the coming frame: the scene's chunks in view ([`visibility_draws`]).
+    draws: Mutex<Vec<Draw>>,
 }
 
 impl StochasticDepthMap {
@@ -327,7 +331,8 @@ impl StochasticDepthMap {
             settings: *settings,
             separation,
             size: (width, height),
-            scene: scene.clone(),
+            // Triangles in chunk order, as the G-buffer draws them (its chunks index it).
+            scene: scene.draw_ordered(),
             depths,
             cull,
             params: device.create_buffer(&wgpu::BufferDescriptor {
@@ -353,6 +358,7 @@ impl StochasticDepthMap {
             requested: requested.is_some(),
             all_layers: false,
             timing_name: "sd_map",
+            draws: Mutex::new(Vec::new()),
         })
     }
 
@@ -406,6 +412,12 @@ impl StochasticDepthMap {
             _pad: 0,
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&raster));
+        // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested) with
+        // this map's two pipelines (back faces culled / kept).
+        *self.draws.lock().unwrap() = visibility_draws(&self.scene, view)
+            .into_iter()
+            .map(|(group, triangles)| (group.min(1), triangles))
+            .collect();
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -467,7 +479,7 @@ impl StochasticDepthMap {
             &mut pass,
             &self.pipelines,
             &bind_groups,
-            &whole_ranges(self.scene.cull_ranges()),
+            &self.draws.lock().unwrap(),
         );
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
