@@ -203,13 +203,20 @@ fn sd_svao_limits_the_map_to_requested_pixels() {
 
 #[test]
 fn sd_svao_keeps_nothing_from_earlier_frames() {
-    // The limited map is emptied only at the pixels requested in the frame, and a stenciled map
-    // tests a new stencil value each frame: a second frame from another camera must still equal
-    // sd-vao from that camera, for both ways of limiting the map.
+    // The map is emptied every frame, and a stenciled map tests a new stencil value each frame:
+    // a second frame from another camera must still equal sd-vao from that camera, for both
+    // ways of limiting the map.
     let gpu = gpu();
     let scene = scene::builtin("stairs").unwrap();
-    let first = scene.cameras[1].camera;
+    // Two views of one screen geometry (same field of view), so that one renderer (and map)
+    // serves both.
     let second = scene.cameras[0].camera;
+    let shift = Vec3::new(0.4, 0.1, -0.3);
+    let first = obscura::scene::Camera {
+        eye: second.eye + shift,
+        target: second.target + shift,
+        ..second
+    };
     let (single, _) = {
         let mut r = Renderer::new(
             &gpu,
@@ -224,6 +231,18 @@ fn sd_svao_keeps_nothing_from_earlier_frames() {
         r.render(&second, None).unwrap();
         (r.read_ao().unwrap(), ())
     };
+    // The full map is emptied every frame too: the second frame equals a first one.
+    let fresh = {
+        let s = settings(Technique::SdVao, 4, 0.375);
+        let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
+        r.render(&second, None).unwrap();
+        r.read_ao().unwrap()
+    };
+    let kept = single.iter().zip(&fresh).filter(|(a, b)| a != b).count();
+    assert_eq!(
+        kept, 0,
+        "sd-vao keeps something from the frame before at {kept} pixels"
+    );
     for mask in [SdMask::Stencil, SdMask::Discard] {
         let mut s = settings(Technique::SdSvao, 4, 0.375);
         s.stochastic_depth.mask = mask;

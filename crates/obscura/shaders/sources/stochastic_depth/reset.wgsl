@@ -22,14 +22,13 @@ fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
-@compute @workgroup_size(8, 8)
+// One invocation per stored value, row by row: consecutive invocations write consecutive words.
+@compute @workgroup_size(64, 1)
 fn cs_clear(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (id.x >= sd.width || id.y * sd.width * sd.samples >= arrayLength(&sd_depths)) {
-        return;
-    }
-    let base = sd_base(id.xy);
-    for (var k = 0u; k < sd.samples; k++) {
-        atomicStore(&sd_depths[base + k], 0u);
+    let row = sd.width * sd.samples;
+    let index = id.y * row + id.x;
+    if (id.x < row && index < arrayLength(&sd_depths)) {
+        atomicStore(&sd_depths[index], 0u);
     }
 }
 

@@ -451,6 +451,7 @@ impl StochasticDepthMap {
             device,
             encoder,
             self.size,
+            self.samples,
             (!self.all_layers).then_some(&self.cull),
             &resources,
             profiler.as_deref_mut(),

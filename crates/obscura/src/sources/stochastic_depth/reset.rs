@@ -104,7 +104,7 @@ impl SdReset {
         }
     }
 
-    /// Reset the map (`depths`, `size` pixels) and, with `target`, the depth (and stencil) its
+    /// Reset the map (`size` pixels of `samples` values) and, with `target`, the depth (and stencil) its
     /// fragments are tested against (timings [`SdReset::clear_name`], [`SdReset::name`]); `resources`: the map pass's
     /// bindings of group 0. Returns the frame's stencil value (1–255; 0 is what a new texture
     /// holds), which the map pass tests for.
@@ -113,6 +113,7 @@ impl SdReset {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         (width, height): (u32, u32),
+        samples: u32,
         target: Option<&wgpu::TextureView>,
         resources: &[wgpu::BindingResource],
         mut profiler: Option<&mut PassProfiler>,
@@ -137,7 +138,7 @@ impl SdReset {
             });
             pass.set_pipeline(&self.clear);
             pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            pass.dispatch_workgroups((width * samples).div_ceil(64), height, 1);
         }
         let Some(target) = target else {
             return stencil_value;
