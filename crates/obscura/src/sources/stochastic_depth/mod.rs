@@ -237,7 +237,7 @@ impl StochasticDepthMap {
         let samples = layout.samples();
         let bytes = u64::from(width) * u64::from(height) * u64::from(samples) * 4;
         let max = device.limits().max_storage_buffer_binding_size;
-        if bytes > u64::from(max) {
+        if bytes > max {
             return Err(crate::SettingsError::Unsupported {
                 field: "stochastic_depth.samples",
                 value: samples.to_string(),
@@ -450,8 +450,7 @@ impl StochasticDepthMap {
         let stencil_value = self.reset.encode(
             device,
             encoder,
-            self.size,
-            self.samples,
+            (self.size.0, self.size.1, self.samples),
             (!self.all_layers).then_some(&self.cull),
             &resources,
             profiler.as_deref_mut(),

@@ -104,7 +104,7 @@ impl SdReset {
         }
     }
 
-    /// Reset the map (`size` pixels of `samples` values) and, with `target`, the depth (and stencil) its
+    /// Reset the map (`width`×`height` pixels of `samples` values) and, with `target`, the depth (and stencil) its
     /// fragments are tested against (timings [`SdReset::clear_name`], [`SdReset::name`]); `resources`: the map pass's
     /// bindings of group 0. Returns the frame's stencil value (1–255; 0 is what a new texture
     /// holds), which the map pass tests for.
@@ -112,8 +112,7 @@ impl SdReset {
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        (width, height): (u32, u32),
-        samples: u32,
+        (width, height, samples): (u32, u32, u32),
         target: Option<&wgpu::TextureView>,
         resources: &[wgpu::BindingResource],
         mut profiler: Option<&mut PassProfiler>,
