@@ -235,7 +235,9 @@ impl StochasticDepthMap {
             .into());
         }
         let samples = layout.samples();
-        let bytes = u64::from(width) * u64::from(height) * u64::from(samples) * 4;
+        // Whole 16-byte words for the clear (reset.wgsl).
+        let bytes =
+            (u64::from(width) * u64::from(height) * u64::from(samples) * 4).next_multiple_of(16);
         let max = device.limits().max_storage_buffer_binding_size;
         if bytes > max {
             return Err(crate::SettingsError::Unsupported {
@@ -450,7 +452,7 @@ impl StochasticDepthMap {
         let stencil_value = self.reset.encode(
             device,
             encoder,
-            (self.size.0, self.size.1, self.samples),
+            &self.depths,
             (!self.all_layers).then_some(&self.cull),
             &resources,
             profiler.as_deref_mut(),
@@ -503,6 +505,7 @@ impl StochasticDepthMap {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.depths)?;
         let values: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
         let s = self.samples as usize;
+        let values = &values[..self.size.0 as usize * self.size.1 as usize * s];
         Ok((0..s)
             .map(|k| {
                 values

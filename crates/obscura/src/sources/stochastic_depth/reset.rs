@@ -104,7 +104,7 @@ impl SdReset {
         }
     }
 
-    /// Reset the map (`width`×`height` pixels of `samples` values) and, with `target`, the depth (and stencil) its
+    /// Reset the map (`depths`) and, with `target`, the depth (and stencil) its
     /// fragments are tested against (timings [`SdReset::clear_name`], [`SdReset::name`]); `resources`: the map pass's
     /// bindings of group 0. Returns the frame's stencil value (1–255; 0 is what a new texture
     /// holds), which the map pass tests for.
@@ -112,7 +112,7 @@ impl SdReset {
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
-        (width, height, samples): (u32, u32, u32),
+        depths: &wgpu::Buffer,
         target: Option<&wgpu::TextureView>,
         resources: &[wgpu::BindingResource],
         mut profiler: Option<&mut PassProfiler>,
@@ -127,7 +127,12 @@ impl SdReset {
             crate::gpu::bind_group_at(device, "sd reset", pipeline_layout, &used)
         };
         {
-            let bind_group = group(&self.clear.get_bind_group_layout(0), &[7, 9]);
+            let bind_group = crate::gpu::bind_group_at(
+                device,
+                "sd clear",
+                &self.clear.get_bind_group_layout(0),
+                &[(11, depths.as_entire_binding())],
+            );
             let timestamp_writes = profiler
                 .as_deref_mut()
                 .map(|p| p.compute_pass(self.clear_name));
@@ -137,7 +142,10 @@ impl SdReset {
             });
             pass.set_pipeline(&self.clear);
             pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups((width * samples).div_ceil(64), height, 1);
+            // 16-byte words in rows of at most 65,535 workgroups of 256.
+            let groups = (depths.size() / 16).div_ceil(256) as u32;
+            let x = groups.min(65_535);
+            pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
         }
         let Some(target) = target else {
             return stencil_value;
