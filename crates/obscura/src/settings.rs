@@ -537,11 +537,12 @@ impl FromStr for SdQuery {
 #[serde(rename_all = "lowercase")]
 pub enum SdMask {
     /// The paper's way (seed 000 §3.9): a full-screen pass copies the request mask into the
-    /// map's stencil, then the scene is drawn with the stencil test.
+    /// map's stencil, then the scene is drawn with the stencil test, before shading where the
+    /// device has early tests. Needs the `Depth32FloatStencil8` format.
     #[default]
     Stencil,
-    /// No stencil: the map's fragment shader reads the request mask and discards where it is
-    /// not set (saves the full-screen copy pass; the fragments are still rasterised).
+    /// No stencil: the map's fragment shader reads the request mask and returns where it is
+    /// not set (the fragments are still shaded; the same image).
     Discard,
 }
 
