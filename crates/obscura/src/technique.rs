@@ -485,7 +485,8 @@ pub struct Needs {
     pub bvh: bool,
     /// The second depth layer (depth peeling).
     pub second_layer: bool,
-    /// The adapter rasterises a stochastic depth map (needs `Depth32FloatStencil8`).
+    /// The scene is rasterised into a stochastic depth map (its stencil, `sd-svao`'s default,
+    /// needs `Depth32FloatStencil8`).
     pub stochastic_depth_map: bool,
 }
 

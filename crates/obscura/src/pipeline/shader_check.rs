@@ -187,7 +187,7 @@ fn check_stage(
         &stage.parts,
     );
     let source_entries = match stage.source_group {
-        SourceGroup::Resolve => sources::resolve_entries(source, sd),
+        SourceGroup::Resolve => sources::resolve_entries(source),
         SourceGroup::Request => sources::request_entries(source),
     };
     let mut all_constants = constants.to_vec();

@@ -134,7 +134,7 @@ impl Multiview {
             "multiview_sd_map",
         );
         let mut source_entries = vec![entry::uniform(bindings::SOURCE_MULTIVIEW)];
-        source_entries.extend(read_layout_entries(map.layout()));
+        source_entries.extend(read_layout_entries());
         let source_layout = bindings::layout(device, "multiview second view", &source_entries);
         let main_ao_layout = bindings::layout(device, "multiview camera ao", &[entry::texture(0)]);
         let mut parts = super::ESTIMATOR_PRELUDE.to_vec();

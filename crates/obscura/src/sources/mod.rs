@@ -69,15 +69,12 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_divisor: u32) -> Str
 }
 
 /// Group-2 layout entries of the resolving passes.
-pub(crate) fn resolve_entries(
-    source: Source,
-    sd_layout: SdLayout,
-) -> Vec<wgpu::BindGroupLayoutEntry> {
+pub(crate) fn resolve_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
         Source::FirstLayer => Vec::new(),
         Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
         Source::ColumnRays => column_rays::layout_entries(),
-        Source::StochasticDepth => stochastic_depth::read_layout_entries(sd_layout),
+        Source::StochasticDepth => stochastic_depth::read_layout_entries(),
         Source::RayStochasticDepth => ray_stochastic_depth::read_layout_entries(),
         Source::DepthPyramid => depth_pyramid::layout_entries(),
     }
@@ -158,7 +155,7 @@ impl SourcePass {
             Source::ColumnRays => {
                 let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
                 let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;
-                let layout = layout_of(resolve_entries(kind, sd_layout), "column rays")
+                let layout = layout_of(resolve_entries(kind), "column rays")
                     .expect("column rays bind their camera");
                 let rays = ColumnRays::new(device, &layout, scene_gpu, bvh);
                 return Ok(Self {
@@ -271,7 +268,7 @@ impl SourcePass {
             held,
             sd_layout,
             ray_divisor,
-            resolve_layout: layout_of(resolve_entries(kind, sd_layout), "source"),
+            resolve_layout: layout_of(resolve_entries(kind), "source"),
             request_layout,
             request,
             interval: interval.filter(|_| settings.ray_sd.intervals),

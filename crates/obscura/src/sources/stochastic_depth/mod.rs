@@ -113,8 +113,8 @@ fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32 {{
     )
 }
 
-/// Source-group layout entries of a reader of a map (any layout: the bindings are the same).
-pub(crate) fn read_layout_entries(_layout: SdLayout) -> Vec<wgpu::BindGroupLayoutEntry> {
+/// Source-group layout entries of a reader of a map (any S: the bindings are the same).
+pub(crate) fn read_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     vec![
         entry::uniform(SOURCE_SD_NEAR),
         entry::storage(SOURCE_SD_MAPS, true),
