@@ -172,6 +172,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.seed", "--ray-sd-seed"),
     ("ray_sd.resolution", "--ray-sd-res"),
     ("ray_sd.radius_cutoff", "--radius-cutoff"),
+    ("ray_sd.guard_band", "--sd-guard-band"),
     ("ray_sd.intervals", "--no-intervals"),
     ("resolution", "--resolution"),
     ("bent_normals", "--bent-normals"),
@@ -533,6 +534,12 @@ pub struct AoArgs {
         "ray_sd.radius_cutoff"
     ))]
     pub radius_cutoff: Option<f32>,
+    #[arg(long, help = help(
+        "ray-sd-vao: the ray-traced map's own guard band in pixels beyond the framebuffer, where \
+         samples that fall off the framebuffer read it (seed 002 §3.5 used 512; 0 = off).",
+        "ray_sd.guard_band"
+    ))]
+    pub sd_guard_band: Option<u32>,
     /// ray-sd-vao: trace each ray of the ray-traced map from the first layer to the scene's end
     /// instead of over the depths phase 1's samples need (seed 002 §3.2's ray intervals, on by
     /// default).
@@ -707,6 +714,7 @@ impl AoArgs {
         set(&mut ray.seed, self.ray_sd_seed);
         set(&mut ray.resolution, self.ray_sd_res);
         set(&mut ray.radius_cutoff, self.radius_cutoff);
+        set(&mut ray.guard_band, self.sd_guard_band);
         if self.no_intervals {
             ray.intervals = false;
         }

@@ -639,6 +639,13 @@ pub struct RaySdSettings {
     /// traced only over the depths phase 1's samples need there. Off: from the first layer to the
     /// scene's end.
     pub intervals: bool,
+    /// The map's own guard band in pixels (seed 002 §3.5, the authors' 512 when on): the map
+    /// reaches this far beyond the framebuffer (guard band included), in ⌈g / resolution⌉
+    /// texels, so a sample that falls off the framebuffer reads the map there instead of the
+    /// framebuffer's edge; those texels hold every layer (no first layer is known there) and are
+    /// traced only where requested on a two-phase schedule. 0 (the default): no band, a sample
+    /// off the framebuffer reads its edge.
+    pub guard_band: u32,
 }
 
 impl Default for RaySdSettings {
@@ -651,6 +658,7 @@ impl Default for RaySdSettings {
             resolution: 1,
             radius_cutoff: 0.0,
             intervals: true,
+            guard_band: 0,
         }
     }
 }
@@ -686,9 +694,31 @@ impl RaySdSettings {
                 "must be zero (off) or a positive number of pixels, e.g. 6",
             ));
         }
+        if self.guard_band > MAX_SD_GUARD_BAND {
+            return Err(invalid(
+                "ray_sd.guard_band",
+                self.guard_band,
+                "must be at most 2048 pixels beyond the framebuffer, e.g. 512 (seed 002 §3.5) or 0 (off)",
+            ));
+        }
         Ok(())
     }
+
+    /// The map's guard band in texels on each side, ⌈guard_band / resolution⌉.
+    pub fn guard_texels(&self) -> u32 {
+        self.guard_band.div_ceil(self.resolution)
+    }
+
+    /// The map's size in texels for a `width`×`height` framebuffer: ⌈size / resolution⌉ plus the
+    /// guard band on both sides.
+    pub fn map_size(&self, width: u32, height: u32) -> (u32, u32) {
+        let (d, g) = (self.resolution, self.guard_texels());
+        (width.div_ceil(d) + 2 * g, height.div_ceil(d) + 2 * g)
+    }
 }
+
+/// The widest map guard band `ray_sd.guard_band` accepts (four times the authors' 512).
+const MAX_SD_GUARD_BAND: u32 = 2048;
 
 /// Everything a technique's kernels read, as data: every field has a default (the papers' /
 /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
@@ -1851,7 +1881,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 72, "{paths:?}");
+        assert_eq!(paths.len(), 73, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1870,6 +1900,7 @@ mod tests {
         push(&|s| s.ray_sd.max_count = 2);
         push(&|s| s.ray_sd.resolution = 3);
         push(&|s| s.ray_sd.radius_cutoff = -1.0);
+        push(&|s| s.ray_sd.guard_band = 4096);
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

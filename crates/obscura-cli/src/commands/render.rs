@@ -234,7 +234,9 @@ fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
 ///   `stats.json` `interval_pixels`, `interval_mean_length`, `interval_longest`;
 /// - the ray-traced map (`ray-sd-*`, one layer per reservoir slot): also `sd_hits.png`, the hits
 ///   each texel's ray handled / MAX_COUNT at the map's resolution (seed 002's "hits per ray"),
-///   and their mean over the traced texels in `stats.json`.
+///   and their mean over the traced texels in `stats.json`; two-phase, `sd_request_map.png`, the
+///   requested texels over the whole map, its own guard band included (seed 002 Fig. 13c), and
+///   `guard_band_texels_requested` in `stats.json`.
 fn write_sd_debug(
     dir: &std::path::Path,
     renderer: &Renderer,
@@ -325,7 +327,7 @@ fn write_sd_debug(
     };
     if let Some(hits) = renderer.read_ray_sd_hits()? {
         let r = settings.ray_sd;
-        let (mw, mh) = (fw.div_ceil(r.resolution), fh.div_ceil(r.resolution));
+        let (mw, mh) = r.map_size(fw, fh);
         let image: Vec<f32> = hits
             .iter()
             .map(|&h| h as f32 / r.max_count as f32)
@@ -339,6 +341,28 @@ fn write_sd_debug(
             stats.insert("hits_per_ray_mean".into(), mean.into());
         }
         summary += &format!(", {mean:.2} hits per ray (rays that met one)");
+        if let Some(requests) = renderer.read_sd_request_texels()? {
+            // Seed 002 Fig. 13c: the requested texels over the whole map, its guard band
+            // included (the band's requests come from samples off the framebuffer).
+            let mask: Vec<f32> = requests
+                .iter()
+                .map(|&q| f32::from(u8::from(q != 0)))
+                .collect();
+            output::write_ao(&dir.join("sd_request_map.png"), mw, mh, &mask)?;
+            let g = r.guard_texels() as usize;
+            let in_band = requests
+                .iter()
+                .enumerate()
+                .filter(|&(i, &q)| {
+                    let (x, y) = (i % mw as usize, i / mw as usize);
+                    let inner = |v: usize, n: u32| v >= g && v < n as usize - g;
+                    q != 0 && !(inner(x, mw) && inner(y, mh))
+                })
+                .count();
+            if let Some(stats) = stats.as_object_mut() {
+                stats.insert("guard_band_texels_requested".into(), in_band.into());
+            }
+        }
     }
     if let Some(intervals) = renderer.read_sd_intervals()? {
         // Seed 002 Fig. 12: how long a stretch of each pixel's ray the map must trace, as a

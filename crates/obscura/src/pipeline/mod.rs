@@ -511,9 +511,25 @@ impl AmbientOcclusion {
     }
 
     /// Two-phase stochastic depth: the SD-request mask of the last frame, one value per
-    /// framebuffer pixel (guard band included), non-zero where phase 1 asked for the map. Waits
-    /// for the GPU.
+    /// framebuffer pixel (guard band included), non-zero where phase 1 asked for the map (for
+    /// the ray-traced map: where it asked for the pixel's texel, so a requested texel shows at
+    /// each of its pixels; its own guard band is left out, see
+    /// [`Self::read_sd_request_texels`]). Waits for the GPU.
     pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
+        let Some(words) = self.read_sd_request_texels()? else {
+            return Ok(None);
+        };
+        Ok(Some(match self.source.ray_stochastic_depth() {
+            Some(map) => map.texel_of_pixels().map(|t| words[t]).collect(),
+            None => words,
+        }))
+    }
+
+    /// Two-phase stochastic depth: the SD-request mask of the last frame as phase 1 wrote it:
+    /// per framebuffer pixel for the raster map, per texel of the ray-traced map
+    /// ([`crate::sources::ray_stochastic_depth::RayStochasticDepthMap::map_size`], its guard band included: seed 002 Fig. 13c's view).
+    /// Waits for the GPU.
+    pub fn read_sd_request_texels(&self) -> Result<Option<Vec<u32>>, Error> {
         let Some(buffer) = self.source.requests() else {
             return Ok(None);
         };
@@ -524,18 +540,20 @@ impl AmbientOcclusion {
 
     /// Two-phase ray-traced stochastic depth with ray intervals (seed 002 §3.2): per framebuffer
     /// pixel (guard band included), the linear depth interval `[near, far]` phase 1's samples
-    /// need from the map there, or `None` where no sample asked. Waits for the GPU.
+    /// need from the map's texel there, or `None` where no sample asked. Waits for the GPU.
     pub fn read_sd_intervals(&self) -> Result<Option<Vec<Option<[f32; 2]>>>, Error> {
-        let Some(buffer) = self.source.intervals() else {
+        let (Some(buffer), Some(map)) =
+            (self.source.intervals(), self.source.ray_stochastic_depth())
+        else {
             return Ok(None);
         };
         let words: Vec<u32> =
             bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer_copy(&self.gpu, buffer)?);
         Ok(Some(
-            words
-                .chunks_exact(2)
+            map.texel_of_pixels()
                 // request.wgsl stores max(~near bits) and max(far bits): 0 where nothing asked.
-                .map(|w| {
+                .map(|t| {
+                    let w = &words[2 * t..2 * t + 2];
                     (w[0] != 0 || w[1] != 0).then(|| [f32::from_bits(!w[0]), f32::from_bits(w[1])])
                 })
                 .collect(),

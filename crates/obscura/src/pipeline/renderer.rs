@@ -231,6 +231,12 @@ impl Renderer {
         self.last_ao()?.read_sd_requests()
     }
 
+    /// Two-phase stochastic depth: the last frame's SD-request mask as phase 1 wrote it (see
+    /// [`AmbientOcclusion::read_sd_request_texels`]; the ray-traced map's guard band included).
+    pub fn read_sd_request_texels(&self) -> Result<Option<Vec<u32>>, Error> {
+        self.last_ao()?.read_sd_request_texels()
+    }
+
     /// `sao`, `pyramid-hbao`: the last frame's depth pyramid, levels 1 … L − 1 (see
     /// [`AmbientOcclusion::read_depth_pyramid`]).
     pub fn read_depth_pyramid(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {

@@ -183,7 +183,14 @@ fn check_stage(
 ) {
     let wgsl = schedules::compose(
         estimator,
-        &stage.source_wgsl(sources::wgsl(source, sd, 4)),
+        &stage.source_wgsl(sources::wgsl(
+            source,
+            sd,
+            sources::ray_stochastic_depth::RayMapLayout {
+                divisor: 4,
+                guard: 32,
+            },
+        )),
         &stage.parts,
     );
     let source_entries = match stage.source_group {

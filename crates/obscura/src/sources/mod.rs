@@ -26,7 +26,7 @@ use crate::view::{FrameView, ScreenGeometry};
 use crate::Error;
 use column_rays::ColumnRays;
 use depth_pyramid::DepthPyramid;
-use ray_stochastic_depth::RayStochasticDepthMap;
+use ray_stochastic_depth::{RayMapLayout, RayStochasticDepthMap};
 use stochastic_depth::{SdLayout, StochasticDepthMap};
 
 /// The scene data the scene-dependent sources need (the technique row's [`crate::technique::Needs`]).
@@ -39,9 +39,9 @@ pub struct SceneResources<'a> {
 }
 
 /// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
-/// depth maps are laid out (the ray-traced map: one map of N samples); `ray_divisor`: the
-/// ray-traced map's resolution divisor (both ignored by the other sources).
-pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_divisor: u32) -> String {
+/// depth maps are laid out (the ray-traced map: one map of N samples); `ray_layout`: the
+/// ray-traced map's resolution divisor and guard band (both ignored by the other sources).
+pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout) -> String {
     match source {
         Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
         Source::DualDepth => shaders::SOURCE_DUAL_DEPTH.to_string(),
@@ -58,7 +58,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_divisor: u32) -> Str
         ]
         .join("\n"),
         Source::RayStochasticDepth => [
-            &ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_divisor),
+            &ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_layout),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
             shaders::SOURCE_STOCHASTIC_DEPTH,
             shaders::RAY_SD_REQUEST,
@@ -108,15 +108,16 @@ pub(crate) struct SourcePass {
     kind: Source,
     held: Held,
     sd_layout: SdLayout,
-    /// The ray-traced map's resolution divisor (1 for the other sources).
-    ray_divisor: u32,
+    /// The ray-traced map's resolution divisor and guard band (1 and 0 for the other sources).
+    ray_layout: RayMapLayout,
     resolve_layout: Option<wgpu::BindGroupLayout>,
     request_layout: Option<wgpu::BindGroupLayout>,
-    /// Two-phase stochastic depth: the SD-request mask, one u32 per framebuffer pixel (seed 000
-    /// §3.9), written by phase 1, read by the map's raster passes.
+    /// Two-phase stochastic depth: the SD-request mask (seed 000 §3.9), written by phase 1, read
+    /// by the map's passes: one u32 per framebuffer pixel for the raster map, per texel for the
+    /// ray-traced map.
     request: Option<wgpu::Buffer>,
-    /// Two-phase ray-traced stochastic depth: the depth interval phase 1's samples need per
-    /// framebuffer pixel (two u32, `ray_stochastic_depth/request.wgsl`).
+    /// Two-phase ray-traced stochastic depth: the depth interval phase 1's samples need per map
+    /// texel (two u32, `ray_stochastic_depth/request.wgsl`).
     interval: Option<wgpu::Buffer>,
     request_group: Option<wgpu::BindGroup>,
     /// The source's pipeline constants (the stochastic depth map's query switch).
@@ -145,7 +146,10 @@ impl SourcePass {
             maps: 1,
             samples_per_map: 1,
         };
-        let mut ray_divisor = 1;
+        let mut ray_layout = RayMapLayout {
+            divisor: 1,
+            guard: 0,
+        };
         let layout_of = |entries: Vec<wgpu::BindGroupLayoutEntry>, label| {
             (!entries.is_empty()).then(|| bindings::layout(device, label, &entries))
         };
@@ -162,7 +166,7 @@ impl SourcePass {
                     kind,
                     held: Held::ColumnRays(Box::new(rays)),
                     sd_layout,
-                    ray_divisor,
+                    ray_layout,
                     resolve_layout: Some(layout),
                     request_layout: None,
                     request: None,
@@ -199,7 +203,7 @@ impl SourcePass {
                     bvh,
                 )?;
                 sd_layout.samples_per_map = map.reservoir();
-                ray_divisor = map.divisor();
+                ray_layout = map.layout();
                 Held::RayStochasticDepth(Box::new(map))
             }
             Source::DepthPyramid => {
@@ -212,10 +216,19 @@ impl SourcePass {
             .flatten();
         let maps_hidden_depth =
             matches!(kind, Source::StochasticDepth | Source::RayStochasticDepth);
+        // The raster map's requests are per framebuffer pixel; the ray-traced map's per texel,
+        // its guard band included (what its rays read).
+        let request_cells = match &held {
+            Held::RayStochasticDepth(map) => {
+                let (w, h) = map.map_size();
+                u64::from(w) * u64::from(h)
+            }
+            _ => u64::from(full.0) * u64::from(full.1),
+        };
         let request = (maps_hidden_depth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sd request"),
-                size: u64::from(full.0) * u64::from(full.1) * 4,
+                size: request_cells * 4,
                 usage: wgpu::BufferUsages::STORAGE
                     | wgpu::BufferUsages::COPY_DST
                     | wgpu::BufferUsages::COPY_SRC,
@@ -225,7 +238,7 @@ impl SourcePass {
         let interval = (kind == Source::RayStochasticDepth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray sd intervals"),
-                size: u64::from(full.0) * u64::from(full.1) * 8,
+                size: request_cells * 8,
                 // COPY_SRC: `render --debug-out` reads it (sd_intervals.png).
                 usage: wgpu::BufferUsages::STORAGE
                     | wgpu::BufferUsages::COPY_DST
@@ -267,7 +280,7 @@ impl SourcePass {
             kind,
             held,
             sd_layout,
-            ray_divisor,
+            ray_layout,
             resolve_layout: layout_of(resolve_entries(kind), "source"),
             request_layout,
             request,
@@ -283,7 +296,7 @@ impl SourcePass {
     }
 
     pub fn wgsl(&self) -> String {
-        wgsl(self.kind, self.sd_layout, self.ray_divisor)
+        wgsl(self.kind, self.sd_layout, self.ray_layout)
     }
 
     pub fn resolve_layout(&self) -> Option<&wgpu::BindGroupLayout> {
@@ -433,13 +446,14 @@ impl SourcePass {
         }
     }
 
-    /// Two-phase stochastic depth: the SD-request mask of the last frame.
+    /// Two-phase stochastic depth: the SD-request mask of the last frame (per framebuffer pixel
+    /// for the raster map, per texel of [`RayStochasticDepthMap::map_size`] for the ray-traced).
     pub fn requests(&self) -> Option<&wgpu::Buffer> {
         self.request.as_ref()
     }
 
     /// Two-phase ray-traced stochastic depth with ray intervals: the interval buffer (two u32
-    /// per framebuffer pixel: the nearest depth's bits inverted, the farthest depth's bits).
+    /// per map texel: the nearest depth's bits inverted, the farthest depth's bits).
     pub fn intervals(&self) -> Option<&wgpu::Buffer> {
         self.interval.as_ref()
     }

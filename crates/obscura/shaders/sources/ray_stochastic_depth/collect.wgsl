@@ -13,6 +13,13 @@
 // tile of 16 positions (index (t.y % 4) · 4 + t.x % 4) of the 2D Sobol sequence, which lie one
 // per row and column of the tile's 16×16 grid. At d = 1 the ray passes through the pixel centre.
 //
+// Guard band (§3.5): the map reaches `guard` texels beyond the framebuffer on each side (texel t
+// covers pixels (t − guard) d …). A texel whose ray point lies off the framebuffer has no first
+// layer (the G-buffer ends there), so its ray starts at the near plane and keeps every layer, the
+// first visible one included (the authors read a depth of 0 there); off-screen samples read these
+// texels (read.wgsl's guard_band_lookup). Without a band the point is clamped into the
+// framebuffer, as a texel there is read only by the framebuffer's pixels.
+//
 // Ours: the reservoir's random number is a hash of the texel, the triangle and the map's seed
 // (the paper hashes the barycentrics; both are stable while nothing moves); the slots are stored
 // as reversed-Z `near / depth` (0 = empty), the raster map's encoding, so the AO passes read both
@@ -38,8 +45,9 @@ struct RaySdParams {
     divisor: u32,
     // Non-zero: trace only the depth interval phase 1's samples need (seed 002 §3.2).
     intervals: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // The map's guard band in texels on each side (§3.5).
+    guard: u32,
+    _pad: u32,
     // xy: the jitter of texels with (t.y % 4) · 4 + t.x % 4 = index, in [0, 1)².
     jitter: array<vec4<f32>, 16>,
 }
@@ -53,15 +61,15 @@ override Z_CULL: bool = true;
 
 @group(0) @binding(0) var<uniform> params: RaySdParams;
 @group(0) @binding(1) var first_layer: texture_2d<f32>;
-// One u32 per framebuffer pixel, non-zero = requested (read when `requested_only`; a texel is
-// traced when any pixel of its block is requested).
+// One u32 per map texel, non-zero = requested (read when `requested_only`;
+// ray_stochastic_depth/request.wgsl marks the texel of every flagged sample).
 @group(0) @binding(2) var<storage, read> sd_request: array<u32>;
 // RESERVOIR floats per map texel, row-major.
 @group(0) @binding(3) var<storage, read_write> sd_depths: array<f32>;
 // Hits handled per texel (the debug output "hits per ray").
 @group(0) @binding(4) var<storage, read_write> sd_hits: array<u32>;
-// Per framebuffer pixel, read when `intervals`: the complement of the nearest needed depth's
-// bits (0: none) and the farthest needed depth's bits (ray_stochastic_depth/request.wgsl).
+// Per map texel, read when `intervals`: the complement of the nearest needed depth's bits (0:
+// none) and the farthest needed depth's bits (ray_stochastic_depth/request.wgsl).
 @group(0) @binding(5) var<storage, read> sd_interval: array<u32>;
 
 var<private> slots: array<f32, 8>;
@@ -93,29 +101,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let texel = id.y * params.map_size.x + id.x;
-    let d = params.divisor;
-    let block = id.xy * d;
-    // The depths the block's requests need (all of them without intervals).
+    // The depths the texel's requests need (all of them without intervals).
     var needed = vec2<f32>(0.0, 3.0e38);
     if (params.requested_only != 0u) {
-        var requested = false;
-        var nearest = 0u;
-        var farthest = 0u;
-        for (var y = block.y; y < min(block.y + d, params.size.y); y++) {
-            for (var x = block.x; x < min(block.x + d, params.size.x); x++) {
-                let i = y * params.size.x + x;
-                requested = requested || sd_request[i] != 0u;
-                if (params.intervals != 0u) {
-                    nearest = max(nearest, sd_interval[2u * i]);
-                    farthest = max(farthest, sd_interval[2u * i + 1u]);
-                }
-            }
-        }
-        if (!requested) {
+        if (sd_request[texel] == 0u) {
             return;
         }
         if (params.intervals != 0u) {
-            needed = vec2<f32>(bitcast<f32>(~nearest), bitcast<f32>(farthest));
+            needed = vec2<f32>(bitcast<f32>(~sd_interval[2u * texel]), bitcast<f32>(sd_interval[2u * texel + 1u]));
         }
     }
     for (var i = 0u; i < 8u; i++) {
@@ -123,23 +116,34 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     count = 0u;
     texel_hash = pcg_hash(texel ^ pcg_hash(params.seed));
+    let d = params.divisor;
     var offset = vec2<f32>(0.5);
     if (d > 1u) {
         offset = params.jitter[(id.y % 4u) * 4u + id.x % 4u].xy;
     }
-    let point = min((vec2<f32>(id.xy) + offset) * f32(d), vec2<f32>(params.size) - 0.5);
-    let first = textureLoad(first_layer, vec2<u32>(point), 0).r;
-    if (first > 0.0) {
-        // The ray through `point`, its direction scaled so that t is linear view depth.
-        let ndc = point / vec2<f32>(params.size) * vec2<f32>(2.0, -2.0) + vec2<f32>(-1.0, 1.0);
-        let far_point = params.inverse_projection * vec4<f32>(ndc, 0.0, 1.0);
-        let view_dir = far_point.xyz / -far_point.z;
-        let origin = (params.camera_to_world * vec4<f32>(0.0, 0.0, 0.0, 1.0)).xyz;
-        let dir = (params.camera_to_world * vec4<f32>(view_dir, 0.0)).xyz;
-        let t_min = max(first + params.separation, needed.x);
-        if (t_min <= needed.y) {
-            bvh_traverse(origin, dir, t_min, needed.y);
-        }
+    let size = vec2<f32>(params.size);
+    var point = (vec2<f32>(id.xy) - f32(params.guard) + offset) * f32(d);
+    if (params.guard == 0u) {
+        point = min(point, size - 0.5);
+    }
+    // Off the framebuffer no first layer is known: every layer from the near plane on. A
+    // pixel without a first surface has nothing behind it either.
+    var start = params.near;
+    var open = true;
+    if (all(point >= vec2<f32>(0.0)) && all(point < size)) {
+        let first = textureLoad(first_layer, vec2<u32>(point), 0).r;
+        start = first + params.separation;
+        open = first > 0.0;
+    }
+    // The ray through `point`, its direction scaled so that t is linear view depth.
+    let ndc = point / size * vec2<f32>(2.0, -2.0) + vec2<f32>(-1.0, 1.0);
+    let far_point = params.inverse_projection * vec4<f32>(ndc, 0.0, 1.0);
+    let view_dir = far_point.xyz / -far_point.z;
+    let origin = (params.camera_to_world * vec4<f32>(0.0, 0.0, 0.0, 1.0)).xyz;
+    let dir = (params.camera_to_world * vec4<f32>(view_dir, 0.0)).xyz;
+    let t_min = max(start, needed.x);
+    if (open && t_min <= needed.y) {
+        bvh_traverse(origin, dir, t_min, needed.y);
     }
     for (var i = 0u; i < RESERVOIR; i++) {
         sd_depths[texel * RESERVOIR + i] = select(0.0, params.near / slots[i], slots[i] < 3.0e38);

@@ -20,9 +20,39 @@ override SD_RADIUS_CUTOFF: f32 = 0.0;
 // phase 1's request records for the map's rays. Off: the raster map's rows.
 override SD_INTERVALS: bool = false;
 
+// The ray-traced map's guard band (seed 002 §3.5, `ray_sd.guard_band`): a sample that falls off
+// the framebuffer, where the map's band holds its pixel (`sd_guard_covers`, from the generated
+// bindings; never for the raster map), knows no first layer: it starts unoccluded and always
+// reads the map, whose band texels hold every layer (the authors' "force a ray off screen").
+// Elsewhere off the framebuffer a sample reads the framebuffer's edge (first_layer_lookup).
+fn guard_band_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
+    var l: DepthLookup;
+    l.trace = false;
+    let raw = clamp(estimator_sample_px(p, s), vec2<f32>(-1.0e6), vec2<f32>(1.0e6));
+    let pixel = vec2<i32>(floor(raw));
+    if (all(pixel >= vec2<i32>(0)) && all(pixel < vec2<i32>(view.full_size))) {
+        return l;
+    }
+    if (!sd_guard_covers(pixel)) {
+        return l;
+    }
+    l.value = estimator_unoccluded(p, s);
+    l.t_after = 0.0;
+    l.px = vec2<f32>(pixel) + 0.5;
+    l.trace = true;
+    if (SD_INTERVALS) {
+        l.interval = estimator_depth_interval(p, s, l.px);
+    }
+    return l;
+}
+
 // `trace` = read the stochastic depth map at pixel `px`; the two-phase schedule's phase 1 flags
 // exactly these samples.
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
+    let band = guard_band_lookup(p, s);
+    if (band.trace) {
+        return band;
+    }
     var l = first_layer_lookup(p, s);
     if (SD_QUERY_ALWAYS && !l.trace) {
         let pixel = vec2<u32>(l.px);

@@ -6,8 +6,9 @@
 //
 // Preceded by bindings generated in src/sources/stochastic_depth/mod.rs (WGSL cannot index an array
 // of multisampled textures): the SD_MAPS maps of SD_SAMPLES samples each, read by
-// `fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32` (reversed-Z: near / linear depth,
-// 0 = empty).
+// `fn sd_load(map: u32, pixel: vec2<i32>, s: u32) -> f32` (reversed-Z: near / linear depth,
+// 0 = empty; `pixel` lies in the framebuffer, or in the ray-traced map's guard band where
+// `sd_guard_covers(pixel)`).
 
 // The projection's near plane (the first member of map.wgsl's SdRaster).
 @group(GROUP_SOURCE) @binding(SOURCE_SD_NEAR) var<uniform> sd_near: vec4<f32>;
@@ -21,7 +22,7 @@ override SD_COMPENSATION: f32 = 1.0;
 
 // `l.value` combined with the values of every sample the map stores at `l.px`.
 fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
-    let pixel = vec2<u32>(l.px);
+    let pixel = vec2<i32>(floor(l.px));
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {
         for (var k = 0u; k < SD_SAMPLES; k++) {

@@ -105,8 +105,13 @@ const SD_MAPS: u32 = 1u;
 const SD_SAMPLES: u32 = {}u;
 @group(GROUP_SOURCE) @binding(SOURCE_SD_MAPS) var<storage, read> sd_map_depths: array<f32>;
 @group(GROUP_SOURCE) @binding(SOURCE_SD_MAPS + 1u) var<uniform> sd_map_params: array<vec4<u32>, 2>;
-fn sd_load(map: u32, pixel: vec2<u32>, s: u32) -> f32 {{
-    return sd_map_depths[(pixel.y * sd_map_params[1].z + pixel.x) * SD_SAMPLES + s];
+fn sd_load(map: u32, pixel: vec2<i32>, s: u32) -> f32 {{
+    return sd_map_depths[(u32(pixel.y) * sd_map_params[1].z + u32(pixel.x)) * SD_SAMPLES + s];
+}}
+// This map has no guard band (only the ray-traced one does): a sample off the framebuffer reads
+// the framebuffer's edge.
+fn sd_guard_covers(pixel: vec2<i32>) -> bool {{
+    return false;
 }}
 ",
         layout.samples()
