@@ -402,6 +402,7 @@ fn bench_reports_every_pass() {
     );
     for pass in [
         "gbuffer",
+        "sd_request_clear",
         "sd_clear",
         "sd_reset",
         "sd_map",

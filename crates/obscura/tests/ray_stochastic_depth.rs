@@ -203,7 +203,7 @@ fn a_map_over_the_storage_binding_limit_is_a_clear_error() {
     let result = Renderer::new(&gpu, &scene, &settings, SIZE, SIZE, 0)
         .and_then(|mut r| r.render(&camera(Vec3::ZERO, Vec3::NEG_Z, 90.0), None));
     if bytes > gpu.device.limits().max_storage_buffer_binding_size {
-        let e = result.err().expect("over the limit").to_string();
+        let e = result.expect_err("over the limit").to_string();
         assert!(
             e.contains("storage-binding limit") && e.contains("ray_sd.guard_band"),
             "{e}"

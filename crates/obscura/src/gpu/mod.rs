@@ -3,6 +3,7 @@
 
 mod profiler;
 mod readback;
+pub mod zero_fill;
 
 pub use profiler::{FrameFragments, FrameTimings, PassProfiler};
 pub use readback::{

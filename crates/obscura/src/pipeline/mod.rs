@@ -533,9 +533,11 @@ impl AmbientOcclusion {
         let Some(buffer) = self.source.requests() else {
             return Ok(None);
         };
-        Ok(Some(bytemuck::pod_collect_to_vec(
-            &crate::gpu::read_buffer_copy(&self.gpu, buffer)?,
-        )))
+        let mut words: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&crate::gpu::read_buffer_copy(&self.gpu, buffer)?);
+        // The buffer is padded to whole 16-byte words.
+        words.truncate(self.source.request_cells());
+        Ok(Some(words))
     }
 
     /// Two-phase ray-traced stochastic depth with ray intervals (seed 002 §3.2): per framebuffer

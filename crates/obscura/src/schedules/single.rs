@@ -49,7 +49,7 @@ impl Single {
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         let source = ctx.source;
-        source.begin_frame(encoder);
+        source.begin_frame(ctx.device, encoder, profiler.as_deref_mut());
         source.prepare(ctx.device, encoder, ctx.frame, profiler.as_deref_mut());
         let resolve = source.resolve_group(ctx.device, ctx.frame)?;
         let groups = FrameGroups {

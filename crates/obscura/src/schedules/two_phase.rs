@@ -197,7 +197,7 @@ impl TwoPhase {
             ..
         } = *ctx;
         encoder.clear_buffer(&self.work_count, 0, None);
-        source.begin_frame(encoder);
+        source.begin_frame(device, encoder, profiler.as_deref_mut());
         let mut groups = FrameGroups {
             frame: frame_group,
             estimator: &estimator.group,

@@ -17,6 +17,7 @@ pub mod stochastic_depth;
 use crate::bindings::{self, entry, SOURCE_SD_INTERVAL, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
 use crate::bvh::gpu::GpuBvh;
 use crate::frame::FrameInputs;
+use crate::gpu::zero_fill::{zero_fill_size, ZeroFill};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::raster::gpu_scene::GpuScene;
 use crate::settings::AoSettings;
@@ -120,6 +121,10 @@ pub(crate) struct SourcePass {
     /// texel (two u32, `ray_stochastic_depth/request.wgsl`).
     interval: Option<wgpu::Buffer>,
     request_group: Option<wgpu::BindGroup>,
+    /// Cells of the request mask (pixels or texels): the buffers are padded to 16-byte words.
+    request_cells: u64,
+    /// Empties the request mask and intervals each frame (timed `sd_request_clear`).
+    zero_fill: Option<ZeroFill>,
     /// The source's pipeline constants (the stochastic depth map's query switch).
     constants: Vec<(&'static str, f64)>,
 }
@@ -172,6 +177,8 @@ impl SourcePass {
                     request: None,
                     interval: None,
                     request_group: None,
+                    request_cells: 0,
+                    zero_fill: None,
                     constants: Vec::new(),
                 });
             }
@@ -228,7 +235,7 @@ impl SourcePass {
         let request = (maps_hidden_depth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sd request"),
-                size: request_cells * 4,
+                size: zero_fill_size(request_cells * 4),
                 usage: wgpu::BufferUsages::STORAGE
                     | wgpu::BufferUsages::COPY_DST
                     | wgpu::BufferUsages::COPY_SRC,
@@ -238,7 +245,7 @@ impl SourcePass {
         let interval = (kind == Source::RayStochasticDepth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray sd intervals"),
-                size: request_cells * 8,
+                size: zero_fill_size(request_cells * 8),
                 // COPY_SRC: `render --debug-out` reads it (sd_intervals.png).
                 usage: wgpu::BufferUsages::STORAGE
                     | wgpu::BufferUsages::COPY_DST
@@ -276,6 +283,7 @@ impl SourcePass {
                 constants.push(("SD_INTERVALS", 1.0));
             }
         }
+        let zero_fill = request.is_some().then(|| ZeroFill::new(device));
         Ok(Self {
             kind,
             held,
@@ -286,6 +294,8 @@ impl SourcePass {
             request,
             interval: interval.filter(|_| settings.ray_sd.intervals),
             request_group,
+            request_cells,
+            zero_fill,
             constants,
         })
     }
@@ -323,17 +333,27 @@ impl SourcePass {
         }
     }
 
-    /// Clears the per-frame counters and request marks before the schedule's first pass.
-    pub fn begin_frame(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Clears the per-frame counters and request marks before the schedule's first pass (the
+    /// marks in a compute pass timed `sd_request_clear`).
+    pub fn begin_frame(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut PassProfiler>,
+    ) {
         if let Held::ColumnRays(rays) = &self.held {
             encoder.clear_buffer(&rays.stack_overflows, 0, None);
         }
-        if let Some(request) = &self.request {
-            encoder.clear_buffer(request, 0, None);
+        if let (Some(zero_fill), Some(request)) = (&self.zero_fill, &self.request) {
+            let mut buffers = vec![request];
+            buffers.extend(&self.interval);
+            zero_fill.encode(device, encoder, &buffers, "sd_request_clear", profiler);
         }
-        if let Some(interval) = &self.interval {
-            encoder.clear_buffer(interval, 0, None);
-        }
+    }
+
+    /// Cells of the request mask: framebuffer pixels (raster map) or map texels (ray-traced).
+    pub fn request_cells(&self) -> usize {
+        self.request_cells as usize
     }
 
     /// Renders what the resolving pass reads (the stochastic depth map; for a two-phase schedule

@@ -1,6 +1,7 @@
 // Resetting the stochastic depth map for a frame (src/sources/stochastic_depth/reset.rs). Appended
 // to map.wgsl (its bindings). Two passes (timed `sd_clear` and `sd_reset`):
-// - `cs_clear` (compute) empties every pixel's S depths in `sd_depths`;
+// - a compute pass (the shared zero fill, common/zero_fill.wgsl) empties every pixel's S depths
+//   in `sd_depths`;
 // - a full-screen triangle, one fragment per pixel, writes the depth the map's early depth test
 //   compares with: the hardware depth of the point `separation` behind the first layer, so that
 //   only fragments behind it are shaded (0 where the pixel shows no surface: nothing is stored
@@ -20,20 +21,6 @@ const SD_CULL_MARGIN: f32 = 1.0e-5;
 fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
     let uv = vec2<f32>(f32((vertex << 1u) & 2u), f32(vertex & 2u));
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
-// `sd_depths` again, as 16-byte words: the clear writes them with plain stores, one word per
-// invocation, consecutive invocations on consecutive words: 0.013 ms on the H200 at 1080p + 64 px,
-// S = 4, where an atomic store per value took 0.047 ms looping over a pixel's values and 0.098 ms
-// with one value per invocation (BENCHMARKS.md).
-@group(0) @binding(11) var<storage, read_write> sd_depth_words: array<vec4<u32>>;
-
-@compute @workgroup_size(256)
-fn cs_clear(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let index = id.y * groups.x * 256u + id.x;
-    if (index < arrayLength(&sd_depth_words)) {
-        sd_depth_words[index] = vec4<u32>(0u);
-    }
 }
 
 // The depth the map's fragments at `pixel` must lie behind.

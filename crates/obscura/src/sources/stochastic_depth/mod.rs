@@ -240,9 +240,10 @@ impl StochasticDepthMap {
             .into());
         }
         let samples = layout.samples();
-        // Whole 16-byte words for the clear (reset.wgsl).
-        let bytes =
-            (u64::from(width) * u64::from(height) * u64::from(samples) * 4).next_multiple_of(16);
+        // Whole 16-byte words for the clear (gpu::zero_fill).
+        let bytes = crate::gpu::zero_fill::zero_fill_size(
+            u64::from(width) * u64::from(height) * u64::from(samples) * 4,
+        );
         let max = device.limits().max_storage_buffer_binding_size;
         if bytes > max {
             return Err(crate::SettingsError::Unsupported {

@@ -5,6 +5,7 @@
 //! that keeps every layer skips the second pass (its map pass clears the depth to 1). Timed as
 //! `sd_clear` and `sd_reset`.
 
+use crate::gpu::zero_fill::ZeroFill;
 use crate::gpu::PassProfiler;
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -18,7 +19,7 @@ pub(crate) enum ResetScope {
 }
 
 pub(crate) struct SdReset {
-    clear: wgpu::ComputePipeline,
+    clear: ZeroFill,
     pipeline: wgpu::RenderPipeline,
     /// The bindings of the map pass's group 0 that the depth pass reads (its automatic layout
     /// holds only these): camera, first layer, `SdRaster`, and the request mask if stenciled.
@@ -83,16 +84,8 @@ impl SdReset {
             multiview_mask: None,
             cache: None,
         });
-        let clear = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("sd clear"),
-            layout: None,
-            module,
-            entry_point: Some("cs_clear"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
         Self {
-            clear,
+            clear: ZeroFill::new(device),
             pipeline,
             bindings: match scope {
                 ResetScope::All => &[0, 6, 7],
@@ -126,27 +119,13 @@ impl SdReset {
                 .collect();
             crate::gpu::bind_group_at(device, "sd reset", pipeline_layout, &used)
         };
-        {
-            let bind_group = crate::gpu::bind_group_at(
-                device,
-                "sd clear",
-                &self.clear.get_bind_group_layout(0),
-                &[(11, depths.as_entire_binding())],
-            );
-            let timestamp_writes = profiler
-                .as_deref_mut()
-                .map(|p| p.compute_pass(self.clear_name));
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("sd clear"),
-                timestamp_writes,
-            });
-            pass.set_pipeline(&self.clear);
-            pass.set_bind_group(0, &bind_group, &[]);
-            // 16-byte words in rows of at most 65,535 workgroups of 256.
-            let groups = (depths.size() / 16).div_ceil(256) as u32;
-            let x = groups.min(65_535);
-            pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
-        }
+        self.clear.encode(
+            device,
+            encoder,
+            &[depths],
+            self.clear_name,
+            profiler.as_deref_mut(),
+        );
         let Some(target) = target else {
             return stencil_value;
         };
