@@ -29,9 +29,9 @@ def cell(v):
 
 
 print("### Seed 002 Tab. 1 analogue: `ray-sd-vao` pass by pass (ms)\n")
-print("| scene | map resolution | intervals | AO phase 1 + requests | SD map | indirect set-up "
-      "| AO phase 2 | blur | all but the G-buffer |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("| scene | map resolution | intervals | request clear | AO phase 1 + requests | SD map "
+      "| indirect set-up | AO phase 2 | blur | all but the G-buffer |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for scene in SCENES:
     for res in (1, 4):
         for intervals in (True, False):
@@ -41,6 +41,7 @@ for scene in SCENES:
                 continue
             p = r["passes"]
             print(f"| {scene} | 1/{res} | {'on' if intervals else 'off'} "
+                  f"| {cell(p.get('sd_request_clear'))} "
                   f"| {cell(p.get('svao_phase1'))} | {cell(p.get('sd_map'))} "
                   f"| {cell(p.get('svao_indirect'))} | {cell(p.get('svao_phase2'))} "
                   f"| {cell(p.get('blur'))} | {cell(without_gbuffer(r))} |")
@@ -53,3 +54,19 @@ for scene in SCENES:
     ray = [results(f"{scene}-res{res}").get("ray-sd-vao") for res in (1, 2, 4)]
     row = [base.get("vao")] + ray + [base.get("sd-svao"), base.get("rt-svao")]
     print(f"| {scene} | " + " | ".join(cell(without_gbuffer(r)) if r else "–" for r in row) + " |")
+
+print("\n### Seed 002 §3.5 / Fig. 14 analogue: the map's own guard band (ms)\n")
+print("| scene | map resolution | band | request clear | AO phase 1 + requests | SD map "
+      "| AO phase 2 | all but the G-buffer |")
+print("|---|---|---|---|---|---|---|---|")
+for scene in SCENES:
+    for res in (1, 4):
+        for band, name in (("512 px (default)", f"{scene}-res{res}"),
+                           ("none", f"{scene}-noband-res{res}")):
+            r = results(name).get("ray-sd-vao")
+            if r is None:
+                continue
+            p = r["passes"]
+            print(f"| {scene} | 1/{res} | {band} | {cell(p.get('sd_request_clear'))} "
+                  f"| {cell(p.get('svao_phase1'))} | {cell(p.get('sd_map'))} "
+                  f"| {cell(p.get('svao_phase2'))} | {cell(without_gbuffer(r))} |")

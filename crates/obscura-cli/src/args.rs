@@ -295,6 +295,21 @@ fn help(text: &str, field: &str) -> String {
     format!("{} [default: {shown}]", text.trim_end_matches('.'))
 }
 
+/// `--sd-guard-band`: pixels, or `auto` for the library's default.
+fn parse_sd_guard_band(text: &str) -> Result<Option<u32>, SettingsError> {
+    if text.trim().eq_ignore_ascii_case("auto") {
+        return Ok(None);
+    }
+    text.trim()
+        .parse::<u32>()
+        .map(Some)
+        .map_err(|_| SettingsError::Invalid {
+            field: "ray_sd.guard_band",
+            value: text.to_string(),
+            rule: "must be a whole number of pixels, e.g. 512, 0 (off) or 'auto'",
+        })
+}
+
 /// `--sd-alpha`: a number, or `auto` for the library's 1.5/S.
 fn parse_alpha(text: &str) -> Result<Option<f32>, SettingsError> {
     if text.trim().eq_ignore_ascii_case("auto") {
@@ -535,11 +550,12 @@ pub struct AoArgs {
     ))]
     pub radius_cutoff: Option<f32>,
     #[arg(long, help = help(
-        "ray-sd-vao: the ray-traced map's own guard band in pixels beyond the framebuffer, where \
-         samples that fall off the framebuffer read it (seed 002 §3.5 used 512; 0 = off).",
+        "ray-sd-*: the ray-traced map's own guard band in pixels beyond the framebuffer, which \
+         samples that fall off the framebuffer read (seed 002 §3.5), 0 = off, or auto = 512 px \
+         at 1080p scaled with the height on two-phase rows and off on one-pass rows.",
         "ray_sd.guard_band"
     ))]
-    pub sd_guard_band: Option<u32>,
+    pub sd_guard_band: Option<String>,
     /// ray-sd-vao: trace each ray of the ray-traced map from the first layer to the scene's end
     /// instead of over the depths phase 1's samples need (seed 002 §3.2's ray intervals, on by
     /// default).
@@ -714,7 +730,9 @@ impl AoArgs {
         set(&mut ray.seed, self.ray_sd_seed);
         set(&mut ray.resolution, self.ray_sd_res);
         set(&mut ray.radius_cutoff, self.radius_cutoff);
-        set(&mut ray.guard_band, self.sd_guard_band);
+        if let Some(band) = &self.sd_guard_band {
+            ray.guard_band = parse_sd_guard_band(band).map_err(with_flags)?;
+        }
         if self.no_intervals {
             ray.intervals = false;
         }

@@ -658,13 +658,25 @@ fn debug_out_shows_the_ray_traced_map() {
     let stats = sd_debug(
         "ray-sd-vao",
         dir.path(),
-        &["--guard-band", "8", "--ray-sd-res", "2"],
+        &[
+            "--guard-band",
+            "8",
+            "--ray-sd-res",
+            "2",
+            "--sd-guard-band",
+            "12",
+        ],
     );
     let debug = dir.path().join("ray-sd-vao");
     assert_eq!(stats["ray_sd"]["resolution"], 2);
+    // The framebuffer 112×80 at 1/2, and 6 texels of the map's own band on each side.
     assert_eq!(
-        (stats["map_width"].as_u64(), stats["map_height"].as_u64()),
-        (Some(56), Some(40))
+        (
+            stats["map_width"].as_u64(),
+            stats["map_height"].as_u64(),
+            stats["map_guard_band_texels"].as_u64()
+        ),
+        (Some(68), Some(52), Some(6))
     );
     let mean = stats["hits_per_ray_mean"].as_f64().unwrap();
     assert!((1.0..=8.0).contains(&mean), "{stats}");
@@ -673,7 +685,8 @@ fn debug_out_shows_the_ray_traced_map() {
         ("sd_layer.png", (112, 80)),
         ("sd_counts.png", (112, 80)),
         ("sd_request.png", (112, 80)),
-        ("sd_hits.png", (56, 40)),
+        ("sd_hits.png", (68, 52)),
+        ("sd_request_map.png", (68, 52)),
         ("sd_intervals.png", (112, 80)),
         ("samples.png", (96, 64)),
     ] {

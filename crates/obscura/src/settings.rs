@@ -639,13 +639,15 @@ pub struct RaySdSettings {
     /// traced only over the depths phase 1's samples need there. Off: from the first layer to the
     /// scene's end.
     pub intervals: bool,
-    /// The map's own guard band in pixels (seed 002 §3.5, the authors' 512 when on): the map
-    /// reaches this far beyond the framebuffer (guard band included), in ⌈g / resolution⌉
-    /// texels, so a sample that falls off the framebuffer reads the map there instead of the
-    /// framebuffer's edge; those texels hold every layer (no first layer is known there) and are
-    /// traced only where requested on a two-phase schedule. 0 (the default): no band, a sample
-    /// off the framebuffer reads its edge.
-    pub guard_band: u32,
+    /// The map's own guard band in pixels (seed 002 §3.5): the map reaches this far beyond the
+    /// framebuffer (its guard band included), in ⌈g / resolution⌉ texels, so a sample that falls
+    /// off the framebuffer reads the map there instead of the framebuffer's edge; those texels
+    /// hold every layer (no first layer is known there) and are traced only where requested on
+    /// a two-phase schedule (a one-pass row traces all of them). 0: no band. `None` (the
+    /// default; a file that leaves it out, JSON `null`, `--sd-guard-band auto`): the authors'
+    /// 512 px at 1080p, scaled with the visible height, on two-phase rows, and none on one-pass
+    /// rows ([`RaySdSettings::guard_band_for`]).
+    pub guard_band: Option<u32>,
 }
 
 impl Default for RaySdSettings {
@@ -658,7 +660,7 @@ impl Default for RaySdSettings {
             resolution: 1,
             radius_cutoff: 0.0,
             intervals: true,
-            guard_band: 0,
+            guard_band: None,
         }
     }
 }
@@ -694,26 +696,30 @@ impl RaySdSettings {
                 "must be zero (off) or a positive number of pixels, e.g. 6",
             ));
         }
-        if self.guard_band > MAX_SD_GUARD_BAND {
+        if let Some(band) = self.guard_band.filter(|&b| b > MAX_SD_GUARD_BAND) {
             return Err(invalid(
                 "ray_sd.guard_band",
-                self.guard_band,
+                band,
                 "must be at most 2048 pixels beyond the framebuffer, e.g. 512 (seed 002 §3.5) or 0 (off)",
             ));
         }
         Ok(())
     }
 
-    /// The map's guard band in texels on each side, ⌈guard_band / resolution⌉.
-    pub fn guard_texels(&self) -> u32 {
-        self.guard_band.div_ceil(self.resolution)
-    }
-
-    /// The map's size in texels for a `width`×`height` framebuffer: ⌈size / resolution⌉ plus the
-    /// guard band on both sides.
-    pub fn map_size(&self, width: u32, height: u32) -> (u32, u32) {
-        let (d, g) = (self.resolution, self.guard_texels());
-        (width.div_ceil(d) + 2 * g, height.div_ceil(d) + 2 * g)
+    /// The map's guard band in pixels for a `visible_height` image, on a two-phase schedule or
+    /// not: `guard_band`, or where that is `None`, 512 px at 1080p scaled with the height and
+    /// rounded up to a multiple of 4 (whole texels at 1/4 resolution) on two-phase schedules,
+    /// where only requested band texels are traced, and 0 on one-pass schedules, which would
+    /// trace every band texel each frame (at 1080p + 64 px, 2.8× the rays of the framebuffer).
+    pub fn guard_band_for(&self, visible_height: u32, two_phase: bool) -> u32 {
+        self.guard_band.unwrap_or_else(|| {
+            if two_phase {
+                let scaled = 512.0 * f64::from(visible_height) / 1080.0;
+                (scaled / 4.0).ceil() as u32 * 4
+            } else {
+                0
+            }
+        })
     }
 }
 
@@ -1900,7 +1906,7 @@ mod tests {
         push(&|s| s.ray_sd.max_count = 2);
         push(&|s| s.ray_sd.resolution = 3);
         push(&|s| s.ray_sd.radius_cutoff = -1.0);
-        push(&|s| s.ray_sd.guard_band = 4096);
+        push(&|s| s.ray_sd.guard_band = Some(4096));
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

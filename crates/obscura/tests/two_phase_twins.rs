@@ -49,8 +49,13 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
         }
         // The two-phase row's rays cover only the depths phase 1's samples need (ray intervals),
         // the single-pass twin's the whole ray, so their reservoirs see other hits: the images
-        // agree without intervals, or with a reservoir that keeps every hit.
+        // agree without intervals, or with a reservoir that keeps every hit. The map's guard band
+        // is set explicitly (its default differs by schedule: a one-pass row would trace all of
+        // it); one variant has none, the others 40 px (1/1) or 48 px (1/4: 12 texels), which
+        // 96×64 + 16 px samples leave often at the border.
         Source::RayStochasticDepth => {
+            let mut base = base;
+            base.ray_sd.guard_band = Some(40);
             let mut plain = base;
             plain.ray_sd.intervals = false;
             let mut small = plain;
@@ -60,10 +65,17 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             let mut large = base;
             large.ray_sd.reservoir = 8;
             large.ray_sd.max_count = 64;
+            let mut no_band = plain;
+            no_band.ray_sd.guard_band = Some(0);
+            let mut quarter = large;
+            quarter.ray_sd.resolution = 4;
+            quarter.ray_sd.guard_band = Some(48);
             vec![
-                ("no intervals".into(), plain),
+                ("no intervals, band 40 px".into(), plain),
+                ("no intervals, no band".into(), no_band),
                 ("N=2 MAX_COUNT=3 no z-cull, no intervals".into(), small),
                 ("N=8 MAX_COUNT=64 with intervals".into(), large),
+                ("N=8 MAX_COUNT=64 with intervals at 1/4".into(), quarter),
             ]
         }
         Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {

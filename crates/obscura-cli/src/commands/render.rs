@@ -327,7 +327,10 @@ fn write_sd_debug(
     };
     if let Some(hits) = renderer.read_ray_sd_hits()? {
         let r = settings.ray_sd;
-        let (mw, mh) = r.map_size(fw, fh);
+        let extent = renderer
+            .ray_sd_map_size()?
+            .ok_or_else(|| anyhow::anyhow!("a ray-traced map without a size"))?;
+        let (mw, mh, g) = (extent.width, extent.height, extent.guard_texels);
         let image: Vec<f32> = hits
             .iter()
             .map(|&h| h as f32 / r.max_count as f32)
@@ -338,6 +341,7 @@ fn write_sd_debug(
         if let Some(stats) = stats.as_object_mut() {
             stats.insert("map_width".into(), mw.into());
             stats.insert("map_height".into(), mh.into());
+            stats.insert("map_guard_band_texels".into(), g.into());
             stats.insert("hits_per_ray_mean".into(), mean.into());
         }
         summary += &format!(", {mean:.2} hits per ray (rays that met one)");
@@ -349,7 +353,7 @@ fn write_sd_debug(
                 .map(|&q| f32::from(u8::from(q != 0)))
                 .collect();
             output::write_ao(&dir.join("sd_request_map.png"), mw, mh, &mask)?;
-            let g = r.guard_texels() as usize;
+            let g = g as usize;
             let in_band = requests
                 .iter()
                 .enumerate()

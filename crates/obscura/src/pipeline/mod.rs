@@ -25,6 +25,7 @@ use crate::frame::{check_float_texture, check_texture, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::schedules::{FrameContext, SchedulePass};
 use crate::settings::AoSettings;
+use crate::sources::ray_stochastic_depth::RaySdMapSize;
 use crate::sources::stochastic_depth::{SdLayout, StochasticDepthMap};
 use crate::sources::{SceneResources, SourcePass};
 use crate::view::{FrameView, ScreenGeometry};
@@ -489,6 +490,12 @@ impl AmbientOcclusion {
             }
         }
         Ok(Some(layers))
+    }
+
+    /// The ray-traced stochastic depth map's size in texels, its guard band included, and that
+    /// band's width in texels on each side (seed 002 §3.5); `None` for other sources.
+    pub fn ray_sd_map_size(&self) -> Option<RaySdMapSize> {
+        self.source.ray_stochastic_depth().map(|map| map.extent())
     }
 
     /// The ray-traced stochastic depth map's hits per ray of the last frame (`ray-sd-vao`,

@@ -231,6 +231,14 @@ impl Renderer {
         self.last_ao()?.read_sd_requests()
     }
 
+    /// The ray-traced map's size in texels and guard band in texels (see
+    /// [`AmbientOcclusion::ray_sd_map_size`]) of the last frame's technique.
+    pub fn ray_sd_map_size(
+        &self,
+    ) -> Result<Option<crate::sources::ray_stochastic_depth::RaySdMapSize>, Error> {
+        Ok(self.last_ao()?.ray_sd_map_size())
+    }
+
     /// Two-phase stochastic depth: the last frame's SD-request mask as phase 1 wrote it (see
     /// [`AmbientOcclusion::read_sd_request_texels`]; the ray-traced map's guard band included).
     pub fn read_sd_request_texels(&self) -> Result<Option<Vec<u32>>, Error> {

@@ -206,6 +206,9 @@ impl SourcePass {
                     &settings.ray_sd,
                     settings.peel_separation,
                     full,
+                    settings
+                        .ray_sd
+                        .guard_band_for(screen.height, schedule.two_phase()),
                     scene_gpu,
                     bvh,
                 )?;
@@ -450,7 +453,7 @@ impl SourcePass {
         }
     }
 
-    /// The ray-traced stochastic depth map, for read-backs.
+    /// The ray-traced stochastic depth map, for read-backs and its layout.
     pub fn ray_stochastic_depth(&self) -> Option<&RayStochasticDepthMap> {
         match &self.held {
             Held::RayStochasticDepth(map) => Some(map),

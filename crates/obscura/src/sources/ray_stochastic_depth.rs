@@ -10,9 +10,10 @@
 //! two-phase schedule; the radius cutoff of §3.4 (`read.wgsl`'s `SD_RADIUS_CUTOFF`); the ray
 //! intervals of §3.2 (phase 1 records per texel the depths its samples need,
 //! `estimator_depth_interval`; VAO narrows them, the other estimators trace the whole ray); and
-//! the map's own guard band of §3.5 (`ray_sd.guard_band`): texels beyond the framebuffer, which
-//! samples off the framebuffer read (`read.wgsl`'s `sd_guard_covers`). Not built: §3.5's cap of the AO
-//! radius at 512 px on screen; a sample beyond the map's band reads the framebuffer's edge.
+//! the map's own guard band of §3.5 (`ray_sd.guard_band`, by default 512 px at 1080p on
+//! two-phase rows): texels beyond the framebuffer, which samples off the framebuffer read
+//! (`read.wgsl`'s `sd_guard_covers`). Not built: §3.5's cap of the AO radius at 512 px on
+//! screen; a sample beyond the map's band reads the framebuffer's edge.
 //!
 //! Requests and intervals are kept per map texel (guard band included), the layout the rays
 //! read; the pipeline's read-backs spread them over the framebuffer's pixels.
@@ -120,11 +121,34 @@ pub(crate) fn read_layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     ]
 }
 
+/// The ray-traced map's extent: its size in texels, its own guard band included, and that band's
+/// width in texels on each side (seed 002 §3.5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RaySdMapSize {
+    /// Texels across, ⌈framebuffer width / d⌉ + 2 · guard_texels.
+    pub width: u32,
+    /// Texels down, ⌈framebuffer height / d⌉ + 2 · guard_texels.
+    pub height: u32,
+    /// The band beyond the framebuffer on each side, in texels.
+    pub guard_texels: u32,
+}
+
+/// The size in texels of a map at divisor `d` with `guard` texels of band on each side over a
+/// `width`×`height` framebuffer.
+fn map_size(d: u32, guard: u32, (width, height): (u32, u32)) -> (u32, u32) {
+    (
+        width.div_ceil(d) + 2 * guard,
+        height.div_ceil(d) + 2 * guard,
+    )
+}
+
 /// The ray-traced map of one framebuffer size and its collection pass.
 pub struct RayStochasticDepthMap {
     settings: RaySdSettings,
     separation: f32,
     size: (u32, u32),
+    /// The map's guard band in texels on each side (seed 002 §3.5).
+    guard: u32,
     scene: GpuScene,
     bvh: GpuBvh,
     params: wgpu::Buffer,
@@ -140,18 +164,21 @@ pub struct RayStochasticDepthMap {
 }
 
 impl RayStochasticDepthMap {
-    /// The map of a `width`×`height` framebuffer (guard band included); `separation`: how far
-    /// behind the first layer a hit must lie to count as hidden (the raster map's rule).
+    /// The map of a `width`×`height` framebuffer (guard band included) with its own guard band
+    /// of `guard_band` pixels beyond it ([`RaySdSettings::guard_band_for`]); `separation`: how
+    /// far behind the first layer a hit must lie to count as hidden (the raster map's rule).
     pub fn new(
         device: &wgpu::Device,
         settings: &RaySdSettings,
         separation: f32,
         (width, height): (u32, u32),
+        guard_band: u32,
         scene: &GpuScene,
         bvh: &GpuBvh,
     ) -> Result<Self, Error> {
         settings.validate()?;
-        let (mw, mh) = settings.map_size(width, height);
+        let guard = guard_band.div_ceil(settings.resolution);
+        let (mw, mh) = map_size(settings.resolution, guard, (width, height));
         let pixels = u64::from(mw) * u64::from(mh);
         let bytes = pixels * u64::from(settings.reservoir) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
@@ -162,7 +189,7 @@ impl RayStochasticDepthMap {
                  coarser ray_sd.resolution (--ray-sd-res), fewer slots (--reservoir), a narrower \
                  ray_sd.guard_band (--sd-guard-band) or a smaller image",
                 settings.reservoir,
-                settings.guard_band,
+                guard_band,
                 bytes >> 20,
                 limit >> 20
             )));
@@ -188,6 +215,7 @@ impl RayStochasticDepthMap {
             settings: *settings,
             separation,
             size: (width, height),
+            guard,
             scene: scene.clone(),
             bvh: bvh.clone(),
             params: device.create_buffer(&wgpu::BufferDescriptor {
@@ -236,7 +264,7 @@ impl RayStochasticDepthMap {
             map_size: [self.map_size().0, self.map_size().1],
             divisor: self.settings.resolution,
             intervals: u32::from(self.settings.intervals && requested_only),
-            guard: self.settings.guard_texels(),
+            guard: self.guard,
             _pad: 0,
             jitter: std::array::from_fn(|i| {
                 let [x, y] = table[(i + frame as usize) % table.len()];
@@ -321,12 +349,22 @@ impl RayStochasticDepthMap {
 
     /// The map's guard band in texels on each side (seed 002 §3.5).
     pub fn guard_texels(&self) -> u32 {
-        self.settings.guard_texels()
+        self.guard
     }
 
     /// The map's size in texels, ⌈framebuffer / d⌉ plus the guard band on both sides.
     pub fn map_size(&self) -> (u32, u32) {
-        self.settings.map_size(self.size.0, self.size.1)
+        map_size(self.settings.resolution, self.guard, self.size)
+    }
+
+    /// Its size in texels and guard band.
+    pub fn extent(&self) -> RaySdMapSize {
+        let (width, height) = self.map_size();
+        RaySdMapSize {
+            width,
+            height,
+            guard_texels: self.guard,
+        }
     }
 
     /// For each framebuffer pixel (row-major), the index of the map texel it reads.
