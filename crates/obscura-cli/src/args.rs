@@ -295,33 +295,23 @@ fn help(text: &str, field: &str) -> String {
     format!("{} [default: {shown}]", text.trim_end_matches('.'))
 }
 
-/// `--sd-guard-band`: pixels, or `auto` for the library's default.
-fn parse_sd_guard_band(text: &str) -> Result<Option<u32>, SettingsError> {
+/// A flag that takes a value or `auto` (the library's default, `None`): `--sd-alpha`,
+/// `--sd-guard-band`.
+fn parse_or_auto<T: std::str::FromStr>(
+    text: &str,
+    field: &'static str,
+    rule: &'static str,
+) -> Result<Option<T>, SettingsError> {
     if text.trim().eq_ignore_ascii_case("auto") {
         return Ok(None);
     }
     text.trim()
-        .parse::<u32>()
+        .parse::<T>()
         .map(Some)
         .map_err(|_| SettingsError::Invalid {
-            field: "ray_sd.guard_band",
+            field,
             value: text.to_string(),
-            rule: "must be a whole number of pixels, e.g. 512, 0 (off) or 'auto'",
-        })
-}
-
-/// `--sd-alpha`: a number, or `auto` for the library's 1.5/S.
-fn parse_alpha(text: &str) -> Result<Option<f32>, SettingsError> {
-    if text.trim().eq_ignore_ascii_case("auto") {
-        return Ok(None);
-    }
-    text.trim()
-        .parse::<f32>()
-        .map(Some)
-        .map_err(|_| SettingsError::Invalid {
-            field: "stochastic_depth.alpha",
-            value: text.to_string(),
-            rule: "must be a number in (0, 1], e.g. 0.375, or 'auto' for 1.5/S",
+            rule,
         })
 }
 
@@ -711,7 +701,12 @@ impl AoArgs {
         let sd = &mut s.stochastic_depth;
         set(&mut sd.samples, self.sd_samples);
         if let Some(alpha) = &self.sd_alpha {
-            sd.alpha = parse_alpha(alpha).map_err(with_flags)?;
+            sd.alpha = parse_or_auto(
+                alpha,
+                "stochastic_depth.alpha",
+                "must be a number in (0, 1], e.g. 0.375, or 'auto' for 1.5/S",
+            )
+            .map_err(with_flags)?;
         }
         set(&mut sd.seed, self.sd_seed);
         if let Some(m) = &self.sd_mask {
@@ -731,7 +726,12 @@ impl AoArgs {
         set(&mut ray.resolution, self.ray_sd_res);
         set(&mut ray.radius_cutoff, self.radius_cutoff);
         if let Some(band) = &self.sd_guard_band {
-            ray.guard_band = parse_sd_guard_band(band).map_err(with_flags)?;
+            ray.guard_band = parse_or_auto(
+                band,
+                "ray_sd.guard_band",
+                "must be a whole number of pixels, e.g. 512, 0 (off) or 'auto'",
+            )
+            .map_err(with_flags)?;
         }
         if self.no_intervals {
             ray.intervals = false;
