@@ -293,11 +293,20 @@ pub fn hemisphere_metrics(
 /// the `vao` ground truth through the same bilateral blur (on the same depth, with the first
 /// run's blur settings), as `obscura compare` measures it: only hidden geometry differs.
 pub fn mse_against_blurred_vao_truth(gpu: &Gpu, scene: &Scene, runs: &[AoSettings]) -> Vec<f64> {
+    mse_against_blurred_vao_truth_at(gpu, scene, runs, (160, 96, 32))
+}
+
+/// [`mse_against_blurred_vao_truth`] at a `width`×`height` image with `guard_band` px.
+pub fn mse_against_blurred_vao_truth_at(
+    gpu: &Gpu,
+    scene: &Scene,
+    runs: &[AoSettings],
+    (w, h, guard_band): (u32, u32, u32),
+) -> Vec<f64> {
     use obscura::bvh::Bvh;
     use obscura::metrics::{mse, Image};
     use obscura::reference::cpu_blur::cpu_blur;
     use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
-    let (w, h, guard_band) = (160, 96, 32);
     let bvh = Bvh::build(scene);
     let mut reference = Vec::new();
     let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
