@@ -87,6 +87,7 @@ const SD_MAPS: u32 = 1u;
 const SD_SAMPLES: u32 = {reservoir}u;
 const SD_DIVISOR: i32 = {divisor};
 const SD_GUARD: i32 = {guard};
+const SD_HAS_GUARD_BAND: bool = {};
 @group(GROUP_SOURCE) @binding(SOURCE_SD_MAPS) var<storage, read> sd_ray_depths: array<f32>;
 // The map's size in texels: the framebuffer's, divided, and the guard band on both sides.
 fn sd_map_size() -> vec2<i32> {{
@@ -109,7 +110,8 @@ fn sd_texel(pixel: vec2<i32>) -> u32 {{
 fn sd_load(map: u32, pixel: vec2<i32>, s: u32) -> f32 {{
     return sd_ray_depths[sd_texel(pixel) * SD_SAMPLES + s];
 }}
-"
+",
+        guard > 0
     )
 }
 

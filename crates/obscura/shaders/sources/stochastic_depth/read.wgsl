@@ -22,12 +22,16 @@ override SD_INTERVALS: bool = false;
 
 // The ray-traced map's guard band (seed 002 §3.5, `ray_sd.guard_band`): a sample that falls off
 // the framebuffer, where the map's band holds its pixel (`sd_guard_covers`, from the generated
-// bindings; never for the raster map), knows no first layer: it starts unoccluded and always
+// bindings; never for the raster map, whose bindings set SD_HAS_GUARD_BAND false so that none
+// of this is compiled in), knows no first layer: it starts unoccluded and always
 // reads the map, whose band texels hold every layer (the authors' "force a ray off screen").
 // Elsewhere off the framebuffer a sample reads the framebuffer's edge (first_layer_lookup).
 fn guard_band_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     var l: DepthLookup;
     l.trace = false;
+    if (!SD_HAS_GUARD_BAND) {
+        return l;
+    }
     let raw = clamp(estimator_sample_px(p, s), vec2<f32>(-1.0e6), vec2<f32>(1.0e6));
     let pixel = vec2<i32>(floor(raw));
     if (all(pixel >= vec2<i32>(0)) && all(pixel < vec2<i32>(view.full_size))) {

@@ -110,6 +110,7 @@ fn sd_load(map: u32, pixel: vec2<i32>, s: u32) -> f32 {{
 }}
 // This map has no guard band (only the ray-traced one does): a sample off the framebuffer reads
 // the framebuffer's edge.
+const SD_HAS_GUARD_BAND: bool = false;
 fn sd_guard_covers(pixel: vec2<i32>) -> bool {{
     return false;
 }}
