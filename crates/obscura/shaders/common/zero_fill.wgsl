@@ -1,9 +1,9 @@
-// Zero-filling storage buffers in compute (src/gpu/zero_fill.rs): one 16-byte word per
-// invocation, consecutive invocations on consecutive words, plain stores. Faster than the
-// transfer queue's clear on the H200 where we measured it, and timed like any pass (a
-// `clear_buffer` in the encoder has no timestamps). Measured for the stochastic depth map (1080p
-// + 64 px, S = 4): 0.013 ms, where an atomic store per value took 0.047 ms looping over a pixel's
-// values and 0.098 ms with one value per invocation (BENCHMARKS.md, issue 16).
+// Zero-filling storage buffers in compute (src/gpu/zero_fill.rs), timed like any pass (a
+// `clear_buffer` in the encoder has no timestamps): one 16-byte word per invocation,
+// consecutive invocations on consecutive words, plain stores. Measured for the stochastic depth
+// map (H200, 1080p + 64 px, S = 4): 0.013 ms, where an atomic store per value took 0.047 ms
+// looping over a pixel's values and 0.098 ms with one value per invocation (BENCHMARKS.md,
+// issue 16).
 
 @group(0) @binding(0) var<storage, read_write> zero_fill_words: array<vec4<u32>>;
 
