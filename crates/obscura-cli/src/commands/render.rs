@@ -219,6 +219,14 @@ fn write_json(path: &std::path::Path, value: &serde_json::Value) -> Result<()> {
     Ok(())
 }
 
+/// An SD-request mask as a grey image: white where requested.
+fn request_mask(requests: &[u32]) -> Vec<f32> {
+    requests
+        .iter()
+        .map(|&q| f32::from(u8::from(q != 0)))
+        .collect()
+}
+
 /// `sd-vao`, `sd-svao`: the stochastic depth map of the frame, over the whole framebuffer (guard
 /// band included, so these images are `width + 2·guard_band` wide):
 /// - `sd_layer.png`: sample 0 of map 0 as a depth image (seed 000 Fig. 2). Empty samples are black;
@@ -348,11 +356,12 @@ fn write_sd_debug(
         if let Some(requests) = renderer.read_sd_request_texels()? {
             // Seed 002 Fig. 13c: the requested texels over the whole map, its guard band
             // included (the band's requests come from samples off the framebuffer).
-            let mask: Vec<f32> = requests
-                .iter()
-                .map(|&q| f32::from(u8::from(q != 0)))
-                .collect();
-            output::write_ao(&dir.join("sd_request_map.png"), mw, mh, &mask)?;
+            output::write_ao(
+                &dir.join("sd_request_map.png"),
+                mw,
+                mh,
+                &request_mask(&requests),
+            )?;
             let g = g as usize;
             let in_band = requests
                 .iter()
@@ -398,11 +407,12 @@ fn write_sd_debug(
         );
     }
     if let Some(requests) = renderer.read_sd_requests()? {
-        let mask: Vec<f32> = requests
-            .iter()
-            .map(|&r| f32::from(u8::from(r != 0)))
-            .collect();
-        output::write_ao(&dir.join("sd_request.png"), fw, fh, &mask)?;
+        output::write_ao(
+            &dir.join("sd_request.png"),
+            fw,
+            fh,
+            &request_mask(&requests),
+        )?;
         let requested = requests.iter().filter(|&&r| r != 0).count();
         let requested_fraction = requested as f64 / requests.len().max(1) as f64;
         let masks = renderer
