@@ -175,6 +175,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.guard_band", "--sd-guard-band"),
     ("ray_sd.intervals", "--no-intervals"),
     ("resolution", "--resolution"),
+    ("max_radius_px", "--max-radius-px"),
     ("bent_normals", "--bent-normals"),
     ("multiview.angle", "--mv-angle"),
     ("multiview.focus", "--mv-focus"),
@@ -557,6 +558,13 @@ pub struct AoArgs {
         "resolution"
     ))]
     pub resolution: Option<String>,
+    #[arg(long, help = help(
+        "Cap the AO radius on screen at this many output pixels: a surface closer to the camera \
+         runs with the radius that covers exactly that many (seed 002 §3.5; the authors used \
+         512 at 1080p with a 512 px --sd-guard-band), 0 = no cap.",
+        "max_radius_px"
+    ))]
+    pub max_radius_px: Option<f32>,
     /// Also compute the bent normal (seed 001 §4): the single-pass GTAO, GTAO-VB, VAO and HBAO+ rows;
     /// `render` writes it next to the AO as NAME.bent.png (view space, RGB = 0.5 n + 0.5) or
     /// NAME.bent.exr.
@@ -736,6 +744,7 @@ impl AoArgs {
         if self.no_intervals {
             ray.intervals = false;
         }
+        set(&mut s.max_radius_px, self.max_radius_px);
         if self.bent_normals {
             s.bent_normals = true;
         }

@@ -785,6 +785,14 @@ pub struct AoSettings {
     /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
     /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
     pub resolution: Resolution,
+    /// The AO radius's cap on screen, in pixels of the output image (seed 002 §3.5; the
+    /// authors' `ssMaxRadius`): where a shading point's radius R would cover more
+    /// pixels (a surface close to the camera), R is shrunk for that pixel to cover exactly this
+    /// many, so the kernel keeps its shape. Every estimator honours it; the ground truths never
+    /// do. 0 (the default): no cap. The authors pair 512 px with their map's 512 px guard band
+    /// at 1080p, so that samples never fall beyond the map; it costs accuracy near the camera
+    /// (measured: docs/SETTINGS.md), so it is off unless asked for.
+    pub max_radius_px: f32,
     /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
     /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
     /// GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the single-pass schedule
@@ -913,6 +921,7 @@ impl Default for AoSettings {
             stochastic_depth: StochasticDepthSettings::default(),
             ray_sd: RaySdSettings::default(),
             resolution: Resolution::Full,
+            max_radius_px: 0.0,
             bent_normals: false,
             multiview: MultiviewSettings::default(),
             temporal: TemporalSettings::default(),
@@ -956,6 +965,14 @@ impl AoSettings {
         }
         if ![8, 16, 32].contains(&v.samples) {
             return Err(invalid("vao.samples", v.samples, "must be 8, 16 or 32"));
+        }
+        let cap = self.max_radius_px;
+        if !(cap == 0.0 || (1.0..=1e6).contains(&cap)) {
+            return Err(invalid(
+                "max_radius_px",
+                cap,
+                "must be 0 (no cap) or from 1 to 1e6 pixels, e.g. 512 (seed 002 §3.5)",
+            ));
         }
         if !(self.peel_separation.is_finite() && self.peel_separation >= 0.0) {
             return Err(invalid(
@@ -1292,6 +1309,26 @@ impl AoSettings {
             ));
         }
         Ok(())
+    }
+
+    /// The world radius R of the technique's estimator (`vao.radius`, `hbao.radius`, …).
+    pub fn radius(&self) -> f32 {
+        let mut copy = *self;
+        *copy.radius_mut()
+    }
+
+    /// [`Self::radius`], to change.
+    pub fn radius_mut(&mut self) -> &mut f32 {
+        match self.technique.estimator() {
+            Estimator::Vao => &mut self.vao.radius,
+            Estimator::Hbao => &mut self.hbao.radius,
+            Estimator::HbaoPlus => &mut self.hbao_plus.radius,
+            Estimator::Gtao => &mut self.gtao.radius,
+            Estimator::GtaoVb => &mut self.gtao_vb.radius,
+            Estimator::Ssao => &mut self.ssao.radius,
+            Estimator::Sao => &mut self.sao.radius,
+            Estimator::PyramidHbao => &mut self.pyramid_hbao.radius,
+        }
     }
 
     /// The path of every field, as settings files and [`SettingsError::Invalid`] name them
@@ -1866,6 +1903,43 @@ mod tests {
     }
 
     #[test]
+    fn a_radius_cap_is_none_or_at_least_a_pixel() {
+        for bad in [0.5, -512.0, f32::NAN, f32::INFINITY] {
+            let s = AoSettings {
+                max_radius_px: bad,
+                ..AoSettings::default()
+            };
+            let e = s.validate().unwrap_err().to_string();
+            assert!(
+                e.contains("max_radius_px") && e.contains("512"),
+                "{bad}: {e}"
+            );
+        }
+        for good in [0.0, 1.0, 512.0] {
+            let s = AoSettings {
+                max_radius_px: good,
+                ..AoSettings::default()
+            };
+            s.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn the_radius_is_the_estimators() {
+        for technique in Technique::all() {
+            let mut s = AoSettings::preset(technique, Preset::Medium);
+            *s.radius_mut() = 1.75;
+            assert_eq!(s.radius(), 1.75, "{technique}");
+            let json = serde_json::to_string(&s).unwrap();
+            assert_eq!(
+                json.matches("1.75").count(),
+                1,
+                "{technique}: one radius field"
+            );
+        }
+    }
+
+    #[test]
     fn blur_sigma_is_a_natural_gaussian() {
         let mut b = BlurSettings {
             sigma: Some(1.5),
@@ -1887,7 +1961,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 73, "{paths:?}");
+        assert_eq!(paths.len(), 74, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1907,6 +1981,7 @@ mod tests {
         push(&|s| s.ray_sd.resolution = 3);
         push(&|s| s.ray_sd.radius_cutoff = -1.0);
         push(&|s| s.ray_sd.guard_band = Some(4096));
+        push(&|s| s.max_radius_px = 0.5);
         push(&|s| s.multiview.angle = 90.0);
         push(&|s| s.multiview.focus = Some(-1.0));
         push(&|s| s.blur.radius = 0);

@@ -315,6 +315,27 @@ impl ScreenGeometry {
         (ndc * self.tan_half_fov * scale).extend(-z)
     }
 
+    /// Pixels per world unit across the view at linear depth `z`. Mirrors `pixels_per_unit`
+    /// in WGSL.
+    pub fn pixels_per_unit(&self, z: f32) -> Vec2 {
+        let depth = if self.orthographic { 1.0 } else { z };
+        Vec2::from(self.uniform().projection_scale) / depth
+    }
+
+    /// The world radius a shading point at linear depth `z` uses when the AO radius `radius` is
+    /// capped at `max_radius_px` pixels on screen (0: no cap; seed 002 §3.5,
+    /// [`crate::AoSettings::max_radius_px`]): `radius`, or the radius that covers exactly
+    /// `max_radius_px` pixels. Mirrors `capped_radius` in WGSL, operation for operation.
+    pub fn capped_radius(&self, radius: f32, z: f32, max_radius_px: f32) -> f32 {
+        if max_radius_px > 0.0 {
+            let per_unit = self.pixels_per_unit(z).y;
+            if radius * per_unit > max_radius_px {
+                return max_radius_px / per_unit;
+            }
+        }
+        radius
+    }
+
     /// Framebuffer pixel coordinates of a view-space point. Mirrors `view_to_pixel` in WGSL.
     pub fn view_to_pixel(&self, p: Vec3) -> Vec2 {
         let u = self.uniform();

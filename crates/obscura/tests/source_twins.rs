@@ -62,21 +62,6 @@ fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
     }
 }
 
-/// The radius of `s`'s estimator, for the ground truth it is held to.
-fn estimator_radius(s: &AoSettings) -> f32 {
-    use obscura::technique::Estimator;
-    match s.technique.estimator() {
-        Estimator::Vao => s.vao.radius,
-        Estimator::Hbao => s.hbao.radius,
-        Estimator::HbaoPlus => s.hbao_plus.radius,
-        Estimator::Ssao => s.ssao.radius,
-        Estimator::GtaoVb => s.gtao_vb.radius,
-        Estimator::Gtao => s.gtao.radius,
-        Estimator::Sao => s.sao.radius,
-        Estimator::PyramidHbao => s.pyramid_hbao.radius,
-    }
-}
-
 #[test]
 fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
     // Seed 001's point: the stochastic depth map shows what the depth buffer hides, so around
@@ -102,7 +87,7 @@ fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
             .unwrap();
         let metrics = |t| {
             let s = technique_settings(t, true);
-            hemisphere_metrics(&gpu, &scene, &s, estimator_radius(&s)).0
+            hemisphere_metrics(&gpu, &scene, &s, s.radius()).0
         };
         let (first, sd) = (metrics(twin.technique), metrics(row.technique));
         println!(

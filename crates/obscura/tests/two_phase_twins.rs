@@ -45,6 +45,7 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             let mut always = base;
             always.stochastic_depth.query = obscura::settings::SdQuery::Always;
             out.push(("S=4 query always".into(), always));
+            out.push(("S=4 radius capped".into(), capped(base)));
             out
         }
         // The two-phase row's rays cover only the depths phase 1's samples need (ray intervals),
@@ -76,11 +77,29 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
                 ("N=2 MAX_COUNT=3 no z-cull, no intervals".into(), small),
                 ("N=8 MAX_COUNT=64 with intervals".into(), large),
                 ("N=8 MAX_COUNT=64 with intervals at 1/4".into(), quarter),
+                (
+                    "N=8 MAX_COUNT=64 with intervals, radius capped".into(),
+                    capped(large),
+                ),
             ]
         }
-        Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
+        Source::ColumnRays => vec![
+            ("defaults".into(), base),
+            ("radius capped".into(), capped(base)),
+        ],
+        Source::FirstLayer | Source::DualDepth | Source::DepthPyramid => {
             vec![("defaults".into(), base)]
         }
+    }
+}
+
+/// `s` with the AO radius capped at 8 px on screen (seed 002 §3.5), which binds on many pixels
+/// of these 96×64 views: every phase must shrink R alike (phase 1's flags and ray intervals,
+/// phase 2's values).
+fn capped(s: AoSettings) -> AoSettings {
+    AoSettings {
+        max_radius_px: 8.0,
+        ..s
     }
 }
 

@@ -46,6 +46,24 @@ fn pixels_per_unit(v: View, z: f32) -> vec2<f32> {
     return v.projection_scale / select(z, 1.0, ORTHOGRAPHIC);
 }
 
+// The AO radius cap on screen in pixels (`max_radius_px`; seed 002 §3.5, the authors' ssMaxRadius):
+// a pipeline constant the estimators' pipelines set where a cap applies; 0, the default, is none.
+override MAX_RADIUS_PX: f32 = 0.0;
+
+// The world radius a shading point at linear depth `z` uses: `radius`, or where it would cover
+// more than MAX_RADIUS_PX pixels, the radius that covers exactly that many (the authors shrink
+// the world radius rather than clamp samples, so the kernel keeps its shape; seed-code-notes
+// §2.2: radiusInPixels > ssMaxRadius). Uncapped, it is `radius` itself, bit for bit.
+fn capped_radius(v: View, radius: f32, z: f32) -> f32 {
+    if (MAX_RADIUS_PX > 0.0) {
+        let per_unit = pixels_per_unit(v, z).y;
+        if (radius * per_unit > MAX_RADIUS_PX) {
+            return MAX_RADIUS_PX / per_unit;
+        }
+    }
+    return radius;
+}
+
 // Unit vector from view-space point `p` towards the camera (along +Z when orthographic).
 fn toward_camera(v: View, p: vec3<f32>) -> vec3<f32> {
     return select(normalize(-p), vec3<f32>(0.0, 0.0, 1.0), ORTHOGRAPHIC);

@@ -64,6 +64,8 @@ struct EstimatorPixel {
     radius_px: f32,
     // XeGTAO's minimum offset, 1.3 px, as a fraction of the radius.
     min_fraction: f32,
+    // The falloff's slope per world unit, for R capped on screen (screen_space.wgsl).
+    falloff_mul: f32,
     valid: bool,
 }
 
@@ -128,6 +130,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.jitter = pattern.z;
     p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
     p.min_fraction = 1.3 / max(base.radius_px, 1.0);
+    p.falloff_mul = params.falloff_mul / base.radius_scale;
     return p;
 }
 
@@ -176,7 +179,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     var o: Occluder;
     o.value = vec2<f32>(
         dot(delta, p.v) / max(distance, 1e-20),
-        select(0.0, saturate(distance * params.falloff_mul + params.falloff_add), above),
+        select(0.0, saturate(distance * p.falloff_mul + params.falloff_add), above),
     );
     // GTAO has no hidden-depth rows (table): nothing deeper is consulted.
     o.hidden = false;

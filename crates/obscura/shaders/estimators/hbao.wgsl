@@ -63,6 +63,8 @@ struct EstimatorPixel {
     // Pixels between steps and the first step's distance; step_px 0 when the radius covers < 1 px.
     step_px: f32,
     start_px: f32,
+    // 1/R, R capped on screen (screen_space.wgsl).
+    inv_radius: f32,
     valid: bool,
 }
 
@@ -107,6 +109,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     // Algorithm 2, line 4: r'/(N_s + 1).
     p.step_px = select(0.0, base.radius_px / f32(params.steps + 1u), base.radius_px >= 1.0);
     p.start_px = pattern.z * p.step_px + 1.0;
+    p.inv_radius = params.inv_radius / base.radius_scale;
     return p;
 }
 
@@ -154,7 +157,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let sin_phi = dot(v, p.v) / max(distance, 1e-20);
     // A surface on or below the tangent plane occludes nothing (see the top comment).
     let above = dot(v, p.normal) > 1e-3 * distance;
-    let w = select(0.0, max(1.0 - distance * params.inv_radius, 0.0), above);
+    let w = select(0.0, max(1.0 - distance * p.inv_radius, 0.0), above);
     var o: Occluder;
     o.value = vec2<f32>(sin_phi, w);
     o.hidden = above && w <= 0.0;

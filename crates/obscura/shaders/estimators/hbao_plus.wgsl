@@ -46,6 +46,8 @@ struct EstimatorPixel {
     // Pixels between steps, and the first step's distance; 0 when the radius covers < 1 px.
     step_px: f32,
     start_px: f32,
+    // −1/R², R capped on screen (screen_space.wgsl).
+    neg_inv_r2: f32,
     valid: bool,
 }
 
@@ -82,6 +84,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.rotation = pattern.xy;
     p.step_px = select(0.0, base.radius_px / f32(params.steps + 1u), base.radius_px >= 1.0);
     p.start_px = pattern.z * p.step_px + 1.0;
+    p.neg_inv_r2 = params.neg_inv_r2 / (base.radius_scale * base.radius_scale);
     return p;
 }
 
@@ -104,7 +107,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let v = pos - p.pos;
     let v_dot_v = max(dot(v, v), 1e-20);
     let angle_term = saturate(dot(p.normal, v) * inverseSqrt(v_dot_v) - params.bias);
-    let distance_term = saturate(v_dot_v * params.neg_inv_r2 + 1.0);
+    let distance_term = saturate(v_dot_v * p.neg_inv_r2 + 1.0);
     var o: Occluder;
     o.value = angle_term * distance_term;
     // In the positive hemisphere but beyond R: a surface behind it could be within R.

@@ -47,6 +47,8 @@ struct EstimatorPixel {
     normal: vec3<f32>,
     pixel: vec2<u32>,
     offsets: vec2<f32>,
+    // 1/R, R capped on screen (screen_space.wgsl; the pyramid's steps are fixed in pixels).
+    inv_radius: f32,
     valid: bool,
 }
 
@@ -86,6 +88,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.pos = base.pos;
     p.normal = base.normal;
     p.offsets = params.pattern[pattern_index(id)].xy;
+    p.inv_radius = params.inv_radius / base.radius_scale;
     return p;
 }
 
@@ -121,7 +124,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let distance = length(v);
     let sin_alpha = dot(v, p.normal) / max(distance, 1e-20);
     var o: Occluder;
-    o.value = select(0.0, max(1.0 - distance * params.inv_radius, 0.0) * sin_alpha, sin_alpha > 1e-3);
+    o.value = select(0.0, max(1.0 - distance * p.inv_radius, 0.0) * sin_alpha, sin_alpha > 1e-3);
     o.hidden = false;
     return o;
 }

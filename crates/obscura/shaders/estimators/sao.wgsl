@@ -77,7 +77,7 @@ fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> f32 {
 fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> Occluder {
     let v = pos - p.pos;
     let vv = dot(v, v);
-    let f = max(params.radius2 - vv, 0.0);
+    let f = max(p.radius2 - vv, 0.0);
     var o: Occluder;
     o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (0.01 + vv), 0.0);
     o.hidden = false;
@@ -106,7 +106,9 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
 }
 
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return max(0.0, 1.0 - acc.sum * params.scale);
+    // The normalisation is proportional to 1/R⁶ (src/estimators/sao.rs): (r²−v·v)³ scales as R⁶.
+    let s3 = p.radius_scale * p.radius_scale * p.radius_scale;
+    return max(0.0, 1.0 - acc.sum * (params.scale / (s3 * s3)));
 }
 
 // The debug image (`render --debug-out`): the mean pyramid level the taps read, level 0 black …

@@ -1,5 +1,6 @@
 // What the screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB) start a pixel from: the shading point and its
-// normal from the frame, and the world radius in framebuffer pixels. Put in front of such an
+// normal from the frame, and the world radius R they use, capped on screen (`max_radius_px`,
+// seed 002 §3.5; common/view.wgsl capped_radius), in world units and in framebuffer pixels. Put in front of such an
 // estimator (its Rust module concatenates the two).
 
 struct ScreenPixel {
@@ -8,7 +9,10 @@ struct ScreenPixel {
     // Framebuffer pixel of the shading point.
     pixel: vec2<u32>,
     valid: bool,
-    // Pixels per `radius` world units at the point's depth (square pixels).
+    // The pixel's R over the estimator's: 1 (exactly) unless the on-screen cap shrinks R. The
+    // estimators scale their world-radius terms (falloff, radius²) by it.
+    radius_scale: f32,
+    // Pixels per R world units at the point's depth (square pixels).
     radius_px: f32,
 }
 
@@ -22,7 +26,9 @@ fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
     }
     p.pos = point.pos;
     p.normal = point.normal;
-    p.radius_px = radius * pixels_per_unit(view, -point.pos.z).y;
+    let capped = capped_radius(view, radius, -point.pos.z);
+    p.radius_scale = capped / radius;
+    p.radius_px = capped * pixels_per_unit(view, -point.pos.z).y;
     return p;
 }
 

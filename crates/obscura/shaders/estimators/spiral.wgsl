@@ -10,6 +10,9 @@ struct EstimatorPixel {
     pixel: vec2<u32>,
     rotation: f32,
     radius_px: f32,
+    // R², and R over the estimator's R, for R capped on screen (screen_space.wgsl).
+    radius2: f32,
+    radius_scale: f32,
     valid: bool,
 }
 
@@ -25,6 +28,8 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.normal = base.normal;
     p.rotation = params.pattern[pattern_index(id)].x;
     p.radius_px = select(0.0, base.radius_px, base.radius_px >= 1.0);
+    p.radius2 = params.radius2 * (base.radius_scale * base.radius_scale);
+    p.radius_scale = base.radius_scale;
     return p;
 }
 

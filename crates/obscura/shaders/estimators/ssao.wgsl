@@ -80,7 +80,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     // View-space z is negative in front of the camera: z·β lowers the term by depth·β.
     let term = max(dot(v, p.normal) + p.pos.z * params.bias, 0.0) / (vv + params.epsilon);
     var o: Occluder;
-    o.value = select(0.0, term, vv < params.radius2);
+    o.value = select(0.0, term, vv < p.radius2);
     // Beyond R or below the tangent plane: a deeper surface may still occlude (seed 001 §3.3).
     o.hidden = o.value <= 0.0;
     if (o.hidden && !SSAO_LITERAL_QUERY) {
@@ -94,7 +94,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
         let along = dot(v, r);
         let closest2 = select(vv, vv - along * along, along < 0.0);
         let can_rise = dot(v, p.normal) + p.pos.z * params.bias > 0.0 || dot(r, p.normal) > 0.0;
-        o.hidden = closest2 < params.radius2 && can_rise;
+        o.hidden = closest2 < p.radius2 && can_rise;
     }
     return o;
 }
@@ -127,7 +127,8 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
 }
 
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return pow(max(1.0 - params.scale * acc.sum, 0.0), params.contrast);
+    // The normalisation is proportional to R (src/estimators/ssao.rs).
+    return pow(max(1.0 - params.scale * p.radius_scale * acc.sum, 0.0), params.contrast);
 }
 
 // The debug image (`render --debug-out`): the fraction of the samples that occlude, none black

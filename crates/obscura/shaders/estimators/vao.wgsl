@@ -29,8 +29,8 @@ struct VaoParams {
     thickness: f32,
     exponent: f32,
     _pad0: u32, // the sample count is the pipeline constant SAMPLE_COUNT
-    // Samples whose clipped column is shorter than this (world units) contribute nothing.
-    min_column: f32,
+    // Samples whose clipped column is shorter than this fraction of R contribute nothing.
+    min_column_fraction: f32,
     // 0: the paper's 2/N normalisation, 1: normalise by the clipped columns' own length.
     normalization: u32,
     _pad1: u32,
@@ -45,13 +45,13 @@ struct VaoParams {
 
 // Free length of the column [column_end, column_start] for an occluder at object-space height z
 // (positive towards the camera), seed 000 Fig. 4 / Eq. 8: inside the column the part above z is
-// free; above the column up to (1 + thickness) R the column is fully occluded (constant area);
-// above that it becomes visible again linearly over one column length (falloff area).
-fn column_visibility(z: f32, column_start: f32, column_end: f32) -> f32 {
+// free; above the column up to `halo_from` = (1 + thickness) R the column is fully occluded
+// (constant area); above that it becomes visible again linearly over one column length (falloff
+// area).
+fn column_visibility(halo_from: f32, z: f32, column_start: f32, column_end: f32) -> f32 {
     let length = column_start - column_end;
     let sphere_vis = max(column_start - max(column_end, z), 0.0);
-    let halo_start = (1.0 + params.thickness) * params.radius;
-    let halo_vis = saturate((z - halo_start) / length) * length;
+    let halo_vis = saturate((z - halo_from) / length) * length;
     return sphere_vis + halo_vis;
 }
 
@@ -66,6 +66,14 @@ struct VaoFrame {
     inv_n_z: f32,
     // Framebuffer pixel of the shading point.
     pixel: vec2<u32>,
+    // The sphere radius R this pixel uses: `params.radius`, or less where the on-screen cap
+    // shrinks it (common/view.wgsl capped_radius; seed 002 §3.5).
+    radius: f32,
+}
+
+// Where the column's constant (fully occluding) area ends: (1 + thickness) R above the disc.
+fn halo_start(f: VaoFrame) -> f32 {
+    return (1.0 + params.thickness) * f.radius;
 }
 
 // One line sample: lateral offset `d`, its clipped column [end, start] and where it projects
@@ -129,6 +137,7 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     p.frame.n_xy = n_local.xy;
     p.frame.inv_n_z = 1.0 / n_z;
     p.frame.pixel = pixel;
+    p.frame.radius = capped_radius(view, params.radius, -pos.z);
     p.n_z_positive = n_local.z >= 0.0;
     p.rotation = params.rotations[pattern_index(id)].xy;
     return p;
@@ -144,7 +153,7 @@ struct VaoSample {
 fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     let k = params.kernel[i];
     let dir = rotate_by(k.xy, p.rotation);
-    let r = params.radius;
+    let r = p.frame.radius;
     var s: VaoSample;
     s.column.d = dir * (k.z * r);
     s.h = sqrt(max(r * r - dot(s.column.d, s.column.d), 0.0));
@@ -157,7 +166,7 @@ fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     } else {
         s.column.start = z_i;
     }
-    if (s.column.start - s.column.end < params.min_column) {
+    if (s.column.start - s.column.end < params.min_column_fraction * r) {
         s.h = 0.0;
         return s;
     }
@@ -236,8 +245,8 @@ fn estimator_unoccluded(p: VaoPixel, s: VaoSample) -> f32 {
 fn estimator_occluder(p: VaoPixel, s: VaoSample, pos: vec3<f32>) -> Occluder {
     let height = column_height(p.frame, s.column, pos);
     var o: Occluder;
-    o.value = column_visibility(height, s.column.start, s.column.end);
-    o.hidden = o.value > 0.0 && height > (1.0 + params.thickness) * params.radius;
+    o.value = column_visibility(halo_start(p.frame), height, s.column.start, s.column.end);
+    o.hidden = o.value > 0.0 && height > halo_start(p.frame);
     return o;
 }
 
@@ -261,7 +270,7 @@ fn estimator_depth_interval(p: VaoPixel, s: VaoSample, px: vec2<f32>) -> vec2<f3
     let h1 = column_height(p.frame, s.column, pixel_to_view(view, px, 1.0));
     let slope = h1 - h0;
     let low = s.column.end;
-    let high = (1.0 + params.thickness) * params.radius + (s.column.start - s.column.end);
+    let high = halo_start(p.frame) + (s.column.start - s.column.end);
     if (abs(slope) < 1e-12) {
         return vec2<f32>(0.0, 3.0e38);
     }
@@ -269,7 +278,7 @@ fn estimator_depth_interval(p: VaoPixel, s: VaoSample, px: vec2<f32>) -> vec2<f3
     let b = (high - h0) / slope;
     let lo = max(min(a, b), 0.0);
     let hi = max(a, b);
-    let slack = 1e-3 * hi + 1e-3 * params.radius;
+    let slack = 1e-3 * hi + 1e-3 * p.frame.radius;
     return vec2<f32>(max(lo - slack, 0.0), hi + slack);
 }
 

@@ -27,14 +27,14 @@ fn source_lookup(p: VaoPixel, s: VaoSample) -> DepthLookup {
     }
     let occluder = pixel_to_view(view, l.px, z);
     let height = column_height(f, c, occluder);
-    l.value = column_visibility(height, c.start, c.end);
+    l.value = column_visibility(halo_start(f), height, c.start, c.end);
     // Surfaces beyond the first one lie lower along the column when the height falls with the ray
     // parameter (the usual case): then they can only lower the visibility when the first surface
     // is occluded — beyond the constant area (in it the visibility is already 0). Where the
     // tangent-plane correction makes the height rise with depth, any first surface may hide a
     // lower visibility, so the ray is traced.
     let rising = column_height(f, c, pixel_to_view(view, l.px, 1.0)) > column_height(f, c, vec3<f32>(0.0));
-    l.trace = l.value > 0.0 && (rising || height > (1.0 + params.thickness) * params.radius);
+    l.trace = l.value > 0.0 && (rising || height > halo_start(f));
     // Past the depth-buffer hit (relative slack, as the authors' 0.01 R offset).
     l.t_after = z * (1.0 + 1e-5);
     return l;

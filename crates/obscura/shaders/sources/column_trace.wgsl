@@ -30,6 +30,7 @@ struct RayCamera {
 const BVH_GROUP: u32 = GROUP_SOURCE;
 const BVH_BINDING: u32 = SOURCE_BVH;
 
+var<private> trace_halo_start: f32;
 var<private> trace_column: VaoColumn;
 var<private> trace_height_at_0: f32;
 var<private> trace_height_slope: f32;
@@ -37,7 +38,7 @@ var<private> trace_visibility: f32;
 
 fn bvh_on_hit(hit: BvhHit) -> u32 {
     let height = trace_height_at_0 + trace_height_slope * hit.t;
-    trace_visibility = min(trace_visibility, column_visibility(height, trace_column.start, trace_column.end));
+    trace_visibility = min(trace_visibility, column_visibility(trace_halo_start, height, trace_column.start, trace_column.end));
     return select(BVH_CONTINUE, BVH_STOP, trace_visibility <= 0.0);
 }
 
@@ -49,7 +50,7 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     // only heights in (end, halo end) can lower the visibility; that bounds the interval.
     let a = column_height(f, c, vec3<f32>(0.0));
     let b = column_height(f, c, dir_view) - a;
-    let halo_end = (1.0 + params.thickness) * params.radius + (c.start - c.end);
+    let halo_end = halo_start(f) + (c.start - c.end);
     var t_min = max(ray_camera.near, t_after);
     var t_max = 3.4e38;
     if (abs(b) > 1e-12) {
@@ -58,6 +59,7 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
         t_min = max(t_min, min(t0, t1));
         t_max = max(t0, t1);
     }
+    trace_halo_start = halo_start(f);
     trace_column = c;
     trace_height_at_0 = a;
     trace_height_slope = b;

@@ -57,11 +57,21 @@ impl EstimatorPass {
         }
     }
 
-    /// The estimator of a technique row with its settings.
-    pub fn for_row(device: &wgpu::Device, estimator: Estimator, settings: &AoSettings) -> Self {
+    /// The estimator of a technique row with its settings; `max_radius_px` caps its radius on
+    /// screen (0: no cap; [`AoSettings::max_radius_px`], which the ground truth leaves out).
+    pub fn for_row(
+        device: &wgpu::Device,
+        estimator: Estimator,
+        settings: &AoSettings,
+        max_radius_px: f32,
+    ) -> Self {
         let (wgsl, names) = wgsl(estimator);
         let (params, values) = params(estimator, settings);
-        let constants = names.iter().copied().zip(values).collect();
+        let mut constants: Vec<_> = names.iter().copied().zip(values).collect();
+        // common/view.wgsl's cap, set only where there is one (0 is the shader's default).
+        if max_radius_px > 0.0 {
+            constants.push(("MAX_RADIUS_PX", f64::from(max_radius_px)));
+        }
         Self::new(device, estimator.name(), &params, wgsl, constants)
     }
 }

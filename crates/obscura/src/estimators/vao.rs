@@ -57,7 +57,7 @@ pub struct VaoParams {
     thickness: f32,
     exponent: f32,
     _pad0: u32,
-    min_column: f32,
+    min_column_fraction: f32,
     normalization: u32,
     _pad: [u32; 2],
     kernel: [[f32; 4]; 32],
@@ -83,7 +83,7 @@ impl VaoParams {
             thickness: s.thickness,
             exponent: s.exponent,
             _pad0: 0,
-            min_column: MIN_COLUMN_FRACTION * s.radius,
+            min_column_fraction: MIN_COLUMN_FRACTION,
             normalization: match s.normalization {
                 Normalization::Hemisphere => 0,
                 Normalization::Clipped => 1,

@@ -133,7 +133,13 @@ impl AmbientOcclusion {
             None => (screen, &view),
         };
         let frame_layout = bindings::frame_layout(device, true);
-        let estimator = EstimatorPass::for_row(device, row.estimator, settings);
+        let estimator = EstimatorPass::for_row(
+            device,
+            row.estimator,
+            settings,
+            // Output pixels: at half resolution, half as many of the working image's.
+            settings.max_radius_px * work.height as f32 / screen.height as f32,
+        );
         let source = SourcePass::new(gpu, row.source, row.schedule, settings, &work, scene)?;
         let schedule = SchedulePass::new(
             row,

@@ -199,6 +199,8 @@ fn check_stage(
     };
     let mut all_constants = constants.to_vec();
     all_constants.extend(stage.constants.iter().map(|(n, _)| *n));
+    // The radius cap (EstimatorPass::for_row) goes to every stage an estimator is in.
+    all_constants.push("MAX_RADIUS_PX");
     check(
         &format!("{label} / {source:?} ({sd:?}) / {}", stage.label),
         &wgsl,

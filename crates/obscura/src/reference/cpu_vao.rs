@@ -57,6 +57,19 @@ pub fn cpu_vao_turned(
     s: &VaoSettings,
     pattern_offset: u32,
 ) -> CpuVao {
+    cpu_vao_with(g, screen, s, pattern_offset, 0.0)
+}
+
+/// [`cpu_vao_turned`] with the radius capped at `max_radius_px` pixels on screen (0: no cap;
+/// [`crate::AoSettings::max_radius_px`]): each pixel runs the kernel with its own R,
+/// [`ScreenGeometry::capped_radius`], as `vao.wgsl` does.
+pub fn cpu_vao_with(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    s: &VaoSettings,
+    pattern_offset: u32,
+    max_radius_px: f32,
+) -> CpuVao {
     let n_pixels = (screen.width * screen.height) as usize;
     let mut ao = vec![1.0; n_pixels];
     let mut ambiguous = vec![false; n_pixels];
@@ -70,6 +83,10 @@ pub fn cpu_vao_turned(
                 continue;
             }
             let pos = screen.pixel_to_view(pixel.as_vec2() + 0.5, z);
+            let s = &VaoSettings {
+                radius: screen.capped_radius(s.radius, -pos.z, max_radius_px),
+                ..*s
+            };
             // The pattern entry this pixel uses, as the (x % 4, y % 4) that names it.
             let entry = (x % 4 + 4 * (y % 4) + pattern_offset) % 16;
             let frame = PixelFrame::new(

@@ -44,6 +44,7 @@ pub fn render_reference_gpu(
             vao: settings.vao,
             ..Default::default()
         },
+        0.0, // the ground truth's R is never capped
     );
     let mut parts = crate::schedules::ESTIMATOR_PRELUDE.to_vec();
     parts.push(estimator.wgsl);
