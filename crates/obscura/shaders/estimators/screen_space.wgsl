@@ -10,7 +10,8 @@ struct ScreenPixel {
     // Framebuffer pixel of the shading point.
     pixel: vec2<u32>,
     valid: bool,
-    // The pixel's R over the estimator's: 1 (exactly) unless the on-screen cap shrinks R. The
+    // The pixel's R over the estimator's: 1 unless the on-screen cap shrinks R (without a cap
+    // the literal 1, so that the terms the estimators scale by it stay uniform values). The
     // estimators scale their world-radius terms (falloff, radius²) by it.
     radius_scale: f32,
     // Pixels per R world units at the point's depth (square pixels).
@@ -28,7 +29,7 @@ fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
     p.pos = point.pos;
     p.normal = point.normal;
     let capped = capped_radius(view, radius, -point.pos.z);
-    p.radius_scale = capped / radius;
+    p.radius_scale = select(1.0, capped / radius, MAX_RADIUS_PX > 0.0);
     p.radius_px = capped * pixels_per_unit(view, -point.pos.z).y;
     return p;
 }

@@ -66,14 +66,22 @@ struct VaoFrame {
     inv_n_z: f32,
     // Framebuffer pixel of the shading point.
     pixel: vec2<u32>,
-    // The sphere radius R this pixel uses: `params.radius`, or less where the on-screen cap
-    // shrinks it (common/view.wgsl capped_radius; seed 002 §3.5).
-    radius: f32,
+    // The sphere radius R this pixel uses where the radius is capped on screen (MAX_RADIUS_PX;
+    // common/view.wgsl capped_radius; seed 002 §3.5); read through frame_radius.
+    capped_radius: f32,
+}
+
+// The sphere radius R of the pixel: `params.radius`, or less where the on-screen cap shrinks
+// it. Without a cap the pipeline constant folds this to the uniform, so the radius and what is
+// made from it stay uniform values (a per-pixel radius in a register cost the vao pass 4 % on an
+// H200, BENCHMARKS.md).
+fn frame_radius(f: VaoFrame) -> f32 {
+    return select(params.radius, f.capped_radius, MAX_RADIUS_PX > 0.0);
 }
 
 // Where the column's constant (fully occluding) area ends: (1 + thickness) R above the disc.
 fn halo_start(f: VaoFrame) -> f32 {
-    return (1.0 + params.thickness) * f.radius;
+    return (1.0 + params.thickness) * frame_radius(f);
 }
 
 // One line sample: lateral offset `d`, its clipped column [end, start] and where it projects
@@ -137,7 +145,7 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     p.frame.n_xy = n_local.xy;
     p.frame.inv_n_z = 1.0 / n_z;
     p.frame.pixel = pixel;
-    p.frame.radius = capped_radius(view, params.radius, -pos.z);
+    p.frame.capped_radius = capped_radius(view, params.radius, -pos.z);
     p.n_z_positive = n_local.z >= 0.0;
     p.rotation = params.rotations[pattern_index(id)].xy;
     return p;
@@ -153,7 +161,7 @@ struct VaoSample {
 fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     let k = params.kernel[i];
     let dir = rotate_by(k.xy, p.rotation);
-    let r = p.frame.radius;
+    let r = frame_radius(p.frame);
     var s: VaoSample;
     s.column.d = dir * (k.z * r);
     s.h = sqrt(max(r * r - dot(s.column.d, s.column.d), 0.0));
@@ -278,7 +286,7 @@ fn estimator_depth_interval(p: VaoPixel, s: VaoSample, px: vec2<f32>) -> vec2<f3
     let b = (high - h0) / slope;
     let lo = max(min(a, b), 0.0);
     let hi = max(a, b);
-    let slack = 1e-3 * hi + 1e-3 * p.frame.radius;
+    let slack = 1e-3 * hi + 1e-3 * frame_radius(p.frame);
     return vec2<f32>(max(lo - slack, 0.0), hi + slack);
 }
 
