@@ -54,10 +54,16 @@ fn count(ui: &mut egui::Ui, v: &mut u32, range: std::ops::RangeInclusive<u32>, t
 /// scene's diagonal).
 pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32) {
     let row = settings.technique.row();
+    radius(ui, settings.radius_mut(), scene_scale);
+    // Seed 002 §3.5's cap on the radius in pixels; whole pixels, so never in (0, 1).
+    ui.add(
+        egui::Slider::new(&mut settings.max_radius_px, 0.0..=2048.0)
+            .step_by(1.0)
+            .text("max radius px (0: none)"),
+    );
     match row.estimator {
         Estimator::Vao => {
             let v = &mut settings.vao;
-            radius(ui, &mut v.radius, scene_scale);
             ui.horizontal(|ui| {
                 ui.label("samples");
                 for n in [8, 16, 32] {
@@ -68,41 +74,34 @@ pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32
         }
         Estimator::Hbao => {
             let h = &mut settings.hbao;
-            radius(ui, &mut h.radius, scene_scale);
             count(ui, &mut h.directions, 1..=64, "directions");
             count(ui, &mut h.steps, 1..=128, "steps");
         }
         Estimator::HbaoPlus => {
             let h = &mut settings.hbao_plus;
-            radius(ui, &mut h.radius, scene_scale);
             count(ui, &mut h.directions, 1..=32, "directions");
             count(ui, &mut h.steps, 1..=32, "steps (directions × steps ≤ 32)");
         }
         Estimator::Gtao => {
             let g = &mut settings.gtao;
-            radius(ui, &mut g.radius, scene_scale);
             count(ui, &mut g.slices, 1..=16, "slices");
             count(ui, &mut g.steps, 1..=32, "steps");
         }
         Estimator::Ssao => {
             let s = &mut settings.ssao;
-            radius(ui, &mut s.radius, scene_scale);
             count(ui, &mut s.samples, 1..=32, "samples");
         }
         Estimator::Sao => {
             let s = &mut settings.sao;
-            radius(ui, &mut s.radius, scene_scale);
             count(ui, &mut s.samples, 1..=64, "taps");
         }
         Estimator::PyramidHbao => {
             let p = &mut settings.pyramid_hbao;
-            radius(ui, &mut p.radius, scene_scale);
             count(ui, &mut p.directions, 1..=32, "directions");
             count(ui, &mut p.steps, 1..=16, "steps");
         }
         Estimator::GtaoVb => {
             let g = &mut settings.gtao_vb;
-            radius(ui, &mut g.radius, scene_scale);
             count(ui, &mut g.slices, 1..=3, "slices");
             count(ui, &mut g.steps, 1..=16, "steps (slices × 2 × steps ≤ 32)");
             ui.add(
