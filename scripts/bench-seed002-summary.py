@@ -28,6 +28,11 @@ def cell(v):
     return "–" if v is None else f"{v:.3f}"
 
 
+def cells(p, keys):
+    """The passes `keys` of one run's pass timings `p`, as table cells."""
+    return " | ".join(cell(p.get(k)) for k in keys)
+
+
 print("### Seed 002 Tab. 1 analogue: `ray-sd-vao` pass by pass (ms)\n")
 print("| scene | map resolution | intervals | request clear | AO phase 1 + requests | SD map "
       "| indirect set-up | AO phase 2 | blur | all but the G-buffer |")
@@ -40,11 +45,10 @@ for scene in SCENES:
             if r is None:
                 continue
             p = r["passes"]
-            print(f"| {scene} | 1/{res} | {'on' if intervals else 'off'} "
-                  f"| {cell(p.get('sd_request_clear'))} "
-                  f"| {cell(p.get('svao_phase1'))} | {cell(p.get('sd_map'))} "
-                  f"| {cell(p.get('svao_indirect'))} | {cell(p.get('svao_phase2'))} "
-                  f"| {cell(p.get('blur'))} | {cell(without_gbuffer(r))} |")
+            phases = ("sd_request_clear", "svao_phase1", "sd_map", "svao_indirect", "svao_phase2",
+                      "blur")
+            print(f"| {scene} | 1/{res} | {'on' if intervals else 'off'} | {cells(p, phases)} "
+                  f"| {cell(without_gbuffer(r))} |")
 
 print("\n### Seed 002 Fig. 7 analogue: all but the G-buffer (ms)\n")
 print("| scene | `vao` (no map) | `ray-sd-vao` 1/1 | 1/2 | 1/4 | raster `sd-svao` | `rt-svao` |")
@@ -67,6 +71,6 @@ for scene in SCENES:
             if r is None:
                 continue
             p = r["passes"]
-            print(f"| {scene} | 1/{res} | {band} | {cell(p.get('sd_request_clear'))} "
-                  f"| {cell(p.get('svao_phase1'))} | {cell(p.get('sd_map'))} "
-                  f"| {cell(p.get('svao_phase2'))} | {cell(without_gbuffer(r))} |")
+            phases = ("sd_request_clear", "svao_phase1", "sd_map", "svao_phase2")
+            print(f"| {scene} | 1/{res} | {band} | {cells(p, phases)} "
+                  f"| {cell(without_gbuffer(r))} |")

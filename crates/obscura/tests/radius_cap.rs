@@ -57,14 +57,13 @@ fn raw_ao(gpu: &obscura::Gpu, settings: &AoSettings) -> (Vec<f32>, Vec<bool>, f3
     r.render(&camera, None).unwrap();
     let screen = r.view().unwrap().screen();
     let depth = r.read_gbuffer().unwrap().visible_depth(screen.guard_band);
-    let on_wall = |x: usize, y: usize| (depth[y * w as usize + x] - WALL_DEPTH).abs() < 1e-3;
+    let (w, half_w) = (w as usize, w as usize / 2);
+    let on_wall = |x: usize, y: usize| (depth[y * w + x] - WALL_DEPTH).abs() < 1e-3;
     let wall = match settings.resolution {
-        Resolution::Full => (0..depth.len())
-            .map(|i| on_wall(i % 128, i / 128))
-            .collect(),
+        Resolution::Full => (0..depth.len()).map(|i| on_wall(i % w, i / w)).collect(),
         Resolution::Half => (0..depth.len() / 4)
             .map(|i| {
-                let (x, y) = (2 * (i % 64), 2 * (i / 64));
+                let (x, y) = (2 * (i % half_w), 2 * (i / half_w));
                 on_wall(x, y) && on_wall(x + 1, y) && on_wall(x, y + 1) && on_wall(x + 1, y + 1)
             })
             .collect(),
