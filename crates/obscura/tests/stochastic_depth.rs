@@ -153,6 +153,47 @@ fn samples_keep_the_nearest_chosen_layer() {
 }
 
 #[test]
+fn the_maps_choices_stay_put_while_the_camera_moves() {
+    // The camera steps 0.05 towards four facing layers: every pixel keeps its triangles, but every
+    // depth changes. Each fragment's samples are a hash of its pixel and triangle (map.wgsl), so
+    // every sample must hold the same layer as before; a hash of the depth (seed 001 §3.1's
+    // wording) or of the world position (the authors' code) would draw them all anew, and a
+    // moving camera would see the map flicker.
+    let gpu = gpu();
+    let depths = [1.0f32, 2.0, 3.0, 4.0];
+    let scene = facing_layers(&depths);
+    let s = settings(Technique::SdVao, 4, 0.375);
+    let mut r = Renderer::new(&gpu, &scene, &s, SIZE, SIZE, 0).unwrap();
+    let mut assignments = Vec::new();
+    for step in [0.0f32, 0.05] {
+        r.render(&camera(Vec3::new(0.0, 0.0, -step), Vec3::NEG_Z, 90.0), None)
+            .unwrap();
+        let seen: Vec<f32> = depths.iter().map(|d| d - step).collect();
+        let layers = r.read_stochastic_depth().unwrap().unwrap();
+        let per_pixel: Vec<Vec<Option<usize>>> = (0..(SIZE * SIZE) as usize)
+            .map(|p| layers.iter().map(|l| layer_of(l[p], &seen)).collect())
+            .collect();
+        assignments.push(per_pixel);
+    }
+    let moved = (0..assignments[0].len())
+        .filter(|&p| assignments[0][p] != assignments[1][p])
+        .count();
+    // The map is not trivially the same: its samples hold different layers across pixels.
+    let distinct: std::collections::HashSet<_> = assignments[0].iter().collect();
+    assert!(
+        distinct.len() > 10,
+        "only {} sample patterns",
+        distinct.len()
+    );
+    assert_eq!(
+        moved,
+        0,
+        "{moved} of {} pixels changed which layer their samples hold",
+        SIZE * SIZE
+    );
+}
+
+#[test]
 fn sd_svao_limits_the_map_to_requested_pixels() {
     // Same seeds, so the map limited to the requested pixels (by stencil or by discard) holds the
     // same values wherever phase 1 asked for it (the images are held equal to sd-vao's by

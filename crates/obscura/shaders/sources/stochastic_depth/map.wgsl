@@ -5,7 +5,7 @@
 // The map is a storage buffer of S depths per pixel (`sd_depths`, pixel-major, the layout the
 // ray-traced map of seed 002 uses too): every fragment behind the first layer (more than
 // `separation` behind the G-buffer's linear depth, the same rule as depth peeling) draws xi from a
-// hash of its pixel, triangle, depth and the map's seed, is stored in R = floor(alpha * S + xi)
+// hash of its pixel, triangle and the map's seed, is stored in R = floor(alpha * S + xi)
 // samples (mean alpha * S), chosen uniformly among the S-bit masks with R bits set (`sd_lut`: all
 // masks sorted by popcount), and each chosen sample keeps the nearest fragment (`atomicMax` of the
 // depth's bits: positive floats order as their bits do). That is Alg. 1's depth test per sample
@@ -59,10 +59,15 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
     return (pixel.y * sd.width + pixel.x) * sd.samples;
 }
 
-// The fragment's hash: pixel, triangle and depth (seed 001 §3.1: "using the pixel location,
-// sample index, and sample depth"), and the map's seed.
-fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32, depth: f32) -> u32 {
-    let h = pcg_hash(pixel.x ^ pcg_hash(pixel.y ^ pcg_hash(triangle ^ pcg_hash(bitcast<u32>(depth)))));
+// The fragment's hash: its pixel and triangle, and the map's seed. Seed 001 §3.1 hashes "the
+// pixel location, sample index, and sample depth", and the authors' code the world position
+// (seed-code-notes §1.5): both change with every move of the camera, so every hidden fragment
+// drew new samples each frame and the map flickered in motion (BENCHMARKS.md, issue 13). The
+// triangle tells the fragments of one pixel apart as the depth did (one fragment per triangle
+// and pixel; instances have their own triangles), and it stays the same while a surface slides
+// under the pixel, as the ray-traced map's hash of texel and triangle does.
+fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32) -> u32 {
+    let h = pcg_hash(pixel.x ^ pcg_hash(pixel.y ^ pcg_hash(triangle)));
     return pcg_hash(h ^ sd.seed);
 }
 
@@ -80,7 +85,7 @@ fn sd_coverage(in: VertexOut) -> u32 {
     if (sd.all_layers == 0u && (!(first > 0.0) || depth <= first + sd.separation)) {
         return 0u;
     }
-    let h = sd_fragment_hash(pixel, in.triangle, depth);
+    let h = sd_fragment_hash(pixel, in.triangle);
     let xi = hash_to_unit(h);
     let count = min(u32(floor(sd.alpha * f32(sd.samples) + xi)), sd.samples);
     if (count == 0u) {
