@@ -49,8 +49,6 @@ struct TemporalParams {
 @group(0) @binding(5) var history_in: texture_2d<u32>;
 @group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
 @group(0) @binding(7) var history_out: texture_storage_2d<rg32uint, write>;
-// Nearest, clamped to the edge: only for textureGather (no filtering).
-@group(0) @binding(8) var history_sampler: sampler;
 
 // The history's AO and frame count at visible position `q` (texel centres at integers), from the
 // texels that hold the surface at linear depth `z` with world normal `n`; count 0 when none.
@@ -61,21 +59,6 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
     let q = select(q_in, round(q_in), all(abs(q_in - round(q_in)) < vec2<f32>(SNAP)));
     let base = vec2<i32>(floor(q));
     let f = q - floor(q);
-    // The 2×2 texels from `base` on: one fetch at a texel centre; otherwise one gather per word
-    // (2 fetches instead of 4; the pass is bound by fetches). The gather's point is the four
-    // texels' shared corner, half a texel from any other footprint; texels it clamps to the edge
-    // are skipped below like any other outside the image.
-    var words_x = vec4<u32>(0u);
-    var words_y = vec4<u32>(0u);
-    if (all(f == vec2<f32>(0.0))) {
-        let h = textureLoad(history_in, clamp(base, vec2<i32>(0), size - 1), 0).xy;
-        words_x.w = h.x;
-        words_y.w = h.y;
-    } else {
-        let corner = (vec2<f32>(base) + 1.0) / vec2<f32>(size);
-        words_x = textureGather(0, history_in, history_sampler, corner);
-        words_y = textureGather(1, history_in, history_sampler, corner);
-    }
     var ao = 0.0;
     var count = 0.0;
     var total = 0.0;
@@ -86,9 +69,7 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
         if (any(texel < vec2<i32>(0)) || any(texel >= size) || !(w > 0.0)) {
             continue;
         }
-        // textureGather's order: (0, 1), (1, 1), (1, 0), (0, 0) from `base`.
-        let slot = select(select(0, 1, offset.x == 1), select(3, 2, offset.x == 1), offset.y == 0);
-        let h = vec2<u32>(words_x[slot], words_y[slot]);
+        let h = textureLoad(history_in, texel, 0).xy;
         let h_count = h.x & 255u;
         let h_depth = unpack2x16float(h.y).x;
         if (h_count == 0u || abs(h_depth - z) > params.depth_tolerance * z) {

@@ -168,27 +168,6 @@ pub mod entry {
         )
     }
 
-    /// An unsigned-integer texture read with `textureLoad` or `textureGather`.
-    pub fn uint_texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
-        compute(
-            binding,
-            wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-        )
-    }
-
-    /// A non-filtering sampler: what `textureGather` on an integer or `R32Float` texture needs
-    /// (an automatic layout would ask for a filtering one, which those textures refuse).
-    pub fn non_filtering_sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
-        compute(
-            binding,
-            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering),
-        )
-    }
-
     /// A float texture array (the scene's alpha-mask atlas).
     pub fn texture_array(binding: u32) -> wgpu::BindGroupLayoutEntry {
         compute(
@@ -232,18 +211,6 @@ pub mod entry {
             wgpu::BindingType::StorageTexture {
                 access: wgpu::StorageTextureAccess::WriteOnly,
                 format: wgpu::TextureFormat::Rgba16Float,
-                view_dimension: wgpu::TextureViewDimension::D2,
-            },
-        )
-    }
-
-    /// A write-only `rg32uint` storage texture.
-    pub fn storage_texture_rg32u(binding: u32) -> wgpu::BindGroupLayoutEntry {
-        compute(
-            binding,
-            wgpu::BindingType::StorageTexture {
-                access: wgpu::StorageTextureAccess::WriteOnly,
-                format: wgpu::TextureFormat::Rg32Uint,
                 view_dimension: wgpu::TextureViewDimension::D2,
             },
         )
@@ -322,45 +289,12 @@ pub fn compute_pipeline(
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     });
-    pipeline_over_layouts(device, label, &module, constants, layouts)
-}
-
-/// [`compute_pipeline`] without the bounds checks wgpu adds to every array and texture access.
-///
-/// # Safety
-/// As [`crate::gpu::compute_pipeline_unchecked`]: every index and texel coordinate the shader uses
-/// must be in range by construction, for every input the caller can bind.
-pub unsafe fn compute_pipeline_unchecked(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    constants: &[(&str, f64)],
-    layouts: &[Option<&wgpu::BindGroupLayout>],
-) -> wgpu::ComputePipeline {
-    let desc = wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    };
-    // SAFETY: forwarded to the caller (see above).
-    let module = unsafe {
-        device.create_shader_module_trusted(desc, wgpu::ShaderRuntimeChecks::unchecked())
-    };
-    pipeline_over_layouts(device, label, &module, constants, layouts)
-}
-
-fn pipeline_over_layouts(
-    device: &wgpu::Device,
-    label: &str,
-    module: &wgpu::ShaderModule,
-    constants: &[(&str, f64)],
-    layouts: &[Option<&wgpu::BindGroupLayout>],
-) -> wgpu::ComputePipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: layouts,
         immediate_size: 0,
     });
-    crate::gpu::pipeline_from_module(device, label, module, constants, Some(&layout))
+    crate::gpu::pipeline_from_module(device, label, &module, constants, Some(&layout))
 }
 
 #[cfg(test)]

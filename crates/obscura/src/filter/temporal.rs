@@ -60,8 +60,6 @@ struct TemporalParams {
 /// One compute pass per frame, with two history images it alternates between.
 pub struct TemporalAccumulation {
     pipeline: wgpu::ComputePipeline,
-    layout: wgpu::BindGroupLayout,
-    sampler: wgpu::Sampler,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
     history: [wgpu::TextureView; 2],
@@ -86,42 +84,14 @@ impl TemporalAccumulation {
             &[shaders::VIEW, shaders::VERTEX_NORMAL],
             shaders::TEMPORAL_ACCUMULATION,
         );
-        // An explicit layout: the history's gathers need a non-filtering sampler.
-        use crate::bindings::entry;
-        let layout = crate::bindings::layout(
-            device,
-            "temporal",
-            &[
-                entry::uniform(0),
-                entry::uniform(1),
-                entry::texture(2),
-                entry::texture(3),
-                entry::texture(4),
-                entry::uint_texture(5),
-                entry::storage_texture_r32f(6),
-                entry::storage_texture_rg32u(7),
-                entry::non_filtering_sampler(8),
-            ],
-        );
         // SAFETY: every texel the shader touches is in range by construction: it returns for
-        // ids outside the visible size; the AO tile's texels are clamped into the visible image;
+        // ids outside the visible size; the 3×3 neighbourhood is clamped into the visible image;
         // the depth and normals are read at id + guard band, inside the framebuffer whose size
-        // `AmbientOcclusion::encode` checks before binding them; the history's single load is
-        // clamped into it and its gathers go through the sampler, which clamps to the edge; the
-        // AO and history images are this filter's own, of the visible size.
+        // `AmbientOcclusion::encode` checks before binding them; history taps are bounds-tested
+        // before each load; the AO and history images are this filter's own, of the visible size.
         let pipeline = unsafe {
-            crate::bindings::compute_pipeline_unchecked(
-                device,
-                "temporal accumulation",
-                &source,
-                &[],
-                &[Some(&layout)],
-            )
+            crate::gpu::compute_pipeline_unchecked(device, "temporal accumulation", &source, &[])
         };
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("temporal history"),
-            ..Default::default()
-        });
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("temporal params"),
             size: std::mem::size_of::<TemporalParams>() as u64,
@@ -143,8 +113,6 @@ impl TemporalAccumulation {
         });
         Self {
             pipeline,
-            layout,
-            sampler,
             params,
             view: view.clone(),
             history,
@@ -213,7 +181,7 @@ impl super::AoFilter for TemporalAccumulation {
         let bind_group = crate::gpu::bind_group(
             device,
             "temporal",
-            &self.layout,
+            &self.pipeline.get_bind_group_layout(0),
             &[
                 self.view.as_entire_binding(),
                 self.params.as_entire_binding(),
@@ -223,7 +191,6 @@ impl super::AoFilter for TemporalAccumulation {
                 wgpu::BindingResource::TextureView(&self.history[1 - parity]),
                 wgpu::BindingResource::TextureView(output),
                 wgpu::BindingResource::TextureView(&self.history[parity]),
-                wgpu::BindingResource::Sampler(&self.sampler),
             ],
         );
         let timestamp_writes = profiler.map(|p| p.compute_pass("temporal"));
