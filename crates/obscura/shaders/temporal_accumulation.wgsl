@@ -89,36 +89,14 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(ao, count) / total;
 }
 
-// The workgroup's AO and a one-pixel border around it (10 × 10 for 8 × 8 pixels), loaded once:
-// each pixel's clamp reads its four neighbours from here. The pass is bound by texel fetches
-// (about 11 per pixel with the neighbours read from the texture), not by bytes, so the 5 fetches
-// of the "plus" become about 1.6 (BENCHMARKS.md).
-const GROUP: i32 = 8;
-const TILE: i32 = 10; // GROUP + 2
-var<workgroup> tile_ao: array<f32, 100>; // TILE * TILE
-
 @compute @workgroup_size(8, 8)
-fn main(
-    @builtin(global_invocation_id) gid: vec3<u32>,
-    @builtin(workgroup_id) group: vec3<u32>,
-    @builtin(local_invocation_index) local: u32,
-) {
-    // Every invocation helps fill the tile before any returns (the barrier needs them all). Texels
-    // off the image repeat its edge, as the neighbourhood clamp reads them.
-    let last = vec2<i32>(view.visible_size) - 1;
-    let corner = vec2<i32>(group.xy) * GROUP - 1;
-    for (var k = i32(local); k < TILE * TILE; k += GROUP * GROUP) {
-        let q = clamp(corner + vec2<i32>(k % TILE, k / TILE), vec2<i32>(0), last);
-        tile_ao[k] = textureLoad(ao_in, q, 0).x;
-    }
-    workgroupBarrier();
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (any(gid.xy >= view.visible_size)) {
         return;
     }
     let id = gid.xy;
     let full = id + vec2<u32>(view.guard_band);
-    let centre = (i32(id.y) - corner.y) * TILE + i32(id.x) - corner.x;
-    let current = tile_ao[centre];
+    let current = textureLoad(ao_in, id, 0).x;
     let z = textureLoad(depth_tex, full, 0).x;
     if (is_background(z)) {
         textureStore(ao_out, id, vec4<f32>(current));
@@ -149,9 +127,10 @@ fn main(
         // instead of a 3×3 block's 9 (BENCHMARKS.md has both timings).
         var m1 = current;
         var m2 = current * current;
+        let last = vec2<i32>(view.visible_size) - 1;
         for (var k = 0; k < 4; k++) {
             let step = select(vec2<i32>(0, 1 - 2 * (k & 1)), vec2<i32>(1 - 2 * (k & 1), 0), k < 2);
-            let v = tile_ao[centre + step.y * TILE + step.x];
+            let v = textureLoad(ao_in, clamp(vec2<i32>(id) + step, vec2<i32>(0), last), 0).x;
             m1 += v;
             m2 += v * v;
         }
