@@ -495,8 +495,8 @@ pub struct AoArgs {
     pub sd_mask: Option<String>,
     #[arg(long, help = help(
         "Stochastic-depth techniques: read the map only where the first layer cannot decide \
-         ('needed', seed 001 §3.3; SSAO also skips samples no deeper surface can change), as the \
-         paper words it ('first-layer': the same image, more reads) or for every sample \
+         ('needed', seed 001 §3.3; SSAO and GTAO-VB also skip samples no deeper surface can change), \
+         as the paper words it ('first-layer': the same image, more reads) or for every sample \
          ('always', to measure the difference).",
         "stochastic_depth.query"
     ))]

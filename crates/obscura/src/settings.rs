@@ -503,13 +503,14 @@ pub struct StochasticDepthSettings {
 #[serde(rename_all = "kebab-case")]
 pub enum SdQuery {
     /// Only where the estimator says the first surface may hide more ("needs hidden depth?");
-    /// for SSAO also only where a deeper surface on the sample's camera ray could occlude at all
-    /// (an exact test: the same image as `FirstLayer`, fewer reads).
+    /// for SSAO also only where a deeper surface on the sample's camera ray could occlude at all,
+    /// for GTAO-VB only where one could mark a sector still free (exact tests: the same image as
+    /// `FirstLayer`, fewer reads).
     #[default]
     Needed,
     /// Seed 001 §3.3 as worded: wherever the first surface does not decide (for SSAO: does not
-    /// occlude), without SSAO's exact test (to measure what that test saves). The same as
-    /// `Needed` for the other estimators.
+    /// occlude), without the exact tests of SSAO and GTAO-VB (to measure what they save). The
+    /// same as `Needed` for the other estimators.
     FirstLayer,
     /// For every sample whose pixel shows a surface.
     Always,

@@ -1,7 +1,7 @@
 //! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
 //! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
 
-use crate::settings::{GtaoVbSettings, SectorActivation};
+use crate::settings::{GtaoVbSettings, SdQuery, SectorActivation, StochasticDepthSettings};
 use std::f32::consts::PI;
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
@@ -13,9 +13,17 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
     include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
 );
-/// Its `override` constants: the sample count, slices × 2 × steps, and whether sectors are
-/// cosine-weighted (1) or counted alike (0, seed 003).
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED"];
+/// Its `override` constants: the sample count, slices × 2 × steps; whether sectors are
+/// cosine-weighted (1) or counted alike (0, seed 003); and whether hidden depth is skipped where
+/// no deeper surface can mark a free sector ([`exact_query`]).
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED", "EXACT_QUERY"];
+
+/// Whether a sample skips the hidden depth where every sector a deeper surface could mark is
+/// marked already (gtao_vb.wgsl): with the default query, and only without compensation, which
+/// widens a stochastic sample's run beyond the sectors the test counts on.
+pub fn exact_query(sd: &StochasticDepthSettings) -> bool {
+    sd.query != SdQuery::FirstLayer && sd.compensation == 1.0
+}
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its slice rotation, π·B/16/slices with B the
 /// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) ([`super::bayer_pattern`]).
@@ -51,7 +59,7 @@ struct GtaoVbParams {
 }
 
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &GtaoVbSettings, sd: &StochasticDepthSettings) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(PI / s.slices as f32);
     let count = s.slices * 2 * s.steps;
     let mut samples = [[0.0; 4]; 32];
@@ -76,6 +84,10 @@ pub(crate) fn params(s: &GtaoVbSettings) -> (Vec<u8>, Vec<f64>) {
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
-        vec![f64::from(count), f64::from(u8::from(s.cosine_weighted))],
+        vec![
+            f64::from(count),
+            f64::from(u8::from(s.cosine_weighted)),
+            f64::from(u8::from(exact_query(sd))),
+        ],
     )
 }

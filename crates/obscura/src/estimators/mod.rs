@@ -87,7 +87,7 @@ fn params(estimator: Estimator, settings: &AoSettings) -> (Vec<u8>, Vec<f64>) {
         Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
         Estimator::Ssao => ssao::params(&settings.ssao, settings.stochastic_depth.query),
         Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid),
-        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb),
+        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb, &settings.stochastic_depth),
     }
 }
 
