@@ -28,11 +28,7 @@ fn gpu_blur_matches_cpu_blur() {
         let blurred = r.read_ao().unwrap();
         let g = r.read_gbuffer().unwrap();
         let cpu = cpu_blur(&raw, &g, &r.view().unwrap().screen(), &settings.blur);
-        let worst = blurred
-            .iter()
-            .zip(&cpu)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
+        let worst = max_abs_diff(&blurred, &cpu);
         assert!(worst < 1e-4, "{name}: max |GPU-CPU| {worst}");
         assert_ne!(raw, blurred, "{name}: the blur must change the noisy AO");
     }

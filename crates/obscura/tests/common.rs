@@ -605,3 +605,11 @@ pub fn facing_layers(depths: &[f32]) -> Scene {
     }
     scene
 }
+
+/// The largest |a − b| over the pixels of two images (0 for empty ones).
+pub fn max_abs_diff(a: &[f32], b: &[f32]) -> f32 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0f32, f32::max)
+}

@@ -335,14 +335,12 @@ fn the_radius_cutoff_only_removes_requests_near_the_shading_pixel() {
     let (none, requested_none) = run(Technique::RaySdVao, 1.0e6);
     println!("requested pixels: no cutoff {requested_all}, 6 px {requested_cut}, 1e6 px {requested_none}");
     assert!(requested_all > 0 && requested_cut < requested_all && requested_none == 0);
-    let worst = |a: &[f32], b: &[f32]| {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0f32, f32::max)
-    };
-    assert!(worst(&none, &vao) <= 1e-5, "{}", worst(&none, &vao));
-    assert!(worst(&cut, &all) > 0.0, "the cutoff changes something");
+    let worst = max_abs_diff(&none, &vao);
+    assert!(worst <= 1e-5, "{worst}");
+    assert!(
+        max_abs_diff(&cut, &all) > 0.0,
+        "the cutoff changes something"
+    );
 }
 
 #[test]
@@ -377,11 +375,7 @@ fn ray_intervals_drop_only_depths_no_sample_needs() {
         };
         let (with, hits_with) = run(true);
         let (without, hits_without) = run(false);
-        let worst = with
-            .iter()
-            .zip(&without)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
+        let worst = max_abs_diff(&with, &without);
         println!("{name}: hits {hits_without} -> {hits_with} with intervals, max |Δ AO| {worst:e}");
         assert!(
             worst <= 1e-6,

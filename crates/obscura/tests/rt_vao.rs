@@ -164,10 +164,6 @@ fn rt_vao_equals_vao_on_a_height_field() {
     });
     let (vao, _, _, _) = render(&scene, Technique::Vao, 96, 64, 32);
     let (rt, _, _, _) = render(&scene, Technique::RtVao, 96, 64, 32);
-    let worst = vao
-        .iter()
-        .zip(&rt)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
+    let worst = max_abs_diff(&vao, &rt);
     assert!(worst <= 1e-5, "max |vao - rt-vao| {worst}");
 }

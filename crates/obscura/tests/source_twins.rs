@@ -47,11 +47,7 @@ fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
             r.read_ao().unwrap()
         };
         let (single, dual) = (render(twin.technique), render(row.technique));
-        let worst = single
-            .iter()
-            .zip(&dual)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
+        let worst = max_abs_diff(&single, &dual);
         println!("max |{} − {}| {worst:e}", twin.name, row.name);
         assert!(worst <= 1e-6, "max |{} − {}| {worst}", twin.name, row.name);
         assert!(

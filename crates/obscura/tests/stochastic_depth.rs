@@ -292,11 +292,7 @@ fn sd_svao_keeps_nothing_from_earlier_frames() {
             r.render(if frame == 1 { &first } else { &second }, None)
                 .unwrap();
         }
-        let worst = single
-            .iter()
-            .zip(&r.read_ao().unwrap())
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
+        let worst = max_abs_diff(&single, &r.read_ao().unwrap());
         assert!(worst <= 1e-5, "{mask}: max |sd-vao − sd-svao| {worst}");
     }
 }
@@ -314,11 +310,7 @@ fn sd_vao_equals_vao_with_one_layer() {
         r.read_ao().unwrap()
     };
     let (vao, sd) = (render(Technique::Vao), render(Technique::SdVao));
-    let worst = vao
-        .iter()
-        .zip(&sd)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
+    let worst = max_abs_diff(&vao, &sd);
     assert!(worst <= 1e-6, "max |vao − sd-vao| {worst}");
 }
 
@@ -408,11 +400,7 @@ fn unsupported_settings_are_clear_errors() {
     );
     let full = ao(&gpu, SdMask::Stencil).unwrap();
     let plain = ao(&bare, SdMask::Discard).unwrap();
-    let worst = full
-        .iter()
-        .zip(&plain)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
+    let worst = max_abs_diff(&full, &plain);
     assert!(
         worst <= 1e-6,
         "early tests and stencil change the AO by {worst}"
@@ -531,11 +519,7 @@ fn exact_query_tests_skip_reads_but_not_occlusion() {
             let what = format!("{name}, {single}, compensation {compensation}");
             let (needed, _) = render(single, SdQuery::Needed);
             let (literal, _) = render(single, SdQuery::FirstLayer);
-            let worst = needed
-                .iter()
-                .zip(&literal)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0f32, f32::max);
+            let worst = max_abs_diff(&needed, &literal);
             assert!(worst <= 1e-6, "{what}: images differ by {worst}");
             let flagged = |masks: Option<Vec<u32>>| -> u32 {
                 masks.unwrap().iter().map(|m| m.count_ones()).sum()

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::gpu;
+use common::{gpu, max_abs_diff};
 use obscura::scene;
 use obscura::settings::{AoSettings, SdMask, StochasticDepthSettings};
 use obscura::technique::{Schedule, Source, TechniqueRow, TABLE};
@@ -139,11 +139,7 @@ fn every_two_phase_row_equals_its_single_pass_twin() {
                 };
                 let single = render(twin);
                 let two_phase = render(row);
-                let worst = single
-                    .iter()
-                    .zip(&two_phase)
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0f32, f32::max);
+                let worst = max_abs_diff(&single, &two_phase);
                 println!(
                     "{name} {label}: max |{} - {}| {worst:.1e}",
                     twin.name, row.name

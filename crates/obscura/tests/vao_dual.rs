@@ -71,11 +71,7 @@ fn vao_dual_equals_vao_with_one_layer() {
         r.read_ao().unwrap()
     };
     let (vao, dual) = (render(Technique::Vao), render(Technique::VaoDual));
-    let worst = vao
-        .iter()
-        .zip(&dual)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f32, f32::max);
+    let worst = max_abs_diff(&vao, &dual);
     assert!(worst <= 1e-6, "max |vao - vao-dual| {worst}");
 }
 
