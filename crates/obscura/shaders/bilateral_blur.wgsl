@@ -41,21 +41,41 @@ fn pixel_at(along: i32, across: i32) -> vec2<i32> {
     return select(vec2<i32>(along, across), vec2<i32>(across, along), params.direction.y != 0);
 }
 
+// (depth, AO) of the tile texel at `along` on line `across`.
+fn tile_texel(along: i32, across: i32) -> vec2<f32> {
+    let size = vec2<i32>(view.visible_size);
+    let full = vec2<i32>(view.full_size);
+    let q = pixel_at(along, across);
+    // Depth exists in the guard band too; AO only inside the visible image (-1 = none).
+    let zq = clamp(q + i32(view.guard_band), vec2<i32>(0), full - 1);
+    let inside = all(q >= vec2<i32>(0)) && all(q < size);
+    let ao = select(-1.0, textureLoad(ao_in, clamp(q, vec2<i32>(0), size - 1), 0).r, inside);
+    return vec2<f32>(textureLoad(depth_tex, zq, 0).r, ao);
+}
+
 @compute @workgroup_size(64, 4)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
     let size = vec2<i32>(view.visible_size);
-    let full = vec2<i32>(view.full_size);
     let r = RADIUS;
     let start = i32(group.x) * RUN - r;
     let across = i32(group.y * LINES + local.y);
     let row = i32(local.y) * TILE;
-    for (var k = i32(local.x); k < RUN + 2 * r; k += RUN) {
-        let q = pixel_at(start + k, across);
-        // Depth exists in the guard band too; AO only inside the visible image (-1 = none).
-        let zq = clamp(q + i32(view.guard_band), vec2<i32>(0), full - 1);
-        tile_depth[row + k] = textureLoad(depth_tex, zq, 0).r;
-        let inside = all(q >= vec2<i32>(0)) && all(q < size);
-        tile_ao[row + k] = select(-1.0, textureLoad(ao_in, clamp(q, vec2<i32>(0), size - 1), 0).r, inside);
+    // RUN + 2r ≤ 2 RUN texels per line: each invocation loads its one or two texels before
+    // storing either, so both loads are in flight together (a loop over them waited for each in
+    // turn: 5 % slower on an H200, BENCHMARKS.md).
+    let k0 = i32(local.x);
+    let k1 = k0 + RUN;
+    let second = k1 < RUN + 2 * r;
+    let a = tile_texel(start + k0, across);
+    var b = vec2<f32>(0.0);
+    if (second) {
+        b = tile_texel(start + k1, across);
+    }
+    tile_depth[row + k0] = a.x;
+    tile_ao[row + k0] = a.y;
+    if (second) {
+        tile_depth[row + k1] = b.x;
+        tile_ao[row + k1] = b.y;
     }
     workgroupBarrier();
 

@@ -491,6 +491,16 @@ pub struct Needs {
 }
 
 impl Source {
+    /// Whether resolving one flagged sample costs much more than looking at the first layer: a
+    /// map's S depths, or a ray through the BVH. Not the second depth layer (one more read),
+    /// which a deferred resolve made slower (BENCHMARKS.md).
+    pub fn costly_resolve(self) -> bool {
+        matches!(
+            self,
+            Source::ColumnRays | Source::StochasticDepth | Source::RayStochasticDepth
+        )
+    }
+
     /// What this source needs from the caller beyond depth and normals.
     pub fn needs(self) -> Needs {
         match self {
@@ -643,6 +653,15 @@ impl Estimator {
     /// Whether its samples read levels of the depth pyramid (`estimator_sample_level`).
     pub fn reads_levels(self) -> bool {
         matches!(self, Estimator::Sao | Estimator::PyramidHbao)
+    }
+
+    /// Whether the single pass resolves this estimator's flagged samples after all the others,
+    /// making each again from its index (single.wgsl's `DEFERRED_RESOLVE`), over a source whose
+    /// resolve is costly ([`Source::costly_resolve`]). It pays where a sample is cheap to make
+    /// again: VAO (a kernel entry turned by the pixel's rotation) and SSAO (a spiral tap). HBAO+
+    /// and GTAO-VB were measured 11 % slower that way on an H200 (BENCHMARKS.md).
+    pub fn defers_resolves(self) -> bool {
+        self.order_independent() && matches!(self, Estimator::Vao | Estimator::Ssao)
     }
 
     /// Whether the estimator's result is independent of the order its samples arrive in, as a

@@ -135,10 +135,21 @@ fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> u32 {
     return 0u;
 }
 
+// Slice j's tangent and projected normal angle. The slice of a sample is not a constant even in
+// an unrolled loop (the step count is a uniform): selects over the three slices keep the arrays
+// in registers where an index into them may not.
+fn slice_tangent(p: EstimatorPixel, j: u32) -> vec3<f32> {
+    return select(select(p.tangents[0], p.tangents[1], j == 1u), p.tangents[2], j == 2u);
+}
+
+fn slice_normal_angle(p: EstimatorPixel, j: u32) -> f32 {
+    return select(select(p.normal_angles[0], p.normal_angles[1], j == 1u), p.normal_angles[2], j == 2u);
+}
+
 // Position in the hemisphere around the projected normal, 0 to 1, of slice-plane vector `w`.
 fn hemisphere_position(p: EstimatorPixel, s: EstimatorSample, w: vec3<f32>) -> f32 {
-    let angle = atan2(dot(w, p.tangents[s.slice]), dot(w, p.v));
-    return saturate((angle - p.normal_angles[s.slice] + 1.5707963267948966) / 3.141592653589793);
+    let angle = atan2(dot(w, slice_tangent(p, s.slice)), dot(w, p.v));
+    return saturate((angle - slice_normal_angle(p, s.slice) + 1.5707963267948966) / 3.141592653589793);
 }
 
 // The sectors between hemisphere positions a and b (seed 003's UpdateSectors).
@@ -180,7 +191,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     // between this front face and the hemisphere's edge on that side. When this back face
     // reaches the edge and its run of sectors reaches the edge sector, every sector a deeper
     // surface could mark is marked already. The image is the same either way.
-    let toward_one = dot(front, p.tangents[s.slice]) > 0.0;
+    let toward_one = dot(front, slice_tangent(p, s.slice)) > 0.0;
     let edge_bit = select(1u, 0x80000000u, toward_one);
     let at_edge = select(b <= 0.0, b >= 1.0, toward_one);
     o.hidden = !(EXACT_QUERY && at_edge && (o.value & edge_bit) != 0u);
@@ -219,7 +230,9 @@ fn estimator_accum_sample(acc: EstimatorAccum, s: EstimatorSample) -> EstimatorA
 
 fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: u32) -> EstimatorAccum {
     var a = acc;
-    a.masks[s.slice] |= value;
+    a.masks[0] |= select(0u, value, s.slice == 0u);
+    a.masks[1] |= select(0u, value, s.slice == 1u);
+    a.masks[2] |= select(0u, value, s.slice == 2u);
     return a;
 }
 

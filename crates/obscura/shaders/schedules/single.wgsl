@@ -23,7 +23,18 @@ struct SinglePass {
     bent_open: vec3<f32>,
 }
 
+// Resolve the samples the first look cannot decide after every other sample, one per loop turn
+// over a bit mask of them (ours): in the unrolled loop below a warp runs sample i's resolve
+// (the hidden-depth reads) whenever any of its lanes needs it, so with a quarter of the samples
+// flagged it runs nearly every one; deferred, a warp runs as many resolves as its busiest lane
+// has. Set for estimators whose result does not depend on the order of their samples
+// (Estimator::order_independent) with at most 32 samples.
+override DEFERRED_RESOLVE: bool = false;
+
 fn single_pass(p: EstimatorPixel) -> SinglePass {
+    if (DEFERRED_RESOLVE && SAMPLE_COUNT <= 32u) {
+        return single_pass_deferred(p);
+    }
     var r: SinglePass;
     r.acc = estimator_accum_init();
     r.bent_visible = vec3<f32>(0.0);
@@ -43,6 +54,46 @@ fn single_pass(p: EstimatorPixel) -> SinglePass {
         if (BENT_NORMALS) {
             r.bent_visible += estimator_bent_sample(p, s, value);
             r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
+        }
+    }
+    return r;
+}
+
+// single_pass with the flagged samples resolved last (DEFERRED_RESOLVE): the first look again for
+// each (a cached read) rather than 32 lookups held in registers.
+fn single_pass_deferred(p: EstimatorPixel) -> SinglePass {
+    var r: SinglePass;
+    r.acc = estimator_accum_init();
+    r.bent_visible = vec3<f32>(0.0);
+    r.bent_open = vec3<f32>(0.0);
+    var flagged = 0u;
+    for (var i = 0u; i < SAMPLE_COUNT; i++) {
+        let s = estimator_sample(p, i);
+        if (!estimator_sample_active(s)) {
+            continue;
+        }
+        r.acc = estimator_accum_sample(r.acc, s);
+        if (BENT_NORMALS) {
+            r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
+        }
+        let l = source_lookup(p, s);
+        if (l.trace) {
+            flagged |= 1u << i;
+            continue;
+        }
+        r.acc = estimator_accum_value(r.acc, s, l.value);
+        if (BENT_NORMALS) {
+            r.bent_visible += estimator_bent_sample(p, s, l.value);
+        }
+    }
+    while (flagged != 0u) {
+        let i = firstTrailingBit(flagged);
+        flagged &= flagged - 1u;
+        let s = estimator_sample(p, i);
+        let value = source_resolve(p, s, source_lookup(p, s));
+        r.acc = estimator_accum_value(r.acc, s, value);
+        if (BENT_NORMALS) {
+            r.bent_visible += estimator_bent_sample(p, s, value);
         }
     }
     return r;

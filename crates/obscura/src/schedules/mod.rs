@@ -172,6 +172,14 @@ pub(crate) struct ScheduleInputs<'a> {
     pub scene: Option<&'a crate::raster::gpu_scene::GpuScene>,
 }
 
+/// Whether the single pass of `row` resolves its flagged samples after the others
+/// (single.wgsl's DEFERRED_RESOLVE; measured in BENCHMARKS.md, "Flagged samples resolved last").
+fn deferred_resolve(row: &TechniqueRow) -> bool {
+    matches!(row.schedule, Schedule::Single | Schedule::Multiview)
+        && row.estimator.defers_resolves()
+        && row.source.costly_resolve()
+}
+
 /// A schedule as an [`crate::AmbientOcclusion`] holds it.
 pub(crate) enum SchedulePass {
     Single(single::Single),
@@ -203,6 +211,9 @@ impl SchedulePass {
             }
             if outputs.bent_normals {
                 stage.constants.push(("BENT_NORMALS", 1.0));
+            }
+            if deferred_resolve(row) {
+                stage.constants.push(("DEFERRED_RESOLVE", 1.0));
             }
         }
         Ok(match schedule {
