@@ -171,8 +171,8 @@ fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: f32) -> v
     let step = s.px - (vec2<f32>(p.pixel) + 0.5);
     let d = vec3<f32>(step.x, -step.y, 0.0);
     let along = d - p.normal * dot(p.normal, d);
-    let len = length(along);
-    let t = select(vec3<f32>(0.0), along / len, len > 1e-12);
+    let len2 = dot(along, along);
+    let t = select(vec3<f32>(0.0), along * inverseSqrt(len2), len2 > 1e-24);
     let o = saturate(value);
     // cos h · cos m = (1 − o)·sqrt((1 + o)/2) and cos h · sin m = (1 + o)·sqrt((1 − o)/2), as
     // cos h = sqrt((1 − o)(1 + o)): two square roots per sample instead of three.

@@ -330,11 +330,10 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // lies at height start − value/2 over the disc point d; weighted by the free length over the
 // column's pdf 2h, as the AO sums it. The schedule sums these over the samples' values and over
 // their unoccluded values (the open hemisphere's free volume).
+// The vector is in the sample frame (tangent, bitangent, axis): the sums are linear, so
+// estimator_bent_normal turns them into view space once per pixel rather than every sample.
 fn estimator_bent_sample(p: VaoPixel, s: VaoSample, value: f32) -> vec3<f32> {
-    let f = p.frame;
-    let centroid = f.tangent * s.column.d.x + f.bitangent * s.column.d.y
-        + f.axis * (s.column.start - 0.5 * value);
-    return centroid * (value * 0.5 / s.h);
+    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * 0.5 / s.h);
 }
 
 // The bent normal from the summed free centroids against the open ones (common/bent.wgsl), view
@@ -346,6 +345,7 @@ fn estimator_bent_normal(
     sample_open: vec3<f32>,
 ) -> vec3<f32> {
     let f = p.frame;
-    let normal = normalize(f.tangent * f.n_xy.x + f.bitangent * f.n_xy.y + f.axis / f.inv_n_z);
-    return bent_from_sums(normal, sample_visible, sample_open);
+    let to_view = mat3x3<f32>(f.tangent, f.bitangent, f.axis);
+    let normal = normalize(to_view * vec3<f32>(f.n_xy, 1.0 / f.inv_n_z));
+    return bent_from_sums(normal, to_view * sample_visible, to_view * sample_open);
 }
