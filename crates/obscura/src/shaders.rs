@@ -29,6 +29,10 @@ pub const STOCHASTIC_DEPTH_SAMPLES: &str =
     include_str!("../shaders/sources/stochastic_depth/samples.wgsl");
 pub const RAY_SD_COLLECT: &str =
     include_str!("../shaders/sources/ray_stochastic_depth/collect.wgsl");
+pub const RAY_SD_COLLECT_ALL: &str =
+    include_str!("../shaders/sources/ray_stochastic_depth/collect_all.wgsl");
+pub const RAY_SD_COLLECT_REQUESTED: &str =
+    include_str!("../shaders/sources/ray_stochastic_depth/collect_requested.wgsl");
 pub const RAY_SD_REQUEST: &str =
     include_str!("../shaders/sources/ray_stochastic_depth/request.wgsl");
 pub const STOCHASTIC_DEPTH_REQUEST: &str =

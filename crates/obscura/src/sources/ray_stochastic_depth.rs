@@ -160,7 +160,10 @@ pub struct RayStochasticDepthMap {
     hits: wgpu::Buffer,
     /// Bound where no request mask is (single pass).
     no_request: wgpu::Buffer,
+    /// Traces every texel (collect_all.wgsl).
     pipeline: wgpu::ComputePipeline,
+    /// Traces the requested texels, packed per tile (collect_requested.wgsl).
+    requested_pipeline: wgpu::ComputePipeline,
     /// The near plane of the last camera (bits of an f32), to turn read-backs into depths.
     near: AtomicU32,
 }
@@ -204,10 +207,13 @@ impl RayStochasticDepthMap {
                 mapped_at_creation: false,
             })
         };
-        let source = shaders::with_common(
-            &[shaders::MATERIAL, shaders::HASH, shaders::BVH],
-            shaders::RAY_SD_COLLECT,
-        );
+        // One pipeline per entry point: every texel, or the requested ones packed per tile.
+        let collect = |entry: &str| {
+            shaders::with_common(
+                &[shaders::MATERIAL, shaders::HASH, shaders::BVH],
+                &format!("{}\n{entry}", shaders::RAY_SD_COLLECT),
+            )
+        };
         let constants = [
             ("RESERVOIR", f64::from(settings.reservoir)),
             ("MAX_COUNT", f64::from(settings.max_count)),
@@ -232,7 +238,13 @@ impl RayStochasticDepthMap {
             pipeline: crate::gpu::compute_pipeline_with(
                 device,
                 "ray sd collect",
-                &source,
+                &collect(shaders::RAY_SD_COLLECT_ALL),
+                &constants,
+            ),
+            requested_pipeline: crate::gpu::compute_pipeline_with(
+                device,
+                "ray sd collect requested",
+                &collect(shaders::RAY_SD_COLLECT_REQUESTED),
                 &constants,
             ),
             near: AtomicU32::new(0),
@@ -292,10 +304,15 @@ impl RayStochasticDepthMap {
     ) {
         let interval = request.and_then(|(_, interval)| interval);
         let request = request.map(|(request, _)| request);
+        // collect_requested.wgsl's tiles of 16×16 texels, collect_all.wgsl's 8×8.
+        let (pipeline, tile) = match request {
+            Some(_) => (&self.requested_pipeline, 16),
+            None => (&self.pipeline, 8),
+        };
         let group0 = crate::gpu::bind_group(
             device,
             "ray sd collect",
-            &self.pipeline.get_bind_group_layout(0),
+            &pipeline.get_bind_group_layout(0),
             &[
                 self.params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(first_layer),
@@ -308,7 +325,7 @@ impl RayStochasticDepthMap {
         let group1 = crate::bindings::group(
             device,
             "ray sd bvh",
-            &self.pipeline.get_bind_group_layout(1),
+            &pipeline.get_bind_group_layout(1),
             &self.bvh.resources(0, &self.scene),
         );
         let timestamp_writes = profiler.map(|p| p.compute_pass("sd_map"));
@@ -316,11 +333,11 @@ impl RayStochasticDepthMap {
             label: Some("ray sd collect"),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &group0, &[]);
         pass.set_bind_group(1, &group1, &[]);
         let (w, h) = self.map_size();
-        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        pass.dispatch_workgroups(w.div_ceil(tile), h.div_ceil(tile), 1);
     }
 
     /// What a reader binds in the source group.

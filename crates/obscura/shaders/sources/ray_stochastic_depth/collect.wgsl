@@ -20,6 +20,9 @@
 // texels (read.wgsl's guard_band_lookup). Without a band the point is clamped into the
 // framebuffer, as a texel there is read only by the framebuffer's pixels.
 //
+// Entry points (one appended per pipeline, src/sources/ray_stochastic_depth.rs): `collect_all.wgsl`
+// traces every texel it is given, `collect_requested.wgsl` only the requested ones, packed.
+//
 // Ours: the reservoir's random number is a hash of the texel, the triangle and the map's seed
 // (the paper hashes the barycentrics; both are stable while nothing moves); the slots are stored
 // as reversed-Z `near / depth` (0 = empty), the raster map's encoding, so the AO passes read both
@@ -95,21 +98,13 @@ fn bvh_on_hit(hit: BvhHit) -> u32 {
     return select(BVH_CONTINUE, BVH_STOP, count >= MAX_COUNT);
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if (any(id.xy >= params.map_size)) {
-        return;
-    }
+// The reservoir of map texel `id` (requested, or every texel of a one-pass row).
+fn collect_texel(id: vec2<u32>) {
     let texel = id.y * params.map_size.x + id.x;
     // The depths the texel's requests need (all of them without intervals).
     var needed = vec2<f32>(0.0, 3.0e38);
-    if (params.requested_only != 0u) {
-        if (sd_request[texel] == 0u) {
-            return;
-        }
-        if (params.intervals != 0u) {
-            needed = vec2<f32>(bitcast<f32>(~sd_interval[2u * texel]), bitcast<f32>(sd_interval[2u * texel + 1u]));
-        }
+    if (params.requested_only != 0u && params.intervals != 0u) {
+        needed = vec2<f32>(bitcast<f32>(~sd_interval[2u * texel]), bitcast<f32>(sd_interval[2u * texel + 1u]));
     }
     for (var i = 0u; i < 8u; i++) {
         slots[i] = 3.0e38;
