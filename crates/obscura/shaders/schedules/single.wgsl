@@ -27,8 +27,9 @@ struct SinglePass {
 // over a bit mask of them (ours): in the unrolled loop below a warp runs sample i's resolve
 // (the hidden-depth reads) whenever any of its lanes needs it, so with a quarter of the samples
 // flagged it runs nearly every one; deferred, a warp runs as many resolves as its busiest lane
-// has. Set for estimators whose result does not depend on the order of their samples
-// (Estimator::order_independent) with at most 32 samples.
+// has. Set by schedules::deferred_resolve where it measured faster (VAO and SSAO over the maps
+// and column rays); needs an estimator whose result does not depend on the order of its
+// samples and at most 32 samples (one bit each).
 override DEFERRED_RESOLVE: bool = false;
 
 fn single_pass(p: EstimatorPixel) -> SinglePass {

@@ -26,6 +26,7 @@ use crate::settings::RaySdSettings;
 use crate::view::FrameView;
 use crate::{shaders, Error};
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::OnceLock;
 
 /// GPU mirror of `RaySdParams` in collect.wgsl.
 #[repr(C)]
@@ -160,10 +161,10 @@ pub struct RayStochasticDepthMap {
     hits: wgpu::Buffer,
     /// Bound where no request mask is (single pass).
     no_request: wgpu::Buffer,
-    /// Traces every texel (collect_all.wgsl).
-    pipeline: wgpu::ComputePipeline,
-    /// Traces the requested texels, packed per tile (collect_requested.wgsl).
-    requested_pipeline: wgpu::ComputePipeline,
+    /// Traces every texel (collect_all.wgsl); made on first use ([`Self::collect_pipeline`]).
+    pipeline: OnceLock<wgpu::ComputePipeline>,
+    /// Traces the requested texels, packed per tile (collect_requested.wgsl); made on first use.
+    requested_pipeline: OnceLock<wgpu::ComputePipeline>,
     /// The near plane of the last camera (bits of an f32), to turn read-backs into depths.
     near: AtomicU32,
 }
@@ -207,18 +208,6 @@ impl RayStochasticDepthMap {
                 mapped_at_creation: false,
             })
         };
-        // One pipeline per entry point: every texel, or the requested ones packed per tile.
-        let collect = |entry: &str| {
-            shaders::with_common(
-                &[shaders::MATERIAL, shaders::HASH, shaders::BVH],
-                &format!("{}\n{entry}", shaders::RAY_SD_COLLECT),
-            )
-        };
-        let constants = [
-            ("RESERVOIR", f64::from(settings.reservoir)),
-            ("MAX_COUNT", f64::from(settings.max_count)),
-            ("Z_CULL", f64::from(u8::from(settings.z_cull))),
-        ];
         Ok(Self {
             settings: *settings,
             separation,
@@ -235,19 +224,39 @@ impl RayStochasticDepthMap {
             depths: storage("ray sd depths", bytes),
             hits: storage("ray sd hits", pixels * 4),
             no_request: storage("ray sd no request", 8),
-            pipeline: crate::gpu::compute_pipeline_with(
-                device,
-                "ray sd collect",
-                &collect(shaders::RAY_SD_COLLECT_ALL),
-                &constants,
-            ),
-            requested_pipeline: crate::gpu::compute_pipeline_with(
-                device,
-                "ray sd collect requested",
-                &collect(shaders::RAY_SD_COLLECT_REQUESTED),
-                &constants,
-            ),
+            pipeline: OnceLock::new(),
+            requested_pipeline: OnceLock::new(),
             near: AtomicU32::new(0),
+        })
+    }
+
+    /// The collection pipeline: for every texel, or with `requested` for the requested ones
+    /// packed per tile. Each is made on first use: a row runs only one of them.
+    fn collect_pipeline(&self, device: &wgpu::Device, requested: bool) -> &wgpu::ComputePipeline {
+        let (cell, label, entry) = if requested {
+            (
+                &self.requested_pipeline,
+                "ray sd collect requested",
+                shaders::RAY_SD_COLLECT_REQUESTED,
+            )
+        } else {
+            (
+                &self.pipeline,
+                "ray sd collect",
+                shaders::RAY_SD_COLLECT_ALL,
+            )
+        };
+        cell.get_or_init(|| {
+            let source = shaders::with_common(
+                &[shaders::MATERIAL, shaders::HASH, shaders::BVH],
+                &format!("{}\n{entry}", shaders::RAY_SD_COLLECT),
+            );
+            let constants = [
+                ("RESERVOIR", f64::from(self.settings.reservoir)),
+                ("MAX_COUNT", f64::from(self.settings.max_count)),
+                ("Z_CULL", f64::from(u8::from(self.settings.z_cull))),
+            ];
+            crate::gpu::compute_pipeline_with(device, label, &source, &constants)
         })
     }
 
@@ -305,10 +314,8 @@ impl RayStochasticDepthMap {
         let interval = request.and_then(|(_, interval)| interval);
         let request = request.map(|(request, _)| request);
         // collect_requested.wgsl's tiles of 16×16 texels, collect_all.wgsl's 8×8.
-        let (pipeline, tile) = match request {
-            Some(_) => (&self.requested_pipeline, 16),
-            None => (&self.pipeline, 8),
-        };
+        let pipeline = self.collect_pipeline(device, request.is_some());
+        let tile = if request.is_some() { 16 } else { 8 };
         let group0 = crate::gpu::bind_group(
             device,
             "ray sd collect",

@@ -2,8 +2,9 @@
 // requested are traced (the two-phase rows), ours: each workgroup takes a 16×16 tile of texels,
 // one invocation per texel, and packs the requested ones into its first invocations, so that
 // warps trace together. About half of the texels are requested, in patches; a lane per texel in
-// place left many lanes of a warp idle while the others traced (BENCHMARKS.md: the map 10 %
-// faster at 1/4 resolution, 16 % at 1/1, on an H200). Traced alike, per texel: the same map.
+// place left many lanes of a warp idle while the others traced (BENCHMARKS.md, H200: Sponza's
+// map 10 % faster at 1/4 resolution and 16 % at 1/1, stairs' 6 % slower). Each texel is traced
+// as before: the same map.
 
 const TILE: u32 = 16u;
 var<workgroup> tile_texels: array<u32, 256>; // TILE * TILE
