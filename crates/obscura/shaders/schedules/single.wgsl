@@ -33,71 +33,52 @@ struct SinglePass {
 override DEFERRED_RESOLVE: bool = false;
 
 fn single_pass(p: EstimatorPixel) -> SinglePass {
-    if (DEFERRED_RESOLVE && SAMPLE_COUNT <= 32u) {
-        return single_pass_deferred(p);
-    }
+    let deferred = DEFERRED_RESOLVE && SAMPLE_COUNT <= 32u;
     var r: SinglePass;
     r.acc = estimator_accum_init();
     r.bent_visible = vec3<f32>(0.0);
     r.bent_open = vec3<f32>(0.0);
-    for (var i = 0u; i < SAMPLE_COUNT; i++) {
-        let s = estimator_sample(p, i);
-        if (!estimator_sample_active(s)) {
-            continue;
-        }
-        let l = source_lookup(p, s);
-        var value = l.value;
-        if (l.trace) {
-            value = source_resolve(p, s, l);
-        }
-        r.acc = estimator_accum_value(r.acc, s, value);
-        r.acc = estimator_accum_sample(r.acc, s);
-        if (BENT_NORMALS) {
-            r.bent_visible += estimator_bent_sample(p, s, value);
-            r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
-        }
-    }
-    return r;
-}
-
-// single_pass with the flagged samples resolved last (DEFERRED_RESOLVE): the first look again for
-// each (a cached read) rather than 32 lookups held in registers.
-fn single_pass_deferred(p: EstimatorPixel) -> SinglePass {
-    var r: SinglePass;
-    r.acc = estimator_accum_init();
-    r.bent_visible = vec3<f32>(0.0);
-    r.bent_open = vec3<f32>(0.0);
+    // DEFERRED_RESOLVE: the samples left for the loop below, one bit each.
     var flagged = 0u;
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
         let s = estimator_sample(p, i);
         if (!estimator_sample_active(s)) {
             continue;
         }
+        let l = source_lookup(p, s);
+        if (deferred && l.trace) {
+            flagged |= 1u << i;
+        } else {
+            var value = l.value;
+            if (l.trace) {
+                value = source_resolve(p, s, l);
+            }
+            r = single_pass_value(p, s, r, value);
+        }
         r.acc = estimator_accum_sample(r.acc, s);
         if (BENT_NORMALS) {
             r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
         }
-        let l = source_lookup(p, s);
-        if (l.trace) {
-            flagged |= 1u << i;
-            continue;
-        }
-        r.acc = estimator_accum_value(r.acc, s, l.value);
-        if (BENT_NORMALS) {
-            r.bent_visible += estimator_bent_sample(p, s, l.value);
-        }
     }
+    // The flagged samples, each made again from its index with its first look (a cached read)
+    // rather than held in registers.
     while (flagged != 0u) {
         let i = firstTrailingBit(flagged);
         flagged &= flagged - 1u;
         let s = estimator_sample(p, i);
-        let value = source_resolve(p, s, source_lookup(p, s));
-        r.acc = estimator_accum_value(r.acc, s, value);
-        if (BENT_NORMALS) {
-            r.bent_visible += estimator_bent_sample(p, s, value);
-        }
+        r = single_pass_value(p, s, r, source_resolve(p, s, source_lookup(p, s)));
     }
     return r;
+}
+
+// Adds sample `s`'s value to the loop's results.
+fn single_pass_value(p: EstimatorPixel, s: EstimatorSample, r: SinglePass, value: EstimatorValue) -> SinglePass {
+    var out = r;
+    out.acc = estimator_accum_value(r.acc, s, value);
+    if (BENT_NORMALS) {
+        out.bent_visible += estimator_bent_sample(p, s, value);
+    }
+    return out;
 }
 
 // Writes visible pixel `id`'s result: 1 where there is no surface, else the estimator's AO, or

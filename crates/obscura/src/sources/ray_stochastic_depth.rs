@@ -313,8 +313,8 @@ impl RayStochasticDepthMap {
     ) {
         let interval = request.and_then(|(_, interval)| interval);
         let request = request.map(|(request, _)| request);
-        // collect_requested.wgsl's tiles of 16×16 texels, collect_all.wgsl's 8×8.
         let pipeline = self.collect_pipeline(device, request.is_some());
+        // collect_requested.wgsl's tiles of 16×16 texels, collect_all.wgsl's 8×8 workgroups.
         let tile = if request.is_some() { 16 } else { 8 };
         let group0 = crate::gpu::bind_group(
             device,
