@@ -487,9 +487,10 @@ pub struct AoArgs {
     ))]
     pub sd_seed: Option<u32>,
     #[arg(long, help = help(
-        "sd-svao: limit the map to the requested pixels by 'stencil' (the paper's full-screen \
-         copy into the stencil, then the stencil test) or 'discard' (the map's fragment shader \
-         reads the request mask; no copy pass).",
+        "sd-svao: limit the map to the requested pixels by 'depth' (default: the far plane \
+         written into the map's depth test where nobody asked), 'stencil' (the paper's \
+         full-screen copy into the stencil, then the stencil test) or 'discard' (the map's \
+         fragment shader reads the request mask).",
         "stochastic_depth.mask"
     ))]
     pub sd_mask: Option<String>,

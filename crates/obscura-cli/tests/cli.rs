@@ -392,7 +392,7 @@ fn bench_reports_every_pass() {
             sd["mask"].as_str()
         ),
         // α as it ran: the default 1.5/S written out.
-        (Some(4), Some(0.375), Some("stencil"))
+        (Some(4), Some(0.375), Some("depth"))
     );
     let layout = &r["layout"];
     assert_eq!(

@@ -29,7 +29,7 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             }
             let mut out = Vec::new();
             for s in samples {
-                for mask in [SdMask::Stencil, SdMask::Discard] {
+                for mask in [SdMask::Stencil, SdMask::Depth, SdMask::Discard] {
                     let mut settings = base;
                     settings.stochastic_depth = StochasticDepthSettings {
                         samples: s,

@@ -94,7 +94,7 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
         "SD stencil   {}",
         yes_no(
             sd.stencil,
-            "no (DEPTH32FLOAT_STENCIL8 missing: --sd-mask discard only)"
+            "no (DEPTH32FLOAT_STENCIL8 missing: --sd-mask depth or discard only)"
         )
     );
     Ok(())

@@ -220,7 +220,7 @@ impl Gpu {
     /// Wrap a device the caller made (an engine's), with its adapter and queue. obscura uses the
     /// features the device has: without `TIMESTAMP_QUERY` there are no pass timings, without
     /// `DEPTH32FLOAT_STENCIL8` no stencil for the stochastic depth map (`--sd-mask stencil`
-    /// then returns an error naming the feature), without `SHADER_EARLY_DEPTH_TEST` the map is
+    /// then returns an error naming the feature; the default `depth` needs none), without `SHADER_EARLY_DEPTH_TEST` the map is
     /// the same but slower. Validation errors the device does not capture are collected for
     /// [`Gpu::check_errors`]: this installs the device's uncaptured-error handler.
     pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {

@@ -7,7 +7,10 @@
 //   only fragments behind it are shaded (0 where the pixel shows no surface: nothing is stored
 //   there). `fs_reset_requested` (SD-SVAO with the stencil, seed 000 §3.9) writes it, and the
 //   frame's stencil value, only at the pixels phase 1 requested, as the authors copy the request
-//   mask into the stencil with a full-screen pass (seed-code-notes §1.5).
+//   mask into the stencil with a full-screen pass (seed-code-notes §1.5). `fs_reset_requested_by_depth`
+//   (`--sd-mask depth`) puts the mask into the depth instead: the far plane where nobody requested
+//   the pixel, so the same early test that skips the first layer skips those pixels, with no
+//   stencil and no `discard` (a shader that may discard writes its depth late, and costs more).
 // A map that keeps every layer needs no depth: its pass clears the target to 1 (all pass).
 // Emptying the map in the fragment pass too measured 1.0 ms on the H200 at 1080p + 64 px
 // (BENCHMARKS.md, issue 16); compute does it in a fraction.
@@ -45,6 +48,17 @@ fn fs_reset_requested(@builtin(position) position: vec4<f32>) -> @builtin(frag_d
     let pixel = vec2<u32>(position.xy);
     if (sd_request[pixel.y * sd.width + pixel.x] == 0u) {
         discard;
+    }
+    return sd_cull_depth(pixel);
+}
+
+// Reversed Z: no fragment's depth is less than the far plane's 0, so the map's early test
+// (`Less`) rejects every fragment at a pixel that holds it.
+@fragment
+fn fs_reset_requested_by_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
+    let pixel = vec2<u32>(position.xy);
+    if (sd_request[pixel.y * sd.width + pixel.x] == 0u) {
+        return 0.0;
     }
     return sd_cull_depth(pixel);
 }

@@ -4,7 +4,9 @@
 //! first, all samples at the pixel centre as the paper places them. Optionally limited to the
 //! pixels of an SD-request mask (seed 000 §3.9): a full-screen pass copies the mask into the
 //! stencil (`reset.wgsl`, `reset.rs`) and the scene is drawn with the stencil test, or
-//! ([`SdMask::Discard`]) the map's fragment shader reads the mask itself.
+//! ([`SdMask::Depth`]) the reset writes the far plane where the mask is not set and the depth test
+//! alone rejects those pixels, or ([`SdMask::Discard`]) the map's fragment shader reads the mask
+//! itself.
 //!
 //! The map writes no depth, so its fragments are depth- and stencil-tested before they are shaded
 //! (where the device has wgpu's `SHADER_EARLY_DEPTH_TEST`): the reset writes per pixel the depth
@@ -193,6 +195,9 @@ pub struct StochasticDepthMap {
     reset: SdReset,
     /// Limited to an SD-request mask ([`StochasticDepthMap::render`]).
     requested: bool,
+    /// The mask is in the reset's depth alone and the map's shader does not read it
+    /// (`--sd-mask depth` with early tests).
+    mask_in_depth: bool,
     /// Keep every layer ([`StochasticDepthMap::keeping_every_layer`]).
     all_layers: bool,
     /// Timing name of the raster (`sd_map`; the reset's is its own).
@@ -204,7 +209,8 @@ pub struct StochasticDepthMap {
 impl StochasticDepthMap {
     /// A map for a `width`×`height` framebuffer (guard band included). `separation`: how far
     /// behind the first layer a fragment must lie to count as hidden. `requested`: rasterise only
-    /// where an SD-request mask is set ([`StochasticDepthMap::render`]), by stencil or discard.
+    /// where an SD-request mask is set ([`StochasticDepthMap::render`]), by stencil, depth or
+    /// discard.
     pub fn new(
         adapter: &wgpu::Adapter,
         device: &wgpu::Device,
@@ -220,7 +226,7 @@ impl StochasticDepthMap {
                 field: "stochastic_depth.mask",
                 value: "stencil".to_string(),
                 adapter: adapter.get_info().name,
-                reason: "the device has no Depth32FloatStencil8 format (wgpu feature DEPTH32FLOAT_STENCIL8) for the map's stencil; use --sd-mask discard, which gives the same image".to_string(),
+                reason: "the device has no Depth32FloatStencil8 format (wgpu feature DEPTH32FLOAT_STENCIL8) for the map's stencil; use --sd-mask depth (the default) or --sd-mask discard, which give the same image".to_string(),
             }
             .into());
         }
@@ -306,6 +312,15 @@ impl StochasticDepthMap {
         } else {
             Default::default()
         };
+        // With `--sd-mask depth` and early tests, the depth test alone keeps unrequested pixels
+        // from the shader (tests/stochastic_depth.rs holds the map empty there); otherwise the
+        // shader reads the mask as well.
+        let mask_in_depth = requested == Some(SdMask::Depth) && early_tests_available(device);
+        let fragment_entry = if requested.is_some() && !mask_in_depth {
+            "fs_stochastic_depth_requested"
+        } else {
+            "fs_stochastic_depth"
+        };
         let pipelines = [Some(wgpu::Face::Back), None].map(|cull_mode| {
             ScenePipeline {
                 layout: None,
@@ -321,18 +336,15 @@ impl StochasticDepthMap {
                 },
                 multisample: Default::default(),
                 vertex: "vs_main",
-                fragment: if requested.is_some() {
-                    "fs_stochastic_depth_requested"
-                } else {
-                    "fs_stochastic_depth"
-                },
+                fragment: fragment_entry,
                 targets: &[],
             }
             .create(device)
         });
         let scope = match requested {
             Some(SdMask::Stencil) => ResetScope::Stenciled,
-            _ => ResetScope::All,
+            Some(SdMask::Depth) => ResetScope::RequestedByDepth,
+            Some(SdMask::Discard) | None => ResetScope::All,
         };
         let reset = SdReset::new(device, &module, format, scope);
         Ok(Self {
@@ -365,6 +377,7 @@ impl StochasticDepthMap {
             pipelines,
             reset,
             requested: requested.is_some(),
+            mask_in_depth,
             all_layers: false,
             timing_name: "sd_map",
             draws: Mutex::new(Vec::new()),
@@ -464,12 +477,18 @@ impl StochasticDepthMap {
             &resources,
             profiler.as_deref_mut(),
         );
+        // A map masked by its depth alone does not read the mask.
+        let map_resources = if self.mask_in_depth {
+            &resources[..resources.len() - 1]
+        } else {
+            &resources[..]
+        };
         let bind_groups = self.pipelines.each_ref().map(|p| {
             crate::gpu::bind_group(
                 device,
                 "stochastic depth",
                 &p.get_bind_group_layout(0),
-                &resources,
+                map_resources,
             )
         });
         let map_name = self.timing_name;

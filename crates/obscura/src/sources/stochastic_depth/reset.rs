@@ -1,7 +1,8 @@
 //! Resetting the stochastic depth map each frame (`shaders/sources/stochastic_depth/reset.wgsl`):
 //! a compute pass empties every pixel's depths, then a full-screen pass writes the depth the map's
 //! fragments must lie behind (the first layer plus the separation), and for a stenciled map
-//! (`sd-svao`, seed 000 §3.9) the frame's stencil value, at the pixels phase 1 requested. A map
+//! (`sd-svao`, seed 000 §3.9) the frame's stencil value, at the pixels phase 1 requested (or, with
+//! `--sd-mask depth`, the far plane at the pixels phase 1 did not request). A map
 //! that keeps every layer skips the second pass (its map pass clears the depth to 1). Timed as
 //! `sd_clear` and `sd_reset`.
 
@@ -16,6 +17,8 @@ pub(crate) enum ResetScope {
     All,
     /// The frame's stencil value at the requested pixels.
     Stenciled,
+    /// No stencil: the far plane, which rejects every fragment, at the pixels not requested.
+    RequestedByDepth,
 }
 
 pub(crate) struct SdReset {
@@ -77,6 +80,7 @@ impl SdReset {
                 entry_point: Some(match scope {
                     ResetScope::All => "fs_reset_all",
                     ResetScope::Stenciled => "fs_reset_requested",
+                    ResetScope::RequestedByDepth => "fs_reset_requested_by_depth",
                 }),
                 compilation_options: Default::default(),
                 targets: &[],
@@ -89,7 +93,7 @@ impl SdReset {
             pipeline,
             bindings: match scope {
                 ResetScope::All => &[0, 6, 7],
-                ResetScope::Stenciled => &[0, 6, 7, 10],
+                ResetScope::Stenciled | ResetScope::RequestedByDepth => &[0, 6, 7, 10],
             },
             frames: AtomicU32::new(0),
             clear_name: "sd_clear",
