@@ -71,21 +71,40 @@ fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32) -> u32 {
     return pcg_hash(h ^ sd.seed);
 }
 
-// Alg. 1 for one fragment: the samples it is stored in (0: none).
-fn sd_coverage(in: VertexOut) -> u32 {
-    let material = materials[in.material];
-    if (!material_passes_alpha(material, textures, in.uv)) {
-        return 0u;
-    }
-    let pixel = vec2<u32>(in.clip.xy);
-    let depth = -in.view_pos.z;
+// What the map's triangles without an alpha test hand to their fragments: the linear depth and
+// the triangle, as little as the G-buffer's visibility pass hands on. Why: with nothing shaded,
+// the map pass drawing every triangle through `vs_main` (position, view position, texture
+// coordinates, material, triangle) cost 1.21 ms on Sponza at 1080p on the H200, most of the
+// pass (BENCHMARKS.md, issue 16). The alpha-tested triangles keep `vs_main`.
+struct DepthVertex {
+    @builtin(position) clip: vec4<f32>,
+    // −z in view space, interpolated as `vs_main`'s view position is (perspective-correct): the
+    // same linear depth at the pixel centre.
+    @location(0) depth: f32,
+    @location(1) @interpolate(flat) triangle: u32,
+}
+
+@vertex
+fn vs_depth(@builtin(vertex_index) vertex: u32) -> DepthVertex {
+    let tri = triangles[vertex / 3u];
+    let view_pos = to_view(positions[corner_index(tri, vertex)].xyz);
+    var out: DepthVertex;
+    out.clip = view_to_clip(view_pos);
+    out.depth = -view_pos.z;
+    out.triangle = vertex / 3u;
+    return out;
+}
+
+// Alg. 1 for one fragment that passed its alpha test, at `pixel` with linear `depth`: the
+// samples it is stored in (0: none).
+fn sd_coverage(pixel: vec2<u32>, depth: f32, triangle: u32) -> u32 {
     let first = textureLoad(first_layer, pixel, 0).r;
     // Alg. 1 stores hidden layers only: the first layer (and anything within `separation` behind
     // it) is skipped; without a first layer the pixel shows no geometry at all.
     if (sd.all_layers == 0u && (!(first > 0.0) || depth <= first + sd.separation)) {
         return 0u;
     }
-    let h = sd_fragment_hash(pixel, in.triangle);
+    let h = sd_fragment_hash(pixel, triangle);
     let xi = hash_to_unit(h);
     let count = min(u32(floor(sd.alpha * f32(sd.samples) + xi)), sd.samples);
     if (count == 0u) {
@@ -98,27 +117,52 @@ fn sd_coverage(in: VertexOut) -> u32 {
 }
 
 // Alg. 1's depth test: each sample of `mask` keeps the nearest fragment.
-fn sd_store(in: VertexOut, mask: u32) {
-    let base = sd_base(vec2<u32>(in.clip.xy));
-    let depth = bitcast<u32>(sd.near / -in.view_pos.z);
+fn sd_store(pixel: vec2<u32>, depth: f32, mask: u32) {
+    let base = sd_base(pixel);
+    let stored = bitcast<u32>(sd.near / depth);
     var left = mask;
     while (left != 0u) {
-        atomicMax(&sd_depths[base + firstTrailingBit(left)], depth);
+        atomicMax(&sd_depths[base + firstTrailingBit(left)], stored);
         left &= left - 1u;
     }
 }
 
-@fragment @early_depth_test(force)
-fn fs_stochastic_depth(in: VertexOut) {
-    sd_store(in, sd_coverage(in));
+fn sd_fragment(pixel: vec2<u32>, depth: f32, triangle: u32) {
+    sd_store(pixel, depth, sd_coverage(pixel, depth, triangle));
 }
 
-// SD-SVAO (seed 000 §3.9): only the pixels phase 1 requested. With the stencil (reset.wgsl) the
-// early stencil test drops the others before this runs; `--sd-mask discard` leaves it to this test.
+// Whether SD-SVAO (seed 000 §3.9) asked for `pixel`. With the stencil or the depth mask
+// (reset.wgsl) the early tests drop the other pixels before a shader runs; `--sd-mask discard`
+// leaves it to this test.
+fn sd_requested(pixel: vec2<u32>) -> bool {
+    return sd_request[pixel.y * sd.width + pixel.x] != 0u;
+}
+
 @fragment @early_depth_test(force)
-fn fs_stochastic_depth_requested(in: VertexOut) {
+fn fs_stochastic_depth(in: DepthVertex) {
+    sd_fragment(vec2<u32>(in.clip.xy), in.depth, in.triangle);
+}
+
+@fragment @early_depth_test(force)
+fn fs_stochastic_depth_requested(in: DepthVertex) {
     let pixel = vec2<u32>(in.clip.xy);
-    if (sd_request[pixel.y * sd.width + pixel.x] != 0u) {
-        sd_store(in, sd_coverage(in));
+    if (sd_requested(pixel)) {
+        sd_fragment(pixel, in.depth, in.triangle);
+    }
+}
+
+// Alpha-tested triangles: the texel decides first.
+@fragment @early_depth_test(force)
+fn fs_stochastic_depth_masked(in: VertexOut) {
+    if (material_passes_alpha(materials[in.material], textures, in.uv)) {
+        sd_fragment(vec2<u32>(in.clip.xy), -in.view_pos.z, in.triangle);
+    }
+}
+
+@fragment @early_depth_test(force)
+fn fs_stochastic_depth_masked_requested(in: VertexOut) {
+    let pixel = vec2<u32>(in.clip.xy);
+    if (sd_requested(pixel) && material_passes_alpha(materials[in.material], textures, in.uv)) {
+        sd_fragment(pixel, -in.view_pos.z, in.triangle);
     }
 }

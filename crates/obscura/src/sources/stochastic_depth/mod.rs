@@ -20,7 +20,7 @@ mod reset;
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
 use crate::raster::gbuffer::{
-    draw_scene, scene_resources, visibility_draws, CameraUniform, Draw, ScenePipeline,
+    draw_scene, scene_layout, scene_resources, visibility_draws, CameraUniform, Draw, ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
 use crate::settings::{SdMask, StochasticDepthSettings, SD_SAMPLE_COUNTS};
@@ -189,15 +189,12 @@ pub struct StochasticDepthMap {
     near: AtomicU32,
     camera: wgpu::Buffer,
     lut: wgpu::Buffer,
-    /// Back faces culled / kept.
-    pipelines: [wgpu::RenderPipeline; 2],
+    /// Back faces culled / kept / alpha-tested (`visibility_draws`' groups).
+    pipelines: [wgpu::RenderPipeline; 3],
     /// Empties the map before each frame and writes the depth (and stencil) it is tested against.
     reset: SdReset,
     /// Limited to an SD-request mask ([`StochasticDepthMap::render`]).
     requested: bool,
-    /// The mask is in the reset's depth alone and the map's shader does not read it
-    /// (`--sd-mask depth` with early tests).
-    mask_in_depth: bool,
     /// Keep every layer ([`StochasticDepthMap::keeping_every_layer`]).
     all_layers: bool,
     /// Timing name of the raster (`sd_map`; the reset's is its own).
@@ -316,14 +313,55 @@ impl StochasticDepthMap {
         // from the shader (tests/stochastic_depth.rs holds the map empty there); otherwise the
         // shader reads the mask as well.
         let mask_in_depth = requested == Some(SdMask::Depth) && early_tests_available(device);
-        let fragment_entry = if requested.is_some() && !mask_in_depth {
-            "fs_stochastic_depth_requested"
+        let [plain, masked] = if requested.is_some() && !mask_in_depth {
+            [
+                "fs_stochastic_depth_requested",
+                "fs_stochastic_depth_masked_requested",
+            ]
         } else {
-            "fs_stochastic_depth"
+            ["fs_stochastic_depth", "fs_stochastic_depth_masked"]
         };
-        let pipelines = [Some(wgpu::Face::Back), None].map(|cull_mode| {
+        // One layout for the three pipelines (the lean ones bind less than they are given).
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let storage = |read_only| wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let mut extra = vec![
+            (
+                fragment,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
+            (
+                fragment,
+                wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+            ),
+            (fragment, storage(true)),
+            (fragment, storage(false)),
+        ];
+        if requested.is_some() {
+            extra.push((fragment, storage(true)));
+        }
+        let layout = scene_layout(device, &extra);
+        // The G-buffer's three groups: back faces culled, double-sided, alpha-tested (drawn
+        // double-sided, as the G-buffer draws them).
+        let pipelines = [
+            (Some(wgpu::Face::Back), "vs_depth", plain),
+            (None, "vs_depth", plain),
+            (None, "vs_main", masked),
+        ]
+        .map(|(cull_mode, vertex, fragment)| {
             ScenePipeline {
-                layout: None,
+                layout: Some(&layout),
                 module: &module,
                 cull_mode,
                 // Reversed Z: behind the reset's depth is less.
@@ -335,8 +373,8 @@ impl StochasticDepthMap {
                     bias: Default::default(),
                 },
                 multisample: Default::default(),
-                vertex: "vs_main",
-                fragment: fragment_entry,
+                vertex,
+                fragment,
                 targets: &[],
             }
             .create(device)
@@ -377,7 +415,6 @@ impl StochasticDepthMap {
             pipelines,
             reset,
             requested: requested.is_some(),
-            mask_in_depth,
             all_layers: false,
             timing_name: "sd_map",
             draws: Mutex::new(Vec::new()),
@@ -434,12 +471,9 @@ impl StochasticDepthMap {
             _pad: 0,
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&raster));
-        // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested) with
-        // this map's two pipelines (back faces culled / kept).
-        *self.draws.lock().unwrap() = visibility_draws(&self.scene, view)
-            .into_iter()
-            .map(|(group, triangles)| (group.min(1), triangles))
-            .collect();
+        // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
+        // pipeline of this map each.
+        *self.draws.lock().unwrap() = visibility_draws(&self.scene, view);
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -477,20 +511,13 @@ impl StochasticDepthMap {
             &resources,
             profiler.as_deref_mut(),
         );
-        // A map masked by its depth alone does not read the mask.
-        let map_resources = if self.mask_in_depth {
-            &resources[..resources.len() - 1]
-        } else {
-            &resources[..]
-        };
-        let bind_groups = self.pipelines.each_ref().map(|p| {
-            crate::gpu::bind_group(
-                device,
-                "stochastic depth",
-                &p.get_bind_group_layout(0),
-                map_resources,
-            )
-        });
+        let bind_group = crate::gpu::bind_group(
+            device,
+            "stochastic depth",
+            &self.pipelines[0].get_bind_group_layout(0),
+            &resources,
+        );
+        let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
         let load = if self.all_layers {
