@@ -28,6 +28,9 @@ struct Camera {
 @group(0) @binding(3) var<storage, read> triangles: array<vec4<u32>>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var textures: texture_2d_array<f32>;
+// The triangles the culling pass kept (shaders/triangle_cull.wgsl), each draw's from its first
+// triangle on; a draw's vertex `v` is corner `v % 3` of triangle `drawn_triangles[v / 3]`.
+@group(1) @binding(0) var<storage, read> drawn_triangles: array<u32>;
 
 // Interpolate vertex normals (the scene's `Normals::Shading`); off: face normals, and the resolve
 // reads no normals.
@@ -41,6 +44,11 @@ struct VertexOut {
     @location(2) @interpolate(flat) material: u32,
     // Index of the triangle in `triangles` (the stochastic depth map hashes it).
     @location(3) @interpolate(flat) triangle: u32,
+}
+
+// The triangle (index in `triangles`) a draw's `vertex` belongs to.
+fn drawn_triangle(vertex: u32) -> u32 {
+    return drawn_triangles[vertex / 3u];
 }
 
 // The vertex index in `positions` of corner `vertex % 3` of triangle `tri` (non-indexed draws:
@@ -70,7 +78,8 @@ fn view_face_normal(tri: vec4<u32>) -> vec3<f32> {
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
-    let tri = triangles[vertex / 3u];
+    let t = drawn_triangle(vertex);
+    let tri = triangles[t];
     let index = corner_index(tri, vertex);
     let view_pos = to_view(positions[index].xyz);
     var out: VertexOut;
@@ -78,7 +87,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOut {
     out.view_pos = view_pos;
     out.uv = attributes[index].xy;
     out.material = tri.w;
-    out.triangle = vertex / 3u;
+    out.triangle = t;
     return out;
 }
 
@@ -119,10 +128,11 @@ struct VisibilityVertex {
 // Only the position and the triangle: nothing else is interpolated.
 @vertex
 fn vs_visibility(@builtin(vertex_index) vertex: u32) -> VisibilityVertex {
-    let tri = triangles[vertex / 3u];
+    let t = drawn_triangle(vertex);
+    let tri = triangles[t];
     var out: VisibilityVertex;
     out.clip = view_to_clip(to_view(positions[corner_index(tri, vertex)].xyz));
-    out.id = vertex / 3u + 1u;
+    out.id = t + 1u;
     return out;
 }
 

@@ -56,6 +56,7 @@ pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
     include_str!("../shaders/schedules/two_phase_indirect.wgsl");
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
+pub const TRIANGLE_CULL: &str = include_str!("../shaders/triangle_cull.wgsl");
 pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
 pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");

@@ -68,13 +68,7 @@ impl Renderer {
         let near = crate::view::near_plane(scene);
         let needs = settings.technique.needs();
         let peel = needs.second_layer.then_some(settings.peel_separation);
-        let gbuffer = GBuffer::new(
-            &gpu.device,
-            fw as u32,
-            fh as u32,
-            peel,
-            gpu_scene.shading_normals,
-        );
+        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel, &gpu_scene);
         let bvh = needs
             .bvh
             .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
@@ -325,6 +319,12 @@ impl Renderer {
             Some(t) => Ok(Some(read_texture_f32(&self.gpu, t, 1)?)),
             None => Ok(None),
         }
+    }
+
+    /// Its G-buffer (tests).
+    #[cfg(test)]
+    pub(crate) fn gbuffer(&self) -> &crate::raster::gbuffer::GBuffer {
+        &self.gbuffer
     }
 
     /// Depth and normals of the whole framebuffer.

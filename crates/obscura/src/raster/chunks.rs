@@ -16,6 +16,9 @@ use std::ops::Range;
 /// 1024 on Sponza, Sibenik and `colonnade`, and 64 no fewer than 256 (Sponza: 1,025 draws).
 pub const CHUNK_TRIANGLES: usize = 256;
 
+/// One draw: the triangles `.1` with pipeline (and bind group) number `.0`.
+pub(crate) type Draw = (usize, Range<u32>);
+
 /// A run of consecutive triangles of one draw group and their bounding box (world space).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chunk {

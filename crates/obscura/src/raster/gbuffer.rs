@@ -14,8 +14,9 @@
 //! scene's chunks nearest first and skips those outside the view ([`super::chunks`]), so fewer
 //! hidden fragments are shaded.
 
-use super::chunks;
+use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
+use super::triangle_cull::TriangleCull;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::FrameView;
@@ -82,22 +83,25 @@ pub struct GBuffer {
     /// Depth and normals from the visibility buffer.
     resolve: wgpu::ComputePipeline,
     /// The base-colour pass, the same way.
-    albedo_pipelines: [wgpu::RenderPipeline; 2],
+    albedo_pipelines: [wgpu::RenderPipeline; 3],
     camera: wgpu::Buffer,
     peel: Option<Peel>,
+    /// The triangles each frame's passes draw (the visibility pass, depth peeling, base colour).
+    cull: TriangleCull,
 }
 
 impl GBuffer {
     /// Targets for a framebuffer of `width`×`height` (guard band included). With
     /// `peel_separation`, a second depth layer is peeled too: the nearest surface more than that
-    /// many world units behind the first. `shading_normals`: the normals target interpolates the
-    /// scene's vertex normals ([`GpuScene::shading_normals`]) instead of taking face normals.
+    /// many world units behind the first. `scene`: the scene [`GBuffer::render`] will draw; where
+    /// it [has shading normals](GpuScene::shading_normals), the normals target interpolates them
+    /// instead of taking face normals.
     pub fn new(
         device: &wgpu::Device,
         width: u32,
         height: u32,
         peel_separation: Option<f32>,
-        shading_normals: bool,
+        scene: &GpuScene,
     ) -> Self {
         let target_with = |label, format, extra| {
             crate::gpu::texture_2d(
@@ -134,6 +138,7 @@ impl GBuffer {
             bias: Default::default(),
         };
         let gbuffer_layout = scene_layout(device, &[]);
+        let shading_normals = scene.shading_normals;
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let pipeline = |cull_mode,
                         (vertex, fragment): (&str, &str),
@@ -232,7 +237,7 @@ impl GBuffer {
                 &shaders::with_common(&resolve_shaders, shaders::GBUFFER_RESOLVE_MAIN),
                 &normal_constants,
             ),
-            albedo_pipelines: [Some(wgpu::Face::Back), None].map(|cull| {
+            albedo_pipelines: [Some(wgpu::Face::Back), None, None].map(|cull| {
                 pipeline(
                     cull,
                     main("fs_albedo"),
@@ -247,7 +252,14 @@ impl GBuffer {
                 mapped_at_creation: false,
             }),
             peel,
+            cull: TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull"),
         }
+    }
+
+    /// Triangles the last frame's culling was given and kept (tests; waits for the GPU).
+    #[cfg(test)]
+    pub(crate) fn cull_counts(&self, gpu: &crate::Gpu) -> (u32, u32) {
+        self.cull.counts(gpu)
     }
 
     /// The second depth layer (linear, 0 = none), when depth peeling was asked for.
@@ -269,13 +281,15 @@ impl GBuffer {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
         let scene = &scene.draw_ordered();
+        self.cull
+            .prepare(queue, view, visibility_draws(scene, view));
+        self.cull.encode(encoder, profiler.as_deref_mut());
         let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
         self.draw(
             device,
             encoder,
             &self.visibility_pipelines,
-            &visibility_draws(scene, view),
             &resources,
             &targets,
             "gbuffer",
@@ -305,7 +319,6 @@ impl GBuffer {
                 device,
                 encoder,
                 &peel.pipelines,
-                &visibility_draws(scene, view),
                 &resources,
                 &targets,
                 "depth_peel",
@@ -331,13 +344,13 @@ impl GBuffer {
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
     ) {
+        let scene = &scene.draw_ordered();
         let resources = scene_resources(&self.camera, scene, Vec::new());
         let targets = [(&self.albedo, wgpu::Color::WHITE)];
         self.draw(
             device,
             encoder,
             &self.albedo_pipelines,
-            &whole_ranges(scene.cull_ranges()),
             &resources,
             &targets,
             "albedo",
@@ -384,14 +397,14 @@ impl GBuffer {
         pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
     }
 
-    /// One raster pass of the scene: `draws` in order (see [`draw_scene`]).
+    /// One raster pass of the scene: the frame's culled draws in order
+    /// ([`TriangleCull::record`]).
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         pipelines: &[wgpu::RenderPipeline],
-        draws: &[Draw],
         resources: &[wgpu::BindingResource],
         targets: &[(&wgpu::Texture, wgpu::Color)],
         name: &str,
@@ -441,20 +454,12 @@ impl GBuffer {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
-        draw_scene(&mut pass, pipelines, &bind_groups, draws);
+        let drawn = self.cull.drawn_group(device, &pipelines[0]);
+        self.cull.record(&mut pass, pipelines, &bind_groups, &drawn);
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
     }
-}
-
-/// One draw: the triangles `.1` with pipeline (and bind group) number `.0`.
-pub(crate) type Draw = (usize, std::ops::Range<u32>);
-
-/// The scene's `ranges` (e.g. [`GpuScene::cull_ranges`]: the back-face-culled triangles, then
-/// the ones that keep back faces), range `i` with pipeline `i`.
-pub(crate) fn whole_ranges<const N: usize>(ranges: [std::ops::Range<u32>; N]) -> Vec<Draw> {
-    ranges.into_iter().enumerate().collect()
 }
 
 /// The visibility pass's draws: the chunks `view` may see ([`super::chunks`]), nearest first
@@ -475,24 +480,6 @@ pub(crate) fn visibility_draws(scene: &GpuScene, view: &FrameView) -> Vec<Draw> 
                 .map(move |c| (g, c.triangles.clone()))
         })
         .collect()
-}
-
-/// Record `draws` in order: draw `(i, triangles)` with `pipelines[i]` and `bind_groups[i]`.
-pub(crate) fn draw_scene(
-    pass: &mut wgpu::RenderPass,
-    pipelines: &[wgpu::RenderPipeline],
-    bind_groups: &[wgpu::BindGroup],
-    draws: &[Draw],
-) {
-    let mut current = None;
-    for (i, triangles) in draws.iter().filter(|(_, t)| !t.is_empty()) {
-        if current != Some(*i) {
-            current = Some(*i);
-            pass.set_pipeline(&pipelines[*i]);
-            pass.set_bind_group(0, &bind_groups[*i], &[]);
-        }
-        pass.draw(triangles.start * 3..triangles.end * 3, 0..1);
-    }
 }
 
 /// Bindings 0–5 of gbuffer.wgsl (camera and scene), then `extra` from binding 6 on.
@@ -570,9 +557,10 @@ pub(crate) fn scene_layout(
         label: Some("scene"),
         entries: &entries,
     });
+    let drawn = super::triangle_cull::drawn_layout(device);
     device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("scene"),
-        bind_group_layouts: &[Some(&group)],
+        bind_group_layouts: &[Some(&group), Some(&drawn)],
         immediate_size: 0,
     })
 }

@@ -72,11 +72,6 @@ impl GpuScene {
         }
     }
 
-    /// The triangles drawn with back-face culling, then the ones that keep back faces.
-    pub fn cull_ranges(&self) -> [std::ops::Range<u32>; 2] {
-        [0..self.culled_count, self.culled_count..self.triangle_count]
-    }
-
     /// The back-face-culled triangles, the double-sided ones without an alpha test, the
     /// alpha-tested ones.
     pub fn visibility_ranges(&self) -> [std::ops::Range<u32>; 3] {

@@ -4,3 +4,4 @@
 pub mod chunks;
 pub mod gbuffer;
 pub mod gpu_scene;
+pub(crate) mod triangle_cull;

@@ -131,6 +131,7 @@ impl Multiview {
         .timed_as(
             "multiview_sd_clear",
             "multiview_sd_reset",
+            "multiview_sd_cull",
             "multiview_sd_map",
         );
         let mut source_entries = vec![entry::uniform(bindings::SOURCE_MULTIVIEW)];

@@ -86,12 +86,13 @@ struct DepthVertex {
 
 @vertex
 fn vs_depth(@builtin(vertex_index) vertex: u32) -> DepthVertex {
-    let tri = triangles[vertex / 3u];
+    let t = drawn_triangle(vertex);
+    let tri = triangles[t];
     let view_pos = to_view(positions[corner_index(tri, vertex)].xyz);
     var out: DepthVertex;
     out.clip = view_to_clip(view_pos);
     out.depth = -view_pos.z;
-    out.triangle = vertex / 3u;
+    out.triangle = t;
     return out;
 }
 

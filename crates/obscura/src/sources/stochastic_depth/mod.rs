@@ -20,15 +20,15 @@ mod reset;
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
 use crate::raster::gbuffer::{
-    draw_scene, scene_layout, scene_resources, visibility_draws, CameraUniform, Draw, ScenePipeline,
+    scene_layout, scene_resources, visibility_draws, CameraUniform, ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
+use crate::raster::triangle_cull::TriangleCull;
 use crate::settings::{SdMask, StochasticDepthSettings, SD_SAMPLE_COUNTS};
 use crate::view::FrameView;
 use crate::{shaders, Error};
 use reset::{ResetScope, SdReset};
 use std::sync::atomic::{AtomicU32, Ordering};
-use std::sync::Mutex;
 use wgpu::util::DeviceExt;
 
 /// How the S depth samples per pixel are laid out. One map of S since the map is a storage
@@ -199,8 +199,9 @@ pub struct StochasticDepthMap {
     all_layers: bool,
     /// Timing name of the raster (`sd_map`; the reset's is its own).
     timing_name: &'static str,
-    /// The draws of the coming frame: the scene's chunks in view ([`visibility_draws`]).
-    draws: Mutex<Vec<Draw>>,
+    /// The triangles of the coming frame's draws (the scene's chunks in view,
+    /// [`visibility_draws`]) that may cover a pixel centre.
+    triangle_cull: TriangleCull,
 }
 
 impl StochasticDepthMap {
@@ -417,7 +418,7 @@ impl StochasticDepthMap {
             requested: requested.is_some(),
             all_layers: false,
             timing_name: "sd_map",
-            draws: Mutex::new(Vec::new()),
+            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull"),
         })
     }
 
@@ -429,11 +430,18 @@ impl StochasticDepthMap {
         self
     }
 
-    /// This map timed as `clear`, `reset` and `map` instead of `sd_clear`, `sd_reset` and
-    /// `sd_map`.
-    pub fn timed_as(mut self, clear: &'static str, reset: &'static str, map: &'static str) -> Self {
+    /// This map timed as `clear`, `reset`, `cull` and `map` instead of `sd_clear`, `sd_reset`,
+    /// `sd_cull` and `sd_map`.
+    pub fn timed_as(
+        mut self,
+        clear: &'static str,
+        reset: &'static str,
+        cull: &'static str,
+        map: &'static str,
+    ) -> Self {
         self.reset.clear_name = clear;
         self.reset.name = reset;
+        self.triangle_cull.name = cull;
         self.timing_name = map;
         self
     }
@@ -473,7 +481,8 @@ impl StochasticDepthMap {
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&raster));
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
         // pipeline of this map each.
-        *self.draws.lock().unwrap() = visibility_draws(&self.scene, view);
+        self.triangle_cull
+            .prepare(queue, view, visibility_draws(&self.scene, view));
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -518,6 +527,8 @@ impl StochasticDepthMap {
             &resources,
         );
         let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
+        let drawn = self.triangle_cull.drawn_group(device, &self.pipelines[0]);
+        self.triangle_cull.encode(encoder, profiler.as_deref_mut());
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
         let load = if self.all_layers {
@@ -530,12 +541,8 @@ impl StochasticDepthMap {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, map_name);
         }
-        draw_scene(
-            &mut pass,
-            &self.pipelines,
-            &bind_groups,
-            &self.draws.lock().unwrap(),
-        );
+        self.triangle_cull
+            .record(&mut pass, &self.pipelines, &bind_groups, &drawn);
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }

@@ -1,0 +1,151 @@
+// Triangle culling before the raster passes (src/raster/triangle_cull.rs, issue 16). One
+// workgroup per draw (a chunk of at most 256 triangles, src/raster/chunks.rs) keeps the triangles
+// that can cover a pixel centre, in their order, and writes the draw's indirect arguments. Why:
+// on the H100/H200 the raster passes spend most of their time on triangles before any fragment
+// is shaded (BENCHMARKS.md: Sponza's G-buffer pass cost 0.84 of its 1.28 ms with every fragment
+// rejected), and this chip runs compute far faster than its few raster units run triangles.
+//
+// A triangle is dropped only when no pixel centre can be inside it (what the rasteriser would
+// find), with margins for the rasteriser's own rounding:
+// - all three corners outside one plane of the frustum (the near plane included);
+// - back-facing, for the triangles drawn with back faces culled, by more than its area can move
+//   when every corner moves by MARGIN pixels;
+// - no pixel centre within MARGIN pixels of its screen bounding box.
+// A triangle that crosses the eye plane, or reaches far outside the framebuffer (where float
+// pixel positions lose precision), is tested against the frustum planes only.
+
+struct CullParams {
+    view: mat4x4<f32>,
+    projection: mat4x4<f32>,
+    // The framebuffer in pixels (guard band included).
+    size: vec2<f32>,
+    // Number of draws in `draw_list`.
+    draws: u32,
+    // Non-zero: keep every triangle (the tests' uncull'd twin, src/raster/triangle_cull.rs).
+    keep_all: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: CullParams;
+@group(0) @binding(1) var<storage, read> positions: array<vec4<f32>>;
+// `(i0, i1, i2, material)` per triangle, the raster passes' (chunk) order.
+@group(0) @binding(2) var<storage, read> triangles: array<vec4<u32>>;
+// Per draw: first triangle, triangle count, draw group (0: back faces culled), unused.
+@group(0) @binding(3) var<storage, read> draw_list: array<vec4<u32>>;
+// The kept triangles of each draw, from the draw's first triangle on: what the vertex shaders
+// read (`drawn_triangle` in gbuffer.wgsl).
+@group(0) @binding(4) var<storage, read_write> drawn: array<u32>;
+// Per draw, `draw_indirect`'s arguments: vertex count, instance count, first vertex, first
+// instance.
+@group(0) @binding(5) var<storage, read_write> args: array<vec4<u32>>;
+
+// Pixels: four times the rasteriser's 1/256-pixel vertex snapping.
+const MARGIN: f32 = 0.015625;
+// Screen tests only within this many framebuffers of the frame (float pixels stay finer than
+// 1/1024 px there).
+const SCREEN_REACH: f32 = 4.0;
+const GROUP_SIZE: u32 = 256u;
+// Workgroups per row of the dispatch (WebGPU's per-dimension limit).
+const ROW: u32 = 65535u;
+
+var<workgroup> kept_before: array<u32, GROUP_SIZE>;
+
+// The same two products as gbuffer.wgsl's `view_to_clip(to_view(p))`.
+fn clip_of(vertex: u32) -> vec4<f32> {
+    let view_pos = (params.view * vec4<f32>(positions[vertex].xyz, 1.0)).xyz;
+    return params.projection * vec4<f32>(view_pos, 1.0);
+}
+
+// Pixel coordinates (y down, pixel centres at k + 0.5) of a clip position with w > 0.
+fn to_pixels(c: vec4<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * params.size;
+}
+
+fn outside_one_plane(a: vec4<f32>, b: vec4<f32>, c: vec4<f32>) -> bool {
+    let right = a.x > a.w && b.x > b.w && c.x > c.w;
+    let left = a.x < -a.w && b.x < -b.w && c.x < -c.w;
+    let top = a.y > a.w && b.y > b.w && c.y > c.w;
+    let bottom = a.y < -a.w && b.y < -b.w && c.y < -c.w;
+    // Reversed Z: in front of the near plane is z > w (behind the eye too, where w < 0 < z).
+    let near = a.z > a.w && b.z > b.w && c.z > c.w;
+    return right || left || top || bottom || near;
+}
+
+// Whether a pixel centre k + 0.5 lies in [lo - MARGIN, hi + MARGIN].
+fn centre_between(lo: f32, hi: f32) -> bool {
+    return ceil(lo - MARGIN - 0.5) <= floor(hi + MARGIN - 0.5);
+}
+
+fn may_cover_a_pixel(tri: vec4<u32>, culls_back: bool) -> bool {
+    let a = clip_of(tri.x);
+    let b = clip_of(tri.y);
+    let c = clip_of(tri.z);
+    if (outside_one_plane(a, b, c)) {
+        return false;
+    }
+    if (!(a.w > 0.0 && b.w > 0.0 && c.w > 0.0)) {
+        return true;
+    }
+    let pa = to_pixels(a);
+    let pb = to_pixels(b);
+    let pc = to_pixels(c);
+    let lo = min(pa, min(pb, pc));
+    let hi = max(pa, max(pb, pc));
+    let reach = SCREEN_REACH * params.size;
+    if (any(lo < -reach) || any(hi > params.size + reach)) {
+        return true;
+    }
+    if (!centre_between(lo.x, hi.x) || !centre_between(lo.y, hi.y)) {
+        return false;
+    }
+    if (culls_back) {
+        // Twice the signed area in pixels (y down): positive is clockwise in normalised device
+        // coordinates, the back face of a counter-clockwise front face (wgpu's default).
+        let ab = pb - pa;
+        let ac = pc - pa;
+        let area = ab.x * ac.y - ab.y * ac.x;
+        // How far the area can move when each corner moves by MARGIN in x and y.
+        let slack = 4.0 * MARGIN * (length(ab) + length(ac) + length(pc - pb)) + 16.0 * MARGIN * MARGIN;
+        if (area > slack) {
+            return false;
+        }
+    }
+    return true;
+}
+
+@compute @workgroup_size(256)
+fn main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) i: u32,
+) {
+    let d = group.x + group.y * ROW;
+    // Uniform per workgroup: every invocation returns here or none does (the barriers below).
+    if (d >= params.draws) {
+        return;
+    }
+    let draw = draw_list[d];
+    let t = draw.x + i;
+    var keep = false;
+    if (i < draw.y) {
+        keep = params.keep_all != 0u || may_cover_a_pixel(triangles[t], draw.z == 0u);
+    }
+    // Inclusive prefix sum of `keep` over the workgroup (Hillis and Steele): the kept triangles
+    // stay in their order, so depth ties resolve as they did without culling.
+    kept_before[i] = u32(keep);
+    workgroupBarrier();
+    for (var offset = 1u; offset < GROUP_SIZE; offset <<= 1u) {
+        var sum = kept_before[i];
+        if (i >= offset) {
+            sum += kept_before[i - offset];
+        }
+        workgroupBarrier();
+        kept_before[i] = sum;
+        workgroupBarrier();
+    }
+    if (keep) {
+        drawn[draw.x + kept_before[i] - 1u] = t;
+    }
+    if (i == GROUP_SIZE - 1u) {
+        args[d] = vec4<u32>(3u * kept_before[i], 1u, 3u * draw.x, 0u);
+    }
+}
