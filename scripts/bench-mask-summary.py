@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Markdown table from the runs folder of scripts/device-bench-sd-mask.sh: per scene, `sd-vao`'s
 full map and `sd-svao`'s map with each `--sd-mask`, the medians over rounds of the map (clear +
-reset + raster, the raster's fragments per framebuffer pixel in brackets) and of the whole
+reset + triangle cull + raster, the raster's fragments per framebuffer pixel in brackets) and of the whole
 technique without the G-buffer (`total_ms` less `gbuffer` and `gbuffer_resolve`), and `sd-vao`'s
 total over each. A run file is SCENE-VARIANT-ROUND.json."""
 import json
@@ -10,7 +10,7 @@ import statistics
 import sys
 
 runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
-MAP = ["sd_clear", "sd_reset", "sd_map"]
+MAP = ["sd_clear", "sd_reset", "sd_cull", "sd_map"]
 cells = {}
 adapter = None
 for path in sorted(runs.glob("*-*-*.json")):
@@ -24,7 +24,7 @@ for path in sorted(runs.glob("*-*-*.json")):
         cells.setdefault((scene, variant), []).append(
             ([p.get(k, 0.0) for k in MAP], frags, total))
 print(f"Adapter: {adapter}. Medians over rounds of per-run medians, ms.\n")
-print("| scene | map | clear + reset + raster (fragments per pixel) | total without G-buffer | `sd-vao` total / this |")
+print("| scene | map | clear + reset + cull + raster (fragments per pixel) | total without G-buffer | `sd-vao` total / this |")
 print("|---|---|---|---|---|")
 med = statistics.median
 for scene in dict.fromkeys(s for s, _ in cells):
