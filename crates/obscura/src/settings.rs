@@ -1745,7 +1745,7 @@ mod tests {
         }
         let json = AoSettings::default().to_json_string();
         assert!(json.contains("\"normalization\": \"clipped\""), "{json}");
-        assert!(json.contains("\"mask\": \"stencil\""), "{json}");
+        assert!(json.contains("\"mask\": \"depth\""), "{json}");
     }
 
     #[test]
