@@ -4,7 +4,7 @@
 //! centres), in their order, and writes each draw's indirect arguments; the raster passes then
 //! draw those lists ([`TriangleCull::record`]), their vertex shaders reading the triangle from
 //! `drawn_triangles` (gbuffer.wgsl, bind group 1). Every fragment the uncull'd draws would make
-//! is still made, in the same order (tests/triangle_cull.rs). Why: on the H100/H200 most of a
+//! is still made, in the same order (the test at the end of this file). Why: on the H100/H200 most of a
 //! raster pass is spent on triangles before any fragment is shaded (BENCHMARKS.md), and compute
 //! is far faster there than the raster units.
 
