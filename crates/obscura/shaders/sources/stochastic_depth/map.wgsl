@@ -21,11 +21,13 @@
 // issue 16): a shader that writes depth and `sample_mask` is never depth- or stencil-tested before
 // it runs, so the stencil of SD-SVAO saved nothing, and emptying a 4x target cost more than
 // drawing colonnade into it. Here the pass writes no depth: reset.wgsl first writes, per pixel,
-// the hardware depth of "first layer + separation" (and the SD-SVAO stencil), and the map's
-// fragment shaders run with forced early tests against it (`@early_depth_test(force)`, wgpu's
-// SHADER_EARLY_DEPTH_TEST; removed from the source where the device lacks it), so fragments in
-// front of the first layer and, with the stencil, at pixels nobody requested are never shaded.
-// The shaders make every decision themselves as well: the early tests only skip work.
+// the hardware depth of "first layer + separation" (for SD-SVAO the far plane, or the stencil,
+// at the pixels nobody requested), and the map's fragment shaders run with forced early tests
+// against it (`@early_depth_test(force)`, wgpu's SHADER_EARLY_DEPTH_TEST; removed from the source
+// where the device lacks it), so fragments in front of the first layer and at unrequested
+// pixels are never shaded. The shaders make every other decision themselves as well (the first
+// layer, and the request mask where the depth test does not hold it): the early tests only skip
+// work.
 
 struct SdRaster {
     // The projection's near plane: stored depth = near / linear depth (readers invert it).
