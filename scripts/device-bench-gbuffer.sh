@@ -17,7 +17,6 @@ rounds=${ROUNDS:-2}
 runs=$out/runs
 mkdir -p "$runs"
 $new info | tee "$out/info.txt"
-sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
 bench() { # name, binary, scene arguments...
   local name=$1 b=$2
   shift 2

@@ -9,7 +9,6 @@
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 $bin info | tee "$out/info.txt"
-sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
 bench=(--size 1920x1080 --frames ${FRAMES:-100} --warmup 10 --sd-alpha 0.2)
 for s in 1 2 4 8; do
   run() { # name, then bench arguments

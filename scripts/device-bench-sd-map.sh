@@ -21,7 +21,6 @@ rounds=${ROUNDS:-2}
 runs=$out/runs
 mkdir -p "$runs"
 $new info | tee "$out/info.txt"
-sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
 bench() { # name, binary, scene arguments...
   local name=$1 b=$2
   shift 2
@@ -33,12 +32,7 @@ for round in $(seq "$rounds"); do
     b=$new; [ "$side" = old ] && b=$old
     [ -x "$b" ] || continue
     for scene in sponza sponza0 colonnade sibenik; do
-      case $scene in
-        sponza) args=("${sponza[@]}") ;;
-        sponza0) args=("${sponza[@]}" --guard-band 0) ;;
-        colonnade) args=(--scene colonnade --camera closeup) ;;
-        sibenik) [ -d .devbin/scenes/sibenik ] || continue; args=("${sibenik[@]}") ;;
-      esac
+      scene_args "$scene" || continue
       bench "$scene-$side-$round" "$b" "${args[@]}" --techniques sd-vao,sd-svao
       bench "${scene}_discard-$side-$round" "$b" "${args[@]}" --techniques sd-svao \
         --sd-mask discard

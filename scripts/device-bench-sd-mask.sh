@@ -11,7 +11,6 @@ rounds=${ROUNDS:-2}
 runs=$out/runs
 mkdir -p "$runs"
 $bin info | tee "$out/info.txt"
-sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
 bench() { # name, scene and technique arguments...
   local name=$1
   shift
@@ -20,12 +19,7 @@ bench() { # name, scene and technique arguments...
 }
 for round in $(seq "$rounds"); do
   for scene in sponza sponza0 colonnade sibenik; do
-    case $scene in
-      sponza) args=("${sponza[@]}") ;;
-      sponza0) args=("${sponza[@]}" --guard-band 0) ;;
-      colonnade) args=(--scene colonnade --camera closeup) ;;
-      sibenik) [ -d .devbin/scenes/sibenik ] || continue; args=("${sibenik[@]}") ;;
-    esac
+    scene_args "$scene" || continue
     bench "$scene-full-$round" "${args[@]}" --techniques sd-vao
     for mask in stencil depth discard; do
       bench "$scene-$mask-$round" "${args[@]}" --techniques sd-svao --sd-mask $mask

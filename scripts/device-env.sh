@@ -1,6 +1,6 @@
 # Sourced by the device scripts (scripts/device-bench*.sh): the Vulkan loader carried in .gl/
 # unpacked, the Vulkan backend, the NVIDIA driver's ICD where the loader does not find it, and
-# $bin, $out (created) and $sponza (the Crytek Sponza view of BENCHMARKS.md).
+# $bin, $out (created), $sponza and $sibenik (the views of BENCHMARKS.md) and scene_args.
 # The loader only on the device (its NVIDIA driver is mounted there), never over a local system
 # where a script runs as a dry run.
 if [ -d /usr/local/nvidia ]; then
@@ -15,3 +15,14 @@ fi
 out=${OUT:-/tmp/out}
 mkdir -p "$out"
 sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
+sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
+# Sets `args` to the arguments of the raster benchmarks' scene $1: sponza, sponza0 (guard band 0),
+# colonnade (its close-up) or sibenik; fails when that scene was not carried.
+scene_args() {
+  case $1 in
+    sponza) args=("${sponza[@]}") ;;
+    sponza0) args=("${sponza[@]}" --guard-band 0) ;;
+    colonnade) args=(--scene colonnade --camera closeup) ;;
+    sibenik) [ -d .devbin/scenes/sibenik ] || return 1; args=("${sibenik[@]}") ;;
+  esac
+}

@@ -161,28 +161,7 @@ impl GBuffer {
         let main = |fragment| ("vs_main", fragment);
         let opaque = ("vs_visibility", "fs_visibility");
         let peel = peel_separation.map(|separation| {
-            let fragment = wgpu::ShaderStages::FRAGMENT;
-            let layout = scene_layout(
-                device,
-                &[
-                    (
-                        fragment,
-                        wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                    ),
-                    (
-                        fragment,
-                        wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                    ),
-                ],
-            );
+            let layout = scene_layout(device, &behind_first_layer_entries());
             let peel_pipeline =
                 |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&layout));
             Peel {
@@ -454,8 +433,7 @@ impl GBuffer {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
-        let drawn = self.cull.drawn_group(device, &pipelines[0]);
-        self.cull.record(&mut pass, pipelines, &bind_groups, &drawn);
+        self.cull.record(&mut pass, pipelines, &bind_groups);
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
@@ -563,6 +541,31 @@ pub(crate) fn scene_layout(
         bind_group_layouts: &[Some(&group), Some(&drawn)],
         immediate_size: 0,
     })
+}
+
+/// Bindings 6 and 7 of the passes that draw what lies behind the first layer (depth peeling,
+/// the stochastic depth map), for [`scene_layout`]: the first layer's linear depth and the pass's
+/// uniform parameters, read by the fragment shader.
+pub(crate) fn behind_first_layer_entries() -> Vec<(wgpu::ShaderStages, wgpu::BindingType)> {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    vec![
+        (
+            fragment,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+        ),
+        (
+            fragment,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+        ),
+    ]
 }
 
 /// A raster pipeline over the scene's vertices (pulled from storage by gbuffer.wgsl).

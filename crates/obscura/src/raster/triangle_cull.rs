@@ -58,11 +58,13 @@ pub(crate) struct TriangleCull {
     params: wgpu::Buffer,
     /// Per draw `(first triangle, count, group, 0)`.
     draw_list: wgpu::Buffer,
-    /// The kept triangles of each draw, from its first triangle on.
-    drawn: wgpu::Buffer,
     /// `draw_indirect` arguments per draw.
     args: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// The kept triangles of each draw, from its first triangle on, as the raster pipelines'
+    /// group 1 ([`drawn_layout`]: equal layouts are compatible, so one bind group serves every
+    /// pipeline).
+    drawn_group: wgpu::BindGroup,
     /// The draws of the coming frame (their order is the arguments' order).
     draws: Mutex<Vec<Draw>>,
     /// Its timing name.
@@ -122,11 +124,17 @@ impl TriangleCull {
                 args.as_entire_binding(),
             ],
         );
+        let drawn_group = crate::gpu::bind_group(
+            device,
+            "drawn triangles",
+            &drawn_layout(device),
+            &[drawn.as_entire_binding()],
+        );
         Self {
             pipeline,
+            drawn_group,
             params,
             draw_list,
-            drawn,
             args,
             bind_group,
             draws: Mutex::new(Vec::new()),
@@ -175,30 +183,16 @@ impl TriangleCull {
         pass.dispatch_workgroups(count.min(ROW), count.div_ceil(ROW), 1);
     }
 
-    /// Bind group 1 of a pipeline made with [`super::gbuffer::scene_layout`].
-    pub fn drawn_group(
-        &self,
-        device: &wgpu::Device,
-        pipeline: &wgpu::RenderPipeline,
-    ) -> wgpu::BindGroup {
-        crate::gpu::bind_group(
-            device,
-            "drawn triangles",
-            &pipeline.get_bind_group_layout(1),
-            &[self.drawn.as_entire_binding()],
-        )
-    }
-
     /// Draw the prepared frame's kept triangles: draw `i` with `pipelines[group]` and
-    /// `bind_groups[group]` (group 0), `drawn` (group 1, [`TriangleCull::drawn_group`]).
+    /// `bind_groups[group]` (group 0) and the kept list (group 1; the pipelines made with
+    /// [`super::gbuffer::scene_layout`]).
     pub fn record(
         &self,
         pass: &mut wgpu::RenderPass,
         pipelines: &[wgpu::RenderPipeline],
         bind_groups: &[wgpu::BindGroup],
-        drawn: &wgpu::BindGroup,
     ) {
-        pass.set_bind_group(1, drawn, &[]);
+        pass.set_bind_group(1, &self.drawn_group, &[]);
         let mut current = None;
         for (i, (group, triangles)) in self.draws.lock().unwrap().iter().enumerate() {
             if triangles.is_empty() {

@@ -20,7 +20,8 @@ mod reset;
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::gpu::PassProfiler;
 use crate::raster::gbuffer::{
-    scene_layout, scene_resources, visibility_draws, CameraUniform, ScenePipeline,
+    behind_first_layer_entries, scene_layout, scene_resources, visibility_draws, CameraUniform,
+    ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
 use crate::raster::triangle_cull::TriangleCull;
@@ -329,26 +330,9 @@ impl StochasticDepthMap {
             has_dynamic_offset: false,
             min_binding_size: None,
         };
-        let mut extra = vec![
-            (
-                fragment,
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-            ),
-            (
-                fragment,
-                wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-            ),
-            (fragment, storage(true)),
-            (fragment, storage(false)),
-        ];
+        // The first layer and `SdRaster`, then the mask table and the map.
+        let mut extra = behind_first_layer_entries();
+        extra.extend([(fragment, storage(true)), (fragment, storage(false))]);
         if requested.is_some() {
             extra.push((fragment, storage(true)));
         }
@@ -527,7 +511,6 @@ impl StochasticDepthMap {
             &resources,
         );
         let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
-        let drawn = self.triangle_cull.drawn_group(device, &self.pipelines[0]);
         self.triangle_cull.encode(encoder, profiler.as_deref_mut());
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
@@ -542,7 +525,7 @@ impl StochasticDepthMap {
             p.begin_fragments(&mut pass, map_name);
         }
         self.triangle_cull
-            .record(&mut pass, &self.pipelines, &bind_groups, &drawn);
+            .record(&mut pass, &self.pipelines, &bind_groups);
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }
