@@ -46,7 +46,7 @@ fn fs_reset_all(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) 
 @fragment
 fn fs_reset_requested(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
     let pixel = vec2<u32>(position.xy);
-    if (sd_request[pixel.y * sd.width + pixel.x] == 0u) {
+    if (!sd_requested(pixel)) {
         discard;
     }
     return sd_cull_depth(pixel);
@@ -59,6 +59,6 @@ fn fs_reset_requested(@builtin(position) position: vec4<f32>) -> @builtin(frag_d
 @fragment
 fn fs_reset_requested_by_depth(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
     let pixel = vec2<u32>(position.xy);
-    let requested = sd_request[pixel.y * sd.width + pixel.x] != 0u;
+    let requested = sd_requested(pixel);
     return select(0.0, sd_cull_depth(pixel), requested);
 }
