@@ -13,6 +13,13 @@
 // - no pixel centre within MARGIN pixels of its screen bounding box.
 // A triangle that crosses the eye plane, or reaches far outside the framebuffer (where float
 // pixel positions lose precision), is tested against the frustum planes only.
+//
+// With occlusion culling (the G-buffer's visibility pass), two phases (Haar and Aaltonen,
+// "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the
+// triangles some pixel showed last frame (`seen_frame`, written by gbuffer_resolve_main.wgsl);
+// after they are drawn, the second keeps the others unless the first phase's depths
+// (shaders/occlusion_pyramid.wgsl) are nearer than the triangle's nearest corner over every pixel
+// it may cover. Every triangle that can win a pixel is still drawn, by one phase or the other.
 
 struct CullParams {
     view: mat4x4<f32>,
@@ -23,6 +30,14 @@ struct CullParams {
     draws: u32,
     // Non-zero: keep every triangle (the tests' uncull'd twin, src/raster/triangle_cull.rs).
     keep_all: u32,
+    // 0: no occlusion culling; 1: the first phase; 2: the second.
+    phase: u32,
+    // The first phase also writes the list without occlusion culling (list 0) when non-zero.
+    keep_all_list: u32,
+    // Where this dispatch's list starts, in triangles and in draws: list `l` (src/raster/
+    // triangle_cull.rs, `CullList`) at `l` times the triangle count and `l` times the draw count.
+    list_triangles: u32,
+    list_draws: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: CullParams;
@@ -37,6 +52,11 @@ struct CullParams {
 // Per draw, `draw_indirect`'s arguments: vertex count, instance count, first vertex, first
 // instance.
 @group(0) @binding(5) var<storage, read_write> args: array<vec4<u32>>;
+// Occlusion culling only: per triangle, the last frame number at which a pixel showed it; the
+// current frame number (x); the first phase's occlusion pyramid.
+@group(0) @binding(6) var<storage, read> seen_frame: array<u32>;
+@group(0) @binding(7) var<uniform> frame_number: vec4<u32>;
+@group(0) @binding(8) var<storage, read> pyramid: array<f32>;
 
 // Pixels: four times the rasteriser's 1/256-pixel vertex snapping.
 const MARGIN: f32 = 0.015625;
@@ -46,6 +66,10 @@ const SCREEN_REACH: f32 = 4.0;
 const GROUP_SIZE: u32 = 256u;
 // Workgroups per row of the dispatch (WebGPU's per-dimension limit).
 const ROW: u32 = 65535u;
+// Relative slack on a triangle's nearest depth against the pyramid: the rasteriser's depth at a
+// pixel centre inside the triangle is a convex combination of the corners' (up to rounding, and
+// the vertex shader's products may round differently from ours).
+const DEPTH_SLACK: f32 = 1.0e-5;
 
 var<workgroup> kept_before: array<u32, GROUP_SIZE>;
 
@@ -76,15 +100,28 @@ fn centre_between(lo: f32, hi: f32) -> bool {
     return ceil(lo - MARGIN - 0.5) <= floor(hi + MARGIN - 0.5);
 }
 
-fn may_cover_a_pixel(tri: vec4<u32>, culls_back: bool) -> bool {
+// What the culling found of a triangle: whether it may cover a pixel centre; and, where it has
+// tested its screen extent (every corner in front of the eye, near the framebuffer), the pixel
+// bounds of that extent and the nearest (largest reversed-Z) depth of its corners.
+struct Coverage {
+    may_cover: bool,
+    on_screen: bool,
+    lo: vec2<f32>,
+    hi: vec2<f32>,
+    nearest: f32,
+}
+
+fn coverage(tri: vec4<u32>, culls_back: bool) -> Coverage {
+    var out = Coverage(false, false, vec2<f32>(0.0), vec2<f32>(0.0), 0.0);
     let a = clip_of(tri.x);
     let b = clip_of(tri.y);
     let c = clip_of(tri.z);
     if (outside_one_plane(a, b, c)) {
-        return false;
+        return out;
     }
+    out.may_cover = true;
     if (!(a.w > 0.0 && b.w > 0.0 && c.w > 0.0)) {
-        return true;
+        return out;
     }
     let pa = to_pixels(a);
     let pb = to_pixels(b);
@@ -93,10 +130,11 @@ fn may_cover_a_pixel(tri: vec4<u32>, culls_back: bool) -> bool {
     let hi = max(pa, max(pb, pc));
     let reach = SCREEN_REACH * params.size;
     if (any(lo < -reach) || any(hi > params.size + reach)) {
-        return true;
+        return out;
     }
     if (!centre_between(lo.x, hi.x) || !centre_between(lo.y, hi.y)) {
-        return false;
+        out.may_cover = false;
+        return out;
     }
     if (culls_back) {
         // Twice the signed area in pixels (y down): positive is clockwise in normalised device
@@ -107,10 +145,48 @@ fn may_cover_a_pixel(tri: vec4<u32>, culls_back: bool) -> bool {
         // How far the area can move when each corner moves by MARGIN in x and y.
         let slack = 4.0 * MARGIN * (length(ab) + length(ac) + length(pc - pb)) + 16.0 * MARGIN * MARGIN;
         if (area > slack) {
-            return false;
+            out.may_cover = false;
+            return out;
         }
     }
-    return true;
+    out.on_screen = true;
+    out.lo = lo;
+    out.hi = hi;
+    out.nearest = max(a.z / a.w, max(b.z / b.w, c.z / c.w));
+    return out;
+}
+
+// Whether a pixel showed triangle `t` last frame (frame numbers start at 1 and `seen_frame` at 0,
+// so on the first frame every triangle counts as seen: the first phase draws them all).
+fn seen_last_frame(t: u32) -> bool {
+    return seen_frame[t] + 1u == frame_number.x;
+}
+
+// Whether the first phase's depths are nearer than `nearest` at every pixel centre within
+// MARGIN of the pixel bounds `lo..hi`: the farthest of the at most 2×2 pyramid tiles of the
+// finest level that covers those pixels. Bounds that reach outside the framebuffer, or that no
+// level covers with 2×2 tiles, decide nothing (false).
+fn hidden_by_pyramid(lo: vec2<f32>, hi: vec2<f32>, nearest: f32) -> bool {
+    let first = ceil(lo - MARGIN - 0.5);
+    let last = floor(hi + MARGIN - 0.5);
+    if (any(first < vec2<f32>(0.0)) || any(last > params.size - 1.0)) {
+        return false;
+    }
+    let size = vec2<u32>(params.size);
+    let p = vec2<u32>(first);
+    let q = vec2<u32>(last);
+    for (var level = PYRAMID_FIRST_LEVEL; level <= PYRAMID_LAST_LEVEL; level++) {
+        let a = p >> vec2<u32>(level);
+        let b = q >> vec2<u32>(level);
+        if (all(b - a <= vec2<u32>(1u))) {
+            let far = min(
+                min(pyramid[pyramid_index(size, level, a)], pyramid[pyramid_index(size, level, vec2<u32>(b.x, a.y))]),
+                min(pyramid[pyramid_index(size, level, vec2<u32>(a.x, b.y))], pyramid[pyramid_index(size, level, b)]),
+            );
+            return nearest * (1.0 + DEPTH_SLACK) < far;
+        }
+    }
+    return false;
 }
 
 @compute @workgroup_size(256)
@@ -125,13 +201,34 @@ fn main(
     }
     let draw = draw_list[d];
     let t = draw.x + i;
-    var keep = false;
+    // Bit 0: kept by this dispatch; bit 16: kept without occlusion culling (the first phase's
+    // second list). One prefix sum counts both (at most 256 each).
+    var keep = 0u;
     if (i < draw.y) {
-        keep = params.keep_all != 0u || may_cover_a_pixel(triangles[t], draw.z == 0u);
+        if (params.keep_all != 0u) {
+            // The uncull'd twin: everything in the first (or only) phase.
+            keep = select(0u, 0x10001u, params.phase != 2u);
+        } else {
+            let cover = coverage(triangles[t], draw.z == 0u);
+            if (cover.may_cover) {
+                switch params.phase {
+                    case 1u: {
+                        keep = select(0u, 1u, seen_last_frame(t)) | 0x10000u;
+                    }
+                    case 2u: {
+                        let hidden = cover.on_screen && hidden_by_pyramid(cover.lo, cover.hi, cover.nearest);
+                        keep = select(0u, 1u, !seen_last_frame(t) && !hidden);
+                    }
+                    default: {
+                        keep = 1u;
+                    }
+                }
+            }
+        }
     }
     // Inclusive prefix sum of `keep` over the workgroup (Hillis and Steele): the kept triangles
     // stay in their order, so depth ties resolve as they did without culling.
-    kept_before[i] = u32(keep);
+    kept_before[i] = keep;
     workgroupBarrier();
     for (var offset = 1u; offset < GROUP_SIZE; offset <<= 1u) {
         var sum = kept_before[i];
@@ -142,10 +239,19 @@ fn main(
         kept_before[i] = sum;
         workgroupBarrier();
     }
-    if (keep) {
-        drawn[draw.x + kept_before[i] - 1u] = t;
+    let before = kept_before[i];
+    if ((keep & 1u) != 0u) {
+        drawn[params.list_triangles + draw.x + (before & 0xffffu) - 1u] = t;
+    }
+    let full_list = params.phase == 1u && params.keep_all_list != 0u;
+    if (full_list && (keep & 0x10000u) != 0u) {
+        drawn[draw.x + (before >> 16u) - 1u] = t;
     }
     if (i == GROUP_SIZE - 1u) {
-        args[d] = vec4<u32>(3u * kept_before[i], 1u, 3u * draw.x, 0u);
+        let first = params.list_triangles + draw.x;
+        args[params.list_draws + d] = vec4<u32>(3u * (before & 0xffffu), 1u, 3u * first, 0u);
+        if (full_list) {
+            args[d] = vec4<u32>(3u * (before >> 16u), 1u, 3u * draw.x, 0u);
+        }
     }
 }

@@ -16,7 +16,7 @@
 
 use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
-use super::triangle_cull::TriangleCull;
+use super::triangle_cull::{CullList, TriangleCull};
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::FrameView;
@@ -191,6 +191,9 @@ impl GBuffer {
         });
         let visibility_pipeline =
             |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
+        let z = target("z", Z_FORMAT);
+        // Occlusion culling against the visibility pass's own depth buffer.
+        let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
         Self {
             depth: target_with(
                 "linear depth",
@@ -203,7 +206,7 @@ impl GBuffer {
                 wgpu::TextureUsages::STORAGE_BINDING,
             ),
             albedo: target("albedo", ALBEDO_FORMAT),
-            z: target("z", Z_FORMAT),
+            z,
             visibility: target("visibility", VISIBILITY_FORMAT),
             visibility_pipelines: [
                 visibility_pipeline(Some(wgpu::Face::Back), opaque),
@@ -231,13 +234,14 @@ impl GBuffer {
                 mapped_at_creation: false,
             }),
             peel,
-            cull: TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull"),
+            cull,
         }
     }
 
-    /// Triangles the last frame's culling was given and kept (tests; waits for the GPU).
+    /// Triangles the last frame's culling was given, and kept by each phase of the visibility
+    /// pass (tests; waits for the GPU).
     #[cfg(test)]
-    pub(crate) fn cull_counts(&self, gpu: &crate::Gpu) -> (u32, u32) {
+    pub(crate) fn cull_counts(&self, gpu: &crate::Gpu) -> (u32, Vec<u32>) {
         self.cull.counts(gpu)
     }
 
@@ -260,26 +264,47 @@ impl GBuffer {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
         let scene = &scene.draw_ordered();
-        self.cull
-            .prepare(queue, view, visibility_draws(scene, view));
+        self.cull.prepare(
+            queue,
+            view,
+            visibility_draws(scene, view),
+            self.peel.is_some(),
+        );
+        // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
+        // then the others that their depths do not hide, into the same targets.
         self.cull.encode(encoder, profiler.as_deref_mut());
         let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
-        self.draw(
-            device,
-            encoder,
-            &self.visibility_pipelines,
-            &resources,
-            &targets,
-            "gbuffer",
-            profiler.as_deref_mut(),
-        );
+        for (list, clear) in [
+            (CullList::SeenLastFrame, true),
+            (CullList::NotHidden, false),
+        ] {
+            if !clear {
+                self.cull.encode_second(encoder, profiler.as_deref_mut());
+            }
+            self.draw(
+                device,
+                encoder,
+                &self.visibility_pipelines,
+                &resources,
+                &targets,
+                DrawLists {
+                    lists: &[list],
+                    clear,
+                    keep_depth: clear,
+                },
+                "gbuffer",
+                profiler.as_deref_mut(),
+            );
+        }
+        let seen = self.cull.seen_bindings();
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
             &[&self.visibility, &self.depth, &self.normals],
+            seen.into_iter().flatten().collect(),
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );
@@ -294,12 +319,18 @@ impl GBuffer {
                 ],
             );
             let targets = [(&peel.visibility, wgpu::Color::TRANSPARENT)];
+            // Every triangle: those the first layer hides are what peeling looks for.
             self.draw(
                 device,
                 encoder,
                 &peel.pipelines,
                 &resources,
                 &targets,
+                DrawLists {
+                    lists: &[CullList::All],
+                    clear: true,
+                    keep_depth: false,
+                },
                 "depth_peel",
                 profiler.as_deref_mut(),
             );
@@ -309,6 +340,7 @@ impl GBuffer {
                 scene,
                 &peel.resolve,
                 &[&peel.visibility, &peel.depth],
+                Vec::new(),
                 "depth_peel_resolve",
                 profiler,
             );
@@ -332,13 +364,18 @@ impl GBuffer {
             &self.albedo_pipelines,
             &resources,
             &targets,
+            DrawLists {
+                lists: &[CullList::SeenLastFrame, CullList::NotHidden],
+                clear: true,
+                keep_depth: false,
+            },
             "albedo",
             None,
         );
     }
 
     /// A visibility buffer's resolve `pipeline` over the framebuffer: `textures` (the visibility
-    /// buffer, then the outputs) at bindings 6, 7, …; timed as `name`.
+    /// buffer, then the outputs) at bindings 6, 7, …, then `extra`; timed as `name`.
     #[allow(clippy::too_many_arguments)]
     fn resolve(
         &self,
@@ -347,6 +384,7 @@ impl GBuffer {
         scene: &GpuScene,
         pipeline: &wgpu::ComputePipeline,
         textures: &[&wgpu::Texture],
+        extra: Vec<wgpu::BindingResource>,
         name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
@@ -361,7 +399,14 @@ impl GBuffer {
             .zip(scene_resources(&self.camera, scene, Vec::new()))
             .take(4)
             .filter(|(binding, _)| *binding != 2 || reads_attributes)
-            .chain((6..).zip(views.iter().map(wgpu::BindingResource::TextureView)))
+            .chain(
+                (6..).zip(
+                    views
+                        .iter()
+                        .map(wgpu::BindingResource::TextureView)
+                        .chain(extra),
+                ),
+            )
             .collect();
         let bind_group =
             crate::gpu::bind_group_at(device, name, &pipeline.get_bind_group_layout(0), &resources);
@@ -376,7 +421,7 @@ impl GBuffer {
         pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
     }
 
-    /// One raster pass of the scene: the frame's culled draws in order
+    /// One raster pass of the scene: the frame's culled draws of `lists.lists` in order
     /// ([`TriangleCull::record`]).
     #[allow(clippy::too_many_arguments)]
     fn draw(
@@ -386,6 +431,7 @@ impl GBuffer {
         pipelines: &[wgpu::RenderPipeline],
         resources: &[wgpu::BindingResource],
         targets: &[(&wgpu::Texture, wgpu::Color)],
+        lists: DrawLists,
         name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
@@ -406,7 +452,11 @@ impl GBuffer {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(*clear),
+                        load: if lists.clear {
+                            wgpu::LoadOp::Clear(*clear)
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
                         store: wgpu::StoreOp::Store,
                     },
                 })
@@ -421,8 +471,16 @@ impl GBuffer {
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &z_view,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Discard,
+                    load: if lists.clear {
+                        wgpu::LoadOp::Clear(0.0)
+                    } else {
+                        wgpu::LoadOp::Load
+                    },
+                    store: if lists.keep_depth {
+                        wgpu::StoreOp::Store
+                    } else {
+                        wgpu::StoreOp::Discard
+                    },
                 }),
                 stencil_ops: None,
             }),
@@ -433,11 +491,21 @@ impl GBuffer {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, name);
         }
-        self.cull.record(&mut pass, pipelines, &bind_groups);
+        for &list in lists.lists {
+            self.cull.record(&mut pass, pipelines, &bind_groups, list);
+        }
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
         }
     }
+}
+
+/// What one raster pass of [`GBuffer`] draws: the culled `lists`, in order, into targets it clears
+/// first (`clear`) or adds to; `keep_depth` stores the depth buffer for what comes after.
+struct DrawLists<'a> {
+    lists: &'a [CullList],
+    clear: bool,
+    keep_depth: bool,
 }
 
 /// The visibility pass's draws: the chunks `view` may see ([`super::chunks`]), nearest first

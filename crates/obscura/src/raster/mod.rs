@@ -4,4 +4,5 @@
 pub mod chunks;
 pub mod gbuffer;
 pub mod gpu_scene;
+pub(crate) mod occlusion_pyramid;
 pub(crate) mod triangle_cull;

@@ -24,7 +24,7 @@ use crate::raster::gbuffer::{
     ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
-use crate::raster::triangle_cull::TriangleCull;
+use crate::raster::triangle_cull::{CullList, TriangleCull};
 use crate::settings::{SdMask, StochasticDepthSettings, SD_SAMPLE_COUNTS};
 use crate::view::FrameView;
 use crate::{shaders, Error};
@@ -402,7 +402,7 @@ impl StochasticDepthMap {
             requested: requested.is_some(),
             all_layers: false,
             timing_name: "sd_map",
-            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull"),
+            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None),
         })
     }
 
@@ -466,7 +466,7 @@ impl StochasticDepthMap {
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
         // pipeline of this map each.
         self.triangle_cull
-            .prepare(queue, view, visibility_draws(&self.scene, view));
+            .prepare(queue, view, visibility_draws(&self.scene, view), false);
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -525,7 +525,7 @@ impl StochasticDepthMap {
             p.begin_fragments(&mut pass, map_name);
         }
         self.triangle_cull
-            .record(&mut pass, &self.pipelines, &bind_groups);
+            .record(&mut pass, &self.pipelines, &bind_groups, CullList::All);
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }
