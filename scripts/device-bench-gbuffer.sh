@@ -4,7 +4,9 @@
 # G-buffer, depth peeling and the stochastic depth map) with .devbin/obscura-old and
 # .devbin/obscura alternating for ROUNDS rounds, on Crytek Sponza (guard band 64 and 0), the
 # built-in `colonnade` close-up and, when carried, Sibenik (an OBJ: every triangle double-sided),
-# all at 1920x1080; then the peer benchmark (Bevy 0.19 depth + normal prepass and SSAO high,
+# all at 1920x1080, and Sponza along its `orbit` path (40° about the view's target, 60 frames:
+# the camera moves every frame, so occlusion culling's first phase works from another view); then
+# the peer benchmark (Bevy 0.19 depth + normal prepass and SSAO high,
 # ../shared/tools/peers/README.md). Writes $OUT/summary.md (scripts/bench-raster-summary.py),
 # $OUT/bevy.txt and $OUT/runs.tar.gz (every JSON).
 # Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza sibenik, plus the old binary)
@@ -17,10 +19,10 @@ rounds=${ROUNDS:-2}
 runs=$out/runs
 mkdir -p "$runs"
 $new info | tee "$out/info.txt"
-bench() { # name, binary, scene arguments...
+bench() { # name, binary, scene arguments... (FRAMES: timed frames, 200)
   local name=$1 b=$2
   shift 2
-  $b bench "$@" --size 1920x1080 --techniques "$techniques" --frames 200 --warmup 20 \
+  $b bench "$@" --size 1920x1080 --techniques "$techniques" --frames "${FRAMES:-200}" --warmup 20 \
     --json "$runs/$name.json" >> "$out/bench.txt" 2>&1
 }
 for round in $(seq "$rounds"); do
@@ -29,6 +31,7 @@ for round in $(seq "$rounds"); do
     [ -x "$b" ] || continue
     bench "sponza-$side-$round" "$b" "${sponza[@]}"
     bench "sponza0-$side-$round" "$b" "${sponza[@]}" --guard-band 0
+    FRAMES=60 bench "sponzaorbit-$side-$round" "$b" "${sponza[@]}" --path orbit
     bench "colonnade-$side-$round" "$b" --scene colonnade --camera closeup
     [ -d .devbin/scenes/sibenik ] && bench "sibenik-$side-$round" "$b" "${sibenik[@]}"
   done

@@ -9,7 +9,7 @@ use super::{Gpu, GpuError};
 use std::collections::BTreeMap;
 
 /// Timestamps per frame are resolved into slots this far apart (the resolve-offset alignment).
-const SLOT_BYTES: u64 = wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT;
+const SLOT_BYTES: u64 = 2 * wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT;
 const MAX_PASSES: u32 = (SLOT_BYTES / 16) as u32;
 
 /// Milliseconds per named pass for one frame.
