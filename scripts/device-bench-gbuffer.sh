@@ -4,8 +4,9 @@
 # G-buffer, depth peeling and the stochastic depth map) with .devbin/obscura-old and
 # .devbin/obscura alternating for ROUNDS rounds, on Crytek Sponza (guard band 64 and 0), the
 # built-in `colonnade` close-up and, when carried, Sibenik (an OBJ: every triangle double-sided),
-# all at 1920x1080, and Sponza along its `orbit` path (40° about the view's target, 60 frames:
-# the camera moves every frame, so occlusion culling's first phase works from another view); then
+# all at 1920x1080, and Sponza along scripts/sponza-walk.json (a 5 m walk from that view, turning
+# 20° each way, over 60 frames: the camera moves every frame, so occlusion culling's first phase
+# works from the last frame's view); then
 # the peer benchmark (Bevy 0.19 depth + normal prepass and SSAO high,
 # ../shared/tools/peers/README.md). Writes $OUT/summary.md (scripts/bench-raster-summary.py),
 # $OUT/bevy.txt and $OUT/runs.tar.gz (every JSON).
@@ -31,7 +32,8 @@ for round in $(seq "$rounds"); do
     [ -x "$b" ] || continue
     bench "sponza-$side-$round" "$b" "${sponza[@]}"
     bench "sponza0-$side-$round" "$b" "${sponza[@]}" --guard-band 0
-    FRAMES=60 bench "sponzaorbit-$side-$round" "$b" "${sponza[@]}" --path orbit
+    FRAMES=60 bench "sponzawalk-$side-$round" "$b" "${sponza[0]}" "${sponza[1]}" \
+      --path scripts/sponza-walk.json
     bench "colonnade-$side-$round" "$b" --scene colonnade --camera closeup
     [ -d .devbin/scenes/sibenik ] && bench "sibenik-$side-$round" "$b" "${sibenik[@]}"
   done
