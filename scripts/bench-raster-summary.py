@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Markdown tables from the runs folder of scripts/device-bench-gbuffer.sh or
 scripts/device-bench-sd-map.sh: per scene and build, the median over rounds of each raster pass
-(G-buffer = triangle cull + visibility pass + occlusion pyramid + resolve, depth peeling = its
-cull + pass + pyramid + resolve (builds before occlusion culling drew the G-buffer's list), SD map =
+(G-buffer = triangle cull + visibility pass + occlusion pyramid + resolve, depth peeling = pass +
+resolve, SD map =
 clear + reset + triangle cull + map, for
 `sd-vao` and for `sd-svao`, whose map covers the requested pixels only) with fragments per
 framebuffer pixel; then each stochastic-depth technique's total without the G-buffer; then the
@@ -15,7 +15,7 @@ import sys
 runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
 PASSES = {
     "G-buffer": ("vao", ["triangle_cull", "gbuffer", "occlusion_pyramid", "gbuffer_resolve"], "gbuffer"),
-    "depth peeling": ("vao-dual", ["peel_cull", "depth_peel", "peel_pyramid", "depth_peel_resolve"], "depth_peel"),
+    "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
     "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
     "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
 }

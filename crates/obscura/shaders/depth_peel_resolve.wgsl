@@ -1,6 +1,5 @@
 // Depth peeling's resolve: the linear depth of the peeled layer's triangle at every pixel centre
-// (appended to gbuffer.wgsl and gbuffer_resolve.wgsl; the raster pass is depth_peel.wgsl),
-// marking the triangles shown for the next frame's occlusion culling.
+// (appended to gbuffer.wgsl and gbuffer_resolve.wgsl; the raster pass is depth_peel.wgsl).
 
 @group(0) @binding(6) var second_visibility: texture_2d<u32>;
 @group(0) @binding(7) var second_depth_out: texture_storage_2d<r32float, write>;
@@ -14,7 +13,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let visible = textureLoad(second_visibility, id.xy, 0).r;
     var depth = 0.0;
     if (visible != 0u) {
-        mark_seen(visible - 1u);
         depth = -pixel_surface(triangles[visible - 1u], id.xy, size).view_pos.z;
     }
     textureStore(second_depth_out, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));

@@ -12,17 +12,6 @@
 // is (π·B) A − (π·A) B (e.g. Hartley and Zisserman, "Multiple View Geometry", 2nd ed., §3.2).
 // Barycentrics, for the vertex normals only, follow from the point by sub-triangle areas.
 
-// Occlusion culling (shaders/triangle_cull.wgsl): per triangle, the last frame number at which a
-// pixel showed it, and the current frame number (x).
-@group(0) @binding(9) var<storage, read_write> seen_frame: array<u32>;
-@group(0) @binding(10) var<uniform> frame_number: vec4<u32>;
-
-// Triangle `t` is shown this frame. Every pixel of a triangle writes the same value, so which
-// write lands does not matter.
-fn mark_seen(t: u32) {
-    seen_frame[t] = frame_number.x;
-}
-
 // The view-space point of the plane through `v0` with normal `n` seen through NDC point `ndc`.
 fn pixel_plane_point(ndc: vec2<f32>, v0: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let a = camera.inverse_projection * vec4<f32>(ndc, 1.0, 1.0);

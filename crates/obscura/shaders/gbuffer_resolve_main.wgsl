@@ -1,10 +1,12 @@
 // G-buffer resolve: depth and normal of every pixel from the visibility buffer (appended to
-// gbuffer.wgsl and gbuffer_resolve.wgsl), marking the triangles shown for the next frame's
-// occlusion culling.
+// gbuffer.wgsl and gbuffer_resolve.wgsl); and, for the next frame's occlusion culling
+// (shaders/triangle_cull.wgsl), the frame number at which each shown triangle was last seen.
 
 @group(0) @binding(6) var visibility: texture_2d<u32>;
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 @group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(9) var<storage, read_write> seen_frame: array<u32>;
+@group(0) @binding(10) var<uniform> frame_number: vec4<u32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -18,7 +20,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(normal_out, id.xy, vec4<f32>(0.0));
         return;
     }
-    mark_seen(visible - 1u);
+    // Every pixel of a triangle writes the same value: which one lands does not matter.
+    seen_frame[visible - 1u] = frame_number.x;
     let tri = triangles[visible - 1u];
     let s = pixel_surface(tri, id.xy, size);
     var shading = vec3<f32>(0.0);

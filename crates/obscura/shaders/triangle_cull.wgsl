@@ -14,10 +14,9 @@
 // A triangle that crosses the eye plane, or reaches far outside the framebuffer (where float
 // pixel positions lose precision), is tested against the frustum planes only.
 //
-// With occlusion culling (the G-buffer's visibility pass, depth peeling), two phases (Haar and Aaltonen,
+// With occlusion culling (the G-buffer's visibility pass), two phases (Haar and Aaltonen,
 // "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the
-// triangles some pixel showed last frame (`seen_frame`, written by the pass's resolve,
-// gbuffer_resolve.wgsl's `mark_seen`);
+// triangles some pixel showed last frame (`seen_frame`, written by gbuffer_resolve_main.wgsl);
 // after they are drawn, the second keeps the others unless the first phase's depths
 // (shaders/occlusion_pyramid.wgsl) are nearer than the triangle's nearest corner over every pixel
 // it may cover. Every triangle that can win a pixel is still drawn, by one phase or the other.
@@ -33,6 +32,8 @@ struct CullParams {
     keep_all: u32,
     // 0: no occlusion culling; 1: the first phase; 2: the second.
     phase: u32,
+    // The first phase also writes the list without occlusion culling (list 0) when non-zero.
+    keep_all_list: u32,
     // Where this dispatch's list starts, in triangles and in draws: list `l` (src/raster/
     // triangle_cull.rs, `CullList`) at `l` times the triangle count and `l` times the draw count.
     list_triangles: u32,
@@ -200,17 +201,19 @@ fn main(
     }
     let draw = draw_list[d];
     let t = draw.x + i;
+    // Bit 0: kept by this dispatch; bit 16: kept without occlusion culling (the first phase's
+    // second list). One prefix sum counts both (at most 256 each).
     var keep = 0u;
     if (i < draw.y) {
         if (params.keep_all != 0u) {
             // The uncull'd twin: everything in the first (or only) phase.
-            keep = select(0u, 1u, params.phase != 2u);
+            keep = select(0u, 0x10001u, params.phase != 2u);
         } else {
             let cover = coverage(triangles[t], draw.z == 0u);
             if (cover.may_cover) {
                 switch params.phase {
                     case 1u: {
-                        keep = select(0u, 1u, seen_last_frame(t));
+                        keep = select(0u, 1u, seen_last_frame(t)) | 0x10000u;
                     }
                     case 2u: {
                         let hidden = cover.on_screen && hidden_by_pyramid(cover.lo, cover.hi, cover.nearest);
@@ -236,11 +239,19 @@ fn main(
         kept_before[i] = sum;
         workgroupBarrier();
     }
-    if (keep != 0u) {
-        drawn[params.list_triangles + draw.x + kept_before[i] - 1u] = t;
+    let before = kept_before[i];
+    if ((keep & 1u) != 0u) {
+        drawn[params.list_triangles + draw.x + (before & 0xffffu) - 1u] = t;
+    }
+    let full_list = params.phase == 1u && params.keep_all_list != 0u;
+    if (full_list && (keep & 0x10000u) != 0u) {
+        drawn[draw.x + (before >> 16u) - 1u] = t;
     }
     if (i == GROUP_SIZE - 1u) {
         let first = params.list_triangles + draw.x;
-        args[params.list_draws + d] = vec4<u32>(3u * kept_before[i], 1u, 3u * first, 0u);
+        args[params.list_draws + d] = vec4<u32>(3u * (before & 0xffffu), 1u, 3u * first, 0u);
+        if (full_list) {
+            args[d] = vec4<u32>(3u * (before >> 16u), 1u, 3u * draw.x, 0u);
+        }
     }
 }

@@ -109,8 +109,8 @@ impl PassProfiler {
         2 * index
     }
 
-    /// The timestamp writes for compute pass `name` of the current frame. At most 16 passes a frame
-    /// (one 256-byte resolve slot); panics past that or past `max_frames` frames.
+    /// The timestamp writes for compute pass `name` of the current frame. At most 32 passes a frame
+    /// (one 512-byte resolve slot); panics past that or past `max_frames` frames.
     pub fn compute_pass(&mut self, name: &str) -> wgpu::ComputePassTimestampWrites<'_> {
         let begin = self.next_pass(name);
         wgpu::ComputePassTimestampWrites {

@@ -12,9 +12,7 @@
 //! first with a fragment shader without `discard`, so the hardware may test their depth before
 //! shading them; the alpha-tested ones last. Within each group the visibility pass draws the
 //! scene's chunks nearest first and skips those outside the view ([`super::chunks`]), so fewer
-//! hidden fragments are shaded. Triangles are culled in compute first ([`super::triangle_cull`]),
-//! with occlusion culling in two phases: the visibility pass and depth peeling each draw the
-//! triangles they showed last frame, then the others that those depths do not hide.
+//! hidden fragments are shaded.
 
 use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
@@ -65,9 +63,6 @@ struct Peel {
     /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
     resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
-    /// Its own triangle lists, occlusion-culled against the peeled layer's depths: the
-    /// G-buffer's would drop what the first layer hides, which is what peeling looks for.
-    cull: TriangleCull,
 }
 
 /// The G-buffer's targets and pipelines over the guard-banded framebuffer: what
@@ -162,10 +157,6 @@ impl GBuffer {
             .create(device)
         };
         let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
-        // One depth buffer serves the visibility pass and depth peeling in turn; each culls its
-        // triangles against its own depths (occlusion culling, super::triangle_cull).
-        let z = target("z", Z_FORMAT);
-        let draw_ordered = scene.draw_ordered();
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
         let main = |fragment| ("vs_main", fragment);
         let opaque = ("vs_visibility", "fs_visibility");
@@ -196,22 +187,13 @@ impl GBuffer {
                     DEPTH_FORMAT,
                     wgpu::TextureUsages::STORAGE_BINDING,
                 ),
-                cull: TriangleCull::new(
-                    device,
-                    &draw_ordered,
-                    "peel_cull",
-                    Some((&z, "peel_pyramid")),
-                ),
             }
         });
         let visibility_pipeline =
             |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
-        let cull = TriangleCull::new(
-            device,
-            &draw_ordered,
-            "triangle_cull",
-            Some((&z, "occlusion_pyramid")),
-        );
+        let z = target("z", Z_FORMAT);
+        // Occlusion culling against the visibility pass's own depth buffer.
+        let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
         Self {
             depth: target_with(
                 "linear depth",
@@ -268,9 +250,7 @@ impl GBuffer {
         self.peel.as_ref().map(|p| &p.depth)
     }
 
-    /// Rasterise `scene` seen through `view`. Timings: `triangle_cull`, `gbuffer` (the visibility
-    /// pass), `occlusion_pyramid` and `gbuffer_resolve`; when peeling, `peel_cull`, `depth_peel`,
-    /// `peel_pyramid` and `depth_peel_resolve`.
+    /// Rasterise `scene` seen through `view`. Timings: `gbuffer` (the visibility pass), `gbuffer_resolve`, and `depth_peel` when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,
@@ -284,26 +264,47 @@ impl GBuffer {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
         let scene = &scene.draw_ordered();
-        let draws = visibility_draws(scene, view);
+        self.cull.prepare(
+            queue,
+            view,
+            visibility_draws(scene, view),
+            self.peel.is_some(),
+        );
+        // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
+        // then the others that their depths do not hide, into the same targets.
+        self.cull.encode(encoder, profiler.as_deref_mut());
         let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
-        self.draw_two_phases(
-            device,
-            queue,
-            encoder,
-            view,
-            (&self.cull, draws.clone()),
-            (&self.visibility_pipelines, &resources, &targets),
-            "gbuffer",
-            profiler.as_deref_mut(),
-        );
+        for (list, clear) in [
+            (CullList::SeenLastFrame, true),
+            (CullList::NotHidden, false),
+        ] {
+            if !clear {
+                self.cull.encode_second(encoder, profiler.as_deref_mut());
+            }
+            self.draw(
+                device,
+                encoder,
+                &self.visibility_pipelines,
+                &resources,
+                &targets,
+                DrawLists {
+                    lists: &[list],
+                    clear,
+                    keep_depth: clear,
+                },
+                "gbuffer",
+                profiler.as_deref_mut(),
+            );
+        }
+        let seen = self.cull.seen_bindings();
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
             &[&self.visibility, &self.depth, &self.normals],
-            self.cull.seen_bindings(),
+            seen.into_iter().flatten().collect(),
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );
@@ -318,13 +319,18 @@ impl GBuffer {
                 ],
             );
             let targets = [(&peel.visibility, wgpu::Color::TRANSPARENT)];
-            self.draw_two_phases(
+            // Every triangle: those the first layer hides are what peeling looks for.
+            self.draw(
                 device,
-                queue,
                 encoder,
-                view,
-                (&peel.cull, draws),
-                (&peel.pipelines, &resources, &targets),
+                &peel.pipelines,
+                &resources,
+                &targets,
+                DrawLists {
+                    lists: &[CullList::All],
+                    clear: true,
+                    keep_depth: false,
+                },
                 "depth_peel",
                 profiler.as_deref_mut(),
             );
@@ -334,55 +340,9 @@ impl GBuffer {
                 scene,
                 &peel.resolve,
                 &[&peel.visibility, &peel.depth],
-                peel.cull.seen_bindings(),
+                Vec::new(),
                 "depth_peel_resolve",
                 profiler,
-            );
-        }
-    }
-
-    /// A raster pass of `draws` culled by `cull` with occlusion culling: the first phase's list
-    /// into cleared targets and depth buffer, then the second phase's over them (both timed as
-    /// `name`).
-    #[allow(clippy::too_many_arguments)]
-    fn draw_two_phases(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
-        view: &FrameView,
-        (cull, draws): (&TriangleCull, Vec<Draw>),
-        (pipelines, resources, targets): (
-            &[wgpu::RenderPipeline],
-            &[wgpu::BindingResource],
-            &[(&wgpu::Texture, wgpu::Color)],
-        ),
-        name: &str,
-        mut profiler: Option<&mut PassProfiler>,
-    ) {
-        cull.prepare(queue, view, draws);
-        cull.encode(encoder, profiler.as_deref_mut());
-        for (list, first) in [
-            (CullList::SeenLastFrame, true),
-            (CullList::NotHidden, false),
-        ] {
-            if !first {
-                cull.encode_second(encoder, profiler.as_deref_mut());
-            }
-            self.draw(
-                device,
-                encoder,
-                pipelines,
-                resources,
-                targets,
-                DrawLists {
-                    cull,
-                    lists: &[list],
-                    clear: first,
-                    keep_depth: first,
-                },
-                name,
-                profiler.as_deref_mut(),
             );
         }
     }
@@ -405,7 +365,6 @@ impl GBuffer {
             &resources,
             &targets,
             DrawLists {
-                cull: &self.cull,
                 lists: &[CullList::SeenLastFrame, CullList::NotHidden],
                 clear: true,
                 keep_depth: false,
@@ -416,8 +375,7 @@ impl GBuffer {
     }
 
     /// A visibility buffer's resolve `pipeline` over the framebuffer: `textures` (the visibility
-    /// buffer, then the outputs) at bindings 6, 7, …, and `seen` (occlusion culling's marks,
-    /// [`TriangleCull::seen_bindings`]) at 9 and 10; timed as `name`.
+    /// buffer, then the outputs) at bindings 6, 7, …, then `extra`; timed as `name`.
     #[allow(clippy::too_many_arguments)]
     fn resolve(
         &self,
@@ -426,7 +384,7 @@ impl GBuffer {
         scene: &GpuScene,
         pipeline: &wgpu::ComputePipeline,
         textures: &[&wgpu::Texture],
-        seen: Option<[wgpu::BindingResource; 2]>,
+        extra: Vec<wgpu::BindingResource>,
         name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
@@ -441,8 +399,14 @@ impl GBuffer {
             .zip(scene_resources(&self.camera, scene, Vec::new()))
             .take(4)
             .filter(|(binding, _)| *binding != 2 || reads_attributes)
-            .chain((6..).zip(views.iter().map(wgpu::BindingResource::TextureView)))
-            .chain((9..).zip(seen.into_iter().flatten()))
+            .chain(
+                (6..).zip(
+                    views
+                        .iter()
+                        .map(wgpu::BindingResource::TextureView)
+                        .chain(extra),
+                ),
+            )
             .collect();
         let bind_group =
             crate::gpu::bind_group_at(device, name, &pipeline.get_bind_group_layout(0), &resources);
@@ -528,7 +492,7 @@ impl GBuffer {
             p.begin_fragments(&mut pass, name);
         }
         for &list in lists.lists {
-            lists.cull.record(&mut pass, pipelines, &bind_groups, list);
+            self.cull.record(&mut pass, pipelines, &bind_groups, list);
         }
         if let Some(p) = profiler {
             p.end_fragments(&mut pass);
@@ -536,10 +500,9 @@ impl GBuffer {
     }
 }
 
-/// What one raster pass of [`GBuffer`] draws: `cull`'s `lists`, in order, into targets it clears
+/// What one raster pass of [`GBuffer`] draws: the culled `lists`, in order, into targets it clears
 /// first (`clear`) or adds to; `keep_depth` stores the depth buffer for what comes after.
 struct DrawLists<'a> {
-    cull: &'a TriangleCull,
     lists: &'a [CullList],
     clear: bool,
     keep_depth: bool,

@@ -27,12 +27,11 @@ pub(crate) struct OcclusionPyramid {
     /// The levels, one after another (`array<f32>`).
     pub buffer: wgpu::Buffer,
     groups: (u32, u32),
-    name: &'static str,
 }
 
 impl OcclusionPyramid {
-    /// The pyramid of `z` (`Depth32Float`, reversed Z, with `TEXTURE_BINDING`), timed as `name`.
-    pub fn new(device: &wgpu::Device, z: &wgpu::Texture, name: &'static str) -> Self {
+    /// The pyramid of `z` (`Depth32Float`, reversed Z, with `TEXTURE_BINDING`).
+    pub fn new(device: &wgpu::Device, z: &wgpu::Texture) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
             "occlusion pyramid",
@@ -64,13 +63,12 @@ impl OcclusionPyramid {
             bind_group,
             buffer,
             groups: (z.width().div_ceil(side), z.height().div_ceil(side)),
-            name,
         }
     }
 
-    /// Build the pyramid from the depth buffer as it is now.
+    /// Build the pyramid from the depth buffer as it is now (timing: `occlusion_pyramid`).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
-        let timestamp_writes = profiler.map(|p| p.compute_pass(self.name));
+        let timestamp_writes = profiler.map(|p| p.compute_pass("occlusion_pyramid"));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("occlusion pyramid"),
             timestamp_writes,

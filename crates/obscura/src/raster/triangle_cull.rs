@@ -35,15 +35,18 @@ struct CullParams {
     draws: u32,
     keep_all: u32,
     phase: u32,
+    keep_all_list: u32,
     list_triangles: u32,
     list_draws: u32,
-    _pad: [u32; 3],
+    _pad: [u32; 2],
 }
 
 /// The triangle lists a [`TriangleCull`] writes (the number is the list's place in its buffers).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum CullList {
-    /// Every triangle that may cover a pixel centre: the list without occlusion culling.
+    /// Every triangle that may cover a pixel centre: the only list without occlusion culling;
+    /// with it, written on request ([`TriangleCull::prepare`]) for passes that must not be
+    /// occlusion-culled by the first layer (depth peeling).
     All = 0,
     /// Occlusion culling's first phase: of those, the ones a pixel showed last frame.
     SeenLastFrame = 1,
@@ -118,13 +121,13 @@ pub(crate) struct TriangleCull {
 
 impl TriangleCull {
     /// The pass for `scene` (draw-ordered: the chunks index it), timed as `name`; with `occlusion`,
-    /// occlusion culling in two phases against the depth buffer (`Depth32Float`, reversed Z) of
-    /// the raster pass that draws these lists, its pyramid timed as the name given with it.
+    /// the depth buffer (`Depth32Float`, reversed Z) of the pass that draws [`CullList::SeenLastFrame`],
+    /// occlusion culling in two phases.
     pub fn new(
         device: &wgpu::Device,
         scene: &GpuScene,
         name: &'static str,
-        occlusion: Option<(&wgpu::Texture, &'static str)>,
+        occlusion: Option<&wgpu::Texture>,
     ) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -170,7 +173,7 @@ impl TriangleCull {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
         let params = uniform("cull params");
-        let pyramid = occlusion.map(|(z, name)| OcclusionPyramid::new(device, z, name));
+        let pyramid = occlusion.map(|z| OcclusionPyramid::new(device, z));
         let seen_frame = storage(
             "triangles seen",
             if occlusion.is_some() {
@@ -244,8 +247,9 @@ impl TriangleCull {
     }
 
     /// The coming frame: `draws` (the chunks `view` may see, [`super::gbuffer::visibility_draws`])
-    /// seen through `view`.
-    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>) {
+    /// seen through `view`. With occlusion culling, `all_too` also asks the first phase for
+    /// [`CullList::All`].
+    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>, all_too: bool) {
         let (width, height) = (view.full_width(), view.full_height());
         let params = |phase: u32| {
             let list = match phase {
@@ -263,9 +267,10 @@ impl TriangleCull {
                 #[cfg(not(test))]
                 keep_all: 0,
                 phase,
+                keep_all_list: u32::from(all_too),
                 list_triangles: list * self.triangles,
                 list_draws: list * self.max_draws,
-                _pad: [0; 3],
+                _pad: [0; 2],
             }
         };
         match &self.occlusion {
@@ -307,7 +312,7 @@ impl TriangleCull {
 
     /// Occlusion culling's second phase, after the first phase's triangles are drawn into the
     /// depth buffer given to [`TriangleCull::new`]: their occlusion pyramid, then
-    /// [`CullList::NotHidden`] (timings: the pyramid's name and this pass's). Nothing
+    /// [`CullList::NotHidden`] (timings: `occlusion_pyramid` and this pass's name). Nothing
     /// without occlusion culling.
     pub fn encode_second(
         &self,

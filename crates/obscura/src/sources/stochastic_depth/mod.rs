@@ -466,7 +466,7 @@ impl StochasticDepthMap {
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
         // pipeline of this map each.
         self.triangle_cull
-            .prepare(queue, view, visibility_draws(&self.scene, view));
+            .prepare(queue, view, visibility_draws(&self.scene, view), false);
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
