@@ -209,20 +209,17 @@ fn main(
             // The uncull'd twin: everything in the first (or only) phase.
             keep = select(0u, 0x10001u, params.phase != 2u);
         } else {
-            let cover = coverage(triangles[t], draw.z == 0u);
-            if (cover.may_cover) {
-                switch params.phase {
-                    case 1u: {
-                        keep = select(0u, 1u, seen_last_frame(t)) | 0x10000u;
-                    }
-                    case 2u: {
-                        let hidden = cover.on_screen && hidden_by_pyramid(cover.lo, cover.hi, cover.nearest);
-                        keep = select(0u, 1u, !seen_last_frame(t) && !hidden);
-                    }
-                    default: {
-                        keep = 1u;
-                    }
-                }
+            // Which lists the triangle may join before its (costlier) coverage: the second phase
+            // has no use for those seen last frame, and the first only wants them unless it
+            // also writes the full list.
+            let seen = params.phase != 0u && seen_last_frame(t);
+            let wanted = select(0u, 1u, params.phase == 0u || (params.phase == 1u) == seen)
+                | select(0u, 0x10000u, params.phase == 1u && params.keep_all_list != 0u);
+            if (wanted != 0u) {
+                let cover = coverage(triangles[t], draw.z == 0u);
+                let hidden = params.phase == 2u && cover.on_screen
+                    && hidden_by_pyramid(cover.lo, cover.hi, cover.nearest);
+                keep = select(0u, wanted, cover.may_cover && !hidden);
             }
         }
     }

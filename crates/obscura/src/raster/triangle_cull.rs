@@ -424,8 +424,8 @@ mod tests {
             let scene = scene::builtin(name).unwrap();
             let extent = scene.bounds().max - scene.bounds().min;
             for named in &scene.cameras {
-                let camera = named.camera.clone();
-                let mut moved = camera.clone();
+                let camera = named.camera;
+                let mut moved = camera;
                 moved.eye += extent * glam::Vec3::new(0.06, 0.03, -0.04);
                 moved.target += extent * glam::Vec3::new(-0.05, 0.0, 0.03);
                 let cameras = [&camera, &moved, &camera, &camera];
