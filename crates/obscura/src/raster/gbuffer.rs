@@ -12,7 +12,9 @@
 //! first with a fragment shader without `discard`, so the hardware may test their depth before
 //! shading them; the alpha-tested ones last. Within each group the visibility pass draws the
 //! scene's chunks nearest first and skips those outside the view ([`super::chunks`]), so fewer
-//! hidden fragments are shaded.
+//! hidden fragments are shaded. Triangles are culled in compute first ([`super::triangle_cull`]);
+//! the visibility pass with occlusion culling in two phases (last frame's visible triangles, then
+//! the others their depths do not hide).
 
 use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
@@ -250,7 +252,9 @@ impl GBuffer {
         self.peel.as_ref().map(|p| &p.depth)
     }
 
-    /// Rasterise `scene` seen through `view`. Timings: `gbuffer` (the visibility pass), `gbuffer_resolve`, and `depth_peel` when peeling.
+    /// Rasterise `scene` seen through `view`. Timings: `triangle_cull` and `gbuffer` (the
+    /// visibility pass; each for both phases of its occlusion culling), `occlusion_pyramid`,
+    /// `gbuffer_resolve`, and `depth_peel` and `depth_peel_resolve` when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,
