@@ -12,7 +12,7 @@
 //! first with a fragment shader without `discard`, so the hardware may test their depth before
 //! shading them; the alpha-tested ones last. Within each group the visibility pass draws the
 //! scene's chunks nearest first and skips those outside the view ([`super::chunks`]), so fewer
-//! hidden fragments are shaded. Triangles are culled in compute first ([`super::triangle_cull`]);
+//! hidden fragments are shaded. Triangles are culled in compute first (`raster::triangle_cull`);
 //! the visibility pass with occlusion culling in two phases (last frame's visible triangles, then
 //! the others their depths do not hide).
 
