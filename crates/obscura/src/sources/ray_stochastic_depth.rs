@@ -3,7 +3,7 @@
 //! camera ray per texel, N reservoir slots each (§3.1, Listing 1). No rasteriser, no MSAA, no
 //! stencil: it runs the same on any adapter that runs compute. The AO passes read it with the
 //! raster map's code (`stochastic_depth/samples.wgsl`, `read.wgsl`): only the bindings and
-//! `sd_load` differ ([`bindings_wgsl`]).
+//! `sd_load` differ (`bindings_wgsl`).
 //!
 //! Built: collection by ray at full, 1/2 and 1/4 resolution with the jittered positions of §3.3
 //! (varied per frame only under temporal accumulation), limited to the requested texels on a
