@@ -6,7 +6,8 @@
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 @group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(9) var<storage, read_write> seen_frame: array<u32>;
-@group(0) @binding(10) var<uniform> frame_number: vec4<u32>;
+// In storage, as triangle_cull.wgsl reads the same buffer (why not a uniform: there).
+@group(0) @binding(10) var<storage, read> frame_number: vec4<u32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -146,11 +146,12 @@ impl TriangleCull {
                 mapped_at_creation: false,
             })
         };
-        let uniform = |label| {
+        // Read-only storage, not uniforms: why in triangle_cull.wgsl (lavapipe's uniform inlining).
+        let parameters = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: std::mem::size_of::<CullParams>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
@@ -172,7 +173,7 @@ impl TriangleCull {
             16 * lists * max_draws,
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
-        let params = uniform("cull params");
+        let params = parameters("cull params");
         let pyramid = occlusion.map(|z| OcclusionPyramid::new(device, z));
         let seen_frame = storage(
             "triangles seen",
@@ -186,7 +187,7 @@ impl TriangleCull {
         let frame_number = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cull frame number"),
             size: 16,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         // Without occlusion culling the pyramid binding is a placeholder the shader never reads.
@@ -215,7 +216,7 @@ impl TriangleCull {
         };
         let bind_group = bind_group_with(&params);
         let occlusion = pyramid.map(|pyramid| {
-            let second_params = uniform("cull params, second phase");
+            let second_params = parameters("cull params, second phase");
             Occlusion {
                 second_bind_group: bind_group_with(&second_params),
                 second_params,
