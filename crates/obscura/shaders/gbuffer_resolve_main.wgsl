@@ -5,9 +5,9 @@
 @group(0) @binding(6) var visibility: texture_2d<u32>;
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 @group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
+// The current frame number ([0]) and per triangle t the frame it was last shown ([1 + t]), as
+// triangle_cull.wgsl reads them.
 @group(0) @binding(9) var<storage, read_write> seen_frame: array<u32>;
-// In storage, as triangle_cull.wgsl reads the same buffer (why not a uniform: there).
-@group(0) @binding(10) var<storage, read> frame_number: vec4<u32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -22,7 +22,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     // Every pixel of a triangle writes the same value: which one lands does not matter.
-    seen_frame[visible - 1u] = frame_number.x;
+    seen_frame[visible] = seen_frame[0];
     let tri = triangles[visible - 1u];
     let s = pixel_surface(tri, id.xy, size);
     var shading = vec3<f32>(0.0);

@@ -40,7 +40,7 @@ struct CullParams {
     list_draws: u32,
 }
 
-// Parameters and the frame number in read-only storage, not uniforms: Mesa's lavapipe compiles a
+// Parameters in read-only storage, not a uniform: Mesa's lavapipe compiles a
 // shader variant for each set of uniform values that decide branches (its uniform inlining), and
 // the camera changes them every frame it moves. A uniform here made lavapipe compile this shader
 // anew each frame, which tests/soak.rs saw as resident memory growing by about 0.16 MiB a frame.
@@ -56,11 +56,11 @@ struct CullParams {
 // Per draw, `draw_indirect`'s arguments: vertex count, instance count, first vertex, first
 // instance.
 @group(0) @binding(5) var<storage, read_write> args: array<vec4<u32>>;
-// Occlusion culling only: per triangle, the last frame number at which a pixel showed it; the
-// current frame number (x); the first phase's occlusion pyramid.
+// Occlusion culling only: the current frame number ([0]) and per triangle t the last frame number
+// at which a pixel showed it ([1 + t]; one buffer, so the pass stays within WebGPU's eight
+// storage buffers per stage); the first phase's occlusion pyramid.
 @group(0) @binding(6) var<storage, read> seen_frame: array<u32>;
-@group(0) @binding(7) var<storage, read> frame_number: vec4<u32>;
-@group(0) @binding(8) var<storage, read> pyramid: array<f32>;
+@group(0) @binding(7) var<storage, read> pyramid: array<f32>;
 
 // Pixels: four times the rasteriser's 1/256-pixel vertex snapping.
 const MARGIN: f32 = 0.015625;
@@ -163,7 +163,7 @@ fn coverage(tri: vec4<u32>, culls_back: bool) -> Coverage {
 // Whether a pixel showed triangle `t` last frame (frame numbers start at 1 and `seen_frame` at 0,
 // so on the first frame every triangle counts as seen: the first phase draws them all).
 fn seen_last_frame(t: u32) -> bool {
-    return seen_frame[t] + 1u == frame_number.x;
+    return seen_frame[1u + t] + 1u == seen_frame[0];
 }
 
 // Whether the first phase's depths are nearer than `nearest` at every pixel centre within

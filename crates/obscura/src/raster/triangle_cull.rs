@@ -57,11 +57,10 @@ pub(crate) enum CullList {
 /// Occlusion culling's state.
 struct Occlusion {
     pyramid: OcclusionPyramid,
-    /// Per triangle, the last frame number at which a pixel showed it (`u32`; written by the
-    /// G-buffer's resolve, [`TriangleCull::seen_bindings`]).
+    /// The current frame number, from 1 on (`u32` 0), then per triangle the last frame number
+    /// at which a pixel showed it (written by the G-buffer's resolve,
+    /// [`TriangleCull::seen_bindings`]).
     seen_frame: wgpu::Buffer,
-    /// The current frame number (`vec4<u32>`, x), from 1 on.
-    frame_number: wgpu::Buffer,
     frame: AtomicU32,
     /// The second phase's parameters and bindings.
     second_params: wgpu::Buffer,
@@ -146,7 +145,7 @@ impl TriangleCull {
                 mapped_at_creation: false,
             })
         };
-        // Read-only storage, not uniforms: why in triangle_cull.wgsl (lavapipe's uniform inlining).
+        // Read-only storage, not a uniform: why in triangle_cull.wgsl (lavapipe's uniform inlining).
         let parameters = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -178,18 +177,12 @@ impl TriangleCull {
         let seen_frame = storage(
             "triangles seen",
             if occlusion.is_some() {
-                4 * u64::from(scene.triangle_count)
+                4 * (1 + u64::from(scene.triangle_count))
             } else {
                 16
             },
-            wgpu::BufferUsages::empty(),
+            wgpu::BufferUsages::COPY_DST,
         );
-        let frame_number = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cull frame number"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         // Without occlusion culling the pyramid binding is a placeholder the shader never reads.
         let pyramid_buffer = pyramid.as_ref().map_or_else(
             || storage("no pyramid", 16, wgpu::BufferUsages::empty()),
@@ -209,7 +202,6 @@ impl TriangleCull {
                     drawn.as_entire_binding(),
                     args.as_entire_binding(),
                     seen_frame.as_entire_binding(),
-                    frame_number.as_entire_binding(),
                     pyramid_buffer.as_entire_binding(),
                 ],
             )
@@ -222,7 +214,6 @@ impl TriangleCull {
                 second_params,
                 pyramid,
                 seen_frame: seen_frame.clone(),
-                frame_number: frame_number.clone(),
                 frame: AtomicU32::new(0),
             }
         });
@@ -278,7 +269,7 @@ impl TriangleCull {
             None => queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(0))),
             Some(o) => {
                 let frame = o.frame.fetch_add(1, Ordering::Relaxed) + 1;
-                queue.write_buffer(&o.frame_number, 0, bytemuck::cast_slice(&[frame, 0, 0, 0]));
+                queue.write_buffer(&o.seen_frame, 0, bytemuck::bytes_of(&frame));
                 queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(1)));
                 queue.write_buffer(&o.second_params, 0, bytemuck::bytes_of(&params(2)));
             }
@@ -293,16 +284,13 @@ impl TriangleCull {
         *self.draws.lock().unwrap() = draws;
     }
 
-    /// Per triangle, the last frame number at which a pixel showed it, and the current frame
-    /// number (`vec4<u32>`): what the pass that draws [`CullList::SeenLastFrame`] writes after
-    /// it ([`None`] without occlusion culling).
-    pub fn seen_bindings(&self) -> Option<[wgpu::BindingResource<'_>; 2]> {
-        self.occlusion.as_ref().map(|o| {
-            [
-                o.seen_frame.as_entire_binding(),
-                o.frame_number.as_entire_binding(),
-            ]
-        })
+    /// The current frame number, then per triangle the last frame number at which a pixel
+    /// showed it: what the pass that draws [`CullList::SeenLastFrame`] writes after it
+    /// ([`None`] without occlusion culling).
+    pub fn seen_bindings(&self) -> Option<[wgpu::BindingResource<'_>; 1]> {
+        self.occlusion
+            .as_ref()
+            .map(|o| [o.seen_frame.as_entire_binding()])
     }
 
     /// Cull the prepared frame's triangles: without occlusion culling, [`CullList::All`]; with
