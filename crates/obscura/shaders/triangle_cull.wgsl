@@ -30,7 +30,7 @@ struct CullParams {
     draws: u32,
     // Non-zero: keep every triangle (the tests' uncull'd twin, src/raster/triangle_cull.rs).
     keep_all: u32,
-    // 0: no occlusion culling; 1: the first phase; 2: the second.
+    // 0: no occlusion culling; 1: the first phase; 2: the second (also the list it writes).
     phase: u32,
     // The first phase also writes the list without occlusion culling (list 0) when non-zero.
     keep_all_list: u32,

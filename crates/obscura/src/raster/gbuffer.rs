@@ -301,14 +301,13 @@ impl GBuffer {
                 profiler.as_deref_mut(),
             );
         }
-        let seen = self.cull.seen_bindings();
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
             &[&self.visibility, &self.depth, &self.normals],
-            seen.into_iter().flatten().collect(),
+            self.cull.seen_binding().into_iter().collect(),
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );

@@ -59,7 +59,7 @@ struct Occlusion {
     pyramid: OcclusionPyramid,
     /// The current frame number, from 1 on (`u32` 0), then per triangle the last frame number
     /// at which a pixel showed it (written by the G-buffer's resolve,
-    /// [`TriangleCull::seen_bindings`]).
+    /// [`TriangleCull::seen_binding`]).
     seen_frame: wgpu::Buffer,
     frame: AtomicU32,
     /// The second phase's parameters and bindings.
@@ -243,12 +243,9 @@ impl TriangleCull {
     /// [`CullList::All`].
     pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>, all_too: bool) {
         let (width, height) = (view.full_width(), view.full_height());
-        let params = |phase: u32| {
-            let list = match phase {
-                0 => CullList::All,
-                1 => CullList::SeenLastFrame,
-                _ => CullList::NotHidden,
-            } as u32;
+        // A dispatch's phase is the number of the list it writes.
+        let params = |list: CullList| {
+            let phase = list as u32;
             CullParams {
                 view: view.view_matrix().to_cols_array_2d(),
                 projection: view.projection().to_cols_array_2d(),
@@ -260,18 +257,26 @@ impl TriangleCull {
                 keep_all: 0,
                 phase,
                 keep_all_list: u32::from(all_too),
-                list_triangles: list * self.triangles,
-                list_draws: list * self.max_draws,
+                list_triangles: phase * self.triangles,
+                list_draws: phase * self.max_draws,
                 _pad: [0; 2],
             }
         };
         match &self.occlusion {
-            None => queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(0))),
+            None => queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(CullList::All))),
             Some(o) => {
                 let frame = o.frame.fetch_add(1, Ordering::Relaxed) + 1;
                 queue.write_buffer(&o.seen_frame, 0, bytemuck::bytes_of(&frame));
-                queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(1)));
-                queue.write_buffer(&o.second_params, 0, bytemuck::bytes_of(&params(2)));
+                queue.write_buffer(
+                    &self.params,
+                    0,
+                    bytemuck::bytes_of(&params(CullList::SeenLastFrame)),
+                );
+                queue.write_buffer(
+                    &o.second_params,
+                    0,
+                    bytemuck::bytes_of(&params(CullList::NotHidden)),
+                );
             }
         }
         let list: Vec<[u32; 4]> = draws
@@ -287,10 +292,10 @@ impl TriangleCull {
     /// The current frame number, then per triangle the last frame number at which a pixel
     /// showed it: what the pass that draws [`CullList::SeenLastFrame`] writes after it
     /// ([`None`] without occlusion culling).
-    pub fn seen_bindings(&self) -> Option<[wgpu::BindingResource<'_>; 1]> {
+    pub fn seen_binding(&self) -> Option<wgpu::BindingResource<'_>> {
         self.occlusion
             .as_ref()
-            .map(|o| [o.seen_frame.as_entire_binding()])
+            .map(|o| o.seen_frame.as_entire_binding())
     }
 
     /// Cull the prepared frame's triangles: without occlusion culling, [`CullList::All`]; with
