@@ -19,8 +19,14 @@ fn compare_with_rays(scene: &obscura::scene::Scene) -> Vec<(String, usize, f32, 
     let gpu = gpu();
     let bvh = Bvh::build(scene);
     let mut out = Vec::new();
+    // One renderer for every camera, and a frame of another view first: the visibility target is
+    // never cleared (src/raster/gbuffer.rs), so each camera's background pixels hold the triangles
+    // of the frame before, which must read as background.
+    let mut r = Renderer::new(&gpu, scene, &AoSettings::default(), W, H, GUARD).unwrap();
+    let mut other = scene.cameras.last().unwrap().camera;
+    other.eye += (other.target - other.eye) * 0.5;
+    r.render(&other, None).unwrap();
     for named in &scene.cameras {
-        let mut r = Renderer::new(&gpu, scene, &AoSettings::default(), W, H, GUARD).unwrap();
         r.render(&named.camera, None).unwrap();
         let g = r.read_gbuffer().unwrap();
         let view = *r.view().unwrap();

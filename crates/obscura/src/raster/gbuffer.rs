@@ -31,7 +31,10 @@ pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Base colour for composites (white where nothing is drawn).
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// The visible triangle's index + 1 per pixel, 0 = background.
+/// The visible triangle's index + 1 per pixel. Never cleared: where the pass's depth buffer holds
+/// its clear value (0) no triangle was drawn, and the resolves read it there as background. Why:
+/// on the H200 clearing this target cost 0.15 ms of the visibility pass's 1.07 on Crytek Sponza
+/// (BENCHMARKS.md, issue 16), and the depth buffer is cleared anyway.
 const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// `Camera` of gbuffer.wgsl.
@@ -277,7 +280,7 @@ impl GBuffer {
         // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
         // then the others that their depths do not hide, into the same targets.
         self.cull.encode(encoder, profiler.as_deref_mut());
-        let targets = [(&self.visibility, wgpu::Color::TRANSPARENT)];
+        let targets = [(&self.visibility, None)];
         let resources = scene_resources(&self.camera, scene, Vec::new());
         for (list, clear) in [
             (CullList::SeenLastFrame, true),
@@ -292,22 +295,27 @@ impl GBuffer {
                 &self.visibility_pipelines,
                 &resources,
                 &targets,
+                // Both phases keep the depth: the pyramid reads the first's; the resolve reads
+                // the second's to tell where no triangle was drawn.
                 DrawLists {
                     lists: &[list],
                     clear,
-                    keep_depth: clear,
+                    keep_depth: true,
                 },
                 "gbuffer",
                 profiler.as_deref_mut(),
             );
         }
+        let z = self.z.create_view(&Default::default());
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
             &[&self.visibility, &self.depth, &self.normals],
-            self.cull.seen_binding().into_iter().collect(),
+            std::iter::once(wgpu::BindingResource::TextureView(&z))
+                .chain(self.cull.seen_binding())
+                .collect(),
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );
@@ -321,7 +329,7 @@ impl GBuffer {
                     peel.params.as_entire_binding(),
                 ],
             );
-            let targets = [(&peel.visibility, wgpu::Color::TRANSPARENT)];
+            let targets = [(&peel.visibility, None)];
             // Every triangle: those the first layer hides are what peeling looks for.
             self.draw(
                 device,
@@ -332,7 +340,7 @@ impl GBuffer {
                 DrawLists {
                     lists: &[CullList::All],
                     clear: true,
-                    keep_depth: false,
+                    keep_depth: true,
                 },
                 "depth_peel",
                 profiler.as_deref_mut(),
@@ -343,7 +351,7 @@ impl GBuffer {
                 scene,
                 &peel.resolve,
                 &[&peel.visibility, &peel.depth],
-                Vec::new(),
+                vec![wgpu::BindingResource::TextureView(&z)],
                 "depth_peel_resolve",
                 profiler,
             );
@@ -360,7 +368,7 @@ impl GBuffer {
     ) {
         let scene = &scene.draw_ordered();
         let resources = scene_resources(&self.camera, scene, Vec::new());
-        let targets = [(&self.albedo, wgpu::Color::WHITE)];
+        let targets = [(&self.albedo, Some(wgpu::Color::WHITE))];
         self.draw(
             device,
             encoder,
@@ -425,7 +433,8 @@ impl GBuffer {
     }
 
     /// One raster pass of the scene: the frame's culled draws of `lists.lists` in order
-    /// ([`TriangleCull::record`]).
+    /// ([`TriangleCull::record`]) into `targets`, each with its clear colour (`None`: never
+    /// cleared, see [`VISIBILITY_FORMAT`]).
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,
@@ -433,7 +442,7 @@ impl GBuffer {
         encoder: &mut wgpu::CommandEncoder,
         pipelines: &[wgpu::RenderPipeline],
         resources: &[wgpu::BindingResource],
-        targets: &[(&wgpu::Texture, wgpu::Color)],
+        targets: &[(&wgpu::Texture, Option<wgpu::Color>)],
         lists: DrawLists,
         name: &str,
         profiler: Option<&mut PassProfiler>,
@@ -455,10 +464,9 @@ impl GBuffer {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: if lists.clear {
-                            wgpu::LoadOp::Clear(*clear)
-                        } else {
-                            wgpu::LoadOp::Load
+                        load: match clear {
+                            Some(colour) if lists.clear => wgpu::LoadOp::Clear(*colour),
+                            _ => wgpu::LoadOp::Load,
                         },
                         store: wgpu::StoreOp::Store,
                     },
@@ -504,7 +512,8 @@ impl GBuffer {
 }
 
 /// What one raster pass of [`GBuffer`] draws: the culled `lists`, in order, into targets it clears
-/// first (`clear`) or adds to; `keep_depth` stores the depth buffer for what comes after.
+/// first (`clear`: the depth buffer, and the colour targets given a clear colour) or adds to;
+/// `keep_depth` stores the depth buffer for what comes after.
 struct DrawLists<'a> {
     lists: &'a [CullList],
     clear: bool,
