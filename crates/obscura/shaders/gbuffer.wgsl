@@ -119,8 +119,8 @@ fn gbuffer_out(view_pos: vec3<f32>, face: vec3<f32>, shading: vec3<f32>) -> GBuf
     return out;
 }
 
-// The visibility pass: the triangle's index + 1 per pixel, 0 = background (the resolve, not the
-// pass, sets it back to 0: src/raster/gbuffer.rs `VISIBILITY_FORMAT`).
+// The visibility pass: the triangle's index + 1 per pixel where a triangle is drawn (the target is
+// never cleared: the depth buffer tells where, src/raster/gbuffer.rs `VISIBILITY_FORMAT`).
 struct VisibilityVertex {
     @builtin(position) clip: vec4<f32>,
     @location(0) @interpolate(flat) id: u32,

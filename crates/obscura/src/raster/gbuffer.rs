@@ -30,15 +30,11 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Base colour for composites (white where nothing is drawn).
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
-/// The raster passes' depth buffer, reversed Z. Only the rasteriser uses it: no shader samples it
-/// (the occlusion pyramid and the resolves work from the visibility buffers). Why: on the H200
-/// a depth buffer written and then sampled cost about 0.15 ms per framebuffer at 2.5 M pixels
-/// between the passes (BENCHMARKS.md, issue 16).
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// The visible triangle's index + 1 per pixel, 0 = background. Not cleared by its raster pass:
-/// the resolve that reads it writes 0 back (a storage image), so the next frame starts from
-/// background. Why: on the H200 the render pass's clear of this target cost 0.15 ms of the
-/// visibility pass's 1.07 on Crytek Sponza (BENCHMARKS.md, issue 16).
+/// The visible triangle's index + 1 per pixel. Never cleared: where the pass's depth buffer holds
+/// its clear value (0) no triangle was drawn, and the resolves read it there as background. Why:
+/// on the H200 clearing this target cost 0.15 ms of the visibility pass's 1.07 on Crytek Sponza
+/// (BENCHMARKS.md, issue 16), and the depth buffer is cleared anyway.
 const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
 /// `Camera` of gbuffer.wgsl.
@@ -184,11 +180,7 @@ impl GBuffer {
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
                     usage: wgpu::BufferUsages::UNIFORM,
                 }),
-                visibility: target_with(
-                    "second layer visibility",
-                    VISIBILITY_FORMAT,
-                    wgpu::TextureUsages::STORAGE_BINDING,
-                ),
+                visibility: target("second layer visibility", VISIBILITY_FORMAT),
                 resolve: crate::gpu::compute_pipeline_with(
                     device,
                     "depth peel resolve",
@@ -204,32 +196,9 @@ impl GBuffer {
         });
         let visibility_pipeline =
             |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
-        let z = crate::gpu::texture_2d(
-            device,
-            "z",
-            width,
-            height,
-            Z_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        );
-        let visibility = target_with(
-            "visibility",
-            VISIBILITY_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING,
-        );
-        let camera = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("gbuffer camera"),
-            size: std::mem::size_of::<CameraUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        // Occlusion culling against the depths of the visibility pass's first phase.
-        let cull = TriangleCull::new(
-            device,
-            &scene.draw_ordered(),
-            "triangle_cull",
-            Some((&visibility, &camera)),
-        );
+        let z = target("z", Z_FORMAT);
+        // Occlusion culling against the visibility pass's own depth buffer.
+        let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
         Self {
             depth: target_with(
                 "linear depth",
@@ -243,7 +212,7 @@ impl GBuffer {
             ),
             albedo: target("albedo", ALBEDO_FORMAT),
             z,
-            visibility,
+            visibility: target("visibility", VISIBILITY_FORMAT),
             visibility_pipelines: [
                 visibility_pipeline(Some(wgpu::Face::Back), opaque),
                 visibility_pipeline(None, opaque),
@@ -263,7 +232,12 @@ impl GBuffer {
                     Some(&gbuffer_layout),
                 )
             }),
-            camera,
+            camera: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("gbuffer camera"),
+                size: std::mem::size_of::<CameraUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
             peel,
             cull,
         }
@@ -321,23 +295,27 @@ impl GBuffer {
                 &self.visibility_pipelines,
                 &resources,
                 &targets,
-                // The second phase draws on the first's depths.
+                // Both phases keep the depth: the pyramid reads the first's; the resolve reads
+                // the second's to tell where no triangle was drawn.
                 DrawLists {
                     lists: &[list],
                     clear,
-                    keep_depth: clear,
+                    keep_depth: true,
                 },
                 "gbuffer",
                 profiler.as_deref_mut(),
             );
         }
+        let z = self.z.create_view(&Default::default());
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
             &[&self.visibility, &self.depth, &self.normals],
-            self.cull.seen_binding().into_iter().collect(),
+            std::iter::once(wgpu::BindingResource::TextureView(&z))
+                .chain(self.cull.seen_binding())
+                .collect(),
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );
@@ -362,7 +340,7 @@ impl GBuffer {
                 DrawLists {
                     lists: &[CullList::All],
                     clear: true,
-                    keep_depth: false,
+                    keep_depth: true,
                 },
                 "depth_peel",
                 profiler.as_deref_mut(),
@@ -373,7 +351,7 @@ impl GBuffer {
                 scene,
                 &peel.resolve,
                 &[&peel.visibility, &peel.depth],
-                Vec::new(),
+                vec![wgpu::BindingResource::TextureView(&z)],
                 "depth_peel_resolve",
                 profiler,
             );
@@ -455,8 +433,8 @@ impl GBuffer {
     }
 
     /// One raster pass of the scene: the frame's culled draws of `lists.lists` in order
-    /// ([`TriangleCull::record`]) into `targets`, each with its clear colour (`None`: not
-    /// cleared here, see [`VISIBILITY_FORMAT`]).
+    /// ([`TriangleCull::record`]) into `targets`, each with its clear colour (`None`: never
+    /// cleared, see [`VISIBILITY_FORMAT`]).
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,

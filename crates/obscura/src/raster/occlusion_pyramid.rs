@@ -1,10 +1,9 @@
 //! The occlusion pyramid (`shaders/occlusion_pyramid.wgsl`, layout in
-//! `shaders/common/occlusion_pyramid.wgsl`): the farthest reversed-Z depth per tile of 4 to 64
-//! pixels of what a visibility buffer shows, which the second phase of
-//! [`super::triangle_cull`]'s occlusion culling tests triangles against. A storage buffer rather than a mipmapped texture: one
+//! `shaders/common/occlusion_pyramid.wgsl`): the farthest depth per tile of 4 to 64 pixels of a
+//! reversed-Z depth buffer, which the second phase of [`super::triangle_cull`]'s occlusion
+//! culling tests triangles against. A storage buffer rather than a mipmapped texture: one
 //! dispatch writes every level, and a texture would need a storage binding per level.
 
-use super::gpu_scene::GpuScene;
 use crate::gpu::PassProfiler;
 
 /// Tile levels, as `PYRAMID_FIRST_LEVEL` and `PYRAMID_LAST_LEVEL` of the shader.
@@ -31,31 +30,17 @@ pub(crate) struct OcclusionPyramid {
 }
 
 impl OcclusionPyramid {
-    /// The pyramid of `visibility` (`R32Uint`, triangle of `scene` + 1 per pixel, 0 = none;
-    /// with `TEXTURE_BINDING`) seen through `camera` (gbuffer.wgsl's `Camera`).
-    pub fn new(
-        device: &wgpu::Device,
-        visibility: &wgpu::Texture,
-        camera: &wgpu::Buffer,
-        scene: &GpuScene,
-    ) -> Self {
-        use crate::shaders;
+    /// The pyramid of `z` (`Depth32Float`, reversed Z, with `TEXTURE_BINDING`).
+    pub fn new(device: &wgpu::Device, z: &wgpu::Texture) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
             "occlusion pyramid",
-            &shaders::with_common(
-                &[
-                    shaders::MATERIAL,
-                    shaders::VERTEX_NORMAL,
-                    shaders::GBUFFER,
-                    shaders::GBUFFER_RESOLVE,
-                    shaders::OCCLUSION_PYRAMID_LAYOUT,
-                ],
-                shaders::OCCLUSION_PYRAMID,
+            &crate::shaders::with_common(
+                &[crate::shaders::OCCLUSION_PYRAMID_LAYOUT],
+                crate::shaders::OCCLUSION_PYRAMID,
             ),
             &[],
         );
-        let z = visibility;
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("occlusion pyramid"),
             size: 4 * len(z.width(), z.height()),
@@ -63,16 +48,13 @@ impl OcclusionPyramid {
             mapped_at_creation: false,
         });
         let view = z.create_view(&Default::default());
-        let bind_group = crate::gpu::bind_group_at(
+        let bind_group = crate::gpu::bind_group(
             device,
             "occlusion pyramid",
             &pipeline.get_bind_group_layout(0),
             &[
-                (0, camera.as_entire_binding()),
-                (1, scene.positions.as_entire_binding()),
-                (3, scene.triangles.as_entire_binding()),
-                (6, wgpu::BindingResource::TextureView(&view)),
-                (7, buffer.as_entire_binding()),
+                wgpu::BindingResource::TextureView(&view),
+                buffer.as_entire_binding(),
             ],
         );
         let side = 1 << LAST_LEVEL;
@@ -84,8 +66,7 @@ impl OcclusionPyramid {
         }
     }
 
-    /// Build the pyramid from the visibility buffer as it is now, seen through the camera as it
-    /// is now (timing: `occlusion_pyramid`).
+    /// Build the pyramid from the depth buffer as it is now (timing: `occlusion_pyramid`).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
         let timestamp_writes = profiler.map(|p| p.compute_pass("occlusion_pyramid"));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

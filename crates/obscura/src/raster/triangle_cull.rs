@@ -8,7 +8,7 @@
 //! raster pass is spent on triangles before any fragment is shaded (BENCHMARKS.md), and compute
 //! is far faster there than the raster units.
 //!
-//! With occlusion culling ([`TriangleCull::new`] given the pass's visibility buffer), the pass runs in
+//! With occlusion culling ([`TriangleCull::new`] given the pass's depth buffer), the pass runs in
 //! two phases (Haar and Aaltonen, "GPU-Driven Rendering Pipelines", SIGGRAPH 2015): the first
 //! list holds the triangles a pixel showed last frame ([`CullList::SeenLastFrame`]); once they
 //! are drawn, [`TriangleCull::encode_second`] builds the [`OcclusionPyramid`] of their depths and
@@ -120,13 +120,13 @@ pub(crate) struct TriangleCull {
 
 impl TriangleCull {
     /// The pass for `scene` (draw-ordered: the chunks index it), timed as `name`; with `occlusion`,
-    /// the visibility buffer of the pass that draws [`CullList::SeenLastFrame`] and its camera
-    /// (gbuffer.wgsl's `Camera`), occlusion culling in two phases.
+    /// the depth buffer (`Depth32Float`, reversed Z) of the pass that draws [`CullList::SeenLastFrame`],
+    /// occlusion culling in two phases.
     pub fn new(
         device: &wgpu::Device,
         scene: &GpuScene,
         name: &'static str,
-        occlusion: Option<(&wgpu::Texture, &wgpu::Buffer)>,
+        occlusion: Option<&wgpu::Texture>,
     ) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -173,8 +173,7 @@ impl TriangleCull {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
         let params = parameters("cull params");
-        let pyramid = occlusion
-            .map(|(visibility, camera)| OcclusionPyramid::new(device, visibility, camera, scene));
+        let pyramid = occlusion.map(|z| OcclusionPyramid::new(device, z));
         let seen_frame = storage(
             "triangles seen",
             if occlusion.is_some() {
@@ -306,7 +305,7 @@ impl TriangleCull {
     }
 
     /// Occlusion culling's second phase, after the first phase's triangles are drawn into the
-    /// visibility buffer given to [`TriangleCull::new`]: their occlusion pyramid, then
+    /// depth buffer given to [`TriangleCull::new`]: their occlusion pyramid, then
     /// [`CullList::NotHidden`] (timings: `occlusion_pyramid` and this pass's name). Nothing
     /// without occlusion culling.
     pub fn encode_second(
