@@ -23,12 +23,17 @@ PASSES = {
 TOTALS = ["sd-vao", "sd-svao"]
 totals = {}
 cells = {}
+# Frame spans (`span_ms`: first pass start to last pass end, what the GPU does between passes
+# included), per scene, technique and side; absent in builds before it was reported.
+spans = {}
 adapter = None
 for path in sorted(runs.glob("*-*-*.json")):
     scene, side, _ = path.stem.rsplit("-", 2)
     data = json.loads(path.read_text())
     adapter = adapter or f"{data['adapter']}, driver {data['driver']}"
     for r in data["results"]:
+        if "span_ms" in r:
+            spans.setdefault((scene, r["technique"], side), []).append(r["span_ms"])
         if r["technique"] in TOTALS:
             # `total_ms` holds `blur` once (its `blur_x` and `blur_y` are parts of it).
             p = r["passes"]
@@ -57,18 +62,35 @@ for scene in dict.fromkeys(k[0] for k in cells):
         ratio = f"{n / o:.2f}" if o else "–"
         frag = f"{fo:.2f} → {fn:.2f}" if fo is not None and fn is not None else "–"
         print(f"| {scene} | {label} | {o and f'{o:.3f}' or '–'} | {n:.3f} ({new[0][1]}) | {ratio} | {frag} |")
-if totals:
-    print("\nTechnique totals without the G-buffer (ms), medians over rounds:\n")
+
+
+def old_new_table(title, values, rows):
+    """A table of medians per (scene, technique) row, old against new."""
+    print(title)
     print("| scene | technique | old | new | new/old |")
     print("|---|---|---|---|---|")
-    for scene in dict.fromkeys(k[0] for k in totals):
-        for t in TOTALS:
-            old, new = totals.get((scene, t, "old")), totals.get((scene, t, "new"))
-            if not new:
-                continue
-            o, n = (statistics.median(v) if v else None for v in (old, new))
-            ratio = f"{n / o:.2f}" if o else "–"
-            print(f"| {scene} | {t} | {o and f'{o:.3f}' or '–'} | {n:.3f} | {ratio} |")
+    for scene, t in rows:
+        old, new = values.get((scene, t, "old")), values.get((scene, t, "new"))
+        if not new:
+            continue
+        o, n = (statistics.median(v) if v else None for v in (old, new))
+        ratio = f"{n / o:.2f}" if o else "–"
+        print(f"| {scene} | {t} | {o and f'{o:.3f}' or '–'} | {n:.3f} | {ratio} |")
+
+
+if totals:
+    old_new_table(
+        "\nTechnique totals without the G-buffer (ms), medians over rounds:\n",
+        totals,
+        [(scene, t) for scene in dict.fromkeys(k[0] for k in totals) for t in TOTALS],
+    )
+if spans:
+    old_new_table(
+        "\nFrame span, first pass start to last pass end (ms; the G-buffer, AO and blur, and what"
+        " the\nGPU does between passes), medians over rounds:\n",
+        spans,
+        list(dict.fromkeys((k[0], k[1]) for k in spans)),
+    )
 bevy = runs / "bevy_high.json"
 if bevy.exists():
     peer = json.loads(bevy.read_text())

@@ -376,6 +376,7 @@ fn bench_reports_every_pass() {
         );
     }
     assert!(r["total_ms"].as_f64().is_some_and(|t| t > 0.0));
+    assert!(r["span_ms"].as_f64().is_some_and(|t| t > 0.0));
     // Every record holds the whole settings struct, as a settings file would.
     assert_eq!(r["settings"]["technique"], "vao");
     assert_eq!(r["settings"]["vao"]["samples"].as_u64(), Some(8));

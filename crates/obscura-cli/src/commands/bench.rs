@@ -53,7 +53,11 @@ struct BenchResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     layout: Option<Layout>,
     passes: BTreeMap<String, f64>,
+    /// The sum of the passes (median over frames).
     total_ms: f64,
+    /// From the first pass's start to the last pass's end (median over frames): the passes and
+    /// whatever the GPU does between them ([`obscura::gpu::PassProfiler::read_spans`]).
+    span_ms: f64,
     /// Along a camera path (`--path`): each pass's fastest and slowest frame, and every frame's
     /// time along the path and total.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -188,6 +192,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         }
         progress.finish_and_clear();
         let frames = profiler.read(&gpu)?;
+        let spans = profiler.read_spans(&gpu)?;
         let pixels = f64::from(width + 2 * guard_band) * f64::from(height + 2 * guard_band);
         let fragments = profiler.read_fragments(&gpu)?.map(|frames| {
             let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
@@ -256,6 +261,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             frames: args.frames,
             passes: per_pass.into_iter().map(|(k, v)| (k, median(v))).collect(),
             total_ms: median(totals),
+            span_ms: median(spans),
             path: path_timing,
             fragments,
         });
@@ -315,6 +321,10 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             }
             None => println!("  {:<20} {:>9.4} ms", "total", r.total_ms),
         }
+        println!(
+            "  {:<20} {:>9.4} ms  (first pass start to last pass end)",
+            "frame span", r.span_ms
+        );
         for (pass, f) in r.fragments.iter().flatten() {
             println!(
                 "  {pass:<20} {:>9} fragments ({:.2} per framebuffer pixel)",

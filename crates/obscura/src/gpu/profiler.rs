@@ -213,8 +213,8 @@ impl PassProfiler {
         ))
     }
 
-    /// Read every recorded frame's pass times (milliseconds).
-    pub fn read(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
+    /// The recorded frames' timestamp ticks, each frame's from the start of its slot.
+    fn ticks(&self, gpu: &Gpu) -> Result<Vec<u64>, GpuError> {
         let size = SLOT_BYTES * u64::from(self.frame);
         if size == 0 {
             return Ok(Vec::new());
@@ -228,7 +228,14 @@ impl PassProfiler {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &staging, 0, size);
         gpu.queue.submit([encoder.finish()]);
-        let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&super::read_buffer(gpu, &staging)?);
+        Ok(bytemuck::pod_collect_to_vec(&super::read_buffer(
+            gpu, &staging,
+        )?))
+    }
+
+    /// Read every recorded frame's pass times (milliseconds).
+    pub fn read(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
+        let ticks = self.ticks(gpu)?;
         let stride = (SLOT_BYTES / 8) as usize;
         let frames = self
             .frame_passes
@@ -246,5 +253,25 @@ impl PassProfiler {
             })
             .collect();
         Ok(frames)
+    }
+
+    /// Every recorded frame's span (milliseconds): from the start of its first timed pass to the
+    /// end of its last. Unlike the sum of the passes it includes what the GPU does between them
+    /// (layout transitions, copies, waits); measured on the H200, a depth buffer written and then
+    /// sampled cost about 0.15 ms there that no pass's time showed (BENCHMARKS.md, issue 16).
+    pub fn read_spans(&self, gpu: &Gpu) -> Result<Vec<f64>, GpuError> {
+        let ticks = self.ticks(gpu)?;
+        let stride = (SLOT_BYTES / 8) as usize;
+        Ok(self
+            .frame_passes
+            .iter()
+            .enumerate()
+            .map(|(f, names)| {
+                let stamps = &ticks[f * stride..f * stride + 2 * names.len()];
+                let first = stamps.iter().step_by(2).copied().min().unwrap_or(0);
+                let last = stamps.iter().skip(1).step_by(2).copied().max().unwrap_or(0);
+                last.saturating_sub(first) as f64 * self.period_ns / 1e6
+            })
+            .collect())
     }
 }
