@@ -1,8 +1,8 @@
 // Depth peeling's resolve: the linear depth of the peeled layer's triangle at every pixel centre
 // (appended to gbuffer.wgsl and gbuffer_resolve.wgsl; the raster pass is depth_peel.wgsl).
 
-// The peeled triangle + 1 where `z_buffer` holds a depth; never cleared, so anything elsewhere
-// (src/raster/gbuffer.rs, `VISIBILITY_FORMAT`).
+// The peeled triangle + 1 where `z_buffer` holds a depth; elsewhere whatever an earlier frame
+// left (never cleared: src/raster/gbuffer.rs, `VISIBILITY_FORMAT`).
 @group(0) @binding(6) var second_visibility: texture_2d<u32>;
 @group(0) @binding(7) var second_depth_out: texture_storage_2d<r32float, write>;
 // The peeling pass's reversed-Z depth buffer: 0 where no triangle was peeled.

@@ -2,8 +2,8 @@
 // gbuffer.wgsl and gbuffer_resolve.wgsl); and, for the next frame's occlusion culling
 // (shaders/triangle_cull.wgsl), the frame number at which each shown triangle was last seen.
 
-// The visible triangle + 1 where `z_buffer` holds a depth; never cleared, so anything elsewhere
-// (src/raster/gbuffer.rs, `VISIBILITY_FORMAT`).
+// The visible triangle + 1 where `z_buffer` holds a depth; elsewhere whatever an earlier frame
+// left (never cleared: src/raster/gbuffer.rs, `VISIBILITY_FORMAT`).
 @group(0) @binding(6) var visibility: texture_2d<u32>;
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 @group(0) @binding(8) var normal_out: texture_storage_2d<rgba16float, write>;
