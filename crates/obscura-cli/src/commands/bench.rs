@@ -56,7 +56,7 @@ struct BenchResult {
     /// The sum of the passes (median over frames).
     total_ms: f64,
     /// From the first pass's start to the last pass's end (median over frames): the passes and
-    /// whatever the GPU does between them ([`obscura::gpu::PassProfiler::read_spans`]).
+    /// whatever the GPU does between them ([`obscura::gpu::PassProfiler::read_with_spans`]).
     span_ms: f64,
     /// Along a camera path (`--path`): each pass's fastest and slowest frame, and every frame's
     /// time along the path and total.
@@ -191,8 +191,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             progress.inc(1);
         }
         progress.finish_and_clear();
-        let frames = profiler.read(&gpu)?;
-        let spans = profiler.read_spans(&gpu)?;
+        let (frames, spans) = profiler.read_with_spans(&gpu)?;
         let pixels = f64::from(width + 2 * guard_band) * f64::from(height + 2 * guard_band);
         let fragments = profiler.read_fragments(&gpu)?.map(|frames| {
             let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();

@@ -235,43 +235,34 @@ impl PassProfiler {
 
     /// Read every recorded frame's pass times (milliseconds).
     pub fn read(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
-        let ticks = self.ticks(gpu)?;
-        let stride = (SLOT_BYTES / 8) as usize;
-        let frames = self
-            .frame_passes
-            .iter()
-            .enumerate()
-            .map(|(f, names)| {
-                let mut timings = FrameTimings::new();
-                for (p, name) in names.iter().enumerate() {
-                    let begin = ticks[f * stride + 2 * p];
-                    let end = ticks[f * stride + 2 * p + 1];
-                    let ms = end.saturating_sub(begin) as f64 * self.period_ns / 1e6;
-                    *timings.entry(name.clone()).or_insert(0.0) += ms;
-                }
-                timings
-            })
-            .collect();
-        Ok(frames)
+        Ok(self.read_with_spans(gpu)?.0)
     }
 
-    /// Every recorded frame's span (milliseconds): from the start of its first timed pass to the
-    /// end of its last. Unlike the sum of the passes it includes what the GPU does between them
-    /// (layout transitions, copies, waits); measured on the H200, a depth buffer written and then
-    /// sampled cost about 0.15 ms there that no pass's time showed (BENCHMARKS.md, issue 16).
-    pub fn read_spans(&self, gpu: &Gpu) -> Result<Vec<f64>, GpuError> {
+    /// Every recorded frame's pass times and span (milliseconds), from one readback. The span
+    /// runs from the start of the frame's first timed pass to the end of its last: unlike the
+    /// sum of the passes it includes what the GPU does between them (layout transitions,
+    /// copies, waits); measured on the H200, a depth buffer written and then sampled cost about
+    /// 0.15 ms there that no pass's time showed (BENCHMARKS.md, issue 16).
+    pub fn read_with_spans(&self, gpu: &Gpu) -> Result<(Vec<FrameTimings>, Vec<f64>), GpuError> {
         let ticks = self.ticks(gpu)?;
         let stride = (SLOT_BYTES / 8) as usize;
+        let ms = |t: u64| t as f64 * self.period_ns / 1e6;
         Ok(self
             .frame_passes
             .iter()
             .enumerate()
             .map(|(f, names)| {
+                // Per pass: begin, end.
                 let stamps = &ticks[f * stride..f * stride + 2 * names.len()];
+                let mut timings = FrameTimings::new();
+                for (name, pass) in names.iter().zip(stamps.chunks_exact(2)) {
+                    *timings.entry(name.clone()).or_insert(0.0) +=
+                        ms(pass[1].saturating_sub(pass[0]));
+                }
                 let first = stamps.iter().step_by(2).copied().min().unwrap_or(0);
                 let last = stamps.iter().skip(1).step_by(2).copied().max().unwrap_or(0);
-                last.saturating_sub(first) as f64 * self.period_ns / 1e6
+                (timings, ms(last.saturating_sub(first)))
             })
-            .collect())
+            .unzip())
     }
 }
