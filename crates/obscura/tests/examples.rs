@@ -49,3 +49,30 @@ fn engine_meshes_example_traces_the_engine_s_own_geometry() {
     let darkest = image.values.iter().copied().fold(1.0, f32::min);
     assert!(darkest < 0.8, "no contact occlusion: {darkest}");
 }
+
+#[allow(dead_code)] // its `main`: the test calls `run` at a small size
+#[path = "../examples/raster_fill_probe.rs"]
+mod raster_fill_probe;
+
+#[test]
+fn raster_fill_probe_times_every_pass_for_each_depth_format() {
+    let gpu = common::gpu();
+    let rows = raster_fill_probe::run(&gpu, 64, 48, 3, 1).unwrap();
+    // Depth32Float and Depth16Unorm are core formats; Depth24Plus too.
+    let formats: Vec<_> = rows.iter().map(|r| r.format).collect();
+    for format in ["d32f", "d24", "d16"] {
+        assert!(
+            formats.contains(&format),
+            "{format} missing from {formats:?}"
+        );
+    }
+    for row in &rows {
+        for (median, pass) in row.medians.iter().zip(raster_fill_probe::PASSES) {
+            assert!(
+                median.is_finite() && *median >= 0.0,
+                "{} {pass}: {median}",
+                row.format
+            );
+        }
+    }
+}
