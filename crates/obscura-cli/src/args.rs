@@ -173,6 +173,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("ray_sd.resolution", "--ray-sd-res"),
     ("ray_sd.radius_cutoff", "--radius-cutoff"),
     ("ray_sd.guard_band", "--sd-guard-band"),
+    ("stochastic_depth.guard_band", "--sd-map-guard-band"),
     ("ray_sd.intervals", "--no-intervals"),
     ("resolution", "--resolution"),
     ("max_radius_px", "--max-radius-px"),
@@ -509,6 +510,13 @@ pub struct AoArgs {
     ))]
     pub sd_compensation: Option<f32>,
     #[arg(long, help = help(
+        "Raster stochastic-depth techniques (sd-vao, sd-svao, sd-hbao, ...): rasterise the map \
+         this many pixels beyond the framebuffer on every side (0 = off, at most 2048), so \
+         samples off the framebuffer read it; the ray-traced map's band is --sd-guard-band.",
+        "stochastic_depth.guard_band"
+    ))]
+    pub sd_map_guard_band: Option<u32>,
+    #[arg(long, help = help(
         "ray-sd-vao: depth slots per pixel of the ray-traced stochastic depth map, N in [1, 8] \
          (seed 002 §3.1, reservoir sampling).",
         "ray_sd.reservoir"
@@ -725,6 +733,7 @@ impl AoArgs {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
+        set(&mut sd.guard_band, self.sd_map_guard_band);
         let ray = &mut s.ray_sd;
         set(&mut ray.reservoir, self.reservoir);
         set(&mut ray.max_count, self.max_count);

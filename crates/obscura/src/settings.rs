@@ -495,6 +495,11 @@ pub struct StochasticDepthSettings {
     /// paper used 2 for its Figs. 7–8. Makes up for occluders the few samples miss behind many
     /// layers, and overshoots where the samples missed nothing.
     pub compensation: f32,
+    /// The raster map's own guard band in pixels (ours; seed 002 §3.5 gives the ray-traced map
+    /// one): the map is rasterised this far beyond the framebuffer on every side, every layer
+    /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
+    /// 0 (the default) is off; at most 2048. It widens the map's raster pass by that much.
+    pub guard_band: u32,
 }
 
 /// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
@@ -614,6 +619,7 @@ impl Default for StochasticDepthSettings {
             mask: SdMask::Depth,
             query: SdQuery::Needed,
             compensation: 1.0,
+            guard_band: 0,
         }
     }
 }
@@ -1026,6 +1032,13 @@ impl AoSettings {
                 "stochastic_depth.compensation",
                 sd.compensation,
                 "must be in [1, 8]: 1 is off, the paper used 2",
+            ));
+        }
+        if sd.guard_band > MAX_SD_GUARD_BAND {
+            return Err(invalid(
+                "stochastic_depth.guard_band",
+                sd.guard_band,
+                "must be at most 2048 pixels (0 is off)",
             ));
         }
         let h = &self.hbao;
@@ -1970,7 +1983,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 74, "{paths:?}");
+        assert_eq!(paths.len(), 75, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -1985,6 +1998,7 @@ mod tests {
         push(&|s| s.stochastic_depth.samples = 3);
         push(&|s| s.stochastic_depth.alpha = Some(1.5));
         push(&|s| s.stochastic_depth.compensation = 0.5);
+        push(&|s| s.stochastic_depth.guard_band = 4096);
         push(&|s| s.ray_sd.reservoir = 9);
         push(&|s| s.ray_sd.max_count = 2);
         push(&|s| s.ray_sd.resolution = 3);

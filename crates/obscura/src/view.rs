@@ -157,6 +157,25 @@ impl FrameView {
         }
     }
 
+    /// The same camera with `extra` more pixels of guard band on every side: the frustum widened
+    /// so that every pixel of this view keeps its place, `extra` pixels in (the raster stochastic
+    /// depth map's own guard band). `extra` = 0: this view.
+    pub fn widened(&self, extra: u32) -> Self {
+        if extra == 0 {
+            return *self;
+        }
+        let (fw, fh) = (self.full_width() as f32, self.full_height() as f32);
+        let grow = |full: f32| (full + 2.0 * extra as f32) / full;
+        Self {
+            guard_band: self.guard_band + extra,
+            tan_half_fov: Vec2::new(
+                self.tan_half_fov.x * grow(fw),
+                self.tan_half_fov.y * grow(fh),
+            ),
+            ..*self
+        }
+    }
+
     /// What screen-space passes need of this view.
     pub fn screen(&self) -> ScreenGeometry {
         ScreenGeometry {
@@ -421,5 +440,26 @@ mod tests {
         assert!((a - b).length() < 1e-3, "{a} vs {b}");
         let back = banded.pixel_to_view(banded.view_to_pixel(p), 2.0);
         assert!((back - p).length() < 1e-5);
+    }
+
+    #[test]
+    fn a_widened_view_keeps_every_pixel_in_place() {
+        let camera = Camera {
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov_y_deg: 50.0,
+        };
+        let view = FrameView::new(camera, 320, 180, 16, 0.01);
+        assert_eq!(view.widened(0), view);
+        let wide = view.widened(40);
+        assert_eq!((wide.full_width(), wide.full_height()), (432, 292));
+        // The same as asking for the wider band in the first place.
+        let direct = FrameView::new(camera, 320, 180, 56, 0.01);
+        assert!((wide.tan_half_fov - direct.tan_half_fov).length() < 1e-6);
+        let p = Vec3::new(0.4, 0.1, -0.5);
+        let a = view.view_to_pixel_world(p);
+        let b = wide.view_to_pixel_world(p) - Vec2::splat(40.0);
+        assert!((a - b).length() < 1e-3, "{a} vs {b}");
     }
 }

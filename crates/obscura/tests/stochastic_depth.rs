@@ -669,3 +669,122 @@ fn compensation_only_darkens_and_reaches_every_stochastic_row() {
         assert!(darker > 0, "{t}: compensation 2 changed nothing");
     }
 }
+
+#[test]
+fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
+    // `stochastic_depth.guard_band` (ours, after seed 002 §3.5): the scene and camera of the
+    // ray-traced map's band test (tests/ray_stochastic_depth.rs). A step's face lies just past
+    // the framebuffer's right edge (its 4 px guard band included); the samples that reach it
+    // fall off the framebuffer, where without the map's band they read the framebuffer's edge
+    // (more floor). With a 32 px band (the samples reach about 12 px) the map is rasterised
+    // there with every layer, the step's top nearest, which each pixel keeps in at least one of
+    // its samples (⌊αS + ξ⌋ ≥ 1 at α = 1.5/S). Against the ray-traced `vao` truth the error of
+    // the visible columns near the edge must drop; pixels whose samples all stay on the
+    // framebuffer must not change; the two-phase row must still equal its single-pass twin.
+    use obscura::scene::Camera;
+    let gpu = gpu();
+    let (w, h, frame_guard) = (96u32, 64u32, 4u32);
+    let scene = step_scene(4.55, 0.8);
+    let camera = Camera {
+        eye: Vec3::new(0.0, 10.0, 0.0),
+        target: Vec3::ZERO,
+        up: Vec3::NEG_Z,
+        fov_y_deg: 30.0,
+    };
+    let vao = obscura::settings::VaoSettings {
+        radius: 1.0,
+        ..Default::default()
+    };
+    let run = |technique: Technique, band: u32| {
+        let mut s = AoSettings {
+            technique,
+            vao,
+            ..Default::default()
+        };
+        s.blur.enabled = false;
+        s.stochastic_depth.guard_band = band;
+        let mut r = Renderer::new(&gpu, &scene, &s, w, h, frame_guard).unwrap();
+        r.render(&camera, None).unwrap();
+        let requests = r.read_sd_request_texels().unwrap();
+        let layers = r.read_stochastic_depth().unwrap().unwrap();
+        (
+            r.read_raw_ao().unwrap(),
+            requests,
+            layers,
+            *r.view().unwrap(),
+        )
+    };
+    let (without, _, layers_without, view) = run(Technique::SdVao, 0);
+    let (with, _, layers_with, _) = run(Technique::SdVao, 32);
+    let (twin, requests, _, _) = run(Technique::SdSvao, 32);
+    let (_, requests_without, _, _) = run(Technique::SdSvao, 0);
+    let reference = render_reference(
+        &scene,
+        &Bvh::build(&scene),
+        view,
+        &ReferenceSettings {
+            vao,
+            ..Default::default()
+        },
+        &|_| {},
+    );
+    let edge_error = |ao: &[f32]| {
+        let mut sum = 0.0f64;
+        for y in 0..h {
+            for x in w - 12..w {
+                let i = (y * w + x) as usize;
+                sum += f64::from(ao[i] - reference[i]).powi(2);
+            }
+        }
+        sum / f64::from(12 * h)
+    };
+    let (e_without, e_with) = (edge_error(&without), edge_error(&with));
+    // The request mask covers the map, band included: phase 1 asked for band pixels.
+    let (fw, fh) = (w + 2 * frame_guard, h + 2 * frame_guard);
+    let requests = requests.unwrap();
+    let (mw, mh) = (fw + 64, fh + 64);
+    assert_eq!(requests.len(), (mw * mh) as usize);
+    assert_eq!(requests_without.unwrap().len(), (fw * fh) as usize);
+    let in_band = requests
+        .iter()
+        .enumerate()
+        .filter(|&(i, &q)| {
+            let (x, y) = (i as u32 % mw, i as u32 / mw);
+            q != 0 && !((32..mw - 32).contains(&x) && (32..mh - 32).contains(&y))
+        })
+        .count();
+    println!(
+        "edge MSE {e_without:.3e} without the map's band, {e_with:.3e} with 32 px; \
+         {in_band} band pixels requested"
+    );
+    assert!(in_band > 0, "phase 1 requested nothing in the band");
+    assert!(e_with < e_without / 1000.0, "{e_with:e} vs {e_without:e}");
+    // Samples reach at most 12 px: the left half never leaves the framebuffer.
+    let worst = (0..h)
+        .flat_map(|y| (0..w / 2).map(move |x| (y * w + x) as usize))
+        .map(|i| (with[i] - without[i]).abs())
+        .fold(0.0f32, f32::max);
+    assert!(worst <= 1e-6, "the band changed the left half by {worst}");
+    // The two-phase row reads the same map where it asked for it.
+    let twin_diff = with
+        .iter()
+        .zip(&twin)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(
+        twin_diff <= 1e-6,
+        "sd-svao differs from sd-vao by {twin_diff}"
+    );
+    // Inside the framebuffer the map holds what it held without the band (the same choices;
+    // the wider frustum's projection may move a depth by rounding).
+    for (a, b) in layers_without.iter().zip(&layers_with) {
+        assert_eq!(a.len(), (fw * fh) as usize);
+        assert_eq!(a.len(), b.len());
+        for (&x, &y) in a.iter().zip(b) {
+            assert!(
+                (x == 0.0) == (y == 0.0) && (x - y).abs() <= 1e-5 * x.max(1.0),
+                "map depth {x} without the band, {y} with it"
+            );
+        }
+    }
+}

@@ -526,20 +526,26 @@ impl AmbientOcclusion {
     /// Two-phase stochastic depth: the SD-request mask of the last frame, one value per
     /// framebuffer pixel (guard band included), non-zero where phase 1 asked for the map (for
     /// the ray-traced map: where it asked for the pixel's texel, so a requested texel shows at
-    /// each of its pixels; its own guard band is left out, see
-    /// [`Self::read_sd_request_texels`]). Waits for the GPU.
+    /// each of its pixels). Either map's own guard band is left out, see
+    /// [`Self::read_sd_request_texels`]. Waits for the GPU.
     pub fn read_sd_requests(&self) -> Result<Option<Vec<u32>>, Error> {
         let Some(words) = self.read_sd_request_texels()? else {
             return Ok(None);
         };
-        Ok(Some(match self.source.ray_stochastic_depth() {
-            Some(map) => map.texel_of_pixels().map(|t| words[t]).collect(),
-            None => words,
-        }))
+        Ok(Some(
+            match (
+                self.source.ray_stochastic_depth(),
+                self.source.stochastic_depth(),
+            ) {
+                (Some(map), _) => map.texel_of_pixels().map(|t| words[t]).collect(),
+                (None, Some(map)) => map.cell_of_pixels().map(|t| words[t]).collect(),
+                (None, None) => words,
+            },
+        ))
     }
 
     /// Two-phase stochastic depth: the SD-request mask of the last frame as phase 1 wrote it:
-    /// per framebuffer pixel for the raster map, per texel of the ray-traced map
+    /// per pixel of the raster map (its own band included), per texel of the ray-traced map
     /// ([`crate::sources::ray_stochastic_depth::RayStochasticDepthMap::map_size`], its guard band included: seed 002 Fig. 13c's view).
     /// Waits for the GPU.
     pub fn read_sd_request_texels(&self) -> Result<Option<Vec<u32>>, Error> {

@@ -15,7 +15,7 @@ use crate::estimators::EstimatorPass;
 use crate::frame::{workgroups_32x8, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::raster::gpu_scene::GpuScene;
-use crate::settings::{AoSettings, MultiviewSettings, Resolution};
+use crate::settings::{AoSettings, MultiviewSettings, Resolution, StochasticDepthSettings};
 use crate::shaders;
 use crate::sources::stochastic_depth::{bindings_wgsl, read_layout_entries, StochasticDepthMap};
 use crate::sources::SourcePass;
@@ -118,10 +118,15 @@ impl Multiview {
             Resolution::Full => *screen,
             Resolution::Half => screen.half()?,
         };
+        // The second view's map has no band of its own: its samples are placed in its frame.
+        let second_settings = StochasticDepthSettings {
+            guard_band: 0,
+            ..settings.stochastic_depth
+        };
         let map = StochasticDepthMap::new(
             &gpu.adapter,
             device,
-            &settings.stochastic_depth,
+            &second_settings,
             settings.peel_separation,
             (second_screen.full_width(), second_screen.full_height()),
             scene,
@@ -143,7 +148,7 @@ impl Multiview {
         parts.retain(|p| *p != shaders::FRAME_POINT);
         parts.push(shaders::MULTIVIEW_POINT);
         parts.push(estimator.wgsl);
-        let sd_bindings = bindings_wgsl(map.layout());
+        let sd_bindings = bindings_wgsl(map.layout(), 0);
         parts.extend([
             sd_bindings.as_str(),
             shaders::STOCHASTIC_DEPTH_SAMPLES,

@@ -41,7 +41,8 @@ pub struct SceneResources<'a> {
 
 /// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
 /// depth maps are laid out (the ray-traced map: one map of N samples); `ray_layout`: the
-/// ray-traced map's resolution divisor and guard band (both ignored by the other sources).
+/// ray-traced map's resolution divisor and guard band, and the raster map's own guard band (its
+/// divisor is 1; both ignored by the other sources).
 pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout) -> String {
     match source {
         Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
@@ -52,7 +53,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
             parts.join("\n")
         }
         Source::StochasticDepth => [
-            &stochastic_depth::bindings_wgsl(sd_layout),
+            &stochastic_depth::bindings_wgsl(sd_layout, ray_layout.guard),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
             shaders::SOURCE_STOCHASTIC_DEPTH,
             shaders::STOCHASTIC_DEPTH_REQUEST,
@@ -196,6 +197,7 @@ impl SourcePass {
                         .then_some(settings.stochastic_depth.mask),
                 )?;
                 sd_layout = map.layout();
+                ray_layout.guard = map.band();
                 Held::StochasticDepth(Box::new(map))
             }
             Source::RayStochasticDepth => {
@@ -226,10 +228,14 @@ impl SourcePass {
             .flatten();
         let maps_hidden_depth =
             matches!(kind, Source::StochasticDepth | Source::RayStochasticDepth);
-        // The raster map's requests are per framebuffer pixel; the ray-traced map's per texel,
-        // its guard band included (what its rays read).
+        // The raster map's requests are per pixel, the ray-traced map's per texel, each map's
+        // own guard band included (what it rasterises or traces).
         let request_cells = match &held {
             Held::RayStochasticDepth(map) => {
+                let (w, h) = map.map_size();
+                u64::from(w) * u64::from(h)
+            }
+            Held::StochasticDepth(map) => {
                 let (w, h) = map.map_size();
                 u64::from(w) * u64::from(h)
             }

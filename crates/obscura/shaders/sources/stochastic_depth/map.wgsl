@@ -41,9 +41,11 @@ struct SdRaster {
     // Non-zero: store every layer, the first visible one included (the multi-view schedule's
     // second map, seed 001 §3.4; its view has no first layer of its own).
     all_layers: u32,
-    // The map's width in pixels (`sd_depths` is row-major).
+    // The map's width in pixels (`sd_depths` is row-major), its own guard band included.
     width: u32,
-    _pad: u32,
+    // That band (`stochastic_depth.guard_band`, ours after seed 002 §3.5): the map's pixel p is
+    // the framebuffer's p − band; in the band there is no first layer and every layer is kept.
+    band: u32,
 }
 
 @group(0) @binding(6) var first_layer: texture_2d<f32>;
@@ -53,7 +55,7 @@ struct SdRaster {
 @group(0) @binding(8) var<storage, read> sd_lut: array<u32>;
 // S depths per pixel, pixel-major (reversed-Z bits, 0 = empty).
 @group(0) @binding(9) var<storage, read_write> sd_depths: array<atomic<u32>>;
-// SD-SVAO's request mask: one u32 per framebuffer pixel, row-major, non-zero = requested.
+// SD-SVAO's request mask: one u32 per pixel of the map, row-major, non-zero = requested.
 @group(0) @binding(10) var<storage, read> sd_request: array<u32>;
 
 // Index of the first of `pixel`'s S depths in `sd_depths`.
@@ -67,8 +69,10 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 // drew new samples each frame and the map flickered in motion (BENCHMARKS.md, issue 13). The
 // triangle tells the fragments of one pixel apart as the depth did (one fragment per triangle
 // and pixel; instances have their own triangles), and it stays the same while a surface slides
-// under the pixel, as the ray-traced map's hash of texel and triangle does.
-fn sd_fragment_hash(pixel: vec2<u32>, triangle: u32) -> u32 {
+// under the pixel, as the ray-traced map's hash of texel and triangle does. The pixel is the
+// framebuffer's (map pixel − band), so the map's own band leaves the choices inside unchanged.
+fn sd_fragment_hash(map_pixel: vec2<u32>, triangle: u32) -> u32 {
+    let pixel = map_pixel - vec2<u32>(sd.band);
     let h = pcg_hash(pixel.x ^ pcg_hash(pixel.y ^ pcg_hash(triangle)));
     return pcg_hash(h ^ sd.seed);
 }
@@ -98,13 +102,24 @@ fn vs_depth(@builtin(vertex_index) vertex: u32) -> DepthVertex {
     return out;
 }
 
-// Alg. 1 for one fragment that passed its alpha test, at `pixel` with linear `depth`: the
-// samples it is stored in (0: none).
+// The G-buffer's linear depth at map pixel `pixel`, or −1 in the map's band (no first layer).
+fn sd_first_layer(pixel: vec2<u32>) -> f32 {
+    let p = vec2<i32>(pixel) - vec2<i32>(i32(sd.band));
+    if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(textureDimensions(first_layer)))) {
+        return -1.0;
+    }
+    return textureLoad(first_layer, p, 0).r;
+}
+
+// Alg. 1 for one fragment that passed its alpha test, at map pixel `pixel` with linear
+// `depth`: the samples it is stored in (0: none).
 fn sd_coverage(pixel: vec2<u32>, depth: f32, triangle: u32) -> u32 {
-    let first = textureLoad(first_layer, pixel, 0).r;
+    let first = sd_first_layer(pixel);
     // Alg. 1 stores hidden layers only: the first layer (and anything within `separation` behind
-    // it) is skipped; without a first layer the pixel shows no geometry at all.
-    if (sd.all_layers == 0u && (!(first > 0.0) || depth <= first + sd.separation)) {
+    // it) is skipped; without a first layer the pixel shows no geometry at all. In the map's own
+    // band every layer is kept, the first one included (read.wgsl reads it as the only layers).
+    let in_band = first < 0.0;
+    if (sd.all_layers == 0u && !in_band && (!(first > 0.0) || depth <= first + sd.separation)) {
         return 0u;
     }
     let h = sd_fragment_hash(pixel, triangle);

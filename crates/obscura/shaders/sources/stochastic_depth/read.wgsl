@@ -20,11 +20,12 @@ override SD_RADIUS_CUTOFF: f32 = 0.0;
 // phase 1's request records for the map's rays. Off: the raster map's rows.
 override SD_INTERVALS: bool = false;
 
-// The ray-traced map's guard band (seed 002 §3.5, `ray_sd.guard_band`): a sample that falls off
-// the framebuffer, where the map's band holds its pixel (`sd_guard_covers`, from the generated
-// bindings; never for the raster map, whose bindings set SD_HAS_GUARD_BAND false so that none
-// of this is compiled in), knows no first layer: it starts unoccluded and always
-// reads the map, whose band texels hold every layer (the authors' "force a ray off screen").
+// The map's own guard band (seed 002 §3.5, `ray_sd.guard_band` for the ray-traced map; ours,
+// `stochastic_depth.guard_band`, for the raster map): a sample that falls off the framebuffer,
+// where the map's band holds its pixel (`sd_guard_covers`, from the generated bindings; without
+// a band they set SD_HAS_GUARD_BAND false so that none of this is compiled in), knows no first
+// layer: it starts unoccluded and always reads the map, whose band texels hold every layer (the
+// authors' "force a ray off screen").
 // Elsewhere off the framebuffer a sample reads the framebuffer's edge (first_layer_lookup).
 fn guard_band_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     var l: DepthLookup;

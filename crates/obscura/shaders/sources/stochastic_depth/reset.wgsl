@@ -26,9 +26,13 @@ fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
-// The depth the map's fragments at `pixel` must lie behind.
+// The depth the map's fragments at map pixel `pixel` must lie behind: in the map's own band, the
+// near plane (1: every layer is kept there).
 fn sd_cull_depth(pixel: vec2<u32>) -> f32 {
-    let first = textureLoad(first_layer, pixel, 0).r;
+    let first = sd_first_layer(pixel);
+    if (first < 0.0) {
+        return 1.0;
+    }
     if (!(first > 0.0)) {
         return 0.0;
     }
