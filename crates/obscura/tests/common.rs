@@ -361,6 +361,61 @@ pub fn step_scene(d: f32, h: f32) -> Scene {
     )
 }
 
+/// The maps' guard band case (seed 002 §3.5): a step whose face lies just past the right edge
+/// of a 96×64 frame with a 4 px guard band, seen from 10 m straight above (30° field: 8.4 cm
+/// per pixel; the visible floor spans x in ±4.02 m, the framebuffer ±4.36 m, the step's face at
+/// x = 4.55 m, 0.8 m high), VAO with a 1 m radius (its samples reach about 12 px).
+pub struct EdgeBandCase {
+    pub scene: Scene,
+    pub camera: Camera,
+    pub vao: obscura::settings::VaoSettings,
+    /// Visible width and height, and the framebuffer's guard band.
+    pub size: (u32, u32, u32),
+}
+
+pub fn edge_band_case() -> EdgeBandCase {
+    EdgeBandCase {
+        scene: step_scene(4.55, 0.8),
+        camera: Camera {
+            eye: Vec3::new(0.0, 10.0, 0.0),
+            target: Vec3::ZERO,
+            up: Vec3::NEG_Z,
+            fov_y_deg: 30.0,
+        },
+        vao: obscura::settings::VaoSettings {
+            radius: 1.0,
+            ..Default::default()
+        },
+        size: (96, 64, 4),
+    }
+}
+
+impl EdgeBandCase {
+    /// The mean squared error of `ao` against `reference` over the 12 visible columns at the
+    /// right edge: what the samples off the framebuffer shade.
+    pub fn edge_error(&self, ao: &[f32], reference: &[f32]) -> f64 {
+        let (w, h, _) = self.size;
+        let mut sum = 0.0f64;
+        for y in 0..h {
+            for x in w - 12..w {
+                let i = (y * w + x) as usize;
+                sum += f64::from(ao[i] - reference[i]).powi(2);
+            }
+        }
+        sum / f64::from(12 * h)
+    }
+
+    /// The largest difference of `a` and `b` over the left half, whose samples never leave the
+    /// framebuffer.
+    pub fn left_half_difference(&self, a: &[f32], b: &[f32]) -> f32 {
+        let (w, h, _) = self.size;
+        (0..h)
+            .flat_map(|y| (0..w / 2).map(move |x| (y * w + x) as usize))
+            .map(|i| (a[i] - b[i]).abs())
+            .fold(0.0f32, f32::max)
+    }
+}
+
 /// The centre block's AO seen from 20 m straight above (4° field: 1.5 cm per pixel), and the
 /// mean of `model(distance to the step, visible pixel)` over the block's pixels.
 pub fn step_ao(

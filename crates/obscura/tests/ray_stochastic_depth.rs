@@ -399,23 +399,11 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
     // near the edge must drop; pixels whose samples all stay on the framebuffer do not change.
     use obscura::bvh::Bvh;
     use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
-    use obscura::scene::Camera;
     let gpu = gpu();
-    let (w, h, frame_guard) = (96u32, 64u32, 4u32);
-    // 10 m up, 30° field: 8.4 cm per pixel, the visible floor spans x in ±4.02 m and the
-    // framebuffer ±4.36 m; the step's face at x = 4.55 m, 0.8 m high.
-    let scene = step_scene(4.55, 0.8);
-    let camera = Camera {
-        eye: Vec3::new(0.0, 10.0, 0.0),
-        target: Vec3::ZERO,
-        up: Vec3::NEG_Z,
-        fov_y_deg: 30.0,
-    };
-    let vao = obscura::settings::VaoSettings {
-        radius: 1.0,
-        ..Default::default()
-    };
-    let bvh = Bvh::build(&scene);
+    let case = edge_band_case();
+    let (scene, camera, vao) = (&case.scene, &case.camera, case.vao);
+    let (w, h, frame_guard) = case.size;
+    let bvh = Bvh::build(scene);
     for resolution in [1, 4] {
         let run = |guard_band: u32| {
             let mut s = AoSettings {
@@ -426,8 +414,8 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
             s.blur.enabled = false;
             s.ray_sd.resolution = resolution;
             s.ray_sd.guard_band = Some(guard_band);
-            let mut r = Renderer::new(&gpu, &scene, &s, w, h, frame_guard).unwrap();
-            r.render(&camera, None).unwrap();
+            let mut r = Renderer::new(&gpu, scene, &s, w, h, frame_guard).unwrap();
+            r.render(camera, None).unwrap();
             let extent = r.ray_sd_map_size().unwrap().unwrap();
             let (mw, mh, g) = (extent.width, extent.height, extent.guard_texels);
             assert_eq!(g, guard_band.div_ceil(resolution));
@@ -447,7 +435,7 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
         let (without, band_without, view) = run(0);
         let (with, band_with, _) = run(32);
         let reference = render_reference(
-            &scene,
+            scene,
             &bvh,
             view,
             &ReferenceSettings {
@@ -456,18 +444,8 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
             },
             &|_| {},
         );
-        // The 12 visible columns at the right edge: what the samples off the framebuffer shade.
-        let edge_error = |ao: &[f32]| {
-            let mut sum = 0.0f64;
-            for y in 0..h {
-                for x in w - 12..w {
-                    let i = (y * w + x) as usize;
-                    sum += f64::from(ao[i] - reference[i]).powi(2);
-                }
-            }
-            sum / f64::from(12 * h)
-        };
-        let (e_without, e_with) = (edge_error(&without), edge_error(&with));
+        let e_without = case.edge_error(&without, &reference);
+        let e_with = case.edge_error(&with, &reference);
         println!(
             "1/{resolution}: edge MSE {e_without:.3e} without the map's guard band, {e_with:.3e} \
              with 32 px; band texels requested {band_without} -> {band_with}"
@@ -488,10 +466,7 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
             "1/{resolution}: {e_with:e} vs {e_without:e}"
         );
         // Samples reach at most 12 px: the left half never leaves the framebuffer.
-        let worst = (0..h)
-            .flat_map(|y| (0..w / 2).map(move |x| (y * w + x) as usize))
-            .map(|i| (with[i] - without[i]).abs())
-            .fold(0.0f32, f32::max);
+        let worst = case.left_half_difference(&with, &without);
         assert!(
             worst <= 1e-6,
             "1/{resolution}: the band changed the left half by {worst}"

@@ -681,20 +681,10 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     // its samples (⌊αS + ξ⌋ ≥ 1 at α = 1.5/S). Against the ray-traced `vao` truth the error of
     // the visible columns near the edge must drop; pixels whose samples all stay on the
     // framebuffer must not change; the two-phase row must still equal its single-pass twin.
-    use obscura::scene::Camera;
     let gpu = gpu();
-    let (w, h, frame_guard) = (96u32, 64u32, 4u32);
-    let scene = step_scene(4.55, 0.8);
-    let camera = Camera {
-        eye: Vec3::new(0.0, 10.0, 0.0),
-        target: Vec3::ZERO,
-        up: Vec3::NEG_Z,
-        fov_y_deg: 30.0,
-    };
-    let vao = obscura::settings::VaoSettings {
-        radius: 1.0,
-        ..Default::default()
-    };
+    let case = edge_band_case();
+    let (scene, camera, vao) = (&case.scene, &case.camera, case.vao);
+    let (w, h, frame_guard) = case.size;
     let run = |technique: Technique, band: u32| {
         let mut s = AoSettings {
             technique,
@@ -703,8 +693,8 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
         };
         s.blur.enabled = false;
         s.stochastic_depth.guard_band = band;
-        let mut r = Renderer::new(&gpu, &scene, &s, w, h, frame_guard).unwrap();
-        r.render(&camera, None).unwrap();
+        let mut r = Renderer::new(&gpu, scene, &s, w, h, frame_guard).unwrap();
+        r.render(camera, None).unwrap();
         let requests = r.read_sd_request_texels().unwrap();
         let layers = r.read_stochastic_depth().unwrap().unwrap();
         (
@@ -719,8 +709,8 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     let (twin, requests, _, _) = run(Technique::SdSvao, 32);
     let (_, requests_without, _, _) = run(Technique::SdSvao, 0);
     let reference = render_reference(
-        &scene,
-        &Bvh::build(&scene),
+        scene,
+        &Bvh::build(scene),
         view,
         &ReferenceSettings {
             vao,
@@ -728,17 +718,8 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
         },
         &|_| {},
     );
-    let edge_error = |ao: &[f32]| {
-        let mut sum = 0.0f64;
-        for y in 0..h {
-            for x in w - 12..w {
-                let i = (y * w + x) as usize;
-                sum += f64::from(ao[i] - reference[i]).powi(2);
-            }
-        }
-        sum / f64::from(12 * h)
-    };
-    let (e_without, e_with) = (edge_error(&without), edge_error(&with));
+    let e_without = case.edge_error(&without, &reference);
+    let e_with = case.edge_error(&with, &reference);
     // The request mask covers the map, band included: phase 1 asked for band pixels.
     let (fw, fh) = (w + 2 * frame_guard, h + 2 * frame_guard);
     let requests = requests.unwrap();
@@ -760,10 +741,7 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     assert!(in_band > 0, "phase 1 requested nothing in the band");
     assert!(e_with < e_without / 1000.0, "{e_with:e} vs {e_without:e}");
     // Samples reach at most 12 px: the left half never leaves the framebuffer.
-    let worst = (0..h)
-        .flat_map(|y| (0..w / 2).map(move |x| (y * w + x) as usize))
-        .map(|i| (with[i] - without[i]).abs())
-        .fold(0.0f32, f32::max);
+    let worst = case.left_half_difference(&with, &without);
     assert!(worst <= 1e-6, "the band changed the left half by {worst}");
     // The two-phase row reads the same map where it asked for it.
     let twin_diff = with
