@@ -30,7 +30,7 @@ fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4
 // near plane (1: every layer is kept there).
 fn sd_cull_depth(pixel: vec2<u32>) -> f32 {
     let first = sd_first_layer(pixel);
-    if (first < 0.0) {
+    if (SD_MAP_BAND && first < 0.0) {
         return 1.0;
     }
     if (!(first > 0.0)) {

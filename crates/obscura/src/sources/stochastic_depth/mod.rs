@@ -310,15 +310,20 @@ impl StochasticDepthMap {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         )
         .create_view(&Default::default());
-        let mut source = shaders::with_common(
-            &[
-                shaders::MATERIAL,
-                shaders::HASH,
-                shaders::VERTEX_NORMAL,
-                shaders::GBUFFER,
-                shaders::STOCHASTIC_DEPTH_MAP,
-            ],
-            shaders::STOCHASTIC_DEPTH_RESET,
+        // Whether the map has a band: without one its shaders read the first layer as before.
+        let mut source = format!(
+            "const SD_MAP_BAND: bool = {};\n{}",
+            band > 0,
+            shaders::with_common(
+                &[
+                    shaders::MATERIAL,
+                    shaders::HASH,
+                    shaders::VERTEX_NORMAL,
+                    shaders::GBUFFER,
+                    shaders::STOCHASTIC_DEPTH_MAP,
+                ],
+                shaders::STOCHASTIC_DEPTH_RESET,
+            )
         );
         if !early_tests_available(device) {
             // The attribute needs the feature; without it the shaders decide alone (map.wgsl).
