@@ -46,6 +46,10 @@ struct SdRaster {
     // That band (`stochastic_depth.guard_band`, ours after seed 002 §3.5): the map's pixel p is
     // the framebuffer's p − band; in the band there is no first layer and every layer is kept.
     band: u32,
+    // The framebuffer's size (the first layer's): a uniform read rather than a texture query
+    // in every fragment of the band's reset and map.
+    first_size: vec2<u32>,
+    _pad: vec2<u32>,
 }
 
 @group(0) @binding(6) var first_layer: texture_2d<f32>;
@@ -109,8 +113,9 @@ fn sd_first_layer(pixel: vec2<u32>) -> f32 {
     if (!SD_MAP_BAND) {
         return textureLoad(first_layer, pixel, 0).r;
     }
-    let p = vec2<i32>(pixel) - vec2<i32>(i32(sd.band));
-    if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(textureDimensions(first_layer)))) {
+    // Unsigned: a pixel left of or above the frame wraps past `first_size` too.
+    let p = pixel - vec2<u32>(sd.band);
+    if (any(p >= sd.first_size)) {
         return -1.0;
     }
     return textureLoad(first_layer, p, 0).r;

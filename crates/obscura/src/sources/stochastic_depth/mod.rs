@@ -195,6 +195,9 @@ struct SdRaster {
     width: u32,
     /// Its own guard band in pixels on every side.
     band: u32,
+    /// The framebuffer's size (the first layer's), the band left out.
+    first_size: [u32; 2],
+    _pad: [u32; 2],
 }
 
 /// One stochastic depth map (S samples per pixel) for a framebuffer size, with its raster
@@ -518,6 +521,8 @@ impl StochasticDepthMap {
             all_layers: u32::from(self.all_layers),
             width: self.map_size().0,
             band: self.band,
+            first_size: [self.size.0, self.size.1],
+            _pad: [0; 2],
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&raster));
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
