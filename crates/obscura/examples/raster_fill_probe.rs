@@ -134,7 +134,6 @@ pub fn run(
         ("d16", wgpu::TextureFormat::Depth16Unorm),
         ("d32fs8", wgpu::TextureFormat::Depth32FloatStencil8),
     ];
-    let passes = PASSES;
     let mut rows = Vec::new();
     for (name, format) in formats {
         if !device.features().contains(format.required_features()) {
@@ -219,10 +218,10 @@ pub fn run(
                 std::ops::Range<u32>,
                 bool,
             ); 4] = [
-                (passes[0], None, 0..0, false),
-                (passes[1], Some(&depth_only), 0..4, false),
-                (passes[2], Some(&depth_only), 4..8, false),
-                (passes[3], Some(&with_colour), 0..4, true),
+                (PASSES[0], None, 0..0, false),
+                (PASSES[1], Some(&depth_only), 0..4, false),
+                (PASSES[2], Some(&depth_only), 4..8, false),
+                (PASSES[3], Some(&with_colour), 0..4, true),
             ];
             for (pass_name, pipeline, instances, with_ids) in draws {
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -241,7 +240,7 @@ pub fn run(
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: None,
-                    timestamp_writes: Some(profiler.compute_pass(passes[4])),
+                    timestamp_writes: Some(profiler.compute_pass(PASSES[4])),
                 });
                 pass.set_pipeline(&read_z);
                 pass.set_bind_group(0, &bind, &[]);
@@ -261,7 +260,7 @@ pub fn run(
                     label: None,
                     color_attachments: &clear,
                     depth_stencil_attachment: None,
-                    timestamp_writes: Some(profiler.render_pass(passes[5])),
+                    timestamp_writes: Some(profiler.render_pass(PASSES[5])),
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
@@ -271,7 +270,7 @@ pub fn run(
         }
         let timings = profiler.read(gpu)?;
         let mut medians = [0.0; 6];
-        for (median, pass) in medians.iter_mut().zip(passes) {
+        for (median, pass) in medians.iter_mut().zip(PASSES) {
             let mut v: Vec<f64> = timings[warmup as usize..]
                 .iter()
                 .filter_map(|f| f.get(pass).copied())

@@ -405,6 +405,38 @@ impl EdgeBandCase {
         sum / f64::from(12 * h)
     }
 
+    /// A renderer that has drawn the case with `technique` (blur off), after `configure` has set
+    /// the source's band.
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        technique: Technique,
+        configure: impl FnOnce(&mut AoSettings),
+    ) -> Renderer {
+        let mut s = AoSettings {
+            technique,
+            vao: self.vao,
+            ..Default::default()
+        };
+        s.blur.enabled = false;
+        configure(&mut s);
+        let (w, h, frame_guard) = self.size;
+        let mut r = Renderer::new(gpu, &self.scene, &s, w, h, frame_guard).unwrap();
+        r.render(&self.camera, None).unwrap();
+        r
+    }
+
+    /// The ray-traced `vao` truth over `view` (the view a renderer of the case reports).
+    pub fn reference(&self, view: obscura::FrameView) -> Vec<f32> {
+        use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
+        let settings = ReferenceSettings {
+            vao: self.vao,
+            ..Default::default()
+        };
+        let bvh = obscura::bvh::Bvh::build(&self.scene);
+        render_reference(&self.scene, &bvh, view, &settings, &|_| {})
+    }
+
     /// The largest difference of `a` and `b` over the left half, whose samples never leave the
     /// framebuffer.
     pub fn left_half_difference(&self, a: &[f32], b: &[f32]) -> f32 {
@@ -414,6 +446,19 @@ impl EdgeBandCase {
             .map(|i| (a[i] - b[i]).abs())
             .fold(0.0f32, f32::max)
     }
+}
+
+/// How many texels of a `width`-wide request mask are set in its outer `band` texels.
+pub fn requested_in_band(requests: &[u32], width: u32, band: u32) -> usize {
+    let height = requests.len() as u32 / width;
+    requests
+        .iter()
+        .enumerate()
+        .filter(|&(i, &q)| {
+            let (x, y) = (i as u32 % width, i as u32 / width);
+            q != 0 && !((band..width - band).contains(&x) && (band..height - band).contains(&y))
+        })
+        .count()
 }
 
 /// The centre block's AO seen from 20 m straight above (4° field: 1.5 cm per pixel), and the

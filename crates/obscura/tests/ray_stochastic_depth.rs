@@ -397,53 +397,27 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
     // 12 px here), those samples read the map's band texels, which hold every layer there, the
     // step's top included. Against the ray-traced `vao` truth, the error of the visible columns
     // near the edge must drop; pixels whose samples all stay on the framebuffer do not change.
-    use obscura::bvh::Bvh;
-    use obscura::reference::ground_truth::{render_reference, ReferenceSettings};
     let gpu = gpu();
     let case = edge_band_case();
-    let (scene, camera, vao) = (&case.scene, &case.camera, case.vao);
-    let (w, h, frame_guard) = case.size;
-    let bvh = Bvh::build(scene);
+    let (w, _, frame_guard) = case.size;
     for resolution in [1, 4] {
         let run = |guard_band: u32| {
-            let mut s = AoSettings {
-                technique: Technique::RaySdVao,
-                vao,
-                ..Default::default()
-            };
-            s.blur.enabled = false;
-            s.ray_sd.resolution = resolution;
-            s.ray_sd.guard_band = Some(guard_band);
-            let mut r = Renderer::new(&gpu, scene, &s, w, h, frame_guard).unwrap();
-            r.render(camera, None).unwrap();
+            let r = case.render(&gpu, Technique::RaySdVao, |s| {
+                s.ray_sd.resolution = resolution;
+                s.ray_sd.guard_band = Some(guard_band);
+            });
             let extent = r.ray_sd_map_size().unwrap().unwrap();
             let (mw, mh, g) = (extent.width, extent.height, extent.guard_texels);
             assert_eq!(g, guard_band.div_ceil(resolution));
             assert_eq!(mw, (w + 2 * frame_guard).div_ceil(resolution) + 2 * g);
             let requests = r.read_sd_request_texels().unwrap().unwrap();
             assert_eq!(requests.len(), (mw * mh) as usize);
-            let in_band = requests
-                .iter()
-                .enumerate()
-                .filter(|&(i, &q)| {
-                    let (x, y) = (i as u32 % mw, i as u32 / mw);
-                    q != 0 && !(x >= g && x < mw - g && y >= g && y < mh - g)
-                })
-                .count();
+            let in_band = requested_in_band(&requests, mw, g);
             (r.read_raw_ao().unwrap(), in_band, *r.view().unwrap())
         };
         let (without, band_without, view) = run(0);
         let (with, band_with, _) = run(32);
-        let reference = render_reference(
-            scene,
-            &bvh,
-            view,
-            &ReferenceSettings {
-                vao,
-                ..Default::default()
-            },
-            &|_| {},
-        );
+        let reference = case.reference(view);
         let e_without = case.edge_error(&without, &reference);
         let e_with = case.edge_error(&with, &reference);
         println!(

@@ -683,18 +683,9 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     // framebuffer must not change; the two-phase row must still equal its single-pass twin.
     let gpu = gpu();
     let case = edge_band_case();
-    let (scene, camera, vao) = (&case.scene, &case.camera, case.vao);
     let (w, h, frame_guard) = case.size;
     let run = |technique: Technique, band: u32| {
-        let mut s = AoSettings {
-            technique,
-            vao,
-            ..Default::default()
-        };
-        s.blur.enabled = false;
-        s.stochastic_depth.guard_band = band;
-        let mut r = Renderer::new(&gpu, scene, &s, w, h, frame_guard).unwrap();
-        r.render(camera, None).unwrap();
+        let r = case.render(&gpu, technique, |s| s.stochastic_depth.guard_band = band);
         let requests = r.read_sd_request_texels().unwrap();
         let layers = r.read_stochastic_depth().unwrap().unwrap();
         (
@@ -708,16 +699,7 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     let (with, _, layers_with, _) = run(Technique::SdVao, 32);
     let (twin, requests, _, _) = run(Technique::SdSvao, 32);
     let (_, requests_without, _, _) = run(Technique::SdSvao, 0);
-    let reference = render_reference(
-        scene,
-        &Bvh::build(scene),
-        view,
-        &ReferenceSettings {
-            vao,
-            ..Default::default()
-        },
-        &|_| {},
-    );
+    let reference = case.reference(view);
     let e_without = case.edge_error(&without, &reference);
     let e_with = case.edge_error(&with, &reference);
     // The request mask covers the map, band included: phase 1 asked for band pixels.
@@ -726,14 +708,7 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     let (mw, mh) = (fw + 64, fh + 64);
     assert_eq!(requests.len(), (mw * mh) as usize);
     assert_eq!(requests_without.unwrap().len(), (fw * fh) as usize);
-    let in_band = requests
-        .iter()
-        .enumerate()
-        .filter(|&(i, &q)| {
-            let (x, y) = (i as u32 % mw, i as u32 / mw);
-            q != 0 && !((32..mw - 32).contains(&x) && (32..mh - 32).contains(&y))
-        })
-        .count();
+    let in_band = requested_in_band(&requests, mw, 32);
     println!(
         "edge MSE {e_without:.3e} without the map's band, {e_with:.3e} with 32 px; \
          {in_band} band pixels requested"
