@@ -6,7 +6,8 @@ use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{
-    AoSettings, Normalization, Preset, Resolution, SdMask, SdQuery, SectorActivation, SettingsError,
+    AoSettings, Normalization, Preset, Resolution, SdMask, SdQuery, SdSelection, SectorActivation,
+    SettingsError,
 };
 use obscura::Technique;
 use std::path::PathBuf;
@@ -165,6 +166,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.seed", "--sd-seed"),
     ("stochastic_depth.mask", "--sd-mask"),
     ("stochastic_depth.query", "--sd-query"),
+    ("stochastic_depth.selection", "--sd-select"),
     ("stochastic_depth.compensation", "--sd-compensation"),
     ("ray_sd.reservoir", "--reservoir"),
     ("ray_sd.max_count", "--max-count"),
@@ -504,6 +506,14 @@ pub struct AoArgs {
     ))]
     pub sd_query: Option<String>,
     #[arg(long, help = help(
+        "Raster stochastic depth map: which hidden fragments each pixel keeps in its S depths: \
+         'stochastic' (default, seed 001 Alg. 1: a hashed subset, every layer has a chance) or \
+         'nearest' (ours: the S nearest layers behind the first, exact where a pixel hides at \
+         most S, steady in motion).",
+        "stochastic_depth.selection"
+    ))]
+    pub sd_select: Option<String>,
+    #[arg(long, help = help(
         "Stochastic-depth techniques: multiply the occlusion of stochastic samples by this \
          factor in [1, 8] (missing-occlusion compensation, seed 001 §4; 1 = off, the paper used 2).",
         "stochastic_depth.compensation"
@@ -731,6 +741,9 @@ impl AoArgs {
         }
         if let Some(q) = &self.sd_query {
             sd.query = q.parse::<SdQuery>().map_err(with_flags)?;
+        }
+        if let Some(q) = &self.sd_select {
+            sd.selection = q.parse::<SdSelection>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
         set(&mut sd.guard_band, self.sd_map_guard_band);

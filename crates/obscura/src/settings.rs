@@ -495,6 +495,9 @@ pub struct StochasticDepthSettings {
     /// paper used 2 for its Figs. 7–8. Makes up for occluders the few samples miss behind many
     /// layers, and overshoots where the samples missed nothing.
     pub compensation: f32,
+    /// Which hidden fragments each pixel of the raster map keeps: a stochastic subset (the
+    /// default, seed 001 Alg. 1) or the S nearest (ours). The ray-traced map has its reservoir.
+    pub selection: SdSelection,
     /// The raster map's own guard band in pixels (ours; seed 002 §3.5 gives the ray-traced map
     /// one): the map is rasterised this far beyond the framebuffer on every side, every layer
     /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
@@ -534,6 +537,48 @@ impl FromStr for SdQuery {
                 "must be 'needed' (default, seed 001 §3.3), 'first-layer' or 'always'",
             )),
         }
+    }
+}
+
+/// Which hidden fragments a pixel of the raster stochastic depth map keeps in its S depths. In
+/// files: `"stochastic"` or `"nearest"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdSelection {
+    /// Seed 001 Alg. 1: each fragment behind the first layer is stored in ⌊αS + ξ⌋ of the S
+    /// samples, chosen by a hash, and each sample keeps the nearest fragment that chose it: every
+    /// hidden layer has a chance, whatever lies in front of it, at the price of noise.
+    #[default]
+    Stochastic,
+    /// Ours: the S nearest distinct depths behind the first layer, with no hash and no α (a
+    /// k-buffer kept by chains of `atomicMax`, whose result does not depend on the order the
+    /// fragments arrive in). Exact wherever a pixel hides at most S layers, so it neither
+    /// flickers nor loses a layer there; where more lie behind the first, the deepest are lost
+    /// every time (the stochastic map would keep each with some chance).
+    Nearest,
+}
+
+impl FromStr for SdSelection {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "stochastic" => Ok(SdSelection::Stochastic),
+            "nearest" => Ok(SdSelection::Nearest),
+            _ => Err(invalid(
+                "stochastic_depth.selection",
+                s,
+                "must be 'stochastic' (default, seed 001 Alg. 1) or 'nearest' (the S nearest hidden layers)",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdSelection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdSelection::Stochastic => "stochastic",
+            SdSelection::Nearest => "nearest",
+        })
     }
 }
 
@@ -619,6 +664,7 @@ impl Default for StochasticDepthSettings {
             mask: SdMask::Depth,
             query: SdQuery::Needed,
             compensation: 1.0,
+            selection: SdSelection::Stochastic,
             guard_band: 0,
         }
     }
@@ -1983,7 +2029,7 @@ mod tests {
     #[test]
     fn validation_names_fields_that_exist_and_no_flags() {
         let paths = AoSettings::field_paths();
-        assert_eq!(paths.len(), 75, "{paths:?}");
+        assert_eq!(paths.len(), 76, "{paths:?}");
         let mut broken: Vec<AoSettings> = Vec::new();
         let mut push = |f: &dyn Fn(&mut AoSettings)| {
             let mut s = AoSettings::default();
@@ -2065,6 +2111,10 @@ mod tests {
         for (text, field) in [
             ("flat".parse::<Normalization>().err(), "vao.normalization"),
             ("both".parse::<SdMask>().err(), "stochastic_depth.mask"),
+            (
+                "closest".parse::<SdSelection>().err(),
+                "stochastic_depth.selection",
+            ),
             ("often".parse::<SdQuery>().err(), "stochastic_depth.query"),
             ("quarter".parse::<Resolution>().err(), "resolution"),
             (

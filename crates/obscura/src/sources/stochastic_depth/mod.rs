@@ -31,7 +31,7 @@ use crate::raster::gbuffer::{
 };
 use crate::raster::gpu_scene::GpuScene;
 use crate::raster::triangle_cull::{CullList, TriangleCull};
-use crate::settings::{SdMask, StochasticDepthSettings, SD_SAMPLE_COUNTS};
+use crate::settings::{SdMask, SdSelection, StochasticDepthSettings, SD_SAMPLE_COUNTS};
 use crate::view::FrameView;
 use crate::{shaders, Error};
 use reset::{ResetScope, SdReset};
@@ -313,10 +313,12 @@ impl StochasticDepthMap {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         )
         .create_view(&Default::default());
-        // Whether the map has a band: without one its shaders read the first layer as before.
+        // Whether the map has a band (without one its shaders read the first layer as before)
+        // and keeps the nearest layers (the stochastic map's shaders are then as they were).
         let mut source = format!(
-            "const SD_MAP_BAND: bool = {};\n{}",
+            "const SD_MAP_BAND: bool = {};\nconst SD_NEAREST: bool = {};\n{}",
             band > 0,
+            settings.selection == SdSelection::Nearest,
             shaders::with_common(
                 &[
                     shaders::MATERIAL,
