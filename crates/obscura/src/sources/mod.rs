@@ -284,6 +284,11 @@ impl SourcePass {
             if sd.compensation != 1.0 {
                 constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
             }
+            if kind == Source::StochasticDepth
+                && sd.selection == crate::settings::SdSelection::Nearest
+            {
+                constants.push(("SD_SORTED", 1.0));
+            }
             let cutoff = settings.ray_sd.radius_cutoff;
             if kind == Source::RayStochasticDepth && cutoff > 0.0 {
                 constants.push(("SD_RADIUS_CUTOFF", f64::from(cutoff)));

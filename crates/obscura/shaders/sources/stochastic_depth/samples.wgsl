@@ -20,6 +20,11 @@
 // estimator's (`estimator_compensate`).
 override SD_COMPENSATION: f32 = 1.0;
 
+// The raster map's `nearest` selection (map.wgsl, sd_store_nearest) fills a pixel's samples
+// from the first on: the first empty one ends the pixel's depths. Off: empty samples may lie
+// anywhere (Alg. 1's stochastic choice, the ray-traced reservoir).
+override SD_SORTED: bool = false;
+
 // `l.value` combined with the values of every sample the map stores at `l.px`.
 fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let pixel = vec2<i32>(floor(l.px));
@@ -27,6 +32,9 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
     for (var m = 0u; m < SD_MAPS; m++) {
         for (var k = 0u; k < SD_SAMPLES; k++) {
             let v = sd_load(m, pixel, k);
+            if (SD_SORTED && !(v > 0.0)) {
+                break;
+            }
             if (v > 0.0) {
                 let pos = pixel_to_view(view, l.px, sd_near.x / v);
                 var sample_value = estimator_occluder(p, s, pos).value;
