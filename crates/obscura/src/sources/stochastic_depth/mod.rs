@@ -316,10 +316,9 @@ impl StochasticDepthMap {
         // Whether the map has a band (without one its shaders read the first layer as before)
         // and keeps the nearest layers (the stochastic map's shaders are then as they were).
         let mut source = format!(
-            "const SD_MAP_BAND: bool = {};\nconst SD_NEAREST: bool = {};\nconst SD_MAP_SAMPLES: u32 = {}u;\n{}",
+            "const SD_MAP_BAND: bool = {};\nconst SD_NEAREST: bool = {};\n{}",
             band > 0,
             settings.selection == SdSelection::Nearest,
-            samples,
             shaders::with_common(
                 &[
                     shaders::MATERIAL,
