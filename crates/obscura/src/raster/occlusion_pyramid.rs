@@ -1,5 +1,5 @@
 //! The occlusion pyramid (`shaders/occlusion_pyramid.wgsl`, layout in
-//! `shaders/common/occlusion_pyramid.wgsl`): the farthest depth per tile of 4 to 64 pixels of a
+//! `shaders/common/occlusion_pyramid.wgsl`): the farthest depth per tile of 1 to 64 pixels of a
 //! reversed-Z depth buffer, which the second phase of [`super::triangle_cull`]'s occlusion
 //! culling tests triangles against. A storage buffer rather than a mipmapped texture: one
 //! dispatch writes every level, and a texture would need a storage binding per level.
@@ -7,7 +7,7 @@
 use crate::gpu::PassProfiler;
 
 /// Tile levels, as `PYRAMID_FIRST_LEVEL` and `PYRAMID_LAST_LEVEL` of the shader.
-const FIRST_LEVEL: u32 = 2;
+const FIRST_LEVEL: u32 = 0;
 const LAST_LEVEL: u32 = 6;
 
 /// Floats in the pyramid of a `width`×`height` framebuffer.
