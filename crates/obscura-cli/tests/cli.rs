@@ -722,6 +722,44 @@ fn debug_out_shows_the_ray_traced_map() {
 }
 
 #[test]
+fn debug_out_shows_the_raster_maps_own_band() {
+    // sd-svao with the raster map's own 16 px band on the stairs close-up: the request mask over
+    // the whole map, the band's requests counted apart from the framebuffer's pixels.
+    let dir = tempfile::tempdir().unwrap();
+    let stats = sd_debug(
+        "sd-svao",
+        dir.path(),
+        &["--guard-band", "8", "--sd-map-guard-band", "16"],
+    );
+    let debug = dir.path().join("sd-svao");
+    // The framebuffer 112×80, and 16 px on each side.
+    let (w, h, request) = grey(&debug.join("sd_request_map.png"));
+    assert_eq!((w, h), (144, 112));
+    let inside = |x: u32, y: u32| (16..128).contains(&x) && (16..96).contains(&y);
+    let white = |keep: &dyn Fn(u32, u32) -> bool| {
+        (0..w * h)
+            .filter(|&i| keep(i % w, i / w) && request[i as usize] == 255)
+            .count() as u64
+    };
+    let band = stats["guard_band_texels_requested"].as_u64().unwrap();
+    assert!(band > 0, "samples leave the close-up's frame: {stats}");
+    assert_eq!(band, white(&|x, y| !inside(x, y)));
+    assert_eq!(
+        stats["requested_pixels"].as_u64().unwrap(),
+        white(&|x, y| inside(x, y))
+    );
+    // Without its band the raster map has no such image.
+    let plain = dir.path().join("no-band");
+    std::fs::create_dir_all(&plain).unwrap();
+    let stats = sd_debug("sd-svao", &plain, &["--guard-band", "8"]);
+    assert!(
+        stats.get("guard_band_texels_requested").is_none(),
+        "{stats}"
+    );
+    assert!(!plain.join("sd-svao").join("sd_request_map.png").exists());
+}
+
+#[test]
 fn debug_out_shows_the_flagged_samples() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ao.png");

@@ -242,9 +242,11 @@ fn request_mask(requests: &[u32]) -> Vec<f32> {
 ///   `stats.json` `interval_pixels`, `interval_mean_length`, `interval_longest`;
 /// - the ray-traced map (`ray-sd-*`, one layer per reservoir slot): also `sd_hits.png`, the hits
 ///   each texel's ray handled / MAX_COUNT at the map's resolution (seed 002's "hits per ray"),
-///   and their mean over the traced texels in `stats.json`; two-phase, `sd_request_map.png`, the
-///   requested texels over the whole map, its own guard band included (seed 002 Fig. 13c), and
-///   `guard_band_texels_requested` in `stats.json`.
+///   and their mean over the traced texels in `stats.json`;
+/// - two-phase, the ray-traced map or the raster map with its own band
+///   (`--sd-map-guard-band`): `sd_request_map.png`, the requested texels over the whole map, its
+///   own guard band included (seed 002 Fig. 13c), and `guard_band_texels_requested` in
+///   `stats.json` (`requested_pixels` counts framebuffer pixels only).
 fn write_sd_debug(
     dir: &std::path::Path,
     renderer: &Renderer,
@@ -353,29 +355,34 @@ fn write_sd_debug(
             stats.insert("hits_per_ray_mean".into(), mean.into());
         }
         summary += &format!(", {mean:.2} hits per ray (rays that met one)");
-        if let Some(requests) = renderer.read_sd_request_texels()? {
-            // Seed 002 Fig. 13c: the requested texels over the whole map, its guard band
-            // included (the band's requests come from samples off the framebuffer).
-            output::write_ao(
-                &dir.join("sd_request_map.png"),
-                mw,
-                mh,
-                &request_mask(&requests),
-            )?;
-            let g = g as usize;
-            let in_band = requests
-                .iter()
-                .enumerate()
-                .filter(|&(i, &q)| {
-                    let (x, y) = (i % mw as usize, i / mw as usize);
-                    let inner = |v: usize, n: u32| v >= g && v < n as usize - g;
-                    q != 0 && !(inner(x, mw) && inner(y, mh))
-                })
-                .count();
-            if let Some(stats) = stats.as_object_mut() {
-                stats.insert("guard_band_texels_requested".into(), in_band.into());
-            }
+    }
+    // The ray-traced map, or the raster map with its own band: the requested texels over the
+    // whole map, its band included (seed 002 Fig. 13c; the band's requests come from samples off
+    // the framebuffer).
+    let request_map = renderer
+        .sd_request_map_size()?
+        .filter(|m| m.guard_texels > 0 || renderer.ray_sd_map_size().ok().flatten().is_some());
+    if let (Some(map), Some(requests)) = (request_map, renderer.read_sd_request_texels()?) {
+        let (mw, mh, g) = (map.width, map.height, map.guard_texels as usize);
+        output::write_ao(
+            &dir.join("sd_request_map.png"),
+            mw,
+            mh,
+            &request_mask(&requests),
+        )?;
+        let in_band = requests
+            .iter()
+            .enumerate()
+            .filter(|&(i, &q)| {
+                let (x, y) = (i % mw as usize, i / mw as usize);
+                let inner = |v: usize, n: u32| v >= g && v < n as usize - g;
+                q != 0 && !(inner(x, mw) && inner(y, mh))
+            })
+            .count();
+        if let Some(stats) = stats.as_object_mut() {
+            stats.insert("guard_band_texels_requested".into(), in_band.into());
         }
+        summary += &format!(", {in_band} texels of the map's own band requested");
     }
     if let Some(intervals) = renderer.read_sd_intervals()? {
         // Seed 002 Fig. 12: how long a stretch of each pixel's ray the map must trace, as a

@@ -504,6 +504,23 @@ impl AmbientOcclusion {
         self.source.ray_stochastic_depth().map(|map| map.extent())
     }
 
+    /// The size of the SD-request mask [`Self::read_sd_request_texels`] returns and its band
+    /// beyond the framebuffer on each side: the ray-traced map's texels
+    /// ([`Self::ray_sd_map_size`]), or the raster map's pixels with its own band
+    /// (`stochastic_depth.guard_band`); `None` without a stochastic depth map.
+    pub fn sd_request_map_size(&self) -> Option<RaySdMapSize> {
+        self.ray_sd_map_size().or_else(|| {
+            self.source.stochastic_depth().map(|map| {
+                let (width, height) = map.map_size();
+                RaySdMapSize {
+                    width,
+                    height,
+                    guard_texels: map.band(),
+                }
+            })
+        })
+    }
+
     /// The ray-traced stochastic depth map's hits per ray of the last frame (`ray-sd-vao`,
     /// `ray-sd-vao-full`; framebuffer-sized, 0 where nothing was traced). Waits for the GPU.
     pub fn read_ray_sd_hits(&self) -> Result<Option<Vec<u32>>, Error> {

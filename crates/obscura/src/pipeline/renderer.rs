@@ -233,6 +233,14 @@ impl Renderer {
         Ok(self.last_ao()?.ray_sd_map_size())
     }
 
+    /// The size and band of the last frame's SD-request mask (see
+    /// [`AmbientOcclusion::sd_request_map_size`]).
+    pub fn sd_request_map_size(
+        &self,
+    ) -> Result<Option<crate::sources::ray_stochastic_depth::RaySdMapSize>, Error> {
+        Ok(self.last_ao()?.sd_request_map_size())
+    }
+
     /// Two-phase stochastic depth: the last frame's SD-request mask as phase 1 wrote it (see
     /// [`AmbientOcclusion::read_sd_request_texels`]; the ray-traced map's guard band included).
     pub fn read_sd_request_texels(&self) -> Result<Option<Vec<u32>>, Error> {
