@@ -359,9 +359,10 @@ fn write_sd_debug(
     // The ray-traced map, or the raster map with its own band: the requested texels over the
     // whole map, its band included (seed 002 Fig. 13c; the band's requests come from samples off
     // the framebuffer).
+    let ray_map = renderer.ray_sd_map_size()?.is_some();
     let request_map = renderer
         .sd_request_map_size()?
-        .filter(|m| m.guard_texels > 0 || renderer.ray_sd_map_size().ok().flatten().is_some());
+        .filter(|m| ray_map || m.guard_texels > 0);
     if let (Some(map), Some(requests)) = (request_map, renderer.read_sd_request_texels()?) {
         let (mw, mh, g) = (map.width, map.height, map.guard_texels as usize);
         output::write_ao(
