@@ -14,12 +14,19 @@
 // A triangle that crosses the eye plane, or reaches far outside the framebuffer (where float
 // pixel positions lose precision), is tested against the frustum planes only.
 //
+// Depth peeling (phase 3) keeps, of the triangles that may cover a pixel centre, those that may
+// lie behind the first layer by more than the separation somewhere: a triangle peeling would
+// reject at every pixel it covers is not drawn (`pyramid` is then peeling's,
+// shaders/occlusion_pyramid_peel.wgsl): the first layer's own triangles,
+// where nothing lies in front of them, go (the in-crate culling test: 59,525 of 219,968 kept
+// over the built-in scenes and cameras).
+//
 // With occlusion culling (the G-buffer's visibility pass), two phases (Haar and Aaltonen,
 // "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the
 // triangles some pixel showed last frame (`seen_frame`, written by gbuffer_resolve_main.wgsl);
 // after they are drawn, the second keeps the others unless the first phase's depths
 // (shaders/occlusion_pyramid.wgsl) are nearer than the triangle at every pixel it may cover
-// (hidden_by_pyramid). Every triangle that can win a pixel is still drawn, by one phase or the
+// (pyramid_decides). Every triangle that can win a pixel is still drawn, by one phase or the
 // other.
 
 struct CullParams {
@@ -31,10 +38,10 @@ struct CullParams {
     draws: u32,
     // Non-zero: keep every triangle (the tests' uncull'd twin, src/raster/triangle_cull.rs).
     keep_all: u32,
-    // 0: no occlusion culling; 1: the first phase; 2: the second (also the list it writes).
+    // 0: no occlusion culling; 1: the first phase; 2: the second; 3: depth peeling's list (the
+    // triangles not in front of its pyramid everywhere, in_front_of_peel_pyramid).
     phase: u32,
-    // The first phase also writes the list without occlusion culling (list 0) when non-zero.
-    keep_all_list: u32,
+    pad: u32,
     // Where this dispatch's list starts, in triangles and in draws: list `l` (src/raster/
     // triangle_cull.rs, `CullList`) at `l` times the triangle count and `l` times the draw count.
     list_triangles: u32,
@@ -75,13 +82,15 @@ const ROW: u32 = 65535u;
 // pixel centre inside the triangle is a convex combination of the corners' (up to rounding, and
 // the vertex shader's products may round differently from ours).
 const DEPTH_SLACK: f32 = 1.0e-5;
-// Tiles per side a triangle's bounds are tested against (hidden_by_pyramid): at most 8 × 8
+// Tiles per side a triangle's bounds are tested against (pyramid_decides): at most 8 × 8
 // pyramid reads. Finer tiles cull more of the hidden triangles that the first phase's
 // silhouettes cross, but each read waits for the last: on Crytek Sponza at 1080p with a still
 // camera the second phase drew 30,478 triangles with 2 × 2 tiles of 4 to 64 pixels and the
 // nearest corner alone, 11,903 with 4 × 4 tiles from 1 pixel, the plane and the edges, 8,110
 // with 8 × 8 and 6,586 with 16 × 16, and 8 × 8 was the fastest G-buffer (BENCHMARKS.md).
 const HIDDEN_TILES: u32 = 8u;
+// Tiles per side of the first, coarse test (coarse_tiles_decide).
+const COARSE_TILES: u32 = 2u;
 
 var<workgroup> kept_before: array<u32, GROUP_SIZE>;
 
@@ -191,14 +200,69 @@ fn outside_edge(v: vec2<f32>, e: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> boo
     return e.x * d.y - e.y * d.x < -2.0 * MARGIN * length(e);
 }
 
-// Whether the first phase's depths are nearer than the triangle's at every pixel centre within
-// MARGIN of its pixel bounds that it may cover: of the finest pyramid level whose at most
-// HIDDEN_TILES² tiles cover those pixels (level 0: each pixel's own depth), every tile not
+// Whether the at most COARSE_TILES² tiles of the finest pyramid level that span the pixels `p`
+// to `q` all decide the triangle, from `bound` alone (its nearest corner's depth for occlusion,
+// its farthest for peeling, with slack): then so does every pixel it may cover. A few reads
+// decide most triangles before pyramid_decides's fine tiles, which wait for each other
+// (BENCHMARKS.md, issue 16).
+fn coarse_tiles_decide(p: vec2<u32>, q: vec2<u32>, bound: f32, in_front: bool) -> bool {
+    let span = spanning_level(p, q, COARSE_TILES);
+    if (!span.found) {
+        return false;
+    }
+    let a = p >> vec2<u32>(span.level);
+    let b = q >> vec2<u32>(span.level);
+    for (var y = a.y; y <= b.y; y++) {
+        for (var x = a.x; x <= b.x; x++) {
+            if (!tile_decides(bound, pyramid[span.offset + y * span.row + x], in_front)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// The finest pyramid level whose at most `tiles`² tiles span the pixels `p` to `q`: where its
+// tiles start in `pyramid` and its tiles per row (`found` false when no level does).
+struct SpanningLevel {
+    found: bool,
+    level: u32,
+    offset: u32,
+    row: u32,
+}
+
+fn spanning_level(p: vec2<u32>, q: vec2<u32>, tiles: u32) -> SpanningLevel {
+    let size = vec2<u32>(params.size);
+    var out = SpanningLevel(false, 0u, 0u, 0u);
+    for (var level = PYRAMID_FIRST_LEVEL; level <= PYRAMID_LAST_LEVEL; level++) {
+        let row = pyramid_level_size(size, level);
+        if (all((q >> vec2<u32>(level)) - (p >> vec2<u32>(level)) <= vec2<u32>(tiles - 1u))) {
+            out = SpanningLevel(true, level, out.offset, row.x);
+            break;
+        }
+        out.offset += row.x * row.y;
+    }
+    return out;
+}
+
+// Whether a tile of the pyramid whose value is `tile` decides a triangle whose reversed-Z depth
+// over the tile's pixels is at most (occlusion) or at least (`in_front`: peeling) `depth`:
+// occlusion drops it when the tile's farthest depth lies in front of it; peeling when it is at
+// or above the depth below which the tile's pixels would peel it.
+fn tile_decides(depth: f32, tile: f32, in_front: bool) -> bool {
+    return select((depth < tile), (depth >= tile), in_front);
+}
+
+// Whether the pyramid decides the triangle at every pixel centre within MARGIN of its pixel
+// bounds that it may cover. Occlusion (`in_front` false, the first phase's depths): the
+// triangle lies behind them there. Peeling (`in_front`): it lies at or above the depth
+// peeling needs there (shaders/occlusion_pyramid_peel.wgsl). Of the finest pyramid level whose
+// at most HIDDEN_TILES² tiles cover those pixels (level 0: each pixel's own), every tile not
 // wholly outside one of the triangle's edges is tested against the triangle's nearest depth
-// over the tile's pixel centres: its plane (depth is affine in screen space) at the nearest of
-// them, never nearer than its nearest corner. Bounds that no level covers with so few tiles
-// decide nothing (false).
-fn hidden_by_pyramid(cover: Coverage) -> bool {
+// (occlusion) or farthest (peeling) over the tile's pixel centres: its plane (depth is affine
+// in screen space) at the nearest or farthest of them, never beyond its nearest or farthest
+// corner. Bounds that no level covers with so few tiles decide nothing (false).
+fn pyramid_decides(cover: Coverage, in_front: bool) -> bool {
     // Only pixels of the framebuffer can show the triangle.
     let first = max(ceil(cover.lo - MARGIN - 0.5), vec2<f32>(0.0));
     let last = min(floor(cover.hi + MARGIN - 0.5), params.size - 1.0);
@@ -207,6 +271,15 @@ fn hidden_by_pyramid(cover: Coverage) -> bool {
     }
     let d = cover.depths;
     let nearest = max(d.x, max(d.y, d.z));
+    let farthest = min(d.x, min(d.y, d.z));
+    // The corner that bounds the triangle everywhere, on the side the test needs; the slack
+    // on depths moves it to the safe side.
+    let corner = select(nearest * (1.0 + DEPTH_SLACK), farthest * (1.0 - DEPTH_SLACK), in_front);
+    let p = vec2<u32>(first);
+    let q = vec2<u32>(last);
+    if (coarse_tiles_decide(p, q, corner, in_front)) {
+        return true;
+    }
     let e1 = cover.pb - cover.pa;
     let e2 = cover.pc - cover.pa;
     let det = e1.x * e2.y - e1.y * e2.x;
@@ -218,52 +291,52 @@ fn hidden_by_pyramid(cover: Coverage) -> bool {
     let pc = select(cover.pb, cover.pc, det > 0.0);
     // The plane's gradient where the triangle is no sliver (twice its area at least a twentieth
     // of its edges' squared lengths: the solve is well conditioned), else 0 and the plane's depth
-    // at the first corner `at_pa` the nearest corner's, which bounds the triangle everywhere.
+    // at the first corner `at_pa` the bounding corner's, which bounds the triangle everywhere.
     // Slack: the solve's rounding, and the rasteriser's snapping of the corners (within MARGIN)
     // moving the plane by its gradient.
     var gradient = vec2<f32>(0.0);
-    var at_pa = nearest;
+    var at_pa = select(nearest, farthest, in_front);
     if (abs(det) >= 0.05 * edges) {
         let d1 = d.y - d.x;
         let d2 = d.z - d.x;
         gradient = vec2<f32>(d1 * e2.y - d2 * e1.y, d2 * e1.x - d1 * e2.x) / det;
         at_pa = d.x;
     }
-    let slack = 1.0e-4 * (nearest - min(d.x, min(d.y, d.z)))
+    let slack = 1.0e-4 * (nearest - farthest)
         + 2.0 * MARGIN * (abs(gradient.x) + abs(gradient.y));
-    let size = vec2<u32>(params.size);
-    let p = vec2<u32>(first);
-    let q = vec2<u32>(last);
-    var offset = 0u;
-    for (var level = PYRAMID_FIRST_LEVEL; level <= PYRAMID_LAST_LEVEL; level++) {
-        let row = pyramid_level_size(size, level);
-        let a = p >> vec2<u32>(level);
-        let b = q >> vec2<u32>(level);
-        if (all(b - a <= vec2<u32>(HIDDEN_TILES - 1u))) {
-            for (var y = a.y; y <= b.y; y++) {
-                for (var x = a.x; x <= b.x; x++) {
-                    let tile = vec2<u32>(x, y);
-                    // The tile's pixel centres within the bounds.
-                    let lo = max(vec2<f32>(tile << vec2<u32>(level)), first) + 0.5;
-                    let hi = min(vec2<f32>(((tile + 1u) << vec2<u32>(level)) - 1u), last) + 0.5;
-                    if (edges_known && (outside_edge(cover.pa, pb - cover.pa, lo, hi)
-                        || outside_edge(pb, pc - pb, lo, hi)
-                        || outside_edge(pc, cover.pa - pc, lo, hi))) {
-                        continue;
-                    }
-                    let at = select(lo, hi, gradient > vec2<f32>(0.0));
-                    let plane = at_pa + dot(gradient, at - cover.pa) + slack;
-                    let depth = min(plane, nearest) * (1.0 + DEPTH_SLACK);
-                    if (!(depth < pyramid[offset + y * row.x + x])) {
-                        return false;
-                    }
-                }
-            }
-            return true;
-        }
-        offset += row.x * row.y;
+    // Towards the nearest pixel centre of a tile along the gradient, or away for the farthest.
+    let rising = (gradient > vec2<f32>(0.0)) != vec2<bool>(in_front);
+    let span = spanning_level(p, q, HIDDEN_TILES);
+    if (!span.found) {
+        return false;
     }
-    return false;
+    let level = span.level;
+    let a = p >> vec2<u32>(level);
+    let b = q >> vec2<u32>(level);
+    for (var y = a.y; y <= b.y; y++) {
+        for (var x = a.x; x <= b.x; x++) {
+            let tile = vec2<u32>(x, y);
+            // The tile's pixel centres within the bounds.
+            let lo = max(vec2<f32>(tile << vec2<u32>(level)), first) + 0.5;
+            let hi = min(vec2<f32>(((tile + 1u) << vec2<u32>(level)) - 1u), last) + 0.5;
+            if (edges_known && (outside_edge(cover.pa, pb - cover.pa, lo, hi)
+                || outside_edge(pb, pc - pb, lo, hi)
+                || outside_edge(pc, cover.pa - pc, lo, hi))) {
+                continue;
+            }
+            let at = select(lo, hi, rising);
+            let plane = at_pa + dot(gradient, at - cover.pa);
+            let depth = select(
+                min(plane + slack, nearest) * (1.0 + DEPTH_SLACK),
+                max(plane - slack, farthest) * (1.0 - DEPTH_SLACK),
+                in_front,
+            );
+            if (!tile_decides(depth, pyramid[span.offset + y * span.row + x], in_front)) {
+                return false;
+            }
+        }
+    }
+    return true;
 }
 
 @compute @workgroup_size(256)
@@ -278,25 +351,26 @@ fn main(
     }
     let draw = draw_list[d];
     let t = draw.x + i;
-    // Bit 0: kept by this dispatch; bit 16: kept without occlusion culling (the first phase's
-    // second list). One prefix sum counts both (at most 256 each).
+    // 1: kept by this dispatch.
     var keep = 0u;
     if (i < draw.y) {
         if (params.keep_all != 0u) {
-            // The uncull'd twin: everything in the first (or only) phase.
-            keep = select(0u, 0x10001u, params.phase != 2u);
+            // The uncull'd twin: everything in the first (or only) phase, and for peeling.
+            keep = select(0u, 1u, params.phase != 2u);
         } else {
-            // Which lists the triangle may join before its (costlier) coverage: the second phase
-            // has no use for those seen last frame, and the first only wants them unless it
-            // also writes the full list.
-            let seen = params.phase != 0u && seen_last_frame(t);
-            let wanted = select(0u, 1u, params.phase == 0u || (params.phase == 1u) == seen)
-                | select(0u, 0x10000u, params.phase == 1u && params.keep_all_list != 0u);
-            if (wanted != 0u) {
+            // The occlusion phases split the triangles by whether they were seen last frame,
+            // before the (costlier) coverage.
+            let occlusion = params.phase == 1u || params.phase == 2u;
+            let seen = occlusion && seen_last_frame(t);
+            if (!occlusion || (params.phase == 1u) == seen) {
                 let cover = coverage(triangles[t], draw.z == 0u);
-                let hidden = params.phase == 2u && cover.on_screen
-                    && hidden_by_pyramid(cover);
-                keep = select(0u, wanted, cover.may_cover && !hidden);
+                var dropped = false;
+                if (cover.on_screen && params.phase == 2u) {
+                    dropped = pyramid_decides(cover, false);
+                } else if (cover.on_screen && params.phase == 3u) {
+                    dropped = pyramid_decides(cover, true);
+                }
+                keep = select(0u, 1u, cover.may_cover && !dropped);
             }
         }
     }
@@ -314,18 +388,11 @@ fn main(
         workgroupBarrier();
     }
     let before = kept_before[i];
-    if ((keep & 1u) != 0u) {
-        drawn[params.list_triangles + draw.x + (before & 0xffffu) - 1u] = t;
-    }
-    let full_list = params.phase == 1u && params.keep_all_list != 0u;
-    if (full_list && (keep & 0x10000u) != 0u) {
-        drawn[draw.x + (before >> 16u) - 1u] = t;
+    if (keep != 0u) {
+        drawn[params.list_triangles + draw.x + before - 1u] = t;
     }
     if (i == GROUP_SIZE - 1u) {
         let first = params.list_triangles + draw.x;
-        args[params.list_draws + d] = vec4<u32>(3u * (before & 0xffffu), 1u, 3u * first, 0u);
-        if (full_list) {
-            args[d] = vec4<u32>(3u * (before >> 16u), 1u, 3u * draw.x, 0u);
-        }
+        args[params.list_draws + d] = vec4<u32>(3u * before, 1u, 3u * first, 0u);
     }
 }

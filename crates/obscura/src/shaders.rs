@@ -59,6 +59,9 @@ pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const TRIANGLE_CULL: &str = include_str!("../shaders/triangle_cull.wgsl");
 pub const OCCLUSION_PYRAMID_LAYOUT: &str = include_str!("../shaders/common/occlusion_pyramid.wgsl");
 pub const OCCLUSION_PYRAMID: &str = include_str!("../shaders/occlusion_pyramid.wgsl");
+pub const OCCLUSION_PYRAMID_FARTHEST: &str =
+    include_str!("../shaders/occlusion_pyramid_farthest.wgsl");
+pub const OCCLUSION_PYRAMID_PEEL: &str = include_str!("../shaders/occlusion_pyramid_peel.wgsl");
 pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
 pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");

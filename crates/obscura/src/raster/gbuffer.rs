@@ -197,14 +197,22 @@ impl GBuffer {
         let visibility_pipeline =
             |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
         let z = target("z", Z_FORMAT);
-        // Occlusion culling against the visibility pass's own depth buffer.
-        let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
+        let depth = target_with(
+            "linear depth",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING,
+        );
+        // Occlusion culling against the visibility pass's own depth buffer; depth peeling's list
+        // against the first layer.
+        let cull = TriangleCull::new(
+            device,
+            &scene.draw_ordered(),
+            "triangle_cull",
+            Some(&z),
+            peel_separation.map(|separation| (&depth, separation)),
+        );
         Self {
-            depth: target_with(
-                "linear depth",
-                DEPTH_FORMAT,
-                wgpu::TextureUsages::STORAGE_BINDING,
-            ),
+            depth,
             normals: target_with(
                 "normals",
                 NORMAL_FORMAT,
@@ -250,6 +258,13 @@ impl GBuffer {
         self.cull.counts(gpu)
     }
 
+    /// Triangles depth peeling's list kept in the last frame, when peeling (tests; waits for the
+    /// GPU).
+    #[cfg(test)]
+    pub(crate) fn peel_kept(&self, gpu: &crate::Gpu) -> Option<u32> {
+        self.cull.peel_kept(gpu)
+    }
+
     /// The second depth layer (linear, 0 = none), when depth peeling was asked for.
     pub fn second_layer(&self) -> Option<&wgpu::Texture> {
         self.peel.as_ref().map(|p| &p.depth)
@@ -271,12 +286,8 @@ impl GBuffer {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
         let scene = &scene.draw_ordered();
-        self.cull.prepare(
-            queue,
-            view,
-            visibility_draws(scene, view),
-            self.peel.is_some(),
-        );
+        self.cull
+            .prepare(queue, view, visibility_draws(scene, view));
         // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
         // then the others that their depths do not hide, into the same targets.
         self.cull.encode(encoder, profiler.as_deref_mut());
@@ -330,7 +341,8 @@ impl GBuffer {
                 ],
             );
             let targets = [(&peel.visibility, None)];
-            // Every triangle: those the first layer hides are what peeling looks for.
+            // Not occlusion-culled: those the first layer hides are what peeling looks for.
+            self.cull.encode_peel(encoder, profiler.as_deref_mut());
             self.draw(
                 device,
                 encoder,

@@ -1,8 +1,9 @@
 //! The occlusion pyramid (`shaders/occlusion_pyramid.wgsl`, layout in
 //! `shaders/common/occlusion_pyramid.wgsl`): the farthest depth per tile of 1 to 64 pixels of a
 //! reversed-Z depth buffer, which the second phase of [`super::triangle_cull`]'s occlusion
-//! culling tests triangles against. A storage buffer rather than a mipmapped texture: one
-//! dispatch writes every level, and a texture would need a storage binding per level.
+//! culling tests triangles against; and depth peeling's, per tile the depth a fragment must lie
+//! behind to be peeled ([`PyramidSource::Peel`]). A storage buffer rather than a mipmapped
+//! texture: one dispatch writes every level, and a texture would need a storage binding per level.
 
 use crate::gpu::PassProfiler;
 
@@ -20,6 +21,30 @@ fn len(width: u32, height: u32) -> u64 {
         .sum()
 }
 
+/// What a pyramid is built from.
+pub(crate) enum PyramidSource<'a> {
+    /// The farthest depth per tile of a depth buffer (`Depth32Float`, reversed Z, with
+    /// `TEXTURE_BINDING`): occlusion culling.
+    Farthest(&'a wgpu::Texture),
+    /// Per tile the largest reversed-Z depth that depth peeling of `separation` over the first
+    /// layer's linear depth (`R32Float`, 0 = background) still rejects
+    /// (`shaders/occlusion_pyramid_peel.wgsl`); the camera's projection is given per frame
+    /// ([`OcclusionPyramid::prepare`]).
+    Peel {
+        first_layer: &'a wgpu::Texture,
+        separation: f32,
+    },
+}
+
+/// `PeelPyramidParams` of occlusion_pyramid_peel.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct PeelParams {
+    projection: [[f32; 4]; 4],
+    separation: f32,
+    _pad: [f32; 3],
+}
+
 /// The pyramid of one depth buffer.
 pub(crate) struct OcclusionPyramid {
     pipeline: wgpu::ComputePipeline,
@@ -27,50 +52,94 @@ pub(crate) struct OcclusionPyramid {
     /// The levels, one after another (`array<f32>`).
     pub buffer: wgpu::Buffer,
     groups: (u32, u32),
+    /// Depth peeling's parameters (projection, separation), for [`PyramidSource::Peel`].
+    peel: Option<(wgpu::Buffer, f32)>,
+    timing_name: &'static str,
 }
 
 impl OcclusionPyramid {
-    /// The pyramid of `z` (`Depth32Float`, reversed Z, with `TEXTURE_BINDING`).
-    pub fn new(device: &wgpu::Device, z: &wgpu::Texture) -> Self {
+    /// The pyramid of `source`, timed as `timing_name`.
+    pub fn new(device: &wgpu::Device, source: PyramidSource, timing_name: &'static str) -> Self {
+        let (texture, header) = match &source {
+            PyramidSource::Farthest(z) => (*z, crate::shaders::OCCLUSION_PYRAMID_FARTHEST),
+            PyramidSource::Peel { first_layer, .. } => {
+                (*first_layer, crate::shaders::OCCLUSION_PYRAMID_PEEL)
+            }
+        };
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
-            "occlusion pyramid",
+            timing_name,
             &crate::shaders::with_common(
-                &[crate::shaders::OCCLUSION_PYRAMID_LAYOUT],
+                &[crate::shaders::OCCLUSION_PYRAMID_LAYOUT, header],
                 crate::shaders::OCCLUSION_PYRAMID,
             ),
             &[],
         );
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("occlusion pyramid"),
-            size: 4 * len(z.width(), z.height()),
+            label: Some(timing_name),
+            size: 4 * len(texture.width(), texture.height()),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let view = z.create_view(&Default::default());
-        let bind_group = crate::gpu::bind_group(
+        // Read-only storage, not a uniform: lavapipe's uniform inlining (triangle_cull.wgsl).
+        let peel = match source {
+            PyramidSource::Farthest(_) => None,
+            PyramidSource::Peel { separation, .. } => Some((
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("peel pyramid params"),
+                    size: std::mem::size_of::<PeelParams>() as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                separation,
+            )),
+        };
+        let view = texture.create_view(&Default::default());
+        let mut resources = vec![
+            (0, wgpu::BindingResource::TextureView(&view)),
+            (1, buffer.as_entire_binding()),
+        ];
+        if let Some((params, _)) = &peel {
+            resources.push((2, params.as_entire_binding()));
+        }
+        let bind_group = crate::gpu::bind_group_at(
             device,
-            "occlusion pyramid",
+            timing_name,
             &pipeline.get_bind_group_layout(0),
-            &[
-                wgpu::BindingResource::TextureView(&view),
-                buffer.as_entire_binding(),
-            ],
+            &resources,
         );
         let side = 1 << LAST_LEVEL;
         Self {
             pipeline,
             bind_group,
             buffer,
-            groups: (z.width().div_ceil(side), z.height().div_ceil(side)),
+            groups: (
+                texture.width().div_ceil(side),
+                texture.height().div_ceil(side),
+            ),
+            peel,
+            timing_name,
         }
     }
 
-    /// Build the pyramid from the depth buffer as it is now (timing: `occlusion_pyramid`).
+    /// The coming frame's projection (depth peeling's pyramid; nothing for the others).
+    pub fn prepare(&self, queue: &wgpu::Queue, projection: glam::Mat4) {
+        if let Some((params, separation)) = &self.peel {
+            let p = PeelParams {
+                projection: projection.to_cols_array_2d(),
+                separation: *separation,
+                _pad: [0.0; 3],
+            };
+            queue.write_buffer(params, 0, bytemuck::bytes_of(&p));
+        }
+    }
+
+    /// Build the pyramid from its source as it is now (timing: the name given to
+    /// [`OcclusionPyramid::new`]).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
-        let timestamp_writes = profiler.map(|p| p.compute_pass("occlusion_pyramid"));
+        let timestamp_writes = profiler.map(|p| p.compute_pass(self.timing_name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("occlusion pyramid"),
+            label: Some(self.timing_name),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);

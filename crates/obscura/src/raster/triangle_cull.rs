@@ -19,7 +19,7 @@
 
 use super::chunks::Draw;
 use super::gpu_scene::GpuScene;
-use super::occlusion_pyramid::OcclusionPyramid;
+use super::occlusion_pyramid::{OcclusionPyramid, PyramidSource};
 use crate::gpu::PassProfiler;
 use crate::view::FrameView;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -35,7 +35,7 @@ struct CullParams {
     draws: u32,
     keep_all: u32,
     phase: u32,
-    keep_all_list: u32,
+    _pad0: u32,
     list_triangles: u32,
     list_draws: u32,
     _pad: [u32; 2],
@@ -45,8 +45,8 @@ struct CullParams {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum CullList {
     /// Every triangle that may cover a pixel centre: the only list without occlusion culling;
-    /// with it, written on request ([`TriangleCull::prepare`]) for passes that must not be
-    /// occlusion-culled by the first layer (depth peeling).
+    /// with it, depth peeling's list: of those, the ones that may lie behind the first layer by
+    /// more than the separation somewhere ([`TriangleCull::encode_peel`]).
     All = 0,
     /// Occlusion culling's first phase: of those, the ones a pixel showed last frame.
     SeenLastFrame = 1,
@@ -65,6 +65,16 @@ struct Occlusion {
     /// The second phase's parameters and bindings.
     second_params: wgpu::Buffer,
     second_bind_group: wgpu::BindGroup,
+    /// Depth peeling's list, when asked for.
+    peel: Option<PeelCull>,
+}
+
+/// Depth peeling's culling ([`CullList::All`] without the triangles peeling rejects everywhere):
+/// its pyramid, parameters and bindings.
+struct PeelCull {
+    pyramid: OcclusionPyramid,
+    params: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
 }
 
 #[cfg(test)]
@@ -121,12 +131,15 @@ pub(crate) struct TriangleCull {
 impl TriangleCull {
     /// The pass for `scene` (draw-ordered: the chunks index it), timed as `name`; with `occlusion`,
     /// the depth buffer (`Depth32Float`, reversed Z) of the pass that draws [`CullList::SeenLastFrame`],
-    /// occlusion culling in two phases.
+    /// occlusion culling in two phases. With occlusion culling, `peel` (the first layer's linear
+    /// depth, `R32Float`, and depth peeling's separation) makes [`CullList::All`] depth
+    /// peeling's list ([`TriangleCull::encode_peel`]).
     pub fn new(
         device: &wgpu::Device,
         scene: &GpuScene,
         name: &'static str,
         occlusion: Option<&wgpu::Texture>,
+        peel: Option<(&wgpu::Texture, f32)>,
     ) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -173,7 +186,9 @@ impl TriangleCull {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
         let params = parameters("cull params");
-        let pyramid = occlusion.map(|z| OcclusionPyramid::new(device, z));
+        let pyramid = occlusion.map(|z| {
+            OcclusionPyramid::new(device, PyramidSource::Farthest(z), "occlusion_pyramid")
+        });
         let seen_frame = storage(
             "triangles seen",
             if occlusion.is_some() {
@@ -189,7 +204,7 @@ impl TriangleCull {
             |p| p.buffer.clone(),
         );
         let layout = pipeline.get_bind_group_layout(0);
-        let bind_group_with = |params: &wgpu::Buffer| {
+        let bind_group_with = |params: &wgpu::Buffer, pyramid_buffer: &wgpu::Buffer| {
             crate::gpu::bind_group(
                 device,
                 "triangle cull",
@@ -206,15 +221,32 @@ impl TriangleCull {
                 ],
             )
         };
-        let bind_group = bind_group_with(&params);
+        let bind_group = bind_group_with(&params, &pyramid_buffer);
         let occlusion = pyramid.map(|pyramid| {
             let second_params = parameters("cull params, second phase");
+            let peel = peel.map(|(first_layer, separation)| {
+                let pyramid = OcclusionPyramid::new(
+                    device,
+                    PyramidSource::Peel {
+                        first_layer,
+                        separation,
+                    },
+                    "peel_pyramid",
+                );
+                let params = parameters("cull params, depth peeling");
+                PeelCull {
+                    bind_group: bind_group_with(&params, &pyramid.buffer),
+                    params,
+                    pyramid,
+                }
+            });
             Occlusion {
-                second_bind_group: bind_group_with(&second_params),
+                second_bind_group: bind_group_with(&second_params, &pyramid_buffer),
                 second_params,
                 pyramid,
                 seen_frame: seen_frame.clone(),
                 frame: AtomicU32::new(0),
+                peel,
             }
         });
         let drawn_group = crate::gpu::bind_group(
@@ -239,9 +271,8 @@ impl TriangleCull {
     }
 
     /// The coming frame: `draws` (the chunks `view` may see, [`super::gbuffer::visibility_draws`])
-    /// seen through `view`. With occlusion culling, `all_too` also asks the first phase for
-    /// [`CullList::All`].
-    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>, all_too: bool) {
+    /// seen through `view`.
+    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>) {
         let (width, height) = (view.full_width(), view.full_height());
         // A dispatch's phase is the number of the list it writes.
         let params = |list: CullList| {
@@ -256,7 +287,7 @@ impl TriangleCull {
                 #[cfg(not(test))]
                 keep_all: 0,
                 phase,
-                keep_all_list: u32::from(all_too),
+                _pad0: 0,
                 list_triangles: phase * self.triangles,
                 list_draws: phase * self.max_draws,
                 _pad: [0; 2],
@@ -277,6 +308,15 @@ impl TriangleCull {
                     0,
                     bytemuck::bytes_of(&params(CullList::NotHidden)),
                 );
+                if let Some(peel) = &o.peel {
+                    // Phase 3, into list 0.
+                    let p = CullParams {
+                        phase: 3,
+                        ..params(CullList::All)
+                    };
+                    queue.write_buffer(&peel.params, 0, bytemuck::bytes_of(&p));
+                    peel.pyramid.prepare(queue, view.projection());
+                }
             }
         }
         let list: Vec<[u32; 4]> = draws
@@ -316,6 +356,21 @@ impl TriangleCull {
         if let Some(o) = &self.occlusion {
             o.pyramid.encode(encoder, profiler.as_deref_mut());
             self.dispatch(encoder, &o.second_bind_group, profiler);
+        }
+    }
+
+    /// Depth peeling's list ([`CullList::All`]), after the first layer's linear depth given to
+    /// [`TriangleCull::new`] is written: its pyramid, then the triangles that may lie behind it
+    /// by more than the separation somewhere (timings: `peel_pyramid` and this pass's name).
+    /// Nothing unless made with `peel`.
+    pub fn encode_peel(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        if let Some(peel) = self.occlusion.as_ref().and_then(|o| o.peel.as_ref()) {
+            peel.pyramid.encode(encoder, profiler.as_deref_mut());
+            self.dispatch(encoder, &peel.bind_group, profiler);
         }
     }
 
@@ -391,6 +446,16 @@ impl TriangleCull {
             .collect();
         (submitted, kept)
     }
+
+    /// Triangles kept in depth peeling's list by the last frame, when there is one (waits for
+    /// the GPU).
+    pub fn peel_kept(&self, gpu: &crate::Gpu) -> Option<u32> {
+        self.occlusion.as_ref()?.peel.as_ref()?;
+        let draws = self.draws.lock().unwrap().len();
+        let bytes = crate::gpu::read_buffer_copy(gpu, &self.args).unwrap();
+        let args: &[[u32; 4]] = bytemuck::cast_slice(&bytes);
+        Some(args[..draws].iter().map(|a| a[0] / 3).sum())
+    }
 }
 
 #[cfg(test)]
@@ -404,7 +469,8 @@ mod tests {
     /// the camera, the camera turned and moved, the camera again twice — so the G-buffer's
     /// occlusion culling is checked on its first frame (no history), after a camera move (last
     /// frame's visible set from another view) and still (the steady state); the last must draw
-    /// fewer triangles than the first, which has only the frustum and back-face tests.
+    /// fewer triangles than the first, which has only the frustum and back-face tests. Depth
+    /// peeling's list (`vao-dual`) keeps fewer than it is given, its twin all of them.
     #[test]
     fn culling_changes_no_pixel_and_drops_triangles() {
         if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
@@ -414,6 +480,7 @@ mod tests {
             Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)");
         let (mut submitted, mut kept) = (0, 0);
         let (mut first_frame, mut still) = (0, 0);
+        let (mut peel_submitted, mut peel_kept) = (0, 0);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
             let extent = scene.bounds().max - scene.bounds().min;
@@ -443,13 +510,14 @@ mod tests {
                                     r.read_stochastic_depth().unwrap(),
                                     r.read_ao().unwrap(),
                                 );
-                                (images, r.gbuffer().cull_counts(&gpu))
+                                let peel = r.gbuffer().peel_kept(&gpu);
+                                (images, (r.gbuffer().cull_counts(&gpu), peel))
                             })
                             .collect::<Vec<_>>()
                     };
                     let culled = frames(false);
                     let whole = frames(true);
-                    for (f, ((images, counts), (whole_images, all))) in
+                    for (f, ((images, (counts, peel)), (whole_images, (all, whole_peel)))) in
                         culled.iter().zip(&whole).enumerate()
                     {
                         let what = format!("{name} {} {technique}, frame {f}", named.name);
@@ -461,9 +529,18 @@ mod tests {
                         assert!(images == whole_images, "{what}: culling changed the frame");
                         submitted += counts.0;
                         kept += counts.1.iter().sum::<u32>();
+                        if technique == Technique::VaoDual {
+                            assert_eq!(
+                                *whole_peel,
+                                Some(all.0),
+                                "{what}: the uncull'd twin peels every triangle"
+                            );
+                            peel_submitted += counts.0;
+                            peel_kept += peel.expect("depth peeling's list");
+                        }
                     }
-                    first_frame += culled[0].1 .1.iter().sum::<u32>();
-                    still += culled[3].1 .1.iter().sum::<u32>();
+                    first_frame += culled[0].1 .0 .1.iter().sum::<u32>();
+                    still += culled[3].1 .0 .1.iter().sum::<u32>();
                 }
             }
         }
@@ -472,7 +549,12 @@ mod tests {
             "culling kept {kept} of {submitted} triangles"
         );
         eprintln!(
-            "occlusion culling: {still} triangles drawn still, {first_frame} on the first frame"
+            "occlusion culling: {still} triangles drawn still, {first_frame} on the first frame; \
+             depth peeling drew {peel_kept} of {peel_submitted}"
+        );
+        assert!(
+            peel_kept < peel_submitted,
+            "depth peeling's list kept {peel_kept} of {peel_submitted} triangles"
         );
         assert!(
             still < first_frame,

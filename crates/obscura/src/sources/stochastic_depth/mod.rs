@@ -445,7 +445,7 @@ impl StochasticDepthMap {
             requested: requested.is_some(),
             all_layers: false,
             timing_name: "sd_map",
-            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None),
+            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None, None),
         })
     }
 
@@ -530,7 +530,7 @@ impl StochasticDepthMap {
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
         // pipeline of this map each.
         self.triangle_cull
-            .prepare(queue, view, visibility_draws(&self.scene, view), false);
+            .prepare(queue, view, visibility_draws(&self.scene, view));
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
