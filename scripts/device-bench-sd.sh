@@ -86,7 +86,7 @@ with open(os.path.join(out, "sd-bench.json"), "w") as f:
     json.dump({"adapter": info, "runs": runs, "failed": failed}, f, indent=1)
 
 # Passes that are not the AO kernel (everything else in a result is).
-NOT_AO = {"gbuffer", "gbuffer_resolve", "depth_peel", "depth_peel_resolve", "sd_reset", "sd_map",
+NOT_AO = {"gbuffer", "gbuffer_resolve", "depth_peel", "depth_peel_resolve", "peel_pyramid", "peel_cull", "sd_reset", "sd_map",
           "blur"}
 # The G-buffer: its raster (visibility) pass and its compute resolve.
 GBUFFER = ("gbuffer", "gbuffer_resolve")
@@ -141,7 +141,7 @@ def tab1_row(label, run_of, technique, passes):
     md.append(f"| {label} | " + " | ".join(cells) + " |")
 
 tab1_row("single depth", lambda sc: f"{sc}-{hd}-base", "vao", ())
-tab1_row("depth peeling", lambda sc: f"{sc}-{hd}-base", "vao-dual", ("depth_peel", "depth_peel_resolve"))
+tab1_row("depth peeling", lambda sc: f"{sc}-{hd}-base", "vao-dual", ("peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"))
 def layout(S):
     """ " (2 maps of 4)" when S was stacked on this adapter."""
     for sc in scenes:
@@ -181,7 +181,7 @@ def ao_rows(sc, size, with_baselines):
         blur = r["passes"].get("blur", blur)
         total = r["total_ms"] - p(r, *GBUFFER)
         totals[label] = total
-        depth = {"VAO": None, "VAO-dual": p(r, "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_reset", "sd_map"),
+        depth = {"VAO": None, "VAO-dual": p(r, "peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_reset", "sd_map"),
                  "SD-SVAO": p(r, "sd_reset", "sd_map"),
                  "SD-SVAO (discard)": p(r, "sd_reset", "sd_map")}[label]
         depth_cell = ms(depth) if depth is not None else ""

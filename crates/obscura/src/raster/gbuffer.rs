@@ -272,7 +272,8 @@ impl GBuffer {
 
     /// Rasterise `scene` seen through `view`. Timings: `triangle_cull` and `gbuffer` (the
     /// visibility pass; each for both phases of its occlusion culling), `occlusion_pyramid`,
-    /// `gbuffer_resolve`, and `depth_peel` and `depth_peel_resolve` when peeling.
+    /// `gbuffer_resolve`, and `peel_pyramid`, `peel_cull`, `depth_peel` and `depth_peel_resolve`
+    /// when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,

@@ -341,7 +341,7 @@ impl TriangleCull {
     /// Cull the prepared frame's triangles: without occlusion culling, [`CullList::All`]; with
     /// it, the first phase (timing: this pass's name).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
-        self.dispatch(encoder, &self.bind_group, profiler);
+        self.dispatch(encoder, &self.bind_group, self.name, profiler);
     }
 
     /// Occlusion culling's second phase, after the first phase's triangles are drawn into the
@@ -355,13 +355,13 @@ impl TriangleCull {
     ) {
         if let Some(o) = &self.occlusion {
             o.pyramid.encode(encoder, profiler.as_deref_mut());
-            self.dispatch(encoder, &o.second_bind_group, profiler);
+            self.dispatch(encoder, &o.second_bind_group, self.name, profiler);
         }
     }
 
     /// Depth peeling's list ([`CullList::All`]), after the first layer's linear depth given to
     /// [`TriangleCull::new`] is written: its pyramid, then the triangles that may lie behind it
-    /// by more than the separation somewhere (timings: `peel_pyramid` and this pass's name).
+    /// by more than the separation somewhere (timings: `peel_pyramid` and `peel_cull`).
     /// Nothing unless made with `peel`.
     pub fn encode_peel(
         &self,
@@ -370,23 +370,25 @@ impl TriangleCull {
     ) {
         if let Some(peel) = self.occlusion.as_ref().and_then(|o| o.peel.as_ref()) {
             peel.pyramid.encode(encoder, profiler.as_deref_mut());
-            self.dispatch(encoder, &peel.bind_group, profiler);
+            self.dispatch(encoder, &peel.bind_group, "peel_cull", profiler);
         }
     }
 
+    /// One culling dispatch with `bind_group`, timed as `name`.
     fn dispatch(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         bind_group: &wgpu::BindGroup,
+        name: &'static str,
         profiler: Option<&mut PassProfiler>,
     ) {
         let count = self.draws.lock().unwrap().len() as u32;
         if count == 0 {
             return;
         }
-        let timestamp_writes = profiler.map(|p| p.compute_pass(self.name));
+        let timestamp_writes = profiler.map(|p| p.compute_pass(name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(self.name),
+            label: Some(name),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
