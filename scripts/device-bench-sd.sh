@@ -87,7 +87,7 @@ with open(os.path.join(out, "sd-bench.json"), "w") as f:
 
 # Passes that are not the AO kernel (everything else in a result is).
 NOT_AO = {"gbuffer", "gbuffer_resolve", "depth_peel", "depth_peel_resolve", "peel_pyramid", "peel_cull", "sd_reset", "sd_map",
-          "blur"}
+          "blur", "triangle_cull", "occlusion_pyramid", "sd_clear", "sd_pyramid", "sd_cull"}
 # The G-buffer: its raster (visibility) pass and its compute resolve.
 GBUFFER = ("gbuffer", "gbuffer_resolve")
 
@@ -152,13 +152,13 @@ def layout(S):
 
 for S in (2, 4, 8):
     tab1_row(f"SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-vao",
-             ("sd_reset", "sd_map"))
+             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Stenciled-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-svao",
-             ("sd_reset", "sd_map"))
+             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Discard-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}-discard", "sd-svao",
-             ("sd_reset", "sd_map"))
+             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
 md.append("")
 
 # Tab. 2 / 3: AO techniques per scene and size (S = 4).
@@ -181,9 +181,9 @@ def ao_rows(sc, size, with_baselines):
         blur = r["passes"].get("blur", blur)
         total = r["total_ms"] - p(r, *GBUFFER)
         totals[label] = total
-        depth = {"VAO": None, "VAO-dual": p(r, "peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_reset", "sd_map"),
-                 "SD-SVAO": p(r, "sd_reset", "sd_map"),
-                 "SD-SVAO (discard)": p(r, "sd_reset", "sd_map")}[label]
+        depth = {"VAO": None, "VAO-dual": p(r, "peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map"),
+                 "SD-SVAO": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map"),
+                 "SD-SVAO (discard)": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")}[label]
         depth_cell = ms(depth) if depth is not None else ""
         if label == "VAO-dual":
             depth_cell += " (peel)"
@@ -196,7 +196,7 @@ def ao_rows(sc, size, with_baselines):
     return rows, blur
 
 md.append(f"## AO at {hd} (seed 000 Tab. 2), S = 4\n")
-md.append("SD map: the stochastic depth map, reset + raster (SD-SVAO: limited to the requested "
+md.append("SD map: the stochastic depth map, its culling, reset and raster (SD-SVAO: limited to the requested "
           "pixels; VAO-dual: its "
           "depth peeling pass). AO: the kernel (SD-SVAO: phase 1 + indirect and phase 2). Total: "
           "every pass but the G-buffer (seed 000 §4.2: depth and normals are taken as given), "
@@ -223,7 +223,7 @@ for sc in scenes:
         if v is None:
             cells += [missing(run), "", ""]
         else:
-            cells += [ms(p(v, "sd_reset", "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, *GBUFFER))]
+            cells += [ms(p(v, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, *GBUFFER))]
         if sv is None:
             cells += [missing(run), "", "", "", ""]
         else:
@@ -231,7 +231,7 @@ for sc in scenes:
             speedup = ""
             if v is not None and total > 0:
                 speedup = f"{(v['total_ms'] - p(v, 'gbuffer')) / total:.2f}"
-            cells += [ms(p(sv, "sd_reset", "sd_map")),
+            cells += [ms(p(sv, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")),
                       f"{ms(p(sv, 'svao_phase1'))}+{ms(p(sv, 'svao_indirect', 'svao_phase2'))}",
                       ms(total), speedup, ms(sv["passes"].get("blur"))]
         d = result(run + "-discard", "sd-svao")

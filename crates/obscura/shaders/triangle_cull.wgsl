@@ -19,7 +19,8 @@
 // reject at every pixel it covers is not drawn (`pyramid` is then peeling's,
 // shaders/occlusion_pyramid_peel.wgsl): the first layer's own triangles,
 // where nothing lies in front of them, go (the in-crate culling test: 59,525 of 219,968 kept
-// over the built-in scenes and cameras).
+// over the built-in scenes and cameras). The stochastic depth map stores the fragments of the
+// same rule and draws the same list (119,050 of 439,936 in that test, two rows).
 //
 // With occlusion culling (the G-buffer's visibility pass), two phases (Haar and Aaltonen,
 // "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the

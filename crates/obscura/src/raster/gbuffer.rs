@@ -18,7 +18,7 @@
 
 use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
-use super::triangle_cull::{CullList, TriangleCull};
+use super::triangle_cull::{CullList, PeelSource, TriangleCull};
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::FrameView;
@@ -209,7 +209,12 @@ impl GBuffer {
             &scene.draw_ordered(),
             "triangle_cull",
             Some(&z),
-            peel_separation.map(|separation| (&depth, separation)),
+            peel_separation.map(|separation| PeelSource {
+                size: (width, height),
+                separation,
+                pyramid_name: "peel_pyramid",
+                cull_name: "peel_cull",
+            }),
         );
         Self {
             depth,
@@ -343,7 +348,8 @@ impl GBuffer {
             );
             let targets = [(&peel.visibility, None)];
             // Not occlusion-culled: those the first layer hides are what peeling looks for.
-            self.cull.encode_peel(encoder, profiler.as_deref_mut());
+            self.cull
+                .encode_peel(device, encoder, &first, profiler.as_deref_mut());
             self.draw(
                 device,
                 encoder,

@@ -27,13 +27,11 @@ pub(crate) enum PyramidSource<'a> {
     /// `TEXTURE_BINDING`): occlusion culling.
     Farthest(&'a wgpu::Texture),
     /// Per tile the largest reversed-Z depth that depth peeling of `separation` over the first
-    /// layer's linear depth (`R32Float`, 0 = background) still rejects
+    /// layer's linear depth (`R32Float`, 0 = background, `size` pixels) still rejects
     /// (`shaders/occlusion_pyramid_peel.wgsl`); the camera's projection is given per frame
-    /// ([`OcclusionPyramid::prepare`]).
-    Peel {
-        first_layer: &'a wgpu::Texture,
-        separation: f32,
-    },
+    /// ([`OcclusionPyramid::prepare`]) and the first layer itself when the pyramid is built
+    /// ([`OcclusionPyramid::encode_from`]): an engine's depth may be another texture each frame.
+    Peel { size: (u32, u32), separation: f32 },
 }
 
 /// `PeelPyramidParams` of occlusion_pyramid_peel.wgsl.
@@ -48,9 +46,12 @@ struct PeelParams {
 /// The pyramid of one depth buffer.
 pub(crate) struct OcclusionPyramid {
     pipeline: wgpu::ComputePipeline,
-    bind_group: wgpu::BindGroup,
+    /// Its bindings, for a source fixed at [`OcclusionPyramid::new`] ([`PyramidSource::Farthest`]).
+    bind_group: Option<wgpu::BindGroup>,
     /// The levels, one after another (`array<f32>`).
     pub buffer: wgpu::Buffer,
+    /// The source's size in pixels.
+    size: (u32, u32),
     groups: (u32, u32),
     /// Depth peeling's parameters (projection, separation), for [`PyramidSource::Peel`].
     peel: Option<(wgpu::Buffer, f32)>,
@@ -60,11 +61,12 @@ pub(crate) struct OcclusionPyramid {
 impl OcclusionPyramid {
     /// The pyramid of `source`, timed as `timing_name`.
     pub fn new(device: &wgpu::Device, source: PyramidSource, timing_name: &'static str) -> Self {
-        let (texture, header) = match &source {
-            PyramidSource::Farthest(z) => (*z, crate::shaders::OCCLUSION_PYRAMID_FARTHEST),
-            PyramidSource::Peel { first_layer, .. } => {
-                (*first_layer, crate::shaders::OCCLUSION_PYRAMID_PEEL)
-            }
+        let ((width, height), header) = match &source {
+            PyramidSource::Farthest(z) => (
+                (z.width(), z.height()),
+                crate::shaders::OCCLUSION_PYRAMID_FARTHEST,
+            ),
+            PyramidSource::Peel { size, .. } => (*size, crate::shaders::OCCLUSION_PYRAMID_PEEL),
         };
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -77,46 +79,42 @@ impl OcclusionPyramid {
         );
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(timing_name),
-            size: 4 * len(texture.width(), texture.height()),
+            size: 4 * len(width, height),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
         // Read-only storage, not a uniform: lavapipe's uniform inlining (triangle_cull.wgsl).
-        let peel = match source {
-            PyramidSource::Farthest(_) => None,
-            PyramidSource::Peel { separation, .. } => Some((
-                device.create_buffer(&wgpu::BufferDescriptor {
+        let (bind_group, peel) = match source {
+            PyramidSource::Farthest(z) => {
+                let view = z.create_view(&Default::default());
+                let bind_group = crate::gpu::bind_group_at(
+                    device,
+                    timing_name,
+                    &pipeline.get_bind_group_layout(0),
+                    &[
+                        (0, wgpu::BindingResource::TextureView(&view)),
+                        (1, buffer.as_entire_binding()),
+                    ],
+                );
+                (Some(bind_group), None)
+            }
+            PyramidSource::Peel { separation, .. } => {
+                let params = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("peel pyramid params"),
                     size: std::mem::size_of::<PeelParams>() as u64,
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
-                }),
-                separation,
-            )),
+                });
+                (None, Some((params, separation)))
+            }
         };
-        let view = texture.create_view(&Default::default());
-        let mut resources = vec![
-            (0, wgpu::BindingResource::TextureView(&view)),
-            (1, buffer.as_entire_binding()),
-        ];
-        if let Some((params, _)) = &peel {
-            resources.push((2, params.as_entire_binding()));
-        }
-        let bind_group = crate::gpu::bind_group_at(
-            device,
-            timing_name,
-            &pipeline.get_bind_group_layout(0),
-            &resources,
-        );
         let side = 1 << LAST_LEVEL;
         Self {
             pipeline,
             bind_group,
             buffer,
-            groups: (
-                texture.width().div_ceil(side),
-                texture.height().div_ceil(side),
-            ),
+            size: (width, height),
+            groups: (width.div_ceil(side), height.div_ceil(side)),
             peel,
             timing_name,
         }
@@ -135,15 +133,60 @@ impl OcclusionPyramid {
     }
 
     /// Build the pyramid from its source as it is now (timing: the name given to
-    /// [`OcclusionPyramid::new`]).
+    /// [`OcclusionPyramid::new`]); a pyramid of [`PyramidSource::Farthest`].
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
+        let bind_group = self
+            .bind_group
+            .as_ref()
+            .expect("a pyramid with a fixed source (PyramidSource::Farthest)");
+        self.dispatch(encoder, bind_group, profiler);
+    }
+
+    /// Build depth peeling's pyramid ([`PyramidSource::Peel`]) from `first_layer` as it is now:
+    /// an `R32Float` view of the size given to [`OcclusionPyramid::new`].
+    pub fn encode_from(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        first_layer: &wgpu::TextureView,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        let (params, _) = self
+            .peel
+            .as_ref()
+            .expect("a pyramid built from a first layer (PyramidSource::Peel)");
+        let size = first_layer.texture().size();
+        assert_eq!(
+            (size.width, size.height),
+            self.size,
+            "the first layer has the size the pyramid was made for"
+        );
+        let bind_group = crate::gpu::bind_group_at(
+            device,
+            self.timing_name,
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                (0, wgpu::BindingResource::TextureView(first_layer)),
+                (1, self.buffer.as_entire_binding()),
+                (2, params.as_entire_binding()),
+            ],
+        );
+        self.dispatch(encoder, &bind_group, profiler);
+    }
+
+    fn dispatch(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        bind_group: &wgpu::BindGroup,
+        profiler: Option<&mut PassProfiler>,
+    ) {
         let timestamp_writes = profiler.map(|p| p.compute_pass(self.timing_name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(self.timing_name),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(self.groups.0, self.groups.1, 1);
     }
 }

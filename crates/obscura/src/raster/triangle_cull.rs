@@ -44,8 +44,8 @@ struct CullParams {
 /// The triangle lists a [`TriangleCull`] writes (the number is the list's place in its buffers).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum CullList {
-    /// Every triangle that may cover a pixel centre: the only list without occlusion culling;
-    /// with it, depth peeling's list: of those, the ones that may lie behind the first layer by
+    /// Every triangle that may cover a pixel centre ([`TriangleCull::encode`] without occlusion
+    /// culling); or the peeling list: of those, the ones that may lie behind the first layer by
     /// more than the separation somewhere ([`TriangleCull::encode_peel`]).
     All = 0,
     /// Occlusion culling's first phase: of those, the ones a pixel showed last frame.
@@ -65,16 +65,26 @@ struct Occlusion {
     /// The second phase's parameters and bindings.
     second_params: wgpu::Buffer,
     second_bind_group: wgpu::BindGroup,
-    /// Depth peeling's list, when asked for.
-    peel: Option<PeelCull>,
 }
 
-/// Depth peeling's culling ([`CullList::All`] without the triangles peeling rejects everywhere):
-/// its pyramid, parameters and bindings.
+/// What a peeling list is culled against: the first layer's size (the framebuffer's, guard band
+/// included, as the pass's), the separation behind it, and the timing names of its pyramid and
+/// culling dispatch.
+pub(crate) struct PeelSource {
+    pub size: (u32, u32),
+    pub separation: f32,
+    pub pyramid_name: &'static str,
+    pub cull_name: &'static str,
+}
+
+/// The peeling list's culling ([`CullList::All`] without the triangles that depth peeling, or a
+/// stochastic depth map's "hidden" rule, rejects everywhere): its pyramid, parameters and
+/// bindings.
 struct PeelCull {
     pyramid: OcclusionPyramid,
     params: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    name: &'static str,
 }
 
 #[cfg(test)]
@@ -124,6 +134,8 @@ pub(crate) struct TriangleCull {
     max_draws: u32,
     triangles: u32,
     occlusion: Option<Occlusion>,
+    /// The peeling list, when asked for.
+    peel: Option<PeelCull>,
     /// Its timing name.
     pub name: &'static str,
 }
@@ -131,15 +143,14 @@ pub(crate) struct TriangleCull {
 impl TriangleCull {
     /// The pass for `scene` (draw-ordered: the chunks index it), timed as `name`; with `occlusion`,
     /// the depth buffer (`Depth32Float`, reversed Z) of the pass that draws [`CullList::SeenLastFrame`],
-    /// occlusion culling in two phases. With occlusion culling, `peel` (the first layer's linear
-    /// depth, `R32Float`, and depth peeling's separation) makes [`CullList::All`] depth
-    /// peeling's list ([`TriangleCull::encode_peel`]).
+    /// occlusion culling in two phases. With `peel`, [`TriangleCull::encode_peel`] makes
+    /// [`CullList::All`] the peeling list.
     pub fn new(
         device: &wgpu::Device,
         scene: &GpuScene,
         name: &'static str,
         occlusion: Option<&wgpu::Texture>,
-        peel: Option<(&wgpu::Texture, f32)>,
+        peel: Option<PeelSource>,
     ) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -224,29 +235,29 @@ impl TriangleCull {
         let bind_group = bind_group_with(&params, &pyramid_buffer);
         let occlusion = pyramid.map(|pyramid| {
             let second_params = parameters("cull params, second phase");
-            let peel = peel.map(|(first_layer, separation)| {
-                let pyramid = OcclusionPyramid::new(
-                    device,
-                    PyramidSource::Peel {
-                        first_layer,
-                        separation,
-                    },
-                    "peel_pyramid",
-                );
-                let params = parameters("cull params, depth peeling");
-                PeelCull {
-                    bind_group: bind_group_with(&params, &pyramid.buffer),
-                    params,
-                    pyramid,
-                }
-            });
             Occlusion {
                 second_bind_group: bind_group_with(&second_params, &pyramid_buffer),
                 second_params,
                 pyramid,
                 seen_frame: seen_frame.clone(),
                 frame: AtomicU32::new(0),
-                peel,
+            }
+        });
+        let peel = peel.map(|source| {
+            let pyramid = OcclusionPyramid::new(
+                device,
+                PyramidSource::Peel {
+                    size: source.size,
+                    separation: source.separation,
+                },
+                source.pyramid_name,
+            );
+            let params = parameters("cull params, peeling");
+            PeelCull {
+                bind_group: bind_group_with(&params, &pyramid.buffer),
+                params,
+                pyramid,
+                name: source.cull_name,
             }
         });
         let drawn_group = crate::gpu::bind_group(
@@ -266,6 +277,7 @@ impl TriangleCull {
             max_draws: max_draws as u32,
             triangles: scene.triangle_count,
             occlusion,
+            peel,
             name,
         }
     }
@@ -308,16 +320,16 @@ impl TriangleCull {
                     0,
                     bytemuck::bytes_of(&params(CullList::NotHidden)),
                 );
-                if let Some(peel) = &o.peel {
-                    // Phase 3, into list 0.
-                    let p = CullParams {
-                        phase: 3,
-                        ..params(CullList::All)
-                    };
-                    queue.write_buffer(&peel.params, 0, bytemuck::bytes_of(&p));
-                    peel.pyramid.prepare(queue, view.projection());
-                }
             }
+        }
+        if let Some(peel) = &self.peel {
+            // Phase 3, into list 0.
+            let p = CullParams {
+                phase: 3,
+                ..params(CullList::All)
+            };
+            queue.write_buffer(&peel.params, 0, bytemuck::bytes_of(&p));
+            peel.pyramid.prepare(queue, view.projection());
         }
         let list: Vec<[u32; 4]> = draws
             .iter()
@@ -359,18 +371,25 @@ impl TriangleCull {
         }
     }
 
-    /// Depth peeling's list ([`CullList::All`]), after the first layer's linear depth given to
-    /// [`TriangleCull::new`] is written: its pyramid, then the triangles that may lie behind it
-    /// by more than the separation somewhere (timings: `peel_pyramid` and `peel_cull`).
-    /// Nothing unless made with `peel`.
+    /// The peeling list ([`CullList::All`]) of a pass made with `peel`, from `first_layer` (the
+    /// linear depth, `R32Float`, of the size given in [`PeelSource`]) as it is now: its pyramid,
+    /// then the triangles that may lie behind it by more than the separation somewhere, tested
+    /// for the frustum and pixel centres as [`TriangleCull::encode`]'s (timings: the
+    /// [`PeelSource`]'s names). Without `peel`, [`TriangleCull::encode`].
     pub fn encode_peel(
         &self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
+        first_layer: &wgpu::TextureView,
         mut profiler: Option<&mut PassProfiler>,
     ) {
-        if let Some(peel) = self.occlusion.as_ref().and_then(|o| o.peel.as_ref()) {
-            peel.pyramid.encode(encoder, profiler.as_deref_mut());
-            self.dispatch(encoder, &peel.bind_group, "peel_cull", profiler);
+        match &self.peel {
+            Some(peel) => {
+                peel.pyramid
+                    .encode_from(device, encoder, first_layer, profiler.as_deref_mut());
+                self.dispatch(encoder, &peel.bind_group, peel.name, profiler);
+            }
+            None => self.encode(encoder, profiler),
         }
     }
 
@@ -449,10 +468,10 @@ impl TriangleCull {
         (submitted, kept)
     }
 
-    /// Triangles kept in depth peeling's list by the last frame, when there is one (waits for
+    /// Triangles kept in the peeling list by the last frame, when there is one (waits for
     /// the GPU).
     pub fn peel_kept(&self, gpu: &crate::Gpu) -> Option<u32> {
-        self.occlusion.as_ref()?.peel.as_ref()?;
+        self.peel.as_ref()?;
         let draws = self.draws.lock().unwrap().len();
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.args).unwrap();
         let args: &[[u32; 4]] = bytemuck::cast_slice(&bytes);
@@ -471,8 +490,9 @@ mod tests {
     /// the camera, the camera turned and moved, the camera again twice — so the G-buffer's
     /// occlusion culling is checked on its first frame (no history), after a camera move (last
     /// frame's visible set from another view) and still (the steady state); the last must draw
-    /// fewer triangles than the first, which has only the frustum and back-face tests. Depth
-    /// peeling's list (`vao-dual`) keeps fewer than it is given, its twin all of them.
+    /// fewer triangles than the first, which has only the frustum and back-face tests. The
+    /// peeling lists of depth peeling (`vao-dual`) and of the stochastic depth maps keep fewer
+    /// than they are given, their twins all of them.
     #[test]
     fn culling_changes_no_pixel_and_drops_triangles() {
         if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
@@ -483,6 +503,7 @@ mod tests {
         let (mut submitted, mut kept) = (0, 0);
         let (mut first_frame, mut still) = (0, 0);
         let (mut peel_submitted, mut peel_kept) = (0, 0);
+        let (mut sd_submitted, mut sd_kept) = (0, 0);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
             let extent = scene.bounds().max - scene.bounds().min;
@@ -513,14 +534,17 @@ mod tests {
                                     r.read_ao().unwrap(),
                                 );
                                 let peel = r.gbuffer().peel_kept(&gpu);
-                                (images, (r.gbuffer().cull_counts(&gpu), peel))
+                                let sd = r.stochastic_depth_map().map(|m| m.cull_counts(&gpu));
+                                (images, (r.gbuffer().cull_counts(&gpu), peel, sd))
                             })
                             .collect::<Vec<_>>()
                     };
                     let culled = frames(false);
                     let whole = frames(true);
-                    for (f, ((images, (counts, peel)), (whole_images, (all, whole_peel)))) in
-                        culled.iter().zip(&whole).enumerate()
+                    for (
+                        f,
+                        ((images, (counts, peel, sd)), (whole_images, (all, whole_peel, whole_sd))),
+                    ) in culled.iter().zip(&whole).enumerate()
                     {
                         let what = format!("{name} {} {technique}, frame {f}", named.name);
                         assert_eq!(
@@ -539,6 +563,17 @@ mod tests {
                             );
                             peel_submitted += counts.0;
                             peel_kept += peel.expect("depth peeling's list");
+                        } else {
+                            let (given, kept) = sd
+                                .expect("a stochastic depth map")
+                                .expect("the map's peeling list");
+                            let (whole_given, whole_kept) = whole_sd.unwrap().unwrap();
+                            assert_eq!(
+                                whole_kept, whole_given,
+                                "{what}: the uncull'd twin keeps every triangle for the map"
+                            );
+                            sd_submitted += given;
+                            sd_kept += kept;
                         }
                     }
                     first_frame += culled[0].1 .0 .1.iter().sum::<u32>();
@@ -552,11 +587,16 @@ mod tests {
         );
         eprintln!(
             "occlusion culling: {still} triangles drawn still, {first_frame} on the first frame; \
-             depth peeling drew {peel_kept} of {peel_submitted}"
+             depth peeling drew {peel_kept} of {peel_submitted}, the stochastic depth maps \
+             {sd_kept} of {sd_submitted}"
         );
         assert!(
             peel_kept < peel_submitted,
             "depth peeling's list kept {peel_kept} of {peel_submitted} triangles"
+        );
+        assert!(
+            sd_kept < sd_submitted,
+            "the stochastic depth maps' lists kept {sd_kept} of {sd_submitted} triangles"
         );
         assert!(
             still < first_frame,
