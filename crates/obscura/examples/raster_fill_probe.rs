@@ -8,7 +8,12 @@
 //! - `4 written + R32Uint`: the first case with an `R32Uint` colour target written too (what the
 //!   G-buffer's visibility pass writes);
 //! - `read z`: a compute pass sampling the depth buffer afterwards;
-//! - `R32Uint clear`: a colour clear alone.
+//! - `R32Uint clear`: a colour clear alone;
+//! - `4 written + u64 atomic`: the first case with no colour target, its fragments instead
+//!   testing early (`@early_depth_test(force)`) and storing `(depth << 32) | id` by a 64-bit
+//!   `atomicMax` in a storage buffer (a visibility buffer without colour writes; where the device
+//!   has wgpu's `SHADER_INT64_ATOMIC_MIN_MAX`, else NaN);
+//! - `u64 clear`: emptying that buffer in a compute pass (16 bytes an invocation).
 //!
 //! It prints the median of each, in ms. Not a benchmark of obscura's passes (`obscura bench` is):
 //! it isolates what the hardware charges per pixel, which those passes are built around.
@@ -20,14 +25,32 @@
 use obscura::{Gpu, GpuError, GpuOptions, PassProfiler};
 
 /// The timed passes, in the order of a row's medians.
-pub const PASSES: [&str; 6] = [
+pub const PASSES: [&str; 8] = [
     "clear",
     "4 written",
     "1 written 3 rejected",
     "4 written + R32Uint",
     "read z",
     "R32Uint clear",
+    "4 written + u64 atomic",
+    "u64 clear",
 ];
+
+/// The 64-bit atomic case's fragment shader (compiled only where the device has the features).
+const ATOMIC_SHADER: &str = r#"
+override WIDTH: u32 = 1u;
+@group(0) @binding(0) var<storage, read_write> vis: array<atomic<u64>>;
+@vertex
+fn vs(@builtin(vertex_index) v: u32, @builtin(instance_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.2 + 0.1 * f32(i), 1.0);
+}
+@fragment @early_depth_test(force)
+fn fs_atomic(@builtin(position) p: vec4<f32>) {
+    let i = u32(p.y) * WIDTH + u32(p.x);
+    atomicMax(&vis[i], (u64(bitcast<u32>(p.z)) << 32u) | 7lu);
+}
+"#;
 
 const SHADER: &str = r#"
 struct Out { @builtin(position) clip: vec4<f32> }
@@ -52,12 +75,17 @@ fn read_z(@builtin(global_invocation_id) id: vec3<u32>) {
     if (any(id.xy >= size)) { return; }
     if (textureLoad(z, id.xy, 0) == 0.123) { atomicAdd(&hits[0], 1u); }
 }
+@group(0) @binding(0) var<storage, read_write> words: array<vec4<u32>>;
+@compute @workgroup_size(64)
+fn zero(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (id.x < arrayLength(&words)) { words[id.x] = vec4<u32>(0u); }
+}
 "#;
 
 /// One depth format's medians over the timed frames, ms, in the order of [`PASSES`].
 pub struct Row {
     pub format: &'static str,
-    pub medians: [f64; 6],
+    pub medians: [f64; 8],
 }
 
 fn main() {
@@ -128,12 +156,45 @@ pub fn run(
         wgpu::TextureUsages::RENDER_ATTACHMENT,
     );
     let ids_view = ids.create_view(&Default::default());
+    let atomics = device
+        .features()
+        .contains(wgpu::Features::SHADER_INT64 | wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX)
+        && device
+            .features()
+            .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
+    let vis = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("probe u64 visibility"),
+        size: 8 * u64::from(width) * u64::from(height),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let atomic_module = atomics.then(|| {
+        device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("probe atomics"),
+            source: wgpu::ShaderSource::Wgsl(ATOMIC_SHADER.into()),
+        })
+    });
     let formats = [
         ("d32f", wgpu::TextureFormat::Depth32Float),
         ("d24", wgpu::TextureFormat::Depth24Plus),
         ("d16", wgpu::TextureFormat::Depth16Unorm),
         ("d32fs8", wgpu::TextureFormat::Depth32FloatStencil8),
     ];
+    let zero = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("zero"),
+        layout: None,
+        module: &module,
+        entry_point: Some("zero"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let zero_bind = obscura::gpu::bind_group(
+        device,
+        "zero",
+        &zero.get_bind_group_layout(0),
+        &[vis.as_entire_binding()],
+    );
+    let words = (u64::from(width) * u64::from(height) / 2) as u32;
     let mut rows = Vec::new();
     for (name, format) in formats {
         if !device.features().contains(format.required_features()) {
@@ -179,6 +240,46 @@ pub fn run(
             })
         };
         let (depth_only, with_colour) = (pipeline(false), pipeline(true));
+        let constants = [("WIDTH", f64::from(width))];
+        let atomic = atomic_module.as_ref().map(|module| {
+            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: None,
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Greater),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some("fs_atomic"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &constants,
+                        ..Default::default()
+                    },
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            });
+            let bind = obscura::gpu::bind_group(
+                device,
+                "probe atomics",
+                &pipeline.get_bind_group_layout(0),
+                &[vis.as_entire_binding()],
+            );
+            (pipeline, bind)
+        });
         let bind = obscura::gpu::bind_group(
             device,
             "read z",
@@ -265,11 +366,33 @@ pub fn run(
                     multiview_mask: None,
                 });
             }
+            if let Some((pipeline, bind)) = &atomic {
+                {
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: None,
+                        timestamp_writes: Some(profiler.compute_pass(PASSES[7])),
+                    });
+                    pass.set_pipeline(&zero);
+                    pass.set_bind_group(0, &zero_bind, &[]);
+                    pass.dispatch_workgroups(words.div_ceil(64), 1, 1);
+                }
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: None,
+                    color_attachments: &[],
+                    depth_stencil_attachment: depth.clone(),
+                    timestamp_writes: Some(profiler.render_pass(PASSES[6])),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, bind, &[]);
+                pass.draw(0..3, 0..4);
+            }
             profiler.end_frame(&mut encoder);
             gpu.queue.submit([encoder.finish()]);
         }
         let timings = profiler.read(gpu)?;
-        let mut medians = [0.0; 6];
+        let mut medians = [0.0; 8];
         for (median, pass) in medians.iter_mut().zip(PASSES) {
             let mut v: Vec<f64> = timings[warmup as usize..]
                 .iter()

@@ -64,6 +64,12 @@ pub const OCCLUSION_PYRAMID_FARTHEST: &str =
 pub const OCCLUSION_PYRAMID_PEEL: &str = include_str!("../shaders/occlusion_pyramid_peel.wgsl");
 pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
 pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
+pub const VISIBILITY_TARGET_LOAD: &str = include_str!("../shaders/visibility_target_load.wgsl");
+pub const VISIBILITY_WORDS_LOAD: &str = include_str!("../shaders/visibility_words_load.wgsl");
+pub const VISIBILITY_WORDS_STORE: &str = include_str!("../shaders/visibility_words_store.wgsl");
+pub const GBUFFER_VISIBILITY_ATOMIC: &str =
+    include_str!("../shaders/gbuffer_visibility_atomic.wgsl");
+pub const DEPTH_PEEL_ATOMIC: &str = include_str!("../shaders/depth_peel_atomic.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
 pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/depth_peel_resolve.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");

@@ -356,7 +356,9 @@ pub const WANTED_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::PIPELINE_STATISTICS_QUERY)
     .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
     .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
-    .union(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
+    .union(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
+    .union(wgpu::Features::SHADER_INT64)
+    .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);
 
 /// A bind group for group 0 of `pipeline` with `resources` at bindings 0, 1, 2, … in order
 /// (the raster, blur and query passes, whose layouts are automatic; the AO passes name their

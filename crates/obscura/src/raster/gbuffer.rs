@@ -37,6 +37,34 @@ const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// (BENCHMARKS.md, issue 16), and the depth buffer is cleared anyway.
 const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
+/// Where the visibility pass leaves each pixel's visible triangle.
+enum Visibility {
+    /// A colour target ([`VISIBILITY_FORMAT`]) beside the depth buffer.
+    Target(wgpu::Texture),
+    /// No colour target: a storage buffer of one 64-bit word per pixel that the fragments fill by
+    /// `atomicMax` and the resolve empties (`shaders/gbuffer_visibility_atomic.wgsl`), where the
+    /// device has [`visibility_words_available`].
+    Words(wgpu::Buffer),
+}
+
+/// Whether this device's visibility pass can store by 64-bit atomics instead of a colour target
+/// (wgpu features `SHADER_INT64`, `SHADER_INT64_ATOMIC_MIN_MAX` and `SHADER_EARLY_DEPTH_TEST`,
+/// requested by [`crate::Gpu`] where the adapter has them). Either way the G-buffer is the same.
+pub fn visibility_words_available(device: &wgpu::Device) -> bool {
+    device.features().contains(
+        wgpu::Features::SHADER_INT64
+            | wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX
+            | wgpu::Features::SHADER_EARLY_DEPTH_TEST,
+    )
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: G-buffers made on this thread use the colour target even where the device has
+    /// the atomics (the twin of [`Visibility::Words`]).
+    pub(crate) static VISIBILITY_TARGET_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// `Camera` of gbuffer.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -63,8 +91,8 @@ struct Peel {
     /// Back faces culled / double-sided / alpha-tested, as the visibility pass.
     pipelines: [wgpu::RenderPipeline; 3],
     params: wgpu::Buffer,
-    /// The peeled layer's triangle per pixel ([`VISIBILITY_FORMAT`]).
-    visibility: wgpu::Texture,
+    /// The peeled layer's triangle per pixel.
+    visibility: Visibility,
     /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
     resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
@@ -80,8 +108,8 @@ pub struct GBuffer {
     /// Base colour ([`ALBEDO_FORMAT`]), written only by [`GBuffer::render_albedo`].
     pub albedo: wgpu::Texture,
     z: wgpu::Texture,
-    /// The visible triangle per pixel ([`VISIBILITY_FORMAT`]).
-    visibility: wgpu::Texture,
+    /// The visible triangle per pixel.
+    visibility: Visibility,
     /// The visibility pass: back faces culled / double-sided / alpha-tested
     /// ([`GpuScene`]'s three groups).
     visibility_pipelines: [wgpu::RenderPipeline; 3],
@@ -123,12 +151,6 @@ impl GBuffer {
         };
         let target = |label, format| target_with(label, format, wgpu::TextureUsages::empty());
         let scene_shaders = [shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER];
-        let resolve_shaders = [
-            shaders::MATERIAL,
-            shaders::VERTEX_NORMAL,
-            shaders::GBUFFER,
-            shaders::GBUFFER_RESOLVE,
-        ];
         let module = &device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer"),
             source: wgpu::ShaderSource::Wgsl(
@@ -145,48 +167,113 @@ impl GBuffer {
         let gbuffer_layout = scene_layout(device, &[]);
         let shading_normals = scene.shading_normals;
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
-        let pipeline = |cull_mode,
-                        (vertex, fragment): (&str, &str),
-                        targets: &[Option<wgpu::ColorTargetState>],
-                        layout: Option<&wgpu::PipelineLayout>| {
-            ScenePipeline {
-                layout,
-                module,
-                cull_mode,
-                depth_stencil: depth.clone(),
-                multisample: Default::default(),
-                vertex,
-                fragment,
-                targets,
-            }
-            .create(device)
-        };
         let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
-        let main = |fragment| ("vs_main", fragment);
-        let opaque = ("vs_visibility", "fs_visibility");
+        #[cfg(test)]
+        let words = visibility_words_available(device) && !VISIBILITY_TARGET_ONLY.with(|v| v.get());
+        #[cfg(not(test))]
+        let words = visibility_words_available(device);
+        // A pass storing words: its module on its own (64-bit atomics need device features the
+        // other pipelines do without), the framebuffer's width for the fragments' word index,
+        // and the words at `binding` after the pass's other bindings.
+        let words_module = |parts: &[&str], main: &str, binding: u32| {
+            let constants = format!(
+                "const VISIBILITY_WIDTH: u32 = {width}u;\nconst VISIBILITY_WORDS_BINDING: u32 = {binding}u;"
+            );
+            let mut parts = parts.to_vec();
+            parts.push(&constants);
+            parts.push(shaders::VISIBILITY_WORDS_STORE);
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("visibility words"),
+                source: wgpu::ShaderSource::Wgsl(shaders::with_common(&parts, main).into()),
+            })
+        };
+        let words_entry = (
+            wgpu::ShaderStages::FRAGMENT,
+            wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+        );
+        let words_buffer = |label| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 8 * u64::from(width) * u64::from(height),
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        };
+        let load_header = if words {
+            shaders::VISIBILITY_WORDS_LOAD
+        } else {
+            shaders::VISIBILITY_TARGET_LOAD
+        };
+        let resolve_pipeline = |label, main, constants: &[(&str, f64)]| {
+            crate::gpu::compute_pipeline_with(
+                device,
+                label,
+                &shaders::with_common(
+                    &[
+                        shaders::MATERIAL,
+                        shaders::VERTEX_NORMAL,
+                        shaders::GBUFFER,
+                        shaders::GBUFFER_RESOLVE,
+                        load_header,
+                    ],
+                    main,
+                ),
+                constants,
+            )
+        };
         let peel = peel_separation.map(|separation| {
-            let layout = scene_layout(device, &behind_first_layer_entries());
-            let peel_pipeline =
-                |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&layout));
+            let mut entries = behind_first_layer_entries();
+            let (visibility, pipelines) = if words {
+                entries.push(words_entry);
+                let layout = scene_layout(device, &entries);
+                let mut parts = scene_shaders.to_vec();
+                parts.push(shaders::DEPTH_PEEL);
+                let module = words_module(&parts, shaders::DEPTH_PEEL_ATOMIC, 8);
+                // No depth test: the words keep the nearest (depth_peel_atomic.wgsl).
+                let untested = wgpu::DepthStencilState {
+                    depth_write_enabled: Some(false),
+                    depth_compare: Some(wgpu::CompareFunction::Always),
+                    ..depth.clone()
+                };
+                (
+                    Visibility::Words(words_buffer("second layer visibility words")),
+                    group_pipelines(
+                        device,
+                        &module,
+                        &untested,
+                        ("fs_peel_words", "fs_peel_words_masked"),
+                        &[],
+                        Some(&layout),
+                    ),
+                )
+            } else {
+                let layout = scene_layout(device, &entries);
+                (
+                    Visibility::Target(target("second layer visibility", VISIBILITY_FORMAT)),
+                    group_pipelines(
+                        device,
+                        module,
+                        &depth,
+                        ("fs_peel", "fs_peel_masked"),
+                        &visibility_targets,
+                        Some(&layout),
+                    ),
+                )
+            };
             Peel {
-                pipelines: [
-                    peel_pipeline(Some(wgpu::Face::Back), ("vs_visibility", "fs_peel")),
-                    peel_pipeline(None, ("vs_visibility", "fs_peel")),
-                    peel_pipeline(None, main("fs_peel_masked")),
-                ],
+                pipelines,
                 params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("peel params"),
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
                     usage: wgpu::BufferUsages::UNIFORM,
                 }),
-                visibility: target("second layer visibility", VISIBILITY_FORMAT),
-                resolve: crate::gpu::compute_pipeline_with(
-                    device,
-                    "depth peel resolve",
-                    &shaders::with_common(&resolve_shaders, shaders::DEPTH_PEEL_RESOLVE),
-                    &[],
-                ),
+                visibility,
+                resolve: resolve_pipeline("depth peel resolve", shaders::DEPTH_PEEL_RESOLVE, &[]),
                 depth: target_with(
                     "second depth layer",
                     DEPTH_FORMAT,
@@ -194,10 +281,35 @@ impl GBuffer {
                 ),
             }
         });
-        let visibility_pipeline =
-            |cull, stages| pipeline(cull, stages, &visibility_targets, Some(&gbuffer_layout));
+        let (visibility, visibility_pipelines) = if words {
+            let layout = scene_layout(device, &[words_entry]);
+            let module = words_module(&scene_shaders, shaders::GBUFFER_VISIBILITY_ATOMIC, 6);
+            (
+                Visibility::Words(words_buffer("visibility words")),
+                group_pipelines(
+                    device,
+                    &module,
+                    &depth,
+                    ("fs_visibility_words", "fs_visibility_words_masked"),
+                    &[],
+                    Some(&layout),
+                ),
+            )
+        } else {
+            (
+                Visibility::Target(target("visibility", VISIBILITY_FORMAT)),
+                group_pipelines(
+                    device,
+                    module,
+                    &depth,
+                    ("fs_visibility", "fs_visibility_masked"),
+                    &visibility_targets,
+                    Some(&gbuffer_layout),
+                ),
+            )
+        };
         let z = target("z", Z_FORMAT);
-        let depth = target_with(
+        let depth_target = target_with(
             "linear depth",
             DEPTH_FORMAT,
             wgpu::TextureUsages::STORAGE_BINDING,
@@ -217,7 +329,7 @@ impl GBuffer {
             }),
         );
         Self {
-            depth,
+            depth: depth_target,
             normals: target_with(
                 "normals",
                 NORMAL_FORMAT,
@@ -225,25 +337,25 @@ impl GBuffer {
             ),
             albedo: target("albedo", ALBEDO_FORMAT),
             z,
-            visibility: target("visibility", VISIBILITY_FORMAT),
-            visibility_pipelines: [
-                visibility_pipeline(Some(wgpu::Face::Back), opaque),
-                visibility_pipeline(None, opaque),
-                visibility_pipeline(None, main("fs_visibility_masked")),
-            ],
-            resolve: crate::gpu::compute_pipeline_with(
-                device,
+            visibility,
+            visibility_pipelines,
+            resolve: resolve_pipeline(
                 "gbuffer resolve",
-                &shaders::with_common(&resolve_shaders, shaders::GBUFFER_RESOLVE_MAIN),
+                shaders::GBUFFER_RESOLVE_MAIN,
                 &normal_constants,
             ),
-            albedo_pipelines: [Some(wgpu::Face::Back), None, None].map(|cull| {
-                pipeline(
-                    cull,
-                    main("fs_albedo"),
-                    &albedo_targets,
-                    Some(&gbuffer_layout),
-                )
+            albedo_pipelines: [Some(wgpu::Face::Back), None, None].map(|cull_mode| {
+                ScenePipeline {
+                    layout: Some(&gbuffer_layout),
+                    module,
+                    cull_mode,
+                    depth_stencil: depth.clone(),
+                    multisample: Default::default(),
+                    vertex: "vs_main",
+                    fragment: "fs_albedo",
+                    targets: &albedo_targets,
+                }
+                .create(device)
             }),
             camera: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("gbuffer camera"),
@@ -297,8 +409,11 @@ impl GBuffer {
         // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
         // then the others that their depths do not hide, into the same targets.
         self.cull.encode(encoder, profiler.as_deref_mut());
-        let targets = [(&self.visibility, None)];
-        let resources = scene_resources(&self.camera, scene, Vec::new());
+        let (targets, extra) = match &self.visibility {
+            Visibility::Target(texture) => (vec![(texture, None)], Vec::new()),
+            Visibility::Words(buffer) => (Vec::new(), vec![buffer.as_entire_binding()]),
+        };
+        let resources = scene_resources(&self.camera, scene, extra);
         for (list, clear) in [
             (CullList::SeenLastFrame, true),
             (CullList::NotHidden, false),
@@ -324,15 +439,32 @@ impl GBuffer {
             );
         }
         let z = self.z.create_view(&Default::default());
+        let (depth, normals) = (
+            self.depth.create_view(&Default::default()),
+            self.normals.create_view(&Default::default()),
+        );
+        let visibility_view;
+        let mut outputs = vec![
+            (7, wgpu::BindingResource::TextureView(&depth)),
+            (8, wgpu::BindingResource::TextureView(&normals)),
+        ];
+        match &self.visibility {
+            Visibility::Target(texture) => {
+                visibility_view = texture.create_view(&Default::default());
+                outputs.push((6, wgpu::BindingResource::TextureView(&visibility_view)));
+                outputs.push((9, wgpu::BindingResource::TextureView(&z)));
+            }
+            Visibility::Words(buffer) => outputs.push((6, buffer.as_entire_binding())),
+        }
+        outputs.extend(self.cull.seen_binding().map(|seen| (10, seen)));
         self.resolve(
             device,
             encoder,
             scene,
             &self.resolve,
-            &[&self.visibility, &self.depth, &self.normals],
-            std::iter::once(wgpu::BindingResource::TextureView(&z))
-                .chain(self.cull.seen_binding())
-                .collect(),
+            (self.depth.width(), self.depth.height()),
+            true,
+            outputs,
             "gbuffer_resolve",
             profiler.as_deref_mut(),
         );
@@ -346,7 +478,14 @@ impl GBuffer {
                     peel.params.as_entire_binding(),
                 ],
             );
-            let targets = [(&peel.visibility, None)];
+            let (targets, words) = match &peel.visibility {
+                Visibility::Target(texture) => (vec![(texture, None)], None),
+                Visibility::Words(buffer) => (Vec::new(), Some(buffer.as_entire_binding())),
+            };
+            // The words' pass neither tests nor writes depth: it draws over the G-buffer's
+            // depth buffer as it is (a clear would cost as much as writing every pixel).
+            let clear = words.is_none();
+            let resources = resources.into_iter().chain(words).collect::<Vec<_>>();
             // Not occlusion-culled: those the first layer hides are what peeling looks for.
             self.cull
                 .encode_peel(device, encoder, &first, profiler.as_deref_mut());
@@ -358,19 +497,31 @@ impl GBuffer {
                 &targets,
                 DrawLists {
                     lists: &[CullList::All],
-                    clear: true,
+                    clear,
                     keep_depth: true,
                 },
                 "depth_peel",
                 profiler.as_deref_mut(),
             );
+            let depth = peel.depth.create_view(&Default::default());
+            let visibility_view;
+            let mut resources = vec![(7, wgpu::BindingResource::TextureView(&depth))];
+            match &peel.visibility {
+                Visibility::Target(texture) => {
+                    visibility_view = texture.create_view(&Default::default());
+                    resources.push((6, wgpu::BindingResource::TextureView(&visibility_view)));
+                    resources.push((8, wgpu::BindingResource::TextureView(&z)));
+                }
+                Visibility::Words(buffer) => resources.push((6, buffer.as_entire_binding())),
+            }
             self.resolve(
                 device,
                 encoder,
                 scene,
                 &peel.resolve,
-                &[&peel.visibility, &peel.depth],
-                vec![wgpu::BindingResource::TextureView(&z)],
+                (peel.depth.width(), peel.depth.height()),
+                false,
+                resources,
                 "depth_peel_resolve",
                 profiler,
             );
@@ -404,8 +555,9 @@ impl GBuffer {
         );
     }
 
-    /// A visibility buffer's resolve `pipeline` over the framebuffer: `textures` (the visibility
-    /// buffer, then the outputs) at bindings 6, 7, …, then `extra`; timed as `name`.
+    /// A visibility buffer's resolve `pipeline` over the framebuffer of `size`: the scene (its
+    /// vertex attributes where `reads_attributes`), then `resources` (the visibility buffer, the
+    /// outputs and what else the resolve reads, at their bindings from 6 on); timed as `name`.
     #[allow(clippy::too_many_arguments)]
     fn resolve(
         &self,
@@ -413,30 +565,19 @@ impl GBuffer {
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
         pipeline: &wgpu::ComputePipeline,
-        textures: &[&wgpu::Texture],
-        extra: Vec<wgpu::BindingResource>,
+        size: (u32, u32),
+        reads_attributes: bool,
+        resources: Vec<(u32, wgpu::BindingResource)>,
         name: &str,
         profiler: Option<&mut PassProfiler>,
     ) {
-        let views: Vec<_> = textures
-            .iter()
-            .map(|t| t.create_view(&Default::default()))
-            .collect();
         // Resolves read no materials or textures (bindings 4 and 5); the peeled layer's no
         // vertex attributes either (binding 2: only the G-buffer's normals interpolate them).
-        let reads_attributes = textures.len() == 3;
         let resources: Vec<_> = (0..)
             .zip(scene_resources(&self.camera, scene, Vec::new()))
             .take(4)
             .filter(|(binding, _)| *binding != 2 || reads_attributes)
-            .chain(
-                (6..).zip(
-                    views
-                        .iter()
-                        .map(wgpu::BindingResource::TextureView)
-                        .chain(extra),
-                ),
-            )
+            .chain(resources)
             .collect();
         let bind_group =
             crate::gpu::bind_group_at(device, name, &pipeline.get_bind_group_layout(0), &resources);
@@ -447,8 +588,7 @@ impl GBuffer {
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
-        let size = textures[0].size();
-        pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
+        pass.dispatch_workgroups(size.0.div_ceil(8), size.1.div_ceil(8), 1);
     }
 
     /// One raster pass of the scene: the frame's culled draws of `lists.lists` in order
@@ -667,6 +807,37 @@ pub(crate) fn behind_first_layer_entries() -> Vec<(wgpu::ShaderStages, wgpu::Bin
     ]
 }
 
+/// The pipelines of [`GpuScene`]'s three groups of a pass: back faces culled, double-sided (both
+/// with `vs_visibility` and the `opaque` fragment entry point), alpha-tested (`vs_main`, every
+/// value interpolated, and `masked`).
+fn group_pipelines(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    depth_stencil: &wgpu::DepthStencilState,
+    (opaque, masked): (&str, &str),
+    targets: &[Option<wgpu::ColorTargetState>],
+    layout: Option<&wgpu::PipelineLayout>,
+) -> [wgpu::RenderPipeline; 3] {
+    let pipeline = |cull_mode, vertex, fragment| {
+        ScenePipeline {
+            layout,
+            module,
+            cull_mode,
+            depth_stencil: depth_stencil.clone(),
+            multisample: Default::default(),
+            vertex,
+            fragment,
+            targets,
+        }
+        .create(device)
+    };
+    [
+        pipeline(Some(wgpu::Face::Back), "vs_visibility", opaque),
+        pipeline(None, "vs_visibility", opaque),
+        pipeline(None, "vs_main", masked),
+    ]
+}
+
 /// A raster pipeline over the scene's vertices (pulled from storage by gbuffer.wgsl).
 pub(crate) struct ScenePipeline<'a> {
     /// `None`: an automatic layout (passes that bind more than the scene).
@@ -707,5 +878,72 @@ impl ScenePipeline<'_> {
             multiview_mask: None,
             cache: None,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{visibility_words_available, VISIBILITY_TARGET_ONLY};
+    use crate::{scene, AoSettings, Gpu, GpuOptions, Renderer, Technique};
+
+    /// The visibility pass by 64-bit atomics leaves the same G-buffer (depth, normals, the peeled
+    /// layer, the AO) as its colour-target twin on every built-in scene and camera, frame after
+    /// frame (the resolve empties the words it reads, so a frame of another view before must
+    /// leave nothing behind).
+    #[test]
+    fn visibility_words_equal_the_colour_target() {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
+            std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir());
+        }
+        let gpu =
+            Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)");
+        assert!(
+            visibility_words_available(&gpu.device),
+            "{} lacks 64-bit atomics or early fragment tests (lavapipe has them)",
+            gpu.summary.name
+        );
+        let settings = AoSettings::preset(Technique::VaoDual, crate::settings::Preset::Medium);
+        for name in scene::builtin_names() {
+            let scene = scene::builtin(name).unwrap();
+            let extent = scene.bounds().max - scene.bounds().min;
+            for named in &scene.cameras {
+                let camera = named.camera;
+                let mut moved = camera;
+                moved.eye += extent * glam::Vec3::new(0.06, 0.03, -0.04);
+                moved.target += extent * glam::Vec3::new(-0.05, 0.0, 0.03);
+                let frames = |target_only: bool| {
+                    VISIBILITY_TARGET_ONLY.with(|v| v.set(target_only));
+                    let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();
+                    VISIBILITY_TARGET_ONLY.with(|v| v.set(false));
+                    [&camera, &moved, &camera]
+                        .iter()
+                        .map(|&camera| {
+                            r.render(camera, None).unwrap();
+                            let g = r.read_gbuffer().unwrap();
+                            (
+                                g.depth,
+                                g.normals,
+                                r.read_second_layer().unwrap(),
+                                r.read_ao().unwrap(),
+                            )
+                        })
+                        .collect::<Vec<_>>()
+                };
+                let words = frames(false);
+                let target = frames(true);
+                for (f, (a, b)) in words.iter().zip(&target).enumerate() {
+                    assert!(
+                        a.0.iter().any(|&z| z > 0.0),
+                        "{name} {}, frame {f}: nothing drawn",
+                        named.name
+                    );
+                    assert!(
+                        a == b,
+                        "{name} {}, frame {f}: the visibility words changed the frame",
+                        named.name
+                    );
+                }
+            }
+        }
     }
 }
