@@ -10,7 +10,7 @@ import statistics
 import sys
 
 runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
-MAP = ["sd_clear", "sd_reset", "sd_pyramid", "sd_cull", "sd_map"]
+MAP = ["sd_clear", "sd_reset", "sd_cull", "sd_map"]
 cells = {}
 adapter = None
 for path in sorted(runs.glob("*-*-*.json")):

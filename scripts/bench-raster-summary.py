@@ -15,9 +15,9 @@ import sys
 runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
 PASSES = {
     "G-buffer": ("vao", ["triangle_cull", "gbuffer", "occlusion_pyramid", "gbuffer_resolve"], "gbuffer"),
-    "depth peeling": ("vao-dual", ["peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"], "depth_peel"),
-    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_pyramid", "sd_cull", "sd_map"], "sd_map"),
-    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_pyramid", "sd_cull", "sd_map"], "sd_map"),
+    "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
+    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
+    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
 }
 # Whole techniques without the G-buffer (what the stencil of sd-svao is for, seed 000 §3.9).
 TOTALS = ["sd-vao", "sd-svao"]

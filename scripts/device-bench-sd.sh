@@ -86,8 +86,8 @@ with open(os.path.join(out, "sd-bench.json"), "w") as f:
     json.dump({"adapter": info, "runs": runs, "failed": failed}, f, indent=1)
 
 # Passes that are not the AO kernel (everything else in a result is).
-NOT_AO = {"gbuffer", "gbuffer_resolve", "depth_peel", "depth_peel_resolve", "peel_pyramid", "peel_cull", "sd_reset", "sd_map",
-          "blur", "triangle_cull", "occlusion_pyramid", "sd_clear", "sd_pyramid", "sd_cull"}
+NOT_AO = {"gbuffer", "gbuffer_resolve", "depth_peel", "depth_peel_resolve", "sd_reset", "sd_map",
+          "blur", "triangle_cull", "occlusion_pyramid", "sd_clear", "sd_cull"}
 # The G-buffer: its raster (visibility) pass and its compute resolve.
 GBUFFER = ("gbuffer", "gbuffer_resolve")
 
@@ -141,7 +141,7 @@ def tab1_row(label, run_of, technique, passes):
     md.append(f"| {label} | " + " | ".join(cells) + " |")
 
 tab1_row("single depth", lambda sc: f"{sc}-{hd}-base", "vao", ())
-tab1_row("depth peeling", lambda sc: f"{sc}-{hd}-base", "vao-dual", ("peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"))
+tab1_row("depth peeling", lambda sc: f"{sc}-{hd}-base", "vao-dual", ("depth_peel", "depth_peel_resolve"))
 def layout(S):
     """ " (2 maps of 4)" when S was stacked on this adapter."""
     for sc in scenes:
@@ -152,13 +152,13 @@ def layout(S):
 
 for S in (2, 4, 8):
     tab1_row(f"SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-vao",
-             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
+             ("sd_cull", "sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Stenciled-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}", "sd-svao",
-             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
+             ("sd_cull", "sd_reset", "sd_map"))
 for S in (2, 4, 8):
     tab1_row(f"Discard-SD{S}{layout(S)}", lambda sc, S=S: f"{sc}-{hd}-S{S}-discard", "sd-svao",
-             ("sd_pyramid", "sd_cull", "sd_reset", "sd_map"))
+             ("sd_cull", "sd_reset", "sd_map"))
 md.append("")
 
 # Tab. 2 / 3: AO techniques per scene and size (S = 4).
@@ -181,9 +181,9 @@ def ao_rows(sc, size, with_baselines):
         blur = r["passes"].get("blur", blur)
         total = r["total_ms"] - p(r, *GBUFFER)
         totals[label] = total
-        depth = {"VAO": None, "VAO-dual": p(r, "peel_pyramid", "peel_cull", "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map"),
-                 "SD-SVAO": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map"),
-                 "SD-SVAO (discard)": p(r, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")}[label]
+        depth = {"VAO": None, "VAO-dual": p(r, "depth_peel", "depth_peel_resolve"), "SD-VAO": p(r, "sd_cull", "sd_reset", "sd_map"),
+                 "SD-SVAO": p(r, "sd_cull", "sd_reset", "sd_map"),
+                 "SD-SVAO (discard)": p(r, "sd_cull", "sd_reset", "sd_map")}[label]
         depth_cell = ms(depth) if depth is not None else ""
         if label == "VAO-dual":
             depth_cell += " (peel)"
@@ -223,7 +223,7 @@ for sc in scenes:
         if v is None:
             cells += [missing(run), "", ""]
         else:
-            cells += [ms(p(v, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, *GBUFFER))]
+            cells += [ms(p(v, "sd_cull", "sd_reset", "sd_map")), ms(ao(v)), ms(v["total_ms"] - p(v, *GBUFFER))]
         if sv is None:
             cells += [missing(run), "", "", "", ""]
         else:
@@ -231,7 +231,7 @@ for sc in scenes:
             speedup = ""
             if v is not None and total > 0:
                 speedup = f"{(v['total_ms'] - p(v, 'gbuffer')) / total:.2f}"
-            cells += [ms(p(sv, "sd_pyramid", "sd_cull", "sd_reset", "sd_map")),
+            cells += [ms(p(sv, "sd_cull", "sd_reset", "sd_map")),
                       f"{ms(p(sv, 'svao_phase1'))}+{ms(p(sv, 'svao_indirect', 'svao_phase2'))}",
                       ms(total), speedup, ms(sv["passes"].get("blur"))]
         d = result(run + "-discard", "sd-svao")

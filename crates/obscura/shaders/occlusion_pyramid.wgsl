@@ -9,12 +9,8 @@
 // pixels (level 0), writes the farthest of each 2×2 of them (level 1) and of all 16 (level 2),
 // then the workgroup halves its tile of those in workgroup memory level by level, so the depth
 // buffer is read once and every level is written in one dispatch.
-//
-// The same builder makes depth peeling's pyramid (src/raster/occlusion_pyramid.rs,
-// `PyramidKind`): a header in front defines the source (`pyramid_source_size`), each pixel's
-// value (`pyramid_pixel`, `PYRAMID_OUTSIDE` beyond the framebuffer) and how tiles combine
-// (`pyramid_combine`): occlusion_pyramid_farthest.wgsl or occlusion_pyramid_peel.wgsl.
 
+@group(0) @binding(0) var z: texture_depth_2d;
 @group(0) @binding(1) var<storage, read_write> pyramid: array<f32>;
 
 const SIDE: u32 = 16u;
@@ -28,26 +24,26 @@ fn store_tile(size: vec2<u32>, level: u32, tile: vec2<u32>, far: f32) {
 
 @compute @workgroup_size(16, 16)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
-    let size = pyramid_source_size();
+    let size = textureDimensions(z);
     let tile = group.xy * SIDE + local.xy;
-    // Pixels outside the framebuffer count as PYRAMID_OUTSIDE, which no combination keeps: no
+    // Pixels outside the framebuffer count as the near plane (1), which no minimum keeps: no
     // triangle's pixels lie there.
-    var quads = vec4<f32>(PYRAMID_OUTSIDE);
+    var quads = vec4<f32>(1.0);
     for (var y = 0u; y < 4u; y++) {
         for (var x = 0u; x < 4u; x++) {
             let p = tile * 4u + vec2<u32>(x, y);
             if (all(p < size)) {
-                let d = pyramid_pixel(p);
+                let d = textureLoad(z, p, 0);
                 store_tile(size, 0u, p, d);
                 let q = (y / 2u) * 2u + x / 2u;
-                quads[q] = pyramid_combine(quads[q], d);
+                quads[q] = min(quads[q], d);
             }
         }
     }
     for (var q = 0u; q < 4u; q++) {
         store_tile(size, 1u, tile * 2u + vec2<u32>(q % 2u, q / 2u), quads[q]);
     }
-    var far = pyramid_combine(pyramid_combine(quads.x, quads.y), pyramid_combine(quads.z, quads.w));
+    var far = min(min(quads.x, quads.y), min(quads.z, quads.w));
     store_tile(size, 2u, tile, far);
     tiles[local.y * SIDE + local.x] = far;
     var width = SIDE;
@@ -57,10 +53,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
         workgroupBarrier();
         if (in_level) {
             let i = local.y * 2u * SIDE + local.x * 2u;
-            far = pyramid_combine(
-                pyramid_combine(tiles[i], tiles[i + 1u]),
-                pyramid_combine(tiles[i + SIDE], tiles[i + SIDE + 1u]),
-            );
+            far = min(min(tiles[i], tiles[i + 1u]), min(tiles[i + SIDE], tiles[i + SIDE + 1u]));
         }
         workgroupBarrier();
         if (in_level) {

@@ -14,20 +14,12 @@
 // A triangle that crosses the eye plane, or reaches far outside the framebuffer (where float
 // pixel positions lose precision), is tested against the frustum planes only.
 //
-// Depth peeling (phase 3) keeps, of the triangles that may cover a pixel centre, those that may
-// lie behind the first layer by more than the separation somewhere: a triangle peeling would
-// reject at every pixel it covers is not drawn (`pyramid` is then peeling's,
-// shaders/occlusion_pyramid_peel.wgsl): the first layer's own triangles,
-// where nothing lies in front of them, go (the in-crate culling test: 59,525 of 219,968 kept
-// over the built-in scenes and cameras). The stochastic depth map stores the fragments of the
-// same rule and draws the same list (119,050 of 439,936 in that test, two rows).
-//
 // With occlusion culling (the G-buffer's visibility pass), two phases (Haar and Aaltonen,
 // "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the
 // triangles some pixel showed last frame (`seen_frame`, written by gbuffer_resolve_main.wgsl);
 // after they are drawn, the second keeps the others unless the first phase's depths
 // (shaders/occlusion_pyramid.wgsl) are nearer than the triangle at every pixel it may cover
-// (pyramid_decides). Every triangle that can win a pixel is still drawn, by one phase or the
+// (hidden_by_pyramid). Every triangle that can win a pixel is still drawn, by one phase or the
 // other.
 
 struct CullParams {
@@ -39,10 +31,10 @@ struct CullParams {
     draws: u32,
     // Non-zero: keep every triangle (the tests' uncull'd twin, src/raster/triangle_cull.rs).
     keep_all: u32,
-    // 0: no occlusion culling; 1: the first phase; 2: the second; 3: depth peeling's list (the
-    // triangles not in front of its pyramid everywhere, in_front_of_peel_pyramid).
+    // 0: no occlusion culling; 1: the first phase; 2: the second (also the list it writes).
     phase: u32,
-    pad: u32,
+    // The first phase also writes the list without occlusion culling (list 0) when non-zero.
+    keep_all_list: u32,
     // Where this dispatch's list starts, in triangles and in draws: list `l` (src/raster/
     // triangle_cull.rs, `CullList`) at `l` times the triangle count and `l` times the draw count.
     list_triangles: u32,
@@ -83,14 +75,14 @@ const ROW: u32 = 65535u;
 // pixel centre inside the triangle is a convex combination of the corners' (up to rounding, and
 // the vertex shader's products may round differently from ours).
 const DEPTH_SLACK: f32 = 1.0e-5;
-// Tiles per side a triangle's bounds are tested against (pyramid_decides): at most 8 × 8
+// Tiles per side a triangle's bounds are tested against (hidden_by_pyramid): at most 8 × 8
 // pyramid reads. Finer tiles cull more of the hidden triangles that the first phase's
 // silhouettes cross, but each read waits for the last: on Crytek Sponza at 1080p with a still
 // camera the second phase drew 30,478 triangles with 2 × 2 tiles of 4 to 64 pixels and the
 // nearest corner alone, 11,903 with 4 × 4 tiles from 1 pixel, the plane and the edges, 8,110
 // with 8 × 8 and 6,586 with 16 × 16, and 8 × 8 was the fastest G-buffer (BENCHMARKS.md).
 const HIDDEN_TILES: u32 = 8u;
-// Tiles per side of the first, coarse test (coarse_tiles_decide).
+// Tiles per side of the first, coarse test (coarse_tiles_hide).
 const COARSE_TILES: u32 = 2u;
 
 var<workgroup> kept_before: array<u32, GROUP_SIZE>;
@@ -202,11 +194,10 @@ fn outside_edge(v: vec2<f32>, e: vec2<f32>, lo: vec2<f32>, hi: vec2<f32>) -> boo
 }
 
 // Whether the at most COARSE_TILES² tiles of the finest pyramid level that span the pixels `p`
-// to `q` all decide the triangle, from `bound` alone (its nearest corner's depth for occlusion,
-// its farthest for peeling, with slack): then so does every pixel it may cover. A few reads
-// decide most triangles before pyramid_decides's fine tiles, which wait for each other
-// (BENCHMARKS.md, issue 16).
-fn coarse_tiles_decide(p: vec2<u32>, q: vec2<u32>, bound: f32, in_front: bool) -> bool {
+// to `q` all lie in front of `nearest` (the triangle's nearest corner's depth, with slack): then
+// so does every pixel it may cover. A few reads decide most triangles before hidden_by_pyramid's
+// fine tiles, which wait for each other (BENCHMARKS.md, issue 16).
+fn coarse_tiles_hide(p: vec2<u32>, q: vec2<u32>, nearest: f32) -> bool {
     let span = spanning_level(p, q, COARSE_TILES);
     if (!span.found) {
         return false;
@@ -215,7 +206,7 @@ fn coarse_tiles_decide(p: vec2<u32>, q: vec2<u32>, bound: f32, in_front: bool) -
     let b = q >> vec2<u32>(span.level);
     for (var y = a.y; y <= b.y; y++) {
         for (var x = a.x; x <= b.x; x++) {
-            if (!tile_decides(bound, pyramid[span.offset + y * span.row + x], in_front)) {
+            if (!(nearest < pyramid[span.offset + y * span.row + x])) {
                 return false;
             }
         }
@@ -246,24 +237,15 @@ fn spanning_level(p: vec2<u32>, q: vec2<u32>, tiles: u32) -> SpanningLevel {
     return out;
 }
 
-// Whether a tile of the pyramid whose value is `tile` decides a triangle whose reversed-Z depth
-// over the tile's pixels is at most (occlusion) or at least (`in_front`: peeling) `depth`:
-// occlusion drops it when the tile's farthest depth lies in front of it; peeling when it is at
-// or above the depth below which the tile's pixels would peel it.
-fn tile_decides(depth: f32, tile: f32, in_front: bool) -> bool {
-    return select((depth < tile), (depth >= tile), in_front);
-}
-
-// Whether the pyramid decides the triangle at every pixel centre within MARGIN of its pixel
-// bounds that it may cover. Occlusion (`in_front` false, the first phase's depths): the
-// triangle lies behind them there. Peeling (`in_front`): it lies at or above the depth
-// peeling needs there (shaders/occlusion_pyramid_peel.wgsl). Of the finest pyramid level whose
-// at most HIDDEN_TILES² tiles cover those pixels (level 0: each pixel's own), every tile not
-// wholly outside one of the triangle's edges is tested against the triangle's nearest depth
-// (occlusion) or farthest (peeling) over the tile's pixel centres: its plane (depth is affine
-// in screen space) at the nearest or farthest of them, never beyond its nearest or farthest
-// corner. Bounds that no level covers with so few tiles decide nothing (false).
-fn pyramid_decides(cover: Coverage, in_front: bool) -> bool {
+// Whether the first phase's depths are nearer than the triangle's at every pixel centre within
+// MARGIN of its pixel bounds that it may cover: unless coarse_tiles_hide decides it, of the
+// finest pyramid level whose at most HIDDEN_TILES² tiles cover those pixels (level 0: each
+// pixel's own depth), every tile not wholly outside one of the triangle's edges is tested
+// against the triangle's nearest depth
+// over the tile's pixel centres: its plane (depth is affine in screen space) at the nearest of
+// them, never nearer than its nearest corner. Bounds that no level covers with so few tiles
+// decide nothing (false).
+fn hidden_by_pyramid(cover: Coverage) -> bool {
     // Only pixels of the framebuffer can show the triangle.
     let first = max(ceil(cover.lo - MARGIN - 0.5), vec2<f32>(0.0));
     let last = min(floor(cover.hi + MARGIN - 0.5), params.size - 1.0);
@@ -272,13 +254,9 @@ fn pyramid_decides(cover: Coverage, in_front: bool) -> bool {
     }
     let d = cover.depths;
     let nearest = max(d.x, max(d.y, d.z));
-    let farthest = min(d.x, min(d.y, d.z));
-    // The corner that bounds the triangle everywhere, on the side the test needs; the slack
-    // on depths moves it to the safe side.
-    let corner = select(nearest * (1.0 + DEPTH_SLACK), farthest * (1.0 - DEPTH_SLACK), in_front);
     let p = vec2<u32>(first);
     let q = vec2<u32>(last);
-    if (coarse_tiles_decide(p, q, corner, in_front)) {
+    if (coarse_tiles_hide(p, q, nearest * (1.0 + DEPTH_SLACK))) {
         return true;
     }
     let e1 = cover.pb - cover.pa;
@@ -292,21 +270,19 @@ fn pyramid_decides(cover: Coverage, in_front: bool) -> bool {
     let pc = select(cover.pb, cover.pc, det > 0.0);
     // The plane's gradient where the triangle is no sliver (twice its area at least a twentieth
     // of its edges' squared lengths: the solve is well conditioned), else 0 and the plane's depth
-    // at the first corner `at_pa` the bounding corner's, which bounds the triangle everywhere.
+    // at the first corner `at_pa` the nearest corner's, which bounds the triangle everywhere.
     // Slack: the solve's rounding, and the rasteriser's snapping of the corners (within MARGIN)
     // moving the plane by its gradient.
     var gradient = vec2<f32>(0.0);
-    var at_pa = select(nearest, farthest, in_front);
+    var at_pa = nearest;
     if (abs(det) >= 0.05 * edges) {
         let d1 = d.y - d.x;
         let d2 = d.z - d.x;
         gradient = vec2<f32>(d1 * e2.y - d2 * e1.y, d2 * e1.x - d1 * e2.x) / det;
         at_pa = d.x;
     }
-    let slack = 1.0e-4 * (nearest - farthest)
+    let slack = 1.0e-4 * (nearest - min(d.x, min(d.y, d.z)))
         + 2.0 * MARGIN * (abs(gradient.x) + abs(gradient.y));
-    // Towards the nearest pixel centre of a tile along the gradient, or away for the farthest.
-    let rising = (gradient > vec2<f32>(0.0)) != vec2<bool>(in_front);
     let span = spanning_level(p, q, HIDDEN_TILES);
     if (!span.found) {
         return false;
@@ -325,14 +301,10 @@ fn pyramid_decides(cover: Coverage, in_front: bool) -> bool {
                 || outside_edge(pc, cover.pa - pc, lo, hi))) {
                 continue;
             }
-            let at = select(lo, hi, rising);
-            let plane = at_pa + dot(gradient, at - cover.pa);
-            let depth = select(
-                min(plane + slack, nearest) * (1.0 + DEPTH_SLACK),
-                max(plane - slack, farthest) * (1.0 - DEPTH_SLACK),
-                in_front,
-            );
-            if (!tile_decides(depth, pyramid[span.offset + y * span.row + x], in_front)) {
+            let at = select(lo, hi, gradient > vec2<f32>(0.0));
+            let plane = at_pa + dot(gradient, at - cover.pa) + slack;
+            let depth = min(plane, nearest) * (1.0 + DEPTH_SLACK);
+            if (!(depth < pyramid[span.offset + y * span.row + x])) {
                 return false;
             }
         }
@@ -352,26 +324,25 @@ fn main(
     }
     let draw = draw_list[d];
     let t = draw.x + i;
-    // 1: kept by this dispatch.
+    // Bit 0: kept by this dispatch; bit 16: kept without occlusion culling (the first phase's
+    // second list). One prefix sum counts both (at most 256 each).
     var keep = 0u;
     if (i < draw.y) {
         if (params.keep_all != 0u) {
-            // The uncull'd twin: everything in the first (or only) phase, and for peeling.
-            keep = select(0u, 1u, params.phase != 2u);
+            // The uncull'd twin: everything in the first (or only) phase.
+            keep = select(0u, 0x10001u, params.phase != 2u);
         } else {
-            // The occlusion phases split the triangles by whether they were seen last frame,
-            // before the (costlier) coverage.
-            let occlusion = params.phase == 1u || params.phase == 2u;
-            let seen = occlusion && seen_last_frame(t);
-            if (!occlusion || (params.phase == 1u) == seen) {
+            // Which lists the triangle may join before its (costlier) coverage: the second phase
+            // has no use for those seen last frame, and the first only wants them unless it
+            // also writes the full list.
+            let seen = params.phase != 0u && seen_last_frame(t);
+            let wanted = select(0u, 1u, params.phase == 0u || (params.phase == 1u) == seen)
+                | select(0u, 0x10000u, params.phase == 1u && params.keep_all_list != 0u);
+            if (wanted != 0u) {
                 let cover = coverage(triangles[t], draw.z == 0u);
-                var dropped = false;
-                if (cover.on_screen && params.phase == 2u) {
-                    dropped = pyramid_decides(cover, false);
-                } else if (cover.on_screen && params.phase == 3u) {
-                    dropped = pyramid_decides(cover, true);
-                }
-                keep = select(0u, 1u, cover.may_cover && !dropped);
+                let hidden = params.phase == 2u && cover.on_screen
+                    && hidden_by_pyramid(cover);
+                keep = select(0u, wanted, cover.may_cover && !hidden);
             }
         }
     }
@@ -389,11 +360,18 @@ fn main(
         workgroupBarrier();
     }
     let before = kept_before[i];
-    if (keep != 0u) {
-        drawn[params.list_triangles + draw.x + before - 1u] = t;
+    if ((keep & 1u) != 0u) {
+        drawn[params.list_triangles + draw.x + (before & 0xffffu) - 1u] = t;
+    }
+    let full_list = params.phase == 1u && params.keep_all_list != 0u;
+    if (full_list && (keep & 0x10000u) != 0u) {
+        drawn[draw.x + (before >> 16u) - 1u] = t;
     }
     if (i == GROUP_SIZE - 1u) {
         let first = params.list_triangles + draw.x;
-        args[params.list_draws + d] = vec4<u32>(3u * before, 1u, 3u * first, 0u);
+        args[params.list_draws + d] = vec4<u32>(3u * (before & 0xffffu), 1u, 3u * first, 0u);
+        if (full_list) {
+            args[d] = vec4<u32>(3u * (before >> 16u), 1u, 3u * draw.x, 0u);
+        }
     }
 }

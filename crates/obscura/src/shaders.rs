@@ -59,9 +59,6 @@ pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const TRIANGLE_CULL: &str = include_str!("../shaders/triangle_cull.wgsl");
 pub const OCCLUSION_PYRAMID_LAYOUT: &str = include_str!("../shaders/common/occlusion_pyramid.wgsl");
 pub const OCCLUSION_PYRAMID: &str = include_str!("../shaders/occlusion_pyramid.wgsl");
-pub const OCCLUSION_PYRAMID_FARTHEST: &str =
-    include_str!("../shaders/occlusion_pyramid_farthest.wgsl");
-pub const OCCLUSION_PYRAMID_PEEL: &str = include_str!("../shaders/occlusion_pyramid_peel.wgsl");
 pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
 pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
 pub const VISIBILITY_TARGET_LOAD: &str = include_str!("../shaders/visibility_target_load.wgsl");
@@ -69,7 +66,6 @@ pub const VISIBILITY_WORDS_LOAD: &str = include_str!("../shaders/visibility_word
 pub const VISIBILITY_WORDS_STORE: &str = include_str!("../shaders/visibility_words_store.wgsl");
 pub const GBUFFER_VISIBILITY_ATOMIC: &str =
     include_str!("../shaders/gbuffer_visibility_atomic.wgsl");
-pub const DEPTH_PEEL_ATOMIC: &str = include_str!("../shaders/depth_peel_atomic.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
 pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/depth_peel_resolve.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");

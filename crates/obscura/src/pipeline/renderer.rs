@@ -335,14 +335,6 @@ impl Renderer {
         &self.gbuffer
     }
 
-    /// The raster stochastic depth map of the last frame's technique, if it has one (tests).
-    #[cfg(test)]
-    pub(crate) fn stochastic_depth_map(
-        &self,
-    ) -> Option<&crate::sources::stochastic_depth::StochasticDepthMap> {
-        self.ao.as_ref()?.source.stochastic_depth()
-    }
-
     /// Depth and normals of the whole framebuffer.
     pub fn read_gbuffer(&self) -> Result<GBufferImage, Error> {
         let depth = read_texture_f32(&self.gpu, &self.gbuffer.depth, 1)?;

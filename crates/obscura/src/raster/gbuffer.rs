@@ -18,7 +18,7 @@
 
 use super::chunks::{self, Draw};
 use super::gpu_scene::GpuScene;
-use super::triangle_cull::{CullList, PeelSource, TriangleCull};
+use super::triangle_cull::{CullList, TriangleCull};
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::FrameView;
@@ -91,8 +91,8 @@ struct Peel {
     /// Back faces culled / double-sided / alpha-tested, as the visibility pass.
     pipelines: [wgpu::RenderPipeline; 3],
     params: wgpu::Buffer,
-    /// The peeled layer's triangle per pixel.
-    visibility: Visibility,
+    /// The peeled layer's triangle per pixel ([`VISIBILITY_FORMAT`]).
+    visibility: wgpu::Texture,
     /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
     resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
@@ -204,12 +204,14 @@ impl GBuffer {
                 mapped_at_creation: false,
             })
         };
-        let load_header = if words {
-            shaders::VISIBILITY_WORDS_LOAD
-        } else {
-            shaders::VISIBILITY_TARGET_LOAD
+        let load_header = |words| {
+            if words {
+                shaders::VISIBILITY_WORDS_LOAD
+            } else {
+                shaders::VISIBILITY_TARGET_LOAD
+            }
         };
-        let resolve_pipeline = |label, main, constants: &[(&str, f64)]| {
+        let resolve_pipeline = |label, main, words, constants: &[(&str, f64)]| {
             crate::gpu::compute_pipeline_with(
                 device,
                 label,
@@ -219,7 +221,7 @@ impl GBuffer {
                         shaders::VERTEX_NORMAL,
                         shaders::GBUFFER,
                         shaders::GBUFFER_RESOLVE,
-                        load_header,
+                        load_header(words),
                     ],
                     main,
                 ),
@@ -227,44 +229,17 @@ impl GBuffer {
             )
         };
         let peel = peel_separation.map(|separation| {
-            let mut entries = behind_first_layer_entries();
-            let (visibility, pipelines) = if words {
-                entries.push(words_entry);
-                let layout = scene_layout(device, &entries);
-                let mut parts = scene_shaders.to_vec();
-                parts.push(shaders::DEPTH_PEEL);
-                let module = words_module(&parts, shaders::DEPTH_PEEL_ATOMIC, 8);
-                // No depth test: the words keep the nearest (depth_peel_atomic.wgsl).
-                let untested = wgpu::DepthStencilState {
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::Always),
-                    ..depth.clone()
-                };
-                (
-                    Visibility::Words(words_buffer("second layer visibility words")),
-                    group_pipelines(
-                        device,
-                        &module,
-                        &untested,
-                        ("fs_peel_words", "fs_peel_words_masked"),
-                        &[],
-                        Some(&layout),
-                    ),
-                )
-            } else {
-                let layout = scene_layout(device, &entries);
-                (
-                    Visibility::Target(target("second layer visibility", VISIBILITY_FORMAT)),
-                    group_pipelines(
-                        device,
-                        module,
-                        &depth,
-                        ("fs_peel", "fs_peel_masked"),
-                        &visibility_targets,
-                        Some(&layout),
-                    ),
-                )
-            };
+            // Depth peeling keeps its colour target: with words and no depth test it was slower
+            // on Crytek Sponza (BENCHMARKS.md, issue 16), whose hidden layers all store.
+            let layout = scene_layout(device, &behind_first_layer_entries());
+            let pipelines = group_pipelines(
+                device,
+                module,
+                &depth,
+                ("fs_peel", "fs_peel_masked"),
+                &visibility_targets,
+                Some(&layout),
+            );
             Peel {
                 pipelines,
                 params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -272,8 +247,13 @@ impl GBuffer {
                     contents: bytemuck::cast_slice(&[separation, 0.0, 0.0, 0.0]),
                     usage: wgpu::BufferUsages::UNIFORM,
                 }),
-                visibility,
-                resolve: resolve_pipeline("depth peel resolve", shaders::DEPTH_PEEL_RESOLVE, &[]),
+                visibility: target("second layer visibility", VISIBILITY_FORMAT),
+                resolve: resolve_pipeline(
+                    "depth peel resolve",
+                    shaders::DEPTH_PEEL_RESOLVE,
+                    false,
+                    &[],
+                ),
                 depth: target_with(
                     "second depth layer",
                     DEPTH_FORMAT,
@@ -314,20 +294,8 @@ impl GBuffer {
             DEPTH_FORMAT,
             wgpu::TextureUsages::STORAGE_BINDING,
         );
-        // Occlusion culling against the visibility pass's own depth buffer; depth peeling's list
-        // against the first layer.
-        let cull = TriangleCull::new(
-            device,
-            &scene.draw_ordered(),
-            "triangle_cull",
-            Some(&z),
-            peel_separation.map(|separation| PeelSource {
-                size: (width, height),
-                separation,
-                pyramid_name: "peel_pyramid",
-                cull_name: "peel_cull",
-            }),
-        );
+        // Occlusion culling against the visibility pass's own depth buffer.
+        let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
         Self {
             depth: depth_target,
             normals: target_with(
@@ -342,6 +310,7 @@ impl GBuffer {
             resolve: resolve_pipeline(
                 "gbuffer resolve",
                 shaders::GBUFFER_RESOLVE_MAIN,
+                words,
                 &normal_constants,
             ),
             albedo_pipelines: [Some(wgpu::Face::Back), None, None].map(|cull_mode| {
@@ -375,13 +344,6 @@ impl GBuffer {
         self.cull.counts(gpu)
     }
 
-    /// Triangles depth peeling's list kept in the last frame, when peeling (tests; waits for the
-    /// GPU).
-    #[cfg(test)]
-    pub(crate) fn peel_kept(&self, gpu: &crate::Gpu) -> Option<u32> {
-        self.cull.peel_kept(gpu)
-    }
-
     /// The second depth layer (linear, 0 = none), when depth peeling was asked for.
     pub fn second_layer(&self) -> Option<&wgpu::Texture> {
         self.peel.as_ref().map(|p| &p.depth)
@@ -389,8 +351,7 @@ impl GBuffer {
 
     /// Rasterise `scene` seen through `view`. Timings: `triangle_cull` and `gbuffer` (the
     /// visibility pass; each for both phases of its occlusion culling), `occlusion_pyramid`,
-    /// `gbuffer_resolve`, and `peel_pyramid`, `peel_cull`, `depth_peel` and `depth_peel_resolve`
-    /// when peeling.
+    /// `gbuffer_resolve`, and `depth_peel` and `depth_peel_resolve` when peeling.
     pub fn render(
         &self,
         device: &wgpu::Device,
@@ -404,8 +365,12 @@ impl GBuffer {
         queue.write_buffer(&self.camera, 0, bytemuck::bytes_of(&camera));
         // Chunks nearest first: triangle indices (the visibility buffers) refer to this order.
         let scene = &scene.draw_ordered();
-        self.cull
-            .prepare(queue, view, visibility_draws(scene, view));
+        self.cull.prepare(
+            queue,
+            view,
+            visibility_draws(scene, view),
+            self.peel.is_some(),
+        );
         // Occlusion culling in two phases (super::triangle_cull): last frame's visible triangles,
         // then the others that their depths do not hide, into the same targets.
         self.cull.encode(encoder, profiler.as_deref_mut());
@@ -478,17 +443,8 @@ impl GBuffer {
                     peel.params.as_entire_binding(),
                 ],
             );
-            let (targets, words) = match &peel.visibility {
-                Visibility::Target(texture) => (vec![(texture, None)], None),
-                Visibility::Words(buffer) => (Vec::new(), Some(buffer.as_entire_binding())),
-            };
-            // The words' pass neither tests nor writes depth: it draws over the G-buffer's
-            // depth buffer as it is (a clear would cost as much as writing every pixel).
-            let clear = words.is_none();
-            let resources = resources.into_iter().chain(words).collect::<Vec<_>>();
-            // Not occlusion-culled: those the first layer hides are what peeling looks for.
-            self.cull
-                .encode_peel(device, encoder, &first, profiler.as_deref_mut());
+            let targets = [(&peel.visibility, None)];
+            // Every triangle: those the first layer hides are what peeling looks for.
             self.draw(
                 device,
                 encoder,
@@ -497,23 +453,16 @@ impl GBuffer {
                 &targets,
                 DrawLists {
                     lists: &[CullList::All],
-                    clear,
+                    clear: true,
                     keep_depth: true,
                 },
                 "depth_peel",
                 profiler.as_deref_mut(),
             );
-            let depth = peel.depth.create_view(&Default::default());
-            let visibility_view;
-            let mut resources = vec![(7, wgpu::BindingResource::TextureView(&depth))];
-            match &peel.visibility {
-                Visibility::Target(texture) => {
-                    visibility_view = texture.create_view(&Default::default());
-                    resources.push((6, wgpu::BindingResource::TextureView(&visibility_view)));
-                    resources.push((8, wgpu::BindingResource::TextureView(&z)));
-                }
-                Visibility::Words(buffer) => resources.push((6, buffer.as_entire_binding())),
-            }
+            let (visibility, depth) = (
+                peel.visibility.create_view(&Default::default()),
+                peel.depth.create_view(&Default::default()),
+            );
             self.resolve(
                 device,
                 encoder,
@@ -521,7 +470,11 @@ impl GBuffer {
                 &peel.resolve,
                 (peel.depth.width(), peel.depth.height()),
                 false,
-                resources,
+                vec![
+                    (6, wgpu::BindingResource::TextureView(&visibility)),
+                    (7, wgpu::BindingResource::TextureView(&depth)),
+                    (8, wgpu::BindingResource::TextureView(&z)),
+                ],
                 "depth_peel_resolve",
                 profiler,
             );

@@ -19,7 +19,7 @@
 
 use super::chunks::Draw;
 use super::gpu_scene::GpuScene;
-use super::occlusion_pyramid::{OcclusionPyramid, PyramidSource};
+use super::occlusion_pyramid::OcclusionPyramid;
 use crate::gpu::PassProfiler;
 use crate::view::FrameView;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -35,7 +35,7 @@ struct CullParams {
     draws: u32,
     keep_all: u32,
     phase: u32,
-    _pad0: u32,
+    keep_all_list: u32,
     list_triangles: u32,
     list_draws: u32,
     _pad: [u32; 2],
@@ -44,9 +44,9 @@ struct CullParams {
 /// The triangle lists a [`TriangleCull`] writes (the number is the list's place in its buffers).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum CullList {
-    /// Every triangle that may cover a pixel centre ([`TriangleCull::encode`] without occlusion
-    /// culling); or the peeling list: of those, the ones that may lie behind the first layer by
-    /// more than the separation somewhere ([`TriangleCull::encode_peel`]).
+    /// Every triangle that may cover a pixel centre: the only list without occlusion culling;
+    /// with it, written on request ([`TriangleCull::prepare`]) for passes that must not be
+    /// occlusion-culled by the first layer (depth peeling).
     All = 0,
     /// Occlusion culling's first phase: of those, the ones a pixel showed last frame.
     SeenLastFrame = 1,
@@ -65,26 +65,6 @@ struct Occlusion {
     /// The second phase's parameters and bindings.
     second_params: wgpu::Buffer,
     second_bind_group: wgpu::BindGroup,
-}
-
-/// What a peeling list is culled against: the first layer's size (the framebuffer's, guard band
-/// included, as the pass's), the separation behind it, and the timing names of its pyramid and
-/// culling dispatch.
-pub(crate) struct PeelSource {
-    pub size: (u32, u32),
-    pub separation: f32,
-    pub pyramid_name: &'static str,
-    pub cull_name: &'static str,
-}
-
-/// The peeling list's culling ([`CullList::All`] without the triangles that depth peeling, or a
-/// stochastic depth map's "hidden" rule, rejects everywhere): its pyramid, parameters and
-/// bindings.
-struct PeelCull {
-    pyramid: OcclusionPyramid,
-    params: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
-    name: &'static str,
 }
 
 #[cfg(test)]
@@ -134,8 +114,6 @@ pub(crate) struct TriangleCull {
     max_draws: u32,
     triangles: u32,
     occlusion: Option<Occlusion>,
-    /// The peeling list, when asked for.
-    peel: Option<PeelCull>,
     /// Its timing name.
     pub name: &'static str,
 }
@@ -143,14 +121,12 @@ pub(crate) struct TriangleCull {
 impl TriangleCull {
     /// The pass for `scene` (draw-ordered: the chunks index it), timed as `name`; with `occlusion`,
     /// the depth buffer (`Depth32Float`, reversed Z) of the pass that draws [`CullList::SeenLastFrame`],
-    /// occlusion culling in two phases. With `peel`, [`TriangleCull::encode_peel`] makes
-    /// [`CullList::All`] the peeling list.
+    /// occlusion culling in two phases.
     pub fn new(
         device: &wgpu::Device,
         scene: &GpuScene,
         name: &'static str,
         occlusion: Option<&wgpu::Texture>,
-        peel: Option<PeelSource>,
     ) -> Self {
         let pipeline = crate::gpu::compute_pipeline_with(
             device,
@@ -197,9 +173,7 @@ impl TriangleCull {
             wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
         );
         let params = parameters("cull params");
-        let pyramid = occlusion.map(|z| {
-            OcclusionPyramid::new(device, PyramidSource::Farthest(z), "occlusion_pyramid")
-        });
+        let pyramid = occlusion.map(|z| OcclusionPyramid::new(device, z));
         let seen_frame = storage(
             "triangles seen",
             if occlusion.is_some() {
@@ -215,7 +189,7 @@ impl TriangleCull {
             |p| p.buffer.clone(),
         );
         let layout = pipeline.get_bind_group_layout(0);
-        let bind_group_with = |params: &wgpu::Buffer, pyramid_buffer: &wgpu::Buffer| {
+        let bind_group_with = |params: &wgpu::Buffer| {
             crate::gpu::bind_group(
                 device,
                 "triangle cull",
@@ -232,32 +206,15 @@ impl TriangleCull {
                 ],
             )
         };
-        let bind_group = bind_group_with(&params, &pyramid_buffer);
+        let bind_group = bind_group_with(&params);
         let occlusion = pyramid.map(|pyramid| {
             let second_params = parameters("cull params, second phase");
             Occlusion {
-                second_bind_group: bind_group_with(&second_params, &pyramid_buffer),
+                second_bind_group: bind_group_with(&second_params),
                 second_params,
                 pyramid,
                 seen_frame: seen_frame.clone(),
                 frame: AtomicU32::new(0),
-            }
-        });
-        let peel = peel.map(|source| {
-            let pyramid = OcclusionPyramid::new(
-                device,
-                PyramidSource::Peel {
-                    size: source.size,
-                    separation: source.separation,
-                },
-                source.pyramid_name,
-            );
-            let params = parameters("cull params, peeling");
-            PeelCull {
-                bind_group: bind_group_with(&params, &pyramid.buffer),
-                params,
-                pyramid,
-                name: source.cull_name,
             }
         });
         let drawn_group = crate::gpu::bind_group(
@@ -277,14 +234,14 @@ impl TriangleCull {
             max_draws: max_draws as u32,
             triangles: scene.triangle_count,
             occlusion,
-            peel,
             name,
         }
     }
 
     /// The coming frame: `draws` (the chunks `view` may see, [`super::gbuffer::visibility_draws`])
-    /// seen through `view`.
-    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>) {
+    /// seen through `view`. With occlusion culling, `all_too` also asks the first phase for
+    /// [`CullList::All`].
+    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView, draws: Vec<Draw>, all_too: bool) {
         let (width, height) = (view.full_width(), view.full_height());
         // A dispatch's phase is the number of the list it writes.
         let params = |list: CullList| {
@@ -299,7 +256,7 @@ impl TriangleCull {
                 #[cfg(not(test))]
                 keep_all: 0,
                 phase,
-                _pad0: 0,
+                keep_all_list: u32::from(all_too),
                 list_triangles: phase * self.triangles,
                 list_draws: phase * self.max_draws,
                 _pad: [0; 2],
@@ -321,15 +278,6 @@ impl TriangleCull {
                     bytemuck::bytes_of(&params(CullList::NotHidden)),
                 );
             }
-        }
-        if let Some(peel) = &self.peel {
-            // Phase 3, into list 0.
-            let p = CullParams {
-                phase: 3,
-                ..params(CullList::All)
-            };
-            queue.write_buffer(&peel.params, 0, bytemuck::bytes_of(&p));
-            peel.pyramid.prepare(queue, view.projection());
         }
         let list: Vec<[u32; 4]> = draws
             .iter()
@@ -353,7 +301,7 @@ impl TriangleCull {
     /// Cull the prepared frame's triangles: without occlusion culling, [`CullList::All`]; with
     /// it, the first phase (timing: this pass's name).
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut PassProfiler>) {
-        self.dispatch(encoder, &self.bind_group, self.name, profiler);
+        self.dispatch(encoder, &self.bind_group, profiler);
     }
 
     /// Occlusion culling's second phase, after the first phase's triangles are drawn into the
@@ -367,47 +315,23 @@ impl TriangleCull {
     ) {
         if let Some(o) = &self.occlusion {
             o.pyramid.encode(encoder, profiler.as_deref_mut());
-            self.dispatch(encoder, &o.second_bind_group, self.name, profiler);
+            self.dispatch(encoder, &o.second_bind_group, profiler);
         }
     }
 
-    /// The peeling list ([`CullList::All`]) of a pass made with `peel`, from `first_layer` (the
-    /// linear depth, `R32Float`, of the size given in [`PeelSource`]) as it is now: its pyramid,
-    /// then the triangles that may lie behind it by more than the separation somewhere, tested
-    /// for the frustum and pixel centres as [`TriangleCull::encode`]'s (timings: the
-    /// [`PeelSource`]'s names). Without `peel`, [`TriangleCull::encode`].
-    pub fn encode_peel(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        first_layer: &wgpu::TextureView,
-        mut profiler: Option<&mut PassProfiler>,
-    ) {
-        match &self.peel {
-            Some(peel) => {
-                peel.pyramid
-                    .encode_from(device, encoder, first_layer, profiler.as_deref_mut());
-                self.dispatch(encoder, &peel.bind_group, peel.name, profiler);
-            }
-            None => self.encode(encoder, profiler),
-        }
-    }
-
-    /// One culling dispatch with `bind_group`, timed as `name`.
     fn dispatch(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         bind_group: &wgpu::BindGroup,
-        name: &'static str,
         profiler: Option<&mut PassProfiler>,
     ) {
         let count = self.draws.lock().unwrap().len() as u32;
         if count == 0 {
             return;
         }
-        let timestamp_writes = profiler.map(|p| p.compute_pass(name));
+        let timestamp_writes = profiler.map(|p| p.compute_pass(self.name));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(name),
+            label: Some(self.name),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pipeline);
@@ -467,16 +391,6 @@ impl TriangleCull {
             .collect();
         (submitted, kept)
     }
-
-    /// Triangles kept in the peeling list by the last frame, when there is one (waits for
-    /// the GPU).
-    pub fn peel_kept(&self, gpu: &crate::Gpu) -> Option<u32> {
-        self.peel.as_ref()?;
-        let draws = self.draws.lock().unwrap().len();
-        let bytes = crate::gpu::read_buffer_copy(gpu, &self.args).unwrap();
-        let args: &[[u32; 4]] = bytemuck::cast_slice(&bytes);
-        Some(args[..draws].iter().map(|a| a[0] / 3).sum())
-    }
 }
 
 #[cfg(test)]
@@ -490,9 +404,7 @@ mod tests {
     /// the camera, the camera turned and moved, the camera again twice — so the G-buffer's
     /// occlusion culling is checked on its first frame (no history), after a camera move (last
     /// frame's visible set from another view) and still (the steady state); the last must draw
-    /// fewer triangles than the first, which has only the frustum and back-face tests. The
-    /// peeling lists of depth peeling (`vao-dual`) and of the stochastic depth maps keep fewer
-    /// than they are given, their twins all of them.
+    /// fewer triangles than the first, which has only the frustum and back-face tests.
     #[test]
     fn culling_changes_no_pixel_and_drops_triangles() {
         if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
@@ -502,8 +414,6 @@ mod tests {
             Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)");
         let (mut submitted, mut kept) = (0, 0);
         let (mut first_frame, mut still) = (0, 0);
-        let (mut peel_submitted, mut peel_kept) = (0, 0);
-        let (mut sd_submitted, mut sd_kept) = (0, 0);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
             let extent = scene.bounds().max - scene.bounds().min;
@@ -533,18 +443,14 @@ mod tests {
                                     r.read_stochastic_depth().unwrap(),
                                     r.read_ao().unwrap(),
                                 );
-                                let peel = r.gbuffer().peel_kept(&gpu);
-                                let sd = r.stochastic_depth_map().map(|m| m.cull_counts(&gpu));
-                                (images, (r.gbuffer().cull_counts(&gpu), peel, sd))
+                                (images, r.gbuffer().cull_counts(&gpu))
                             })
                             .collect::<Vec<_>>()
                     };
                     let culled = frames(false);
                     let whole = frames(true);
-                    for (
-                        f,
-                        ((images, (counts, peel, sd)), (whole_images, (all, whole_peel, whole_sd))),
-                    ) in culled.iter().zip(&whole).enumerate()
+                    for (f, ((images, counts), (whole_images, all))) in
+                        culled.iter().zip(&whole).enumerate()
                     {
                         let what = format!("{name} {} {technique}, frame {f}", named.name);
                         assert_eq!(
@@ -555,29 +461,9 @@ mod tests {
                         assert!(images == whole_images, "{what}: culling changed the frame");
                         submitted += counts.0;
                         kept += counts.1.iter().sum::<u32>();
-                        if technique == Technique::VaoDual {
-                            assert_eq!(
-                                *whole_peel,
-                                Some(all.0),
-                                "{what}: the uncull'd twin peels every triangle"
-                            );
-                            peel_submitted += counts.0;
-                            peel_kept += peel.expect("depth peeling's list");
-                        } else {
-                            let (given, kept) = sd
-                                .expect("a stochastic depth map")
-                                .expect("the map's peeling list");
-                            let (whole_given, whole_kept) = whole_sd.unwrap().unwrap();
-                            assert_eq!(
-                                whole_kept, whole_given,
-                                "{what}: the uncull'd twin keeps every triangle for the map"
-                            );
-                            sd_submitted += given;
-                            sd_kept += kept;
-                        }
                     }
-                    first_frame += culled[0].1 .0 .1.iter().sum::<u32>();
-                    still += culled[3].1 .0 .1.iter().sum::<u32>();
+                    first_frame += culled[0].1 .1.iter().sum::<u32>();
+                    still += culled[3].1 .1.iter().sum::<u32>();
                 }
             }
         }
@@ -586,17 +472,7 @@ mod tests {
             "culling kept {kept} of {submitted} triangles"
         );
         eprintln!(
-            "occlusion culling: {still} triangles drawn still, {first_frame} on the first frame; \
-             depth peeling drew {peel_kept} of {peel_submitted}, the stochastic depth maps \
-             {sd_kept} of {sd_submitted}"
-        );
-        assert!(
-            peel_kept < peel_submitted,
-            "depth peeling's list kept {peel_kept} of {peel_submitted} triangles"
-        );
-        assert!(
-            sd_kept < sd_submitted,
-            "the stochastic depth maps' lists kept {sd_kept} of {sd_submitted} triangles"
+            "occlusion culling: {still} triangles drawn still, {first_frame} on the first frame"
         );
         assert!(
             still < first_frame,

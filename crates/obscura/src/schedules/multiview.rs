@@ -132,7 +132,7 @@ impl Multiview {
             scene,
             None,
         )?
-        .keeping_every_layer(device)
+        .keeping_every_layer()
         .timed_as(
             "multiview_sd_clear",
             "multiview_sd_reset",

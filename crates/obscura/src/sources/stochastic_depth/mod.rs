@@ -12,9 +12,7 @@
 //! (where the device has wgpu's `SHADER_EARLY_DEPTH_TEST`): the reset writes per pixel the depth
 //! a fragment must lie behind to be hidden, and the stencil. Any S of
 //! [`crate::settings::SD_SAMPLE_COUNTS`] runs on any adapter (no multisampled target). Like the
-//! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]), and, without a
-//! band of its own, only the triangles that may lie behind the first layer by more than the
-//! separation somewhere (depth peeling's list, `raster::triangle_cull`).
+//! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]).
 //! The AO passes read the map through `read.wgsl` (the source contract).
 //!
 //! Optionally the map has its own guard band (`stochastic_depth.guard_band`; ours, after the
@@ -32,7 +30,7 @@ use crate::raster::gbuffer::{
     ScenePipeline,
 };
 use crate::raster::gpu_scene::GpuScene;
-use crate::raster::triangle_cull::{CullList, PeelSource, TriangleCull};
+use crate::raster::triangle_cull::{CullList, TriangleCull};
 use crate::settings::{SdMask, SdSelection, StochasticDepthSettings, SD_SAMPLE_COUNTS};
 use crate::view::FrameView;
 use crate::{shaders, Error};
@@ -447,19 +445,15 @@ impl StochasticDepthMap {
             requested: requested.is_some(),
             all_layers: false,
             timing_name: "sd_map",
-            triangle_cull: sd_triangle_cull(device, scene, (width, height), band, Some(separation)),
+            triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None),
         })
     }
 
     /// This map storing every layer, the first visible one included: no first layer is skipped
     /// (the multi-view schedule's second view, seed 001 §3.4). The `first_layer` given to
     /// [`StochasticDepthMap::render`] is then not read.
-    pub fn keeping_every_layer(mut self, device: &wgpu::Device) -> Self {
+    pub fn keeping_every_layer(mut self) -> Self {
         self.all_layers = true;
-        // Every layer: no triangle is culled for lying in front of the first.
-        let name = self.triangle_cull.name;
-        self.triangle_cull = sd_triangle_cull(device, &self.scene, self.size, self.band, None);
-        self.triangle_cull.name = name;
         self
     }
 
@@ -536,7 +530,7 @@ impl StochasticDepthMap {
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
         // pipeline of this map each.
         self.triangle_cull
-            .prepare(queue, view, visibility_draws(&self.scene, view));
+            .prepare(queue, view, visibility_draws(&self.scene, view), false);
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -581,8 +575,7 @@ impl StochasticDepthMap {
             &resources,
         );
         let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
-        self.triangle_cull
-            .encode_peel(device, encoder, first_layer, profiler.as_deref_mut());
+        self.triangle_cull.encode(encoder, profiler.as_deref_mut());
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
         let load = if self.all_layers {
@@ -600,14 +593,6 @@ impl StochasticDepthMap {
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }
-    }
-
-    /// Triangles the last frame's culling was given and kept, when the map keeps only the
-    /// triangles that may lie behind the first layer (tests; waits for the GPU).
-    #[cfg(test)]
-    pub(crate) fn cull_counts(&self, gpu: &crate::Gpu) -> Option<(u32, u32)> {
-        let kept = self.triangle_cull.peel_kept(gpu)?;
-        Some((self.triangle_cull.counts(gpu).0, kept))
     }
 
     /// What a reader binds in the source group, matching [`bindings_wgsl`] and
@@ -636,29 +621,6 @@ impl StochasticDepthMap {
             })
             .collect())
     }
-}
-
-/// The map's triangle culling (timed as `sd_cull`): with `separation`, and where the map has no
-/// band of its own, its list keeps only the triangles that may lie behind the first layer by more
-/// than the separation somewhere, the fragments `map.wgsl`'s `sd_hidden` stores (the peeling list
-/// of depth peeling, whose rule it is; its pyramid timed as `sd_pyramid`). In a band every layer
-/// is kept, and the first layer does not reach there.
-fn sd_triangle_cull(
-    device: &wgpu::Device,
-    scene: &GpuScene,
-    size: (u32, u32),
-    band: u32,
-    separation: Option<f32>,
-) -> TriangleCull {
-    let peel = separation
-        .filter(|_| band == 0)
-        .map(|separation| PeelSource {
-            size,
-            separation,
-            pyramid_name: "sd_pyramid",
-            cull_name: "sd_cull",
-        });
-    TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None, peel)
 }
 
 /// A render pass on the map's depth(-stencil) target: depth loaded as `depth` says, the stencil
