@@ -885,6 +885,7 @@ fn stochastic_depth_options_are_clear_errors() {
     {
         assert_eq!(info["sd_early_tests"], true, "{info}");
         assert_eq!(info["sd_stencil"], true, "{info}");
+        assert_eq!(info["visibility_words"], true, "{info}");
     }
 }
 

@@ -22,9 +22,11 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
     let gpu = obscura::Gpu::new(options)?;
     let s = &gpu.summary;
     let sd = obscura::sources::stochastic_depth::SdCapabilities::of(&gpu.device);
+    let words = obscura::raster::gbuffer::visibility_words_available(&gpu.device);
     if args.json {
         let mut json = serde_json::to_value(s)?;
         if let Some(object) = json.as_object_mut() {
+            object.insert("visibility_words".into(), words.into());
             object.insert("sd_format".into(), sd.format.clone().into());
             object.insert("sd_early_tests".into(), sd.early_tests.into());
             object.insert("sd_stencil".into(), sd.stencil.into());
@@ -79,6 +81,14 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
     );
     println!("depth MSAA   {:?} samples", s.depth_msaa_sample_counts);
     let yes_no = |b: bool, no: &'static str| if b { "yes" } else { no };
+    println!(
+        "visibility   {}",
+        if words {
+            "64-bit atomic words (no colour target)"
+        } else {
+            "R32Uint colour target (SHADER_INT64_ATOMIC_MIN_MAX or early tests missing: the same G-buffer, slower)"
+        }
+    );
     println!(
         "SD map       {}, --sd-samples {:?}",
         sd.format, sd.sample_counts
