@@ -241,10 +241,9 @@ fn spanning_level(p: vec2<u32>, q: vec2<u32>, tiles: u32) -> SpanningLevel {
 // MARGIN of its pixel bounds that it may cover: unless coarse_tiles_hide decides it, of the
 // finest pyramid level whose at most HIDDEN_TILES² tiles cover those pixels (level 0: each
 // pixel's own depth), every tile not wholly outside one of the triangle's edges is tested
-// against the triangle's nearest depth
-// over the tile's pixel centres: its plane (depth is affine in screen space) at the nearest of
-// them, never nearer than its nearest corner. Bounds that no level covers with so few tiles
-// decide nothing (false).
+// against the triangle's nearest depth over the tile's pixel centres: its plane (depth is affine
+// in screen space) at the nearest of them, never nearer than its nearest corner. Bounds that no
+// level covers with so few tiles decide nothing (false).
 fn hidden_by_pyramid(cover: Coverage) -> bool {
     // Only pixels of the framebuffer can show the triangle.
     let first = max(ceil(cover.lo - MARGIN - 0.5), vec2<f32>(0.0));
