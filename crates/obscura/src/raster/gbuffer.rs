@@ -49,13 +49,22 @@ enum Visibility {
 
 /// Whether this device's visibility pass can store by 64-bit atomics instead of a colour target
 /// (wgpu features `SHADER_INT64`, `SHADER_INT64_ATOMIC_MIN_MAX` and `SHADER_EARLY_DEPTH_TEST`,
-/// requested by [`crate::Gpu`] where the adapter has them). Either way the G-buffer is the same.
+/// requested by [`crate::Gpu`] where the adapter has them), at sizes whose 8 bytes a pixel fit
+/// one storage binding. Either way the G-buffer is the same.
 pub fn visibility_words_available(device: &wgpu::Device) -> bool {
     device.features().contains(
         wgpu::Features::SHADER_INT64
             | wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX
             | wgpu::Features::SHADER_EARLY_DEPTH_TEST,
     )
+}
+
+/// Whether the words of a `width`×`height` framebuffer, 8 bytes a pixel, fit one storage
+/// binding of a device with `limits` (not at 4096 × 4096 + 1 px on lavapipe's 128 MiB, say);
+/// larger framebuffers get the colour target.
+fn visibility_words_fit(limits: &wgpu::Limits, width: u32, height: u32) -> bool {
+    let bytes = 8 * u64::from(width) * u64::from(height);
+    bytes <= u64::from(limits.max_storage_buffer_binding_size) && bytes <= limits.max_buffer_size
 }
 
 #[cfg(test)]
@@ -169,10 +178,11 @@ impl GBuffer {
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
+        let words_bytes = 8 * u64::from(width) * u64::from(height);
+        let words = visibility_words_available(device)
+            && visibility_words_fit(&device.limits(), width, height);
         #[cfg(test)]
-        let words = visibility_words_available(device) && !VISIBILITY_TARGET_ONLY.with(|v| v.get());
-        #[cfg(not(test))]
-        let words = visibility_words_available(device);
+        let words = words && !VISIBILITY_TARGET_ONLY.with(|v| v.get());
         // A pass storing words: its module on its own (64-bit atomics need device features the
         // other pipelines do without), the framebuffer's width for the fragments' word index,
         // and the words at `binding` after the pass's other bindings.
@@ -199,7 +209,7 @@ impl GBuffer {
         let words_buffer = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: 8 * u64::from(width) * u64::from(height),
+                size: words_bytes,
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             })
@@ -836,8 +846,27 @@ impl ScenePipeline<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{visibility_words_available, VISIBILITY_TARGET_ONLY};
+    use super::{visibility_words_available, visibility_words_fit, VISIBILITY_TARGET_ONLY};
     use crate::{scene, AoSettings, Gpu, GpuOptions, Renderer, Technique};
+
+    /// Words only where 8 bytes a pixel fit one storage binding and one buffer.
+    #[test]
+    fn visibility_words_only_where_they_fit() {
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: 128 << 20,
+            max_buffer_size: 256 << 20,
+            ..Default::default()
+        };
+        assert!(visibility_words_fit(&limits, 4096, 4096));
+        assert!(!visibility_words_fit(&limits, 4096, 4097));
+        assert!(visibility_words_fit(&limits, 1920 + 128, 1080 + 128));
+        let small_buffers = wgpu::Limits {
+            max_buffer_size: 64 << 20,
+            ..limits
+        };
+        assert!(!visibility_words_fit(&small_buffers, 4096, 4096));
+        assert!(visibility_words_fit(&small_buffers, 2048, 4096));
+    }
 
     /// The visibility pass by 64-bit atomics leaves the same G-buffer (depth, normals, the peeled
     /// layer, the AO) as its colour-target twin on every built-in scene and camera, frame after
