@@ -64,7 +64,7 @@ pub fn visibility_words_available(device: &wgpu::Device) -> bool {
 /// larger framebuffers get the colour target.
 fn visibility_words_fit(limits: &wgpu::Limits, width: u32, height: u32) -> bool {
     let bytes = 8 * u64::from(width) * u64::from(height);
-    bytes <= u64::from(limits.max_storage_buffer_binding_size) && bytes <= limits.max_buffer_size
+    bytes <= limits.max_storage_buffer_binding_size && bytes <= limits.max_buffer_size
 }
 
 #[cfg(test)]
