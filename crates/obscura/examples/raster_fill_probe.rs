@@ -209,13 +209,20 @@ pub fn run(
             aspect: wgpu::TextureAspect::DepthOnly,
             ..Default::default()
         });
-        let pipeline = |colour: bool| {
-            let targets = [Some(wgpu::TextureFormat::R32Uint.into())];
+        // A full-screen-layer pipeline writing depth (`Greater`), with `fragment` (entry point,
+        // colour targets, pipeline constants) where it has one.
+        let constants = [("WIDTH", f64::from(width))];
+        type Fragment<'a> = (
+            &'a str,
+            &'a [Option<wgpu::ColorTargetState>],
+            &'a [(&'a str, f64)],
+        );
+        let pipeline = |module: &wgpu::ShaderModule, fragment: Option<Fragment>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: None,
                 layout: None,
                 vertex: wgpu::VertexState {
-                    module: &module,
+                    module,
                     entry_point: Some("vs"),
                     compilation_options: Default::default(),
                     buffers: &[],
@@ -229,49 +236,26 @@ pub fn run(
                     bias: Default::default(),
                 }),
                 multisample: Default::default(),
-                fragment: colour.then(|| wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_id"),
-                    compilation_options: Default::default(),
-                    targets: &targets,
+                fragment: fragment.map(|(entry_point, targets, constants)| wgpu::FragmentState {
+                    module,
+                    entry_point: Some(entry_point),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants,
+                        ..Default::default()
+                    },
+                    targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             })
         };
-        let (depth_only, with_colour) = (pipeline(false), pipeline(true));
-        let constants = [("WIDTH", f64::from(width))];
+        let id_targets = [Some(wgpu::TextureFormat::R32Uint.into())];
+        let (depth_only, with_colour) = (
+            pipeline(&module, None),
+            pipeline(&module, Some(("fs_id", &id_targets, &[]))),
+        );
         let atomic = atomic_module.as_ref().map(|module| {
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: None,
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module,
-                    entry_point: Some("vs"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Greater),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module,
-                    entry_point: Some("fs_atomic"),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants: &constants,
-                        ..Default::default()
-                    },
-                    targets: &[],
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
+            let pipeline = pipeline(module, Some(("fs_atomic", &[], &constants)));
             let bind = obscura::gpu::bind_group(
                 device,
                 "probe atomics",

@@ -178,50 +178,12 @@ impl GBuffer {
         let normal_constants = [("SHADING_NORMALS", f64::from(u8::from(shading_normals)))];
         let visibility_targets = [Some(VISIBILITY_FORMAT.into())];
         let albedo_targets = [Some(ALBEDO_FORMAT.into())];
-        let words_bytes = 8 * u64::from(width) * u64::from(height);
         let words = visibility_words_available(device)
             && visibility_words_fit(&device.limits(), width, height);
         #[cfg(test)]
         let words = words && !VISIBILITY_TARGET_ONLY.with(|v| v.get());
-        // A pass storing words: its module on its own (64-bit atomics need device features the
-        // other pipelines do without), the framebuffer's width for the fragments' word index,
-        // and the words at `binding` after the pass's other bindings.
-        let words_module = |parts: &[&str], main: &str, binding: u32| {
-            let constants = format!(
-                "const VISIBILITY_WIDTH: u32 = {width}u;\nconst VISIBILITY_WORDS_BINDING: u32 = {binding}u;"
-            );
-            let mut parts = parts.to_vec();
-            parts.push(&constants);
-            parts.push(shaders::VISIBILITY_WORDS_STORE);
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("visibility words"),
-                source: wgpu::ShaderSource::Wgsl(shaders::with_common(&parts, main).into()),
-            })
-        };
-        let words_entry = (
-            wgpu::ShaderStages::FRAGMENT,
-            wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-        );
-        let words_buffer = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: words_bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            })
-        };
-        let load_header = |words| {
-            if words {
-                shaders::VISIBILITY_WORDS_LOAD
-            } else {
-                shaders::VISIBILITY_TARGET_LOAD
-            }
-        };
-        let resolve_pipeline = |label, main, words, constants: &[(&str, f64)]| {
+        // The resolves, after the header that reads the pass's visibility (`visible_triangle`).
+        let resolve_pipeline = |label, main, load: &str, constants: &[(&str, f64)]| {
             crate::gpu::compute_pipeline_with(
                 device,
                 label,
@@ -231,7 +193,7 @@ impl GBuffer {
                         shaders::VERTEX_NORMAL,
                         shaders::GBUFFER,
                         shaders::GBUFFER_RESOLVE,
-                        load_header(words),
+                        load,
                     ],
                     main,
                 ),
@@ -261,7 +223,7 @@ impl GBuffer {
                 resolve: resolve_pipeline(
                     "depth peel resolve",
                     shaders::DEPTH_PEEL_RESOLVE,
-                    false,
+                    shaders::VISIBILITY_TARGET_LOAD,
                     &[],
                 ),
                 depth: target_with(
@@ -271,11 +233,46 @@ impl GBuffer {
                 ),
             }
         });
-        let (visibility, visibility_pipelines) = if words {
-            let layout = scene_layout(device, &[words_entry]);
-            let module = words_module(&scene_shaders, shaders::GBUFFER_VISIBILITY_ATOMIC, 6);
+        let (visibility, visibility_pipelines, visibility_load) = if words {
+            // Its module on its own: 64-bit atomics need device features the other pipelines do
+            // without. The words are binding 6, after the scene's; the framebuffer's width
+            // gives each fragment's word.
+            let constants = format!(
+                "const VISIBILITY_WIDTH: u32 = {width}u;\nconst VISIBILITY_WORDS_BINDING: u32 = 6u;"
+            );
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("visibility words"),
+                source: wgpu::ShaderSource::Wgsl(
+                    shaders::with_common(
+                        &[
+                            &scene_shaders[..],
+                            &[&constants, shaders::VISIBILITY_WORDS_STORE],
+                        ]
+                        .concat(),
+                        shaders::GBUFFER_VISIBILITY_ATOMIC,
+                    )
+                    .into(),
+                ),
+            });
+            let layout = scene_layout(
+                device,
+                &[(
+                    wgpu::ShaderStages::FRAGMENT,
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: false },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                )],
+            );
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("visibility words"),
+                size: 8 * u64::from(width) * u64::from(height),
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            });
             (
-                Visibility::Words(words_buffer("visibility words")),
+                Visibility::Words(buffer),
                 group_pipelines(
                     device,
                     &module,
@@ -284,6 +281,7 @@ impl GBuffer {
                     &[],
                     Some(&layout),
                 ),
+                shaders::VISIBILITY_WORDS_LOAD,
             )
         } else {
             (
@@ -296,6 +294,7 @@ impl GBuffer {
                     &visibility_targets,
                     Some(&gbuffer_layout),
                 ),
+                shaders::VISIBILITY_TARGET_LOAD,
             )
         };
         let z = target("z", Z_FORMAT);
@@ -320,7 +319,7 @@ impl GBuffer {
             resolve: resolve_pipeline(
                 "gbuffer resolve",
                 shaders::GBUFFER_RESOLVE_MAIN,
-                words,
+                visibility_load,
                 &normal_constants,
             ),
             albedo_pipelines: [Some(wgpu::Face::Back), None, None].map(|cull_mode| {
@@ -847,7 +846,8 @@ impl ScenePipeline<'_> {
 #[cfg(test)]
 mod tests {
     use super::{visibility_words_available, visibility_words_fit, VISIBILITY_TARGET_ONLY};
-    use crate::{scene, AoSettings, Gpu, GpuOptions, Renderer, Technique};
+    use crate::raster::test_support::{gpu, moved};
+    use crate::{scene, AoSettings, Renderer, Technique};
 
     /// Words only where 8 bytes a pixel fit one storage binding and one buffer.
     #[test]
@@ -874,11 +874,7 @@ mod tests {
     /// leave nothing behind).
     #[test]
     fn visibility_words_equal_the_colour_target() {
-        if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
-            std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir());
-        }
-        let gpu =
-            Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)");
+        let gpu = gpu();
         assert!(
             visibility_words_available(&gpu.device),
             "{} lacks 64-bit atomics or early fragment tests (lavapipe has them)",
@@ -887,12 +883,9 @@ mod tests {
         let settings = AoSettings::preset(Technique::VaoDual, crate::settings::Preset::Medium);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
-            let extent = scene.bounds().max - scene.bounds().min;
             for named in &scene.cameras {
                 let camera = named.camera;
-                let mut moved = camera;
-                moved.eye += extent * glam::Vec3::new(0.06, 0.03, -0.04);
-                moved.target += extent * glam::Vec3::new(-0.05, 0.0, 0.03);
+                let moved = moved(&scene, &camera);
                 let frames = |target_only: bool| {
                     VISIBILITY_TARGET_ONLY.with(|v| v.set(target_only));
                     let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();

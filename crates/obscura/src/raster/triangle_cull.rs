@@ -396,7 +396,8 @@ impl TriangleCull {
 #[cfg(test)]
 mod tests {
     use super::KEEP_EVERY_TRIANGLE;
-    use crate::{scene, AoSettings, Gpu, GpuOptions, Renderer, Technique};
+    use crate::raster::test_support::{gpu, moved};
+    use crate::{scene, AoSettings, Renderer, Technique};
 
     /// Every built-in scene and camera, culled and not: the G-buffer, the peeled layer and the
     /// stochastic depth maps (full and limited to requested pixels) are bit-identical, and the
@@ -407,21 +408,14 @@ mod tests {
     /// fewer triangles than the first, which has only the frustum and back-face tests.
     #[test]
     fn culling_changes_no_pixel_and_drops_triangles() {
-        if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
-            std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir());
-        }
-        let gpu =
-            Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)");
+        let gpu = gpu();
         let (mut submitted, mut kept) = (0, 0);
         let (mut first_frame, mut still) = (0, 0);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
-            let extent = scene.bounds().max - scene.bounds().min;
             for named in &scene.cameras {
                 let camera = named.camera;
-                let mut moved = camera;
-                moved.eye += extent * glam::Vec3::new(0.06, 0.03, -0.04);
-                moved.target += extent * glam::Vec3::new(-0.05, 0.0, 0.03);
+                let moved = moved(&scene, &camera);
                 let cameras = [&camera, &moved, &camera, &camera];
                 for technique in [Technique::VaoDual, Technique::SdVao, Technique::SdSvao] {
                     let settings = AoSettings::preset(technique, crate::settings::Preset::Medium);
