@@ -195,9 +195,13 @@ fn the_maps_choices_stay_put_while_the_camera_moves() {
 
 #[test]
 fn sd_svao_limits_the_map_to_requested_pixels() {
-    // Same seeds, so the map limited to the requested pixels (by stencil or by discard) holds the
-    // same values wherever phase 1 asked for it (the images are held equal to sd-vao's by
-    // tests/two_phase_twins.rs).
+    // Same seeds, so the map limited to the requested pixels (by stencil, depth or discard) holds
+    // the same values wherever phase 1 asked for it (the images are held equal to sd-vao's by
+    // tests/two_phase_twins.rs), and nothing elsewhere: read as written, not as the AO reads it.
+    // Each map first draws a frame from a view nearer the scene, so that at the pixels requested
+    // there but not here the depth and stencil that frame wrote lie in front of this frame's
+    // hidden layers: only this frame's mask (for the stencil and the depth mask, the
+    // fixed-function test; their shaders no longer read it) keeps those pixels empty.
     let gpu = gpu();
     // S = 1 reads single-sample maps (another binding type), 8 and 16 stack maps on lavapipe.
     for (name, s) in [
@@ -210,12 +214,19 @@ fn sd_svao_limits_the_map_to_requested_pixels() {
     ] {
         let scene = scene::builtin(name).unwrap();
         let cam = scene.cameras[0].camera;
+        let forward = (cam.target - cam.eye).normalize() * 0.5;
+        let nearer = obscura::scene::Camera {
+            eye: cam.eye + forward,
+            target: cam.target + forward,
+            ..cam
+        };
         let render = |technique, mask| {
             let mut settings = settings(technique, s, 0.375);
             settings.stochastic_depth.mask = mask;
             let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 16).unwrap();
+            r.render(&nearer, None).unwrap();
             r.render(&cam, None).unwrap();
-            let layers = r.read_stochastic_depth().unwrap().unwrap();
+            let layers = r.read_stochastic_depth_as_written().unwrap().unwrap();
             (r.read_ao().unwrap(), layers, r.read_sd_requests().unwrap())
         };
         let (_, full_map, _) = render(Technique::SdVao, SdMask::Stencil);

@@ -478,13 +478,8 @@ impl AmbientOcclusion {
     /// two-phase row's map is defined only at the pixels phase 1 requested; it reads as empty
     /// elsewhere. Waits for the GPU.
     pub fn read_stochastic_depth(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
-        let mut layers = match (
-            self.source.stochastic_depth(),
-            self.source.ray_stochastic_depth(),
-        ) {
-            (Some(map), _) => map.read_layers(&self.gpu)?,
-            (None, Some(map)) => map.read_layers(&self.gpu)?,
-            (None, None) => return Ok(None),
+        let Some(mut layers) = self.read_stochastic_depth_as_written()? else {
+            return Ok(None);
         };
         if let Some(requests) = self.read_sd_requests()? {
             for layer in &mut layers {
@@ -496,6 +491,21 @@ impl AmbientOcclusion {
             }
         }
         Ok(Some(layers))
+    }
+
+    /// [`AmbientOcclusion::read_stochastic_depth`] without emptying the pixels phase 1 did not
+    /// request: the map as the raster pass left it. A two-phase row's map must be empty there
+    /// (the stencil, depth or shader test keeps those pixels from the pass); this shows whether
+    /// it is. Waits for the GPU.
+    pub fn read_stochastic_depth_as_written(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        match (
+            self.source.stochastic_depth(),
+            self.source.ray_stochastic_depth(),
+        ) {
+            (Some(map), _) => map.read_layers(&self.gpu).map(Some),
+            (None, Some(map)) => map.read_layers(&self.gpu).map(Some),
+            (None, None) => Ok(None),
+        }
     }
 
     /// The ray-traced stochastic depth map's size in texels, its guard band included, and that

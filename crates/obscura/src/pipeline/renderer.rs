@@ -209,6 +209,11 @@ impl Renderer {
         self.last_ao()?.read_stochastic_depth()
     }
 
+    /// [`AmbientOcclusion::read_stochastic_depth_as_written`] of the last frame.
+    pub fn read_stochastic_depth_as_written(&self) -> Result<Option<Vec<Vec<f32>>>, Error> {
+        self.last_ao()?.read_stochastic_depth_as_written()
+    }
+
     /// `ray-sd-vao`, `ray-sd-vao-full`: the hits each pixel's ray handled in the last frame (see
     /// [`AmbientOcclusion::read_ray_sd_hits`]).
     pub fn read_ray_sd_hits(&self) -> Result<Option<Vec<u32>>, Error> {

@@ -29,7 +29,7 @@
 // against it (`@early_depth_test(force)`, wgpu's SHADER_EARLY_DEPTH_TEST; removed from the source
 // where the device lacks it), so fragments in front of the first layer and at unrequested
 // pixels are never shaded. The shaders make every other decision themselves as well (the first
-// layer, and the request mask where the depth test does not hold it): the early tests only skip
+// layer, and the request mask where the early tests do not hold it): the early tests only skip
 // work.
 
 struct SdRaster {

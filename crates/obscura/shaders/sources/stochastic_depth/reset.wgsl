@@ -47,13 +47,16 @@ fn fs_reset_all(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) 
     return sd_cull_depth(vec2<u32>(position.xy));
 }
 
+// Both loads before the test, as in fs_reset_requested_by_depth below.
 @fragment
 fn fs_reset_requested(@builtin(position) position: vec4<f32>) -> @builtin(frag_depth) f32 {
     let pixel = vec2<u32>(position.xy);
-    if (!sd_requested(pixel)) {
+    let requested = sd_requested(pixel);
+    let depth = sd_cull_depth(pixel);
+    if (!requested) {
         discard;
     }
-    return sd_cull_depth(pixel);
+    return depth;
 }
 
 // Reversed Z: no fragment's depth is less than the far plane's 0, so the map's early test

@@ -353,11 +353,13 @@ impl StochasticDepthMap {
         } else {
             Default::default()
         };
-        // With `--sd-mask depth` and early tests, the depth test alone keeps unrequested pixels
-        // from the shader (tests/stochastic_depth.rs holds the map empty there); otherwise the
-        // shader reads the mask as well.
-        let mask_in_depth = requested == Some(SdMask::Depth) && early_tests_available(device);
-        let [plain, masked] = if requested.is_some() && !mask_in_depth {
+        // With `--sd-mask depth` or `stencil` and early tests, the fixed-function test alone
+        // keeps unrequested pixels from the shader (tests/stochastic_depth.rs holds the map empty
+        // there); otherwise the shader reads the mask as well. A stenciled map whose shader read
+        // the mask too cost 29 % more than the depth mask's (BENCHMARKS.md, issue 16).
+        let mask_in_tests = matches!(requested, Some(SdMask::Depth | SdMask::Stencil))
+            && early_tests_available(device);
+        let [plain, masked] = if requested.is_some() && !mask_in_tests {
             [
                 "fs_stochastic_depth_requested",
                 "fs_stochastic_depth_masked_requested",
