@@ -314,6 +314,20 @@ impl AmbientOcclusion {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         textures: FrameTextures,
+        profiler: Option<&mut PassProfiler>,
+    ) -> Result<(), Error> {
+        self.encode_with_gbuffer_z(encoder, textures, None, profiler)
+    }
+
+    /// [`Self::encode`] for a frame the caller rasterised with this camera into `gbuffer_z`
+    /// (reversed-Z `Depth32Float`, the framebuffer's size; [`crate::Renderer`]'s G-buffer): the
+    /// stochastic depth map may test its fragments against that depth instead of writing its
+    /// own (`StochasticDepthMap::render`). Not at half resolution, whose frame is another size.
+    pub(crate) fn encode_with_gbuffer_z(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        textures: FrameTextures,
+        gbuffer_z: Option<&wgpu::Texture>,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         let device = &self.gpu.device;
@@ -385,6 +399,7 @@ impl AmbientOcclusion {
             bent: &bent,
             estimator: &self.estimator,
             source: &self.source,
+            gbuffer_z: gbuffer_z.filter(|_| self.half.is_none()),
         };
         self.schedule
             .encode(&ctx, encoder, profiler.as_deref_mut())?;

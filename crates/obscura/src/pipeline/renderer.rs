@@ -116,7 +116,12 @@ impl Renderer {
             &view,
             profiler.as_deref_mut(),
         );
-        ao.encode(&mut encoder, self.frame_textures(), profiler.as_deref_mut())?;
+        ao.encode_with_gbuffer_z(
+            &mut encoder,
+            self.frame_textures(),
+            Some(self.gbuffer.z_buffer()),
+            profiler.as_deref_mut(),
+        )?;
         if let Some(p) = profiler {
             p.end_frame(&mut encoder);
         }

@@ -353,6 +353,12 @@ impl GBuffer {
         self.cull.counts(gpu)
     }
 
+    /// The visibility pass's depth buffer (reversed-Z [`Z_FORMAT`], the framebuffer's size) as
+    /// the last frame left it.
+    pub(crate) fn z_buffer(&self) -> &wgpu::Texture {
+        &self.z
+    }
+
     /// The second depth layer (linear, 0 = none), when depth peeling was asked for.
     pub fn second_layer(&self) -> Option<&wgpu::Texture> {
         self.peel.as_ref().map(|p| &p.depth)

@@ -130,6 +130,9 @@ pub(crate) struct FrameContext<'a> {
     pub bent: &'a wgpu::TextureView,
     pub estimator: &'a EstimatorPass,
     pub source: &'a SourcePass,
+    /// The depth buffer `frame`'s first layer was rasterised into, where the caller drew the
+    /// frame itself at this size ([`crate::Renderer`]); engines' frames have none.
+    pub gbuffer_z: Option<&'a wgpu::Texture>,
 }
 
 /// The groups every AO pass of a frame binds: frame, estimator, and the source's.

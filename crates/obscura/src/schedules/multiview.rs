@@ -270,6 +270,7 @@ impl Multiview {
             encoder,
             &self.no_first_layer,
             None,
+            None,
             profiler.as_deref_mut(),
         );
         // Pass 2: group 0 is the camera's depth and normals under the second view's geometry.

@@ -50,7 +50,13 @@ impl Single {
     ) -> Result<(), Error> {
         let source = ctx.source;
         source.begin_frame(ctx.device, encoder, profiler.as_deref_mut());
-        source.prepare(ctx.device, encoder, ctx.frame, profiler.as_deref_mut());
+        source.prepare(
+            ctx.device,
+            encoder,
+            ctx.frame,
+            ctx.gbuffer_z,
+            profiler.as_deref_mut(),
+        );
         let resolve = source.resolve_group(ctx.device, ctx.frame)?;
         let groups = FrameGroups {
             frame: ctx.frame_group,

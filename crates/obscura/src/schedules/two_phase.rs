@@ -230,7 +230,13 @@ impl TwoPhase {
             pass.set_bind_group(0, &self.indirect_group, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }
-        source.prepare(device, encoder, frame, profiler.as_deref_mut());
+        source.prepare(
+            device,
+            encoder,
+            frame,
+            ctx.gbuffer_z,
+            profiler.as_deref_mut(),
+        );
         let resolve = source.resolve_group(device, frame)?;
         groups.resolve = resolve.as_ref();
         let timestamp_writes = profiler.map(|p| p.compute_pass("svao_phase2"));

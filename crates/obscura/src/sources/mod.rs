@@ -372,11 +372,14 @@ impl SourcePass {
 
     /// Renders what the resolving pass reads (the stochastic depth map; for a two-phase schedule
     /// only where phase 1 requested it). Called by the schedule right before that pass.
+    /// `gbuffer_z`: the frame's depth buffer where the caller rasterised the frame itself
+    /// ([`StochasticDepthMap::render`]).
     pub fn prepare(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameInputs,
+        gbuffer_z: Option<&wgpu::Texture>,
         profiler: Option<&mut PassProfiler>,
     ) {
         match &self.held {
@@ -384,6 +387,7 @@ impl SourcePass {
                 device,
                 encoder,
                 frame.depth,
+                gbuffer_z,
                 self.request.as_ref(),
                 profiler,
             ),

@@ -74,6 +74,15 @@ fn cull_format(stenciled: bool) -> wgpu::TextureFormat {
     }
 }
 
+#[cfg(test)]
+thread_local! {
+    /// Tests: maps made on this thread always test against their reset's depth, never the
+    /// G-buffer's (the twin of [`StochasticDepthMap::render`] given a `gbuffer_z`).
+    pub(crate) static RESET_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Tests: frames whose map was tested against the G-buffer's depth on this thread.
+    pub(crate) static GBUFFER_Z_FRAMES: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+}
+
 /// Whether this device can stencil the map (wgpu feature `DEPTH32FLOAT_STENCIL8`, requested by
 /// [`crate::Gpu`] where the adapter has it); without it `--sd-mask discard` limits the map.
 pub fn stencil_available(device: &wgpu::Device) -> bool {
@@ -230,6 +239,10 @@ pub struct StochasticDepthMap {
     requested: bool,
     /// Keep every layer ([`StochasticDepthMap::keeping_every_layer`]).
     all_layers: bool,
+    /// May be tested against the G-buffer's own depth buffer instead of its reset's
+    /// ([`StochasticDepthMap::render`]): the whole map, no band of its own, early tests and a
+    /// separation.
+    gbuffer_z_usable: bool,
     /// Timing name of the raster (`sd_map`; the reset's is its own).
     timing_name: &'static str,
     /// The triangles of the coming frame's draws (the scene's chunks in view,
@@ -408,6 +421,16 @@ impl StochasticDepthMap {
             }
             .create(device)
         });
+        // The G-buffer's depth buffer holds the first layer's own depth: tested against it (no
+        // writes, `Less`), the first layer's fragments fail, and those behind it pass early; the
+        // shader drops what lies within `separation` behind (as it does with the reset's
+        // depth). A fragment the rasteriser puts at the first layer's depth while its linear
+        // depth is more than `separation` behind would be lost, which needs a separation below
+        // the depth's rounding (relative 1e-7): so a positive separation is required.
+        let gbuffer_z_usable =
+            requested.is_none() && band == 0 && separation > 0.0 && early_tests_available(device);
+        #[cfg(test)]
+        let gbuffer_z_usable = gbuffer_z_usable && !RESET_ONLY.with(|r| r.get());
         let scope = match requested {
             Some(SdMask::Stencil) => ResetScope::Stenciled,
             Some(SdMask::Depth) => ResetScope::RequestedByDepth,
@@ -446,6 +469,7 @@ impl StochasticDepthMap {
             reset,
             requested: requested.is_some(),
             all_layers: false,
+            gbuffer_z_usable,
             timing_name: "sd_map",
             triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None),
         })
@@ -538,13 +562,20 @@ impl StochasticDepthMap {
 
     /// Rasterise the map behind `first_layer` (the G-buffer's linear depth). With `request` (a
     /// map made with `requested`), only the pixels whose u32 in it is non-zero; the map is then
-    /// empty elsewhere. Timings: `sd_clear` (emptying the map), `sd_reset` (the depth, and for a
-    /// stenciled map the stencil, its fragments are tested against) and `sd_map`.
+    /// empty elsewhere. `gbuffer_z`: the depth buffer the first layer was rasterised into
+    /// (reversed-Z `Depth32Float` of the framebuffer's size, drawn with this frame's camera), if
+    /// the caller has one; a whole map without a band of its own is then tested against it
+    /// instead of a depth its reset writes (the same map: fragments the G-buffer's depth lets
+    /// through but the reset's would not lie within `separation` behind the first layer, and the
+    /// shader drops them). Timings: `sd_clear` (emptying the map), `sd_reset` (the depth, and
+    /// for a stenciled map the stencil, its fragments are tested against; not run when tested
+    /// against `gbuffer_z`) and `sd_map`.
     pub fn render(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         first_layer: &wgpu::TextureView,
+        gbuffer_z: Option<&wgpu::Texture>,
         request: Option<&wgpu::Buffer>,
         mut profiler: Option<&mut PassProfiler>,
     ) {
@@ -561,12 +592,21 @@ impl StochasticDepthMap {
         ];
         extra.extend(request.map(|r| r.as_entire_binding()));
         let resources = scene_resources(&self.camera, &self.scene, extra);
+        let gbuffer_z = gbuffer_z
+            .filter(|z| {
+                self.gbuffer_z_usable
+                    && !self.all_layers
+                    && z.format() == cull_format(false)
+                    && z.sample_count() == 1
+                    && (z.width(), z.height()) == self.size
+            })
+            .map(|z| z.create_view(&Default::default()));
         // A map keeping every layer tests against nothing: its pass clears the depth to 1.
         let stencil_value = self.reset.encode(
             device,
             encoder,
             &self.depths,
-            (!self.all_layers).then_some(&self.cull),
+            (!self.all_layers && gbuffer_z.is_none()).then_some(&self.cull),
             &resources,
             profiler.as_deref_mut(),
         );
@@ -585,7 +625,12 @@ impl StochasticDepthMap {
         } else {
             wgpu::LoadOp::Load
         };
-        let mut pass = begin(encoder, &self.cull, load, timestamp_writes);
+        #[cfg(test)]
+        if gbuffer_z.is_some() {
+            GBUFFER_Z_FRAMES.with(|f| f.set(f.get() + 1));
+        }
+        let target = gbuffer_z.as_ref().unwrap_or(&self.cull);
+        let mut pass = begin(encoder, target, load, timestamp_writes);
         pass.set_stencil_reference(stencil_value);
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, map_name);
@@ -660,6 +705,92 @@ pub(crate) fn begin<'e>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::raster::test_support::{gpu, moved};
+    use crate::settings::AoSettings;
+    use crate::{scene, Renderer, Technique};
+
+    /// The whole map tested against the G-buffer's depth buffer holds the same depths as its
+    /// twin tested against its reset's, on every built-in scene and camera, frame after frame
+    /// (a frame of another view in between), for S = 1, 4 and 16 and both selections; so do
+    /// the AO images. A map with its own band keeps its reset.
+    #[test]
+    fn the_gbuffer_depth_gives_the_reset_depths_map() {
+        let gpu = gpu();
+        let mut cases = vec![];
+        for (samples, selection) in [
+            (4, SdSelection::Stochastic),
+            (1, SdSelection::Stochastic),
+            (16, SdSelection::Stochastic),
+            (4, SdSelection::Nearest),
+        ] {
+            let mut s = AoSettings {
+                technique: Technique::SdVao,
+                ..AoSettings::default()
+            };
+            s.stochastic_depth.samples = samples;
+            s.stochastic_depth.selection = selection;
+            cases.push(s);
+        }
+        let mut non_empty = 0;
+        for name in scene::builtin_names() {
+            let scene = scene::builtin(name).unwrap();
+            for named in &scene.cameras {
+                let camera = named.camera;
+                let moved = moved(&scene, &camera);
+                for settings in &cases {
+                    let frames = |reset_only: bool| {
+                        RESET_ONLY.with(|r| r.set(reset_only));
+                        let mut r = Renderer::new(&gpu, &scene, settings, 96, 64, 8).unwrap();
+                        let before = GBUFFER_Z_FRAMES.with(|f| f.get());
+                        let frames: Vec<_> = [&camera, &moved, &camera]
+                            .iter()
+                            .map(|&camera| {
+                                r.render(camera, None).unwrap();
+                                let map = r.read_stochastic_depth_as_written().unwrap().unwrap();
+                                (map, r.read_ao().unwrap())
+                            })
+                            .collect();
+                        // (The map is made at the first frame.)
+                        RESET_ONLY.with(|r| r.set(false));
+                        let used = GBUFFER_Z_FRAMES.with(|f| f.get()) - before;
+                        (frames, used)
+                    };
+                    let (z, used) = frames(false);
+                    let (reset, reset_used) = frames(true);
+                    let what = format!(
+                        "{name} {}, S = {}, {:?}",
+                        named.name,
+                        settings.stochastic_depth.samples,
+                        settings.stochastic_depth.selection
+                    );
+                    assert_eq!(
+                        (used, reset_used),
+                        (3, 0),
+                        "{what}: frames on the G-buffer's z"
+                    );
+                    for (f, (a, b)) in z.iter().zip(&reset).enumerate() {
+                        non_empty += usize::from(a.0.iter().flatten().any(|&d| d > 0.0));
+                        assert!(
+                            a == b,
+                            "{what}, frame {f}: the G-buffer's z changed the map"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(non_empty > 0, "every map was empty");
+        // Its own band: the reset, always.
+        let mut s = AoSettings {
+            technique: Technique::SdVao,
+            ..AoSettings::default()
+        };
+        s.stochastic_depth.guard_band = 4;
+        let scene = scene::builtin("stairs").unwrap();
+        let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 8).unwrap();
+        let before = GBUFFER_Z_FRAMES.with(|f| f.get());
+        r.render(&scene.cameras[0].camera, None).unwrap();
+        assert_eq!(GBUFFER_Z_FRAMES.with(|f| f.get()), before, "a banded map");
+    }
 
     #[test]
     fn mask_table_lists_every_subset_by_popcount() {
