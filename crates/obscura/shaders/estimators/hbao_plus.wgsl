@@ -166,17 +166,24 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // common/bent.wgsl forms the bent normal from the two sums. An open hemisphere gives the normal
 // exactly; if every direction were blocked to the zenith on one side (o = 1 there), the normal
 // would tilt by atan(2/π) away from that side, the cosine-weighted hemisphere's limit.
+//
+// The sums are kept in screen terms and laid into view space once per pixel
+// (estimator_bent_normal): with P = I − n nᵀ the projection onto the tangent plane, a sample's
+// t = P d / |P d| for its screen direction d (view z 0), so Σ w·t = P Σ (w / |P d|)·d. Per sample
+// that leaves |P d|² = |d|² − (n·d)² (n is unit), one reciprocal root and a 2D sum; z carries
+// the normal's weight.
 fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: f32) -> vec3<f32> {
     // Screen y runs down, view y up.
     let step = s.px - (vec2<f32>(p.pixel) + 0.5);
-    let d = vec3<f32>(step.x, -step.y, 0.0);
-    let along = d - p.normal * dot(p.normal, d);
-    let len2 = dot(along, along);
-    let t = select(vec3<f32>(0.0), along * inverseSqrt(len2), len2 > 1e-24);
+    let d = vec2<f32>(step.x, -step.y);
+    let nd = dot(p.normal.xy, d);
+    let len2 = dot(d, d) - nd * nd;
+    let inv_len = select(0.0, inverseSqrt(len2), len2 > 1e-24);
     let o = saturate(value);
     // cos h · cos m = (1 − o)·sqrt((1 + o)/2) and cos h · sin m = (1 + o)·sqrt((1 − o)/2), as
     // cos h = sqrt((1 − o)(1 + o)): two square roots per sample instead of three.
-    return (1.0 - o) * sqrt((1.0 + o) * 0.5) * t + (1.0 + o) * sqrt((1.0 - o) * 0.5) * p.normal;
+    let along = (1.0 - o) * sqrt((1.0 + o) * 0.5) * inv_len;
+    return vec3<f32>(along * d, (1.0 + o) * sqrt((1.0 - o) * 0.5));
 }
 
 // The bent normal from the samples' sums (common/bent.wgsl), view space.
@@ -186,5 +193,15 @@ fn estimator_bent_normal(
     sample_visible: vec3<f32>,
     sample_open: vec3<f32>,
 ) -> vec3<f32> {
-    return bent_from_sums(p.normal, sample_visible, sample_open);
+    return bent_from_sums(
+        p.normal,
+        bent_to_view(p.normal, sample_visible),
+        bent_to_view(p.normal, sample_open),
+    );
+}
+
+// A sum of estimator_bent_sample in view space: P (x, y, 0) + z·n.
+fn bent_to_view(n: vec3<f32>, sum: vec3<f32>) -> vec3<f32> {
+    let d = vec3<f32>(sum.xy, 0.0);
+    return d - n * dot(n, d) + sum.z * n;
 }
