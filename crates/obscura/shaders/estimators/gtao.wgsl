@@ -161,7 +161,7 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
         if (BENT_NORMALS) {
             s.tangent = tangent;
             s.gamma_sc = vec2<f32>(dot(projected, tangent), dot(projected, p.v))
-                / max(s.projected_length, 1e-20);
+                * (1.0 / max(s.projected_length, 1e-20));
         }
     }
     return s;
@@ -228,7 +228,7 @@ fn fold_slice(acc: EstimatorAccum) -> EstimatorAccum {
         let sc1 = select(vec2<f32>(sqrt(1.0 - c1 * c1), c1), edges[1], c1 < -sg.x);
         let sc0 = select(vec2<f32>(-sqrt(1.0 - c0 * c0), c0), edges[0], c0 < sg.x);
         let visible = a.projected_length * span_bent(sc0, sc1, sg);
-        let open = a.projected_length * span_bent(edges[0], edges[1], sg);
+        let open = a.projected_length * open_slice_bent(sg);
         a.bent_tangent += visible.x * a.tangent;
         a.bent_v += visible.y;
         a.open_tangent += open.x * a.tangent;

@@ -336,9 +336,8 @@ fn estimator_bent_normal(
         var sum: vec2<f32>;
         var whole: vec2<f32>;
         if (COSINE_WEIGHTED) {
-            let edges = hemisphere_edges(g);
             sum = p.projected_lengths[j] * cosine;
-            whole = p.projected_lengths[j] * span_bent(edges[0], edges[1], g);
+            whole = p.projected_lengths[j] * open_slice_bent(g);
         } else {
             // ∫ω over θ = γ + x: the local (t, v) sums turned by γ.
             sum = vec2<f32>(g.y * local.x + g.x * local.y, g.y * local.y - g.x * local.x);

@@ -60,3 +60,15 @@ fn span_direction(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
 fn hemisphere_edges(gamma: vec2<f32>) -> array<vec2<f32>, 2> {
     return array<vec2<f32>, 2>(vec2<f32>(-gamma.y, gamma.x), vec2<f32>(gamma.y, -gamma.x));
 }
+
+// The cosine-weighted bent vector of the slice's whole hemisphere, span_bent between its edges.
+// With cos γ > 0 (a normal facing the camera) the edges' sines are cos γ and −cos γ, and
+// G(γ + π/2) − G(γ − π/2) = F(γ + π/2) + F(γ − π/2) reduces to (4/3 sin γ, 2/3 cos γ); other
+// normals take the general form.
+fn open_slice_bent(gamma: vec2<f32>) -> vec2<f32> {
+    if (gamma.y > 0.0) {
+        return vec2<f32>(4.0 / 3.0 * gamma.x, 2.0 / 3.0 * gamma.y);
+    }
+    let edges = hemisphere_edges(gamma);
+    return span_bent(edges[0], edges[1], gamma);
+}
