@@ -333,7 +333,8 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // The vector is in the sample frame (tangent, bitangent, axis): the sums are linear, so
 // estimator_bent_normal turns them into view space once per pixel rather than every sample.
 fn estimator_bent_sample(p: VaoPixel, s: VaoSample, value: f32) -> vec3<f32> {
-    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * 0.5 / s.h);
+    // The same 0.5 / h as estimator_accum_value's, so that the pass divides once per sample.
+    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * (0.5 / s.h));
 }
 
 // The bent normal from the summed free centroids against the open ones (common/bent.wgsl), view
