@@ -35,7 +35,8 @@ struct VaoParams {
     normalization: u32,
     _pad1: u32,
     _pad2: u32,
-    // xy: unit direction of sample i before rotation, z: radius (fraction of R).
+    // Sample i before the pixel's rotation, in units of R: xy its offset on the disc, z its
+    // column's half height sqrt(1 − |xy|²), w the reciprocal of z.
     kernel: array<vec4<f32>, 32>,
     // xy: (cos, sin) of the rotation of pixel (x % 4, y % 4), index x % 4 + 4 * (y % 4).
     rotations: array<vec4<f32>, 16>,
@@ -48,15 +49,22 @@ struct VaoParams {
 // free; above the column up to `halo_from` = (1 + thickness) R the column is fully occluded
 // (constant area); above that it becomes visible again linearly over one column length (falloff
 // area).
+// The falloff area's visible part, saturate((z − halo_from) / length) · length, is written as a
+// clamp, which is the same for any column that counts (length > 0) and has no division.
 fn column_visibility(halo_from: f32, z: f32, column_start: f32, column_end: f32) -> f32 {
     let length = column_start - column_end;
     let sphere_vis = max(column_start - max(column_end, z), 0.0);
-    let halo_vis = saturate((z - halo_from) / length) * length;
+    let halo_vis = clamp(z - halo_from, 0.0, length);
     return sphere_vis + halo_vis;
 }
 
 // The shading point's sample frame: `axis` points to the camera, `tangent`/`bitangent` span the
 // sample disc, `n_xy`/`inv_n_z` give the surface normal in that frame.
+// The rest is what every sample of the pixel would otherwise make again (an AO pass is bound by
+// its per-sample arithmetic, BENCHMARKS.md): `plane` turns an offset from `pos` into its column
+// height (see column_height), `disc_x`/`disc_y` are the disc's axes turned by the pixel's rotation
+// and scaled by R (a kernel entry's view-space offset is k.x disc_x + k.y disc_y), and `crossing`
+// gives where the tangent plane crosses a kernel entry's column (−dot(k.xy, crossing)).
 struct VaoFrame {
     pos: vec3<f32>,
     axis: vec3<f32>,
@@ -64,6 +72,10 @@ struct VaoFrame {
     bitangent: vec3<f32>,
     n_xy: vec2<f32>,
     inv_n_z: f32,
+    plane: vec3<f32>,
+    disc_x: vec3<f32>,
+    disc_y: vec3<f32>,
+    crossing: vec2<f32>,
     // Framebuffer pixel of the shading point.
     pixel: vec2<u32>,
     // The sphere radius R this pixel uses where the radius is capped on screen (MAX_RADIUS_PX;
@@ -84,21 +96,25 @@ fn halo_start(f: VaoFrame) -> f32 {
     return (1.0 + params.thickness) * frame_radius(f);
 }
 
-// One line sample: lateral offset `d`, its clipped column [end, start] and where it projects
+// One line sample: lateral offset `d`, its clipped column [end, start], the height at which the
+// tangent plane crosses it (`crossing`, before clipping to the column) and where it projects
 // (unclamped framebuffer pixel coordinates).
 struct VaoColumn {
     d: vec2<f32>,
     start: f32,
     end: f32,
+    crossing: f32,
     px: vec2<f32>,
 }
 
 // Height of view-space point `p` in the column's frame: along the view axis, corrected along the
-// tangent plane for its lateral offset from the column (see "Pixel snapping" above).
+// tangent plane for its lateral offset from the column (see "Pixel snapping" above). With
+// o = p − pos and n the normal in the sample frame (n_xy, n_z), that height is
+//   dot(o, axis) + (dot(o, tangent) − d.x, dot(o, bitangent) − d.y) · n_xy / n_z
+//   = dot(o, axis + (tangent n_x + bitangent n_y) / n_z) − dot(d, n_xy) / n_z,
+// i.e. dot(o, plane) plus the tangent plane's crossing of the column: one dot product a sample.
 fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {
-    let offset = p - f.pos;
-    let lateral = vec2<f32>(dot(offset, f.tangent), dot(offset, f.bitangent)) - c.d;
-    return dot(offset, f.axis) + dot(lateral, f.n_xy) * f.inv_n_z;
+    return dot(p - f.pos, f.plane) + c.crossing;
 }
 
 // The sample count is a pipeline constant so the sample loop unrolls and the depth reads of all
@@ -138,35 +154,49 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     let n_local = vec3<f32>(dot(n, basis[0]), dot(n, basis[1]), dot(n, axis));
     // Avoid division by zero for normals perpendicular to the view ray (seed: makeNonZero 1e-4).
     let n_z = select(min(n_local.z, -1e-4), max(n_local.z, 1e-4), n_local.z >= 0.0);
+    let inv_n_z = 1.0 / n_z;
     p.frame.pos = pos;
     p.frame.axis = axis;
     p.frame.tangent = basis[0];
     p.frame.bitangent = basis[1];
     p.frame.n_xy = n_local.xy;
-    p.frame.inv_n_z = 1.0 / n_z;
+    p.frame.inv_n_z = inv_n_z;
     p.frame.pixel = pixel;
     p.frame.capped_radius = capped_radius(view, params.radius, -pos.z);
     p.n_z_positive = n_local.z >= 0.0;
-    p.rotation = params.rotations[pattern_index(id)].xy;
+    let rotation = params.rotations[pattern_index(id)].xy;
+    p.rotation = rotation;
+    let r = frame_radius(p.frame);
+    p.frame.plane = axis + (basis[0] * n_local.x + basis[1] * n_local.y) * inv_n_z;
+    // d = rotate_by(k.xy, rotation) r, so the offset tangent d.x + bitangent d.y and the
+    // crossing −dot(d, n_xy) / n_z are linear in k.xy with these coefficients.
+    p.frame.disc_x = (basis[0] * rotation.x + basis[1] * rotation.y) * r;
+    p.frame.disc_y = (basis[1] * rotation.x - basis[0] * rotation.y) * r;
+    p.frame.crossing = rotate_by(n_local.xy, vec2<f32>(rotation.x, -rotation.y)) * (r * inv_n_z);
     return p;
 }
 
-// Sample `i`'s column; `h` is the half height of the unclipped column (pdf 2h), and h = 0 marks
-// a sample whose clipped column is too short to count (seed 000 §3.2: a_i = 0).
+// Sample `i`'s column; `h` is the half height of the unclipped column (pdf 2h), `inv_2h` its
+// weight 1 / 2h, and h = 0 marks a sample whose clipped column is too short to count (seed 000
+// §3.2: a_i = 0).
 struct VaoSample {
     column: VaoColumn,
     h: f32,
+    inv_2h: f32,
 }
 
 fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     let k = params.kernel[i];
-    let dir = rotate_by(k.xy, p.rotation);
-    let r = frame_radius(p.frame);
+    let f = p.frame;
+    let r = frame_radius(f);
     var s: VaoSample;
-    s.column.d = dir * (k.z * r);
-    s.h = sqrt(max(r * r - dot(s.column.d, s.column.d), 0.0));
+    // Only bent normals read d (estimator_bent_sample); without them it is never made.
+    s.column.d = rotate_by(k.xy, p.rotation) * r;
+    s.h = k.z * r;
+    s.inv_2h = k.w * (0.5 / r);
     // Hemisphere clipping: the tangent plane crosses the column at height z_i.
-    let z_i = clamp(-dot(s.column.d, p.frame.n_xy) * p.frame.inv_n_z, -s.h, s.h);
+    s.column.crossing = -dot(k.xy, f.crossing);
+    let z_i = clamp(s.column.crossing, -s.h, s.h);
     s.column.start = s.h;
     s.column.end = -s.h;
     if (p.n_z_positive) {
@@ -178,8 +208,7 @@ fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
         s.h = 0.0;
         return s;
     }
-    let f = p.frame;
-    s.column.px = view_to_pixel(view, f.pos + f.tangent * s.column.d.x + f.bitangent * s.column.d.y);
+    s.column.px = view_to_pixel(view, f.pos + f.disc_x * k.x + f.disc_y * k.y);
     return s;
 }
 
@@ -302,14 +331,14 @@ fn estimator_accum_init() -> EstimatorAccum {
 // Counts an active sample into the normalisation (whatever its value).
 fn estimator_accum_sample(acc: EstimatorAccum, s: VaoSample) -> EstimatorAccum {
     var a = acc;
-    a.clipped_sum += (s.column.start - s.column.end) * (0.5 / s.h);
+    a.clipped_sum += (s.column.start - s.column.end) * s.inv_2h;
     return a;
 }
 
 // Adds a resolved sample's value.
 fn estimator_accum_value(acc: EstimatorAccum, s: VaoSample, value: f32) -> EstimatorAccum {
     var a = acc;
-    a.sum += value * (0.5 / s.h);
+    a.sum += value * s.inv_2h;
     return a;
 }
 
@@ -333,8 +362,8 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // The vector is in the sample frame (tangent, bitangent, axis): the sums are linear, so
 // estimator_bent_normal turns them into view space once per pixel rather than every sample.
 fn estimator_bent_sample(p: VaoPixel, s: VaoSample, value: f32) -> vec3<f32> {
-    // The same 0.5 / h as estimator_accum_value's, so that the pass divides once per sample.
-    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * (0.5 / s.h));
+    // The same weight 1 / 2h as estimator_accum_value's.
+    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * s.inv_2h);
 }
 
 // The bent normal from the summed free centroids against the open ones (common/bent.wgsl), view

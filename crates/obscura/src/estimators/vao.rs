@@ -71,7 +71,11 @@ impl VaoParams {
         let mut kernel = [[0.0; 4]; 32];
         for (i, k) in kernel.iter_mut().enumerate().take(s.samples as usize) {
             let (dir, r) = kernel_sample(i as u32, s.samples);
-            *k = [dir.x, dir.y, r, 0.0];
+            // What the shader makes of the sample for every pixel, made here once: its offset on
+            // the unit disc, its column's half height over R, sqrt(1 − r²) (r < 1), and the
+            // reciprocal of that (the weight 1/2h of seed 000 Eq. 7 without a per-sample division).
+            let half_height = (1.0 - r * r).sqrt();
+            *k = [dir.x * r, dir.y * r, half_height, 1.0 / half_height];
         }
         let mut rotations = [[0.0; 4]; 16];
         for (i, rot) in rotations.iter_mut().enumerate() {
