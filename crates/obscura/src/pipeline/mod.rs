@@ -191,13 +191,7 @@ impl AmbientOcclusion {
         }
         if settings.blur.enabled && !estimator_debug {
             filters.push(FilterStage {
-                filter: Box::new(BilateralBlur::new(
-                    device,
-                    &settings.blur,
-                    work_view,
-                    work.width,
-                    work.height,
-                )),
+                filter: Box::new(BilateralBlur::new(device, &settings.blur, work_view)),
                 output: ao_texture("ao blurred"),
             });
         }
