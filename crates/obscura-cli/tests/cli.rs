@@ -369,7 +369,7 @@ fn bench_reports_every_pass() {
         ),
         (Some(64), Some(48), Some(5))
     );
-    for pass in ["gbuffer", "vao", "blur"] {
+    for pass in ["gbuffer", "vao", "blur_x", "blur_y", "blur"] {
         assert!(
             r["passes"][pass].as_f64().is_some_and(|ms| ms >= 0.0),
             "{pass} missing in {r}"

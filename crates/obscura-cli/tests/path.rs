@@ -263,7 +263,7 @@ fn bench_along_a_path_reports_the_spread() {
     assert_eq!(path["times"].as_array().unwrap().len(), 4);
     assert_eq!(path["times"][3], 3.0);
     assert_eq!(path["totals"].as_array().unwrap().len(), 4);
-    for pass in ["vao", "temporal", "blur"] {
+    for pass in ["vao", "temporal", "blur_x"] {
         let [lo, hi] = [0, 1].map(|i| path["spread"][pass][i].as_f64().unwrap());
         let median = r["passes"][pass].as_f64().unwrap();
         assert!(lo <= median && median <= hi, "{pass}: {lo} {median} {hi}");

@@ -89,9 +89,7 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(ao, count) / total;
 }
 
-// 32×8 workgroups: fewer launches than 8×8 (a pass reading and writing one texel per pixel
-// took half the time, BENCHMARKS.md).
-@compute @workgroup_size(32, 8)
+@compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (any(gid.xy >= view.visible_size)) {
         return;

@@ -218,6 +218,14 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             for (pass, ms) in frame {
                 per_pass.entry(pass.clone()).or_default().push(*ms);
             }
+            let blur: f64 = frame
+                .iter()
+                .filter(|(p, _)| p.starts_with("blur_"))
+                .map(|(_, ms)| ms)
+                .sum();
+            if blur > 0.0 {
+                per_pass.entry("blur".into()).or_default().push(blur);
+            }
             totals.push(frame.values().sum());
         }
         let layout = renderer

@@ -201,8 +201,7 @@ impl super::AoFilter for TemporalAccumulation {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
         let (w, h) = (inputs.screen.width, inputs.screen.height);
-        let (x, y, z) = crate::frame::workgroups_32x8(w, h);
-        pass.dispatch_workgroups(x, y, z);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
     }
 
     fn set_camera(&self, queue: &wgpu::Queue, view: &FrameView) {

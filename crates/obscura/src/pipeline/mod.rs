@@ -191,7 +191,13 @@ impl AmbientOcclusion {
         }
         if settings.blur.enabled && !estimator_debug {
             filters.push(FilterStage {
-                filter: Box::new(BilateralBlur::new(device, &settings.blur, work_view)),
+                filter: Box::new(BilateralBlur::new(
+                    device,
+                    &settings.blur,
+                    work_view,
+                    work.width,
+                    work.height,
+                )),
                 output: ao_texture("ao blurred"),
             });
         }
