@@ -45,6 +45,10 @@ struct GtaoVbParams {
 
 // slices × 2 × steps, at most 32.
 override SAMPLE_COUNT: u32 = 8u;
+// Steps per slice side (`steps`): with the sample loop unrolled, a sample's slice i / (2 STEPS) is
+// a constant, so its slice's state is read without a choice among the slices, and its direction
+// from the table entry of the slice's first sample, made once per slice.
+override STEPS: u32 = 2u;
 // Weigh free sectors by the cosine to the normal (`gtao_vb.cosine_weighted`, ours): a constant, so
 // that seed 003's uniform count compiles without it.
 override COSINE_WEIGHTED: bool = false;
@@ -104,9 +108,9 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     let pattern = params.pattern[pattern_index(id)];
     p.rotation = pattern.xy;
     p.jitter = pattern.z;
-    p.step_px = select(0.0, base.radius_px / f32(params.steps), base.radius_px >= 1.0);
+    p.step_px = select(0.0, base.radius_px / f32(STEPS), base.radius_px >= 1.0);
     for (var j = 0u; j < params.slices; j++) {
-        let k = params.samples[j * 2u * params.steps];
+        let k = params.samples[j * 2u * STEPS];
         let d = vec3<f32>(rotate_by(k.xy, p.rotation), 0.0);
         let tangent = normalize(d - p.v * dot(d, p.v));
         let slice_normal = cross(tangent, p.v);
@@ -124,8 +128,8 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
     let k = params.samples[i];
-    let dir = rotate_by(k.xy, p.rotation);
-    s.slice = i / (2u * params.steps);
+    s.slice = i / (2u * STEPS);
+    let dir = rotate_by(params.samples[s.slice * 2u * STEPS].xy, p.rotation);
     // View y is up, framebuffer y down.
     s.px = vec2<f32>(p.pixel) + 0.5 + k.z * vec2<f32>(dir.x, -dir.y) * ((p.jitter + 1.0 + k.w) * p.step_px);
     return s;
@@ -135,9 +139,8 @@ fn estimator_unoccluded(p: EstimatorPixel, s: EstimatorSample) -> u32 {
     return 0u;
 }
 
-// Slice j's tangent and projected normal angle. The slice of a sample is not a constant even in
-// an unrolled loop (the step count is a uniform): selects over the three slices keep the arrays
-// in registers where an index into them may not.
+// Slice j's tangent and projected normal angle. Selects over the three slices keep the arrays in
+// registers where an index into them may not; with the slice a constant (STEPS) they fold away.
 fn slice_tangent(p: EstimatorPixel, j: u32) -> vec3<f32> {
     return select(select(p.tangents[0], p.tangents[1], j == 1u), p.tangents[2], j == 2u);
 }

@@ -36,6 +36,11 @@ struct HbaoPlusParams {
 
 // directions × steps, at most 32 (one bit per sample in the two-phase mask).
 override SAMPLE_COUNT: u32 = 32u;
+// Steps per direction (`steps`). With bent normals, sample i's direction is read from the table
+// entry of its direction's first step, a constant index in the unrolled loop, so the bent
+// tangent made of it alone is made once per direction (estimator_bent_sample). Without them each
+// sample reads its own entry, which measured faster (BENCHMARKS.md).
+override STEPS: u32 = 4u;
 
 struct EstimatorPixel {
     pos: vec3<f32>,
@@ -53,6 +58,8 @@ struct EstimatorPixel {
 
 struct EstimatorSample {
     px: vec2<f32>,
+    // The unit screen direction (screen y down), rotated by the pixel's pattern.
+    dir: vec2<f32>,
     on: bool,
 }
 
@@ -92,10 +99,10 @@ fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
     s.on = p.step_px > 0.0;
     let k = params.samples[i];
-    let dir = rotate_by(k.xy, p.rotation);
+    s.dir = rotate_by(select(k.xy, params.samples[i / STEPS * STEPS].xy, BENT_NORMALS), p.rotation);
     let distance = p.start_px + k.z * p.step_px;
     // Screen y runs down, view y up: the direction is a screen direction either way.
-    s.px = vec2<f32>(p.pixel) + 0.5 + dir * distance;
+    s.px = vec2<f32>(p.pixel) + 0.5 + s.dir * distance;
     return s;
 }
 
@@ -171,11 +178,11 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // (estimator_bent_normal): with P = I − n nᵀ the projection onto the tangent plane, a sample's
 // t = P d / |P d| for its screen direction d (view z 0), so Σ w·t = P Σ (w / |P d|)·d. Per sample
 // that leaves |P d|² = |d|² − (n·d)² (n is unit), one reciprocal root and a 2D sum; z carries
-// the normal's weight.
+// the normal's weight. w / |P d| · d does not depend on |d|, so d is the sample's unit direction,
+// the same for every step of a direction (STEPS), and only the weights are made per sample.
 fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, value: f32) -> vec3<f32> {
     // Screen y runs down, view y up.
-    let step = s.px - (vec2<f32>(p.pixel) + 0.5);
-    let d = vec2<f32>(step.x, -step.y);
+    let d = vec2<f32>(s.dir.x, -s.dir.y);
     let nd = dot(p.normal.xy, d);
     let len2 = dot(d, d) - nd * nd;
     let inv_len = select(0.0, inverseSqrt(len2), len2 > 1e-24);

@@ -58,20 +58,19 @@ fn column_visibility(halo_from: f32, z: f32, column_start: f32, column_end: f32)
     return sphere_vis + halo_vis;
 }
 
-// The shading point's sample frame: `axis` points to the camera, `tangent`/`bitangent` span the
-// sample disc, `n_xy`/`inv_n_z` give the surface normal in that frame.
-// The rest is what every sample of the pixel would otherwise make again (an AO pass is bound by
-// its per-sample arithmetic, BENCHMARKS.md): `plane` turns an offset from `pos` into its column
-// height (see column_height), `disc_x`/`disc_y` are the disc's axes turned by the pixel's rotation
-// and scaled by R (a kernel entry's view-space offset is k.x disc_x + k.y disc_y), and `crossing`
-// gives where the tangent plane crosses a kernel entry's column (−dot(k.xy, crossing)).
+// The shading point's sample frame: `axis` points to the camera and the sample disc is
+// perpendicular to it; `normal` is the surface normal (view space). The rest is what every sample
+// of the pixel would otherwise make again (an AO pass is bound by its per-sample arithmetic,
+// BENCHMARKS.md): `plane` turns an offset from `pos` into its column height (see column_height),
+// `disc_x`/`disc_y` are the disc's axes turned by the pixel's rotation and scaled by R (a kernel
+// entry's view-space offset is k.x disc_x + k.y disc_y), and `crossing` gives where the tangent
+// plane crosses a kernel entry's column (−dot(k.xy, crossing)). Nothing else is kept: what stays
+// live through the sample loop costs registers (with bent normals the pass measured no faster
+// when the disc's own axes were kept as well, BENCHMARKS.md).
 struct VaoFrame {
     pos: vec3<f32>,
     axis: vec3<f32>,
-    tangent: vec3<f32>,
-    bitangent: vec3<f32>,
-    n_xy: vec2<f32>,
-    inv_n_z: f32,
+    normal: vec3<f32>,
     plane: vec3<f32>,
     disc_x: vec3<f32>,
     disc_y: vec3<f32>,
@@ -96,11 +95,12 @@ fn halo_start(f: VaoFrame) -> f32 {
     return (1.0 + params.thickness) * frame_radius(f);
 }
 
-// One line sample: lateral offset `d`, its clipped column [end, start], the height at which the
-// tangent plane crosses it (`crossing`, before clipping to the column) and where it projects
-// (unclamped framebuffer pixel coordinates).
+// One line sample: its kernel entry's offset on the disc (`disc`, before the pixel's rotation, in
+// units of R), its clipped column [end, start], the height at which the tangent plane crosses it
+// (`crossing`, before clipping to the column) and where it projects (unclamped framebuffer pixel
+// coordinates).
 struct VaoColumn {
-    d: vec2<f32>,
+    disc: vec2<f32>,
     start: f32,
     end: f32,
     crossing: f32,
@@ -125,7 +125,6 @@ override SAMPLE_COUNT: u32 = 8u;
 struct VaoPixel {
     frame: VaoFrame,
     n_z_positive: bool,
-    rotation: vec2<f32>,
     valid: bool,
 }
 
@@ -157,15 +156,11 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     let inv_n_z = 1.0 / n_z;
     p.frame.pos = pos;
     p.frame.axis = axis;
-    p.frame.tangent = basis[0];
-    p.frame.bitangent = basis[1];
-    p.frame.n_xy = n_local.xy;
-    p.frame.inv_n_z = inv_n_z;
+    p.frame.normal = n;
     p.frame.pixel = pixel;
     p.frame.capped_radius = capped_radius(view, params.radius, -pos.z);
     p.n_z_positive = n_local.z >= 0.0;
     let rotation = params.rotations[pattern_index(id)].xy;
-    p.rotation = rotation;
     let r = frame_radius(p.frame);
     p.frame.plane = axis + (basis[0] * n_local.x + basis[1] * n_local.y) * inv_n_z;
     // d = rotate_by(k.xy, rotation) r, so the offset tangent d.x + bitangent d.y and the
@@ -190,8 +185,7 @@ fn vao_sample(p: VaoPixel, i: u32) -> VaoSample {
     let f = p.frame;
     let r = frame_radius(f);
     var s: VaoSample;
-    // Only bent normals read d (estimator_bent_sample); without them it is never made.
-    s.column.d = rotate_by(k.xy, p.rotation) * r;
+    s.column.disc = k.xy;
     s.h = k.z * r;
     s.inv_2h = k.w * (0.5 / r);
     // Hemisphere clipping: the tangent plane crosses the column at height z_i.
@@ -359,11 +353,13 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // lies at height start − value/2 over the disc point d; weighted by the free length over the
 // column's pdf 2h, as the AO sums it. The schedule sums these over the samples' values and over
 // their unoccluded values (the open hemisphere's free volume).
-// The vector is in the sample frame (tangent, bitangent, axis): the sums are linear, so
-// estimator_bent_normal turns them into view space once per pixel rather than every sample.
+// The vector's lateral part is the kernel entry's unturned offset in units of R (the offset d is
+// that entry turned by the pixel's rotation and scaled by R), its height along the axis: the sums
+// are linear, so estimator_bent_normal turns them into view space once per pixel (through
+// disc_x, disc_y and axis) rather than every sample.
 fn estimator_bent_sample(p: VaoPixel, s: VaoSample, value: f32) -> vec3<f32> {
     // The same weight 1 / 2h as estimator_accum_value's.
-    return vec3<f32>(s.column.d, s.column.start - 0.5 * value) * (value * s.inv_2h);
+    return vec3<f32>(s.column.disc, s.column.start - 0.5 * value) * (value * s.inv_2h);
 }
 
 // The bent normal from the summed free centroids against the open ones (common/bent.wgsl), view
@@ -375,7 +371,6 @@ fn estimator_bent_normal(
     sample_open: vec3<f32>,
 ) -> vec3<f32> {
     let f = p.frame;
-    let to_view = mat3x3<f32>(f.tangent, f.bitangent, f.axis);
-    let normal = normalize(to_view * vec3<f32>(f.n_xy, 1.0 / f.inv_n_z));
-    return bent_from_sums(normal, to_view * sample_visible, to_view * sample_open);
+    let sums_to_view = mat3x3<f32>(f.disc_x, f.disc_y, f.axis);
+    return bent_from_sums(f.normal, sums_to_view * sample_visible, sums_to_view * sample_open);
 }

@@ -14,9 +14,9 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
 );
 /// Its `override` constants: the sample count, slices × 2 × steps; whether sectors are
-/// cosine-weighted (1) or counted alike (0, seed 003); and whether hidden depth is skipped where
-/// no deeper surface can mark a free sector ([`exact_query`]).
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED", "EXACT_QUERY"];
+/// cosine-weighted (1) or counted alike (0, seed 003); whether hidden depth is skipped where
+/// no deeper surface can mark a free sector ([`exact_query`]); and the steps per slice side.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED", "EXACT_QUERY", "STEPS"];
 
 /// Whether a sample skips the hidden depth where every sector a deeper surface could mark is
 /// marked already (gtao_vb.wgsl): with the default query, and only without compensation, which
@@ -88,6 +88,7 @@ pub(crate) fn params(s: &GtaoVbSettings, sd: &StochasticDepthSettings) -> (Vec<u
             f64::from(count),
             f64::from(u8::from(s.cosine_weighted)),
             f64::from(u8::from(exact_query(sd))),
+            f64::from(s.steps),
         ],
     )
 }

@@ -12,8 +12,8 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/hbao_plus.wgsl"),
     include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
 );
-/// Its `override` constants: the sample count, directions × steps.
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+/// Its `override` constants: the sample count, directions × steps, and the steps per direction.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "STEPS"];
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its direction rotation, 2π·B/16/D with B the
 /// Bayer value of (x % 4, y % 4), and its start jitter in [0, 1) ([`super::bayer_pattern`]).
@@ -68,6 +68,6 @@ pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
-        vec![f64::from(s.directions * s.steps)],
+        vec![f64::from(s.directions * s.steps), f64::from(s.steps)],
     )
 }
