@@ -59,8 +59,7 @@ fn column_visibility(halo_from: f32, z: f32, column_start: f32, column_end: f32)
 }
 
 // The shading point's sample frame: `axis` points to the camera and the sample disc is
-// perpendicular to it; `normal` is the surface normal (view space). The rest is what every sample
-// of the pixel would otherwise make again (an AO pass is bound by its per-sample arithmetic,
+// perpendicular to it. The rest is what every sample of the pixel would otherwise make again (an AO pass is bound by its per-sample arithmetic,
 // BENCHMARKS.md): `plane` turns an offset from `pos` into its column height (see column_height),
 // `disc_x`/`disc_y` are the disc's axes turned by the pixel's rotation and scaled by R (a kernel
 // entry's view-space offset is k.x disc_x + k.y disc_y), and `crossing` gives where the tangent
@@ -70,7 +69,6 @@ fn column_visibility(halo_from: f32, z: f32, column_start: f32, column_end: f32)
 struct VaoFrame {
     pos: vec3<f32>,
     axis: vec3<f32>,
-    normal: vec3<f32>,
     plane: vec3<f32>,
     disc_x: vec3<f32>,
     disc_y: vec3<f32>,
@@ -156,7 +154,6 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     let inv_n_z = 1.0 / n_z;
     p.frame.pos = pos;
     p.frame.axis = axis;
-    p.frame.normal = n;
     p.frame.pixel = pixel;
     p.frame.capped_radius = capped_radius(view, params.radius, -pos.z);
     p.n_z_positive = n_local.z >= 0.0;
@@ -371,6 +368,9 @@ fn estimator_bent_normal(
     sample_open: vec3<f32>,
 ) -> vec3<f32> {
     let f = p.frame;
+    // `plane` is the normal over its component along the axis (see column_height; up to the
+    // clamp of that component away from 0).
+    let normal = normalize(f.plane) * select(-1.0, 1.0, p.n_z_positive);
     let sums_to_view = mat3x3<f32>(f.disc_x, f.disc_y, f.axis);
-    return bent_from_sums(f.normal, sums_to_view * sample_visible, sums_to_view * sample_open);
+    return bent_from_sums(normal, sums_to_view * sample_visible, sums_to_view * sample_open);
 }
