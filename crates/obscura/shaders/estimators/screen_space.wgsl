@@ -34,6 +34,12 @@ fn screen_pixel(id: vec2<u32>, radius: f32) -> ScreenPixel {
     return p;
 }
 
+// The surface at framebuffer point `px` and linear depth `z` as the sample's occluder (the
+// contract's estimator_occluder_at; VAO has its own, which needs no view-space point).
+fn estimator_occluder_at(p: EstimatorPixel, s: EstimatorSample, px: vec2<f32>, z: f32) -> Occluder {
+    return estimator_occluder(p, s, pixel_to_view(view, px, z));
+}
+
 // The estimator contract's accessors, alike for every screen-space estimator: each names its
 // EstimatorPixel fields `valid` and `pixel` and its EstimatorSample fields `on` and `px`.
 

@@ -70,6 +70,10 @@ struct VaoFrame {
     pos: vec3<f32>,
     axis: vec3<f32>,
     plane: vec3<f32>,
+    // The plane vector's dot product with a view ray's point at depth 1, as an affine function
+    // of its framebuffer point (estimator_occluder_at), and with `pos`.
+    ray_plane: vec3<f32>,
+    plane_at_pos: f32,
     disc_x: vec3<f32>,
     disc_y: vec3<f32>,
     crossing: vec2<f32>,
@@ -159,7 +163,17 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     p.n_z_positive = n_local.z >= 0.0;
     let rotation = params.rotations[pattern_index(id)].xy;
     let r = frame_radius(p.frame);
-    p.frame.plane = axis + (basis[0] * n_local.x + basis[1] * n_local.y) * inv_n_z;
+    let plane = axis + (basis[0] * n_local.x + basis[1] * n_local.y) * inv_n_z;
+    p.frame.plane = plane;
+    // pixel_to_view(px, 1) = ((px.x s.x − 1) t.x, (1 − px.y s.y) t.y, −1), s = ndc_per_pixel,
+    // t = tan_half_fov.
+    let s = view.ndc_per_pixel * view.tan_half_fov;
+    p.frame.ray_plane = vec3<f32>(
+        s.x * plane.x,
+        -s.y * plane.y,
+        view.tan_half_fov.y * plane.y - view.tan_half_fov.x * plane.x - plane.z,
+    );
+    p.frame.plane_at_pos = dot(pos, plane);
     // d = rotate_by(k.xy, rotation) r, so the offset tangent d.x + bitangent d.y and the
     // crossing −dot(d, n_xy) / n_z are linear in k.xy with these coefficients.
     p.frame.disc_x = (basis[0] * rotation.x + basis[1] * rotation.y) * r;
@@ -268,10 +282,29 @@ fn estimator_unoccluded(p: VaoPixel, s: VaoSample) -> f32 {
     return s.column.start - s.column.end;
 }
 
-// A surface at view-space `pos` as the sample's occluder: only one beyond the constant area can
-// hide a lower visibility behind it (in the constant area the visibility is already 0).
+// A surface at view-space `pos` as the sample's occluder.
 fn estimator_occluder(p: VaoPixel, s: VaoSample, pos: vec3<f32>) -> Occluder {
-    let height = column_height(p.frame, s.column, pos);
+    return occluder_at_height(p, s, column_height(p.frame, s.column, pos));
+}
+
+// The surface at framebuffer point `px` and linear depth `z` as the sample's occluder, what the
+// depth-buffer sources read. A perspective view puts that point at z (a(px), −1) with a affine
+// in px (common/view.wgsl's pixel_to_view), so its column height dot(point − pos, plane) +
+// crossing is z (ray_plane · (px, 1)) − dot(pos, plane) + crossing: two multiply-adds and a
+// multiply where the view-space point took seven operations and the height five more.
+fn estimator_occluder_at(p: VaoPixel, s: VaoSample, px: vec2<f32>, z: f32) -> Occluder {
+    if (ORTHOGRAPHIC) {
+        return estimator_occluder(p, s, pixel_to_view(view, px, z));
+    }
+    let f = p.frame;
+    let height = z * (f.ray_plane.x * px.x + f.ray_plane.y * px.y + f.ray_plane.z)
+        + (s.column.crossing - f.plane_at_pos);
+    return occluder_at_height(p, s, height);
+}
+
+// An occluder at column height `height`: only one beyond the constant area can hide a lower
+// visibility behind it (in the constant area the visibility is already 0).
+fn occluder_at_height(p: VaoPixel, s: VaoSample, height: f32) -> Occluder {
     var o: Occluder;
     o.value = column_visibility(halo_start(p.frame), height, s.column.start, s.column.end);
     o.hidden = o.value > 0.0 && height > halo_start(p.frame);

@@ -63,7 +63,7 @@ fn first_layer_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     if (is_background(z)) {
         return l;
     }
-    let o = estimator_occluder(p, s, pixel_to_view(view, l.px, z));
+    let o = estimator_occluder_at(p, s, l.px, z);
     l.value = o.value;
     l.trace = o.hidden;
     return l;

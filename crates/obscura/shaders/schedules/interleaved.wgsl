@@ -34,7 +34,7 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     }
     let z = textureLoad(depth_layers, cell, residue.x + 4u * residue.y, 0).r;
     if (!is_background(z)) {
-        l.value = estimator_occluder(p, s, pixel_to_view(view, l.px, z)).value;
+        l.value = estimator_occluder_at(p, s, l.px, z).value;
     }
     return l;
 }

@@ -35,7 +35,7 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     if (is_background(z)) {
         return l;
     }
-    l.value = estimator_occluder(p, s, pixel_to_view(view, l.px, z)).value;
+    l.value = estimator_occluder_at(p, s, l.px, z).value;
     return l;
 }
 

@@ -13,7 +13,7 @@ fn source_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Esti
     if (is_background(z2)) {
         return l.value;
     }
-    return estimator_combine(l.value, estimator_occluder(p, s, pixel_to_view(view, l.px, z2)).value);
+    return estimator_combine(l.value, estimator_occluder_at(p, s, l.px, z2).value);
 }
 
 // Two-phase phase 1: the second layer exists already.

@@ -36,8 +36,7 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
                 break;
             }
             if (v > 0.0) {
-                let pos = pixel_to_view(view, l.px, sd_near.x / v);
-                var sample_value = estimator_occluder(p, s, pos).value;
+                var sample_value = estimator_occluder_at(p, s, l.px, sd_near.x / v).value;
                 if (SD_COMPENSATION != 1.0) {
                     sample_value = estimator_compensate(p, s, sample_value, SD_COMPENSATION);
                 }
