@@ -73,7 +73,8 @@ impl VaoParams {
             let (dir, r) = kernel_sample(i as u32, s.samples);
             // What the shader makes of the sample for every pixel, made here once: its offset on
             // the unit disc, its column's half height over R, sqrt(1 − r²) (r < 1), and the
-            // reciprocal of that (the weight 1/2h of seed 000 Eq. 7 without a per-sample division).
+            // reciprocal of that (so the weight 1/2h the AO sums take needs no division per
+            // sample, vao.wgsl).
             let half_height = (1.0 - r * r).sqrt();
             *k = [dir.x * r, dir.y * r, half_height, 1.0 / half_height];
         }
