@@ -42,6 +42,9 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let occluded = -pos.z < p.depth;
     return Occluder(select(1.0, 0.0, occluded), occluded);
 }
+fn estimator_occluder_at(p: EstimatorPixel, s: EstimatorSample, px: vec2<f32>, z: f32) -> Occluder {
+    return estimator_occluder(p, s, pixel_to_view(view, px, z));
+}
 fn estimator_combine(a: f32, b: f32) -> f32 { return min(a, b); }
 fn estimator_compensate(p: EstimatorPixel, s: EstimatorSample, v: f32, factor: f32) -> f32 { return v; }
 fn estimator_bent_sample(p: EstimatorPixel, s: EstimatorSample, v: f32) -> vec3<f32> { return vec3<f32>(0.0); }
