@@ -167,11 +167,13 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     let plane = axis + (basis[0] * n_local.x + basis[1] * n_local.y) * inv_n_z;
     p.frame.plane = plane;
     // pixel_to_view(px, 1) = ((px.x s.x − 1) t.x, (1 − px.y s.y) t.y, −1), s = ndc_per_pixel,
-    // t = tan_half_fov.
-    let s = view.ndc_per_pixel * view.tan_half_fov;
+    // t = tan_half_fov (common/view.wgsl), written out: the coefficients taken as differences of
+    // pixel_to_view at three points lost too much (an open plane's AO fell below 1 in
+    // tests/vao_analytic.rs).
+    let per_pixel = view.ndc_per_pixel * view.tan_half_fov;
     p.frame.ray_plane = vec3<f32>(
-        s.x * plane.x,
-        -s.y * plane.y,
+        per_pixel.x * plane.x,
+        -per_pixel.y * plane.y,
         view.tan_half_fov.y * plane.y - view.tan_half_fov.x * plane.x - plane.z,
     );
     p.frame.plane_at_pos = dot(pos, plane);
