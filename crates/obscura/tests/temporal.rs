@@ -86,6 +86,64 @@ fn a_still_camera_converges_to_the_mean_over_all_rotations() {
     }
 }
 
+#[test]
+fn the_history_is_clipped_to_the_spread_of_the_pixel_and_its_four_neighbours() {
+    // A still camera's second frame: the history is the first frame's AO at the same texel (one
+    // frame, 24-bit fixed point), clipped to mean ± σ of this frame's raw AO over the pixel and
+    // its four edge neighbours (clamped into the image), then averaged with this frame's AO.
+    let gpu = common::gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let camera = scene.cameras[0].camera;
+    let settings = temporal_settings(Technique::Vao, false);
+    assert!(settings.temporal.clamp, "the clamp is on by default");
+    let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
+    r.render(&camera, None).unwrap();
+    let first = r.read_ao().unwrap();
+    assert_eq!(first, raw(&r), "the first frame has no history");
+    r.render(&camera, None).unwrap();
+    let current = raw(&r);
+    let out = r.read_ao().unwrap();
+    let depth = r.read_gbuffer().unwrap().visible_depth(GUARD);
+    let (w, h) = (W as i64, H as i64);
+    let at = |x: i64, y: i64| f64::from(current[(y.clamp(0, h - 1) * w + x.clamp(0, w - 1)) as usize]);
+    let (mut worst, mut clipped) = (0.0f64, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) as usize;
+            let mut tolerance = 2e-6;
+            let expected = if depth[i] <= 0.0 {
+                f64::from(current[i])
+            } else {
+                let plus = [at(x, y), at(x - 1, y), at(x + 1, y), at(x, y - 1), at(x, y + 1)];
+                let mean = plus.iter().sum::<f64>() / 5.0;
+                let sigma = (plus.iter().map(|v| v * v).sum::<f64>() / 5.0 - mean * mean)
+                    .max(0.0)
+                    .sqrt();
+                let history = (f64::from(first[i].clamp(0.0, 1.0)) * 16_777_215.0).round()
+                    / 16_777_215.0;
+                let past = history.clamp(mean - sigma, mean + sigma);
+                if (past - history).abs() > 1e-3 {
+                    clipped += 1;
+                }
+                // The shader's σ² = E[a²] − mean² in f32 (values ≤ 1) is off by up to a few ulps
+                // of 1, and σ by that over 2σ (at most its square root) where σ is small; the
+                // output moves by half of σ's error.
+                let variance_error = 4.0 * f64::from(f32::EPSILON);
+                let sigma_error = variance_error.sqrt().min(variance_error / (2.0 * sigma));
+                tolerance = 2e-6 + 0.5 * sigma_error;
+                past + (f64::from(current[i]) - past) * 0.5
+            };
+            worst = worst.max((f64::from(out[i]) - expected).abs() / tolerance);
+        }
+    }
+    assert!(
+        worst <= 1.0,
+        "accumulated AO {worst}× its tolerance from the clipped mean"
+    );
+    // The pattern turned between the frames, so the clip is exercised.
+    assert!(clipped > (W * H / 20) as usize, "{clipped} pixels clipped");
+}
+
 /// The frames of the `stairs` dolly at the test size, and their views.
 fn dolly(frames: u32) -> (scene::Scene, Vec<Camera>) {
     let scene = scene::builtin("stairs").unwrap();
