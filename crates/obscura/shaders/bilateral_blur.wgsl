@@ -5,9 +5,13 @@
 // Only visible pixels are read: the AO image has no guard band, so taps outside it are skipped.
 // Mirrored on the CPU by src/reference/cpu_blur.rs.
 //
-// Each workgroup blurs a run of 64 pixels along the blur direction in 4 neighbouring lines; the run
+// Each workgroup blurs a run of 64 pixels along the blur direction in 8 neighbouring lines; the run
 // plus `radius` pixels on each side is loaded once into workgroup memory, so each texel is read
-// from memory about once instead of 2 * radius + 1 times.
+// from memory about once instead of 2 * radius + 1 times. Its 64 × 4 invocations take two lines
+// each, with all their loads in flight before the barrier: with one line each (4 lines a
+// workgroup) the pass took 6 % longer on an H200, waiting on memory with too few loads
+// outstanding; four lines each, or the two written as a loop over an array, were slower
+// (BENCHMARKS.md).
 
 struct BlurParams {
     // (1, 0) for the horizontal pass, (0, 1) for the vertical one.
@@ -25,16 +29,16 @@ struct BlurParams {
 @group(0) @binding(4) var ao_out: texture_storage_2d<r32float, write>;
 
 // Taps on each side: a pipeline constant, so the tap loop unrolls with constant spatial weights
-// (measured: the loop's arithmetic, not memory, bounds this pass).
+// (the taps are about a third of the pass at radius 4 on an H200, BENCHMARKS.md).
 override RADIUS: i32 = 4;
 
 const RUN: i32 = 64;
-const LINES: u32 = 4u;
+const LINES: u32 = 8u;
 const MAX_RADIUS: i32 = 16;
 const TILE: i32 = 96; // RUN + 2 * MAX_RADIUS
 
-var<workgroup> tile_ao: array<f32, 384>; // LINES * TILE
-var<workgroup> tile_depth: array<f32, 384>;
+var<workgroup> tile_ao: array<f32, 768>; // LINES * TILE
+var<workgroup> tile_depth: array<f32, 768>;
 
 // Image position of (distance along the blur direction, line index across it).
 fn pixel_at(along: i32, across: i32) -> vec2<i32> {
@@ -53,37 +57,17 @@ fn tile_texel(along: i32, across: i32) -> vec2<f32> {
     return vec2<f32>(textureLoad(depth_tex, zq, 0).r, ao);
 }
 
-@compute @workgroup_size(64, 4)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+// Blurs the texel at index `k` of the tile's line `line` (image position `x` along the blur
+// direction, line `across`) into the output image.
+fn blur_texel(line: i32, x: i32, k: i32, across: i32) {
     let size = vec2<i32>(view.visible_size);
     let r = RADIUS;
-    let start = i32(group.x) * RUN - r;
-    let across = i32(group.y * LINES + local.y);
-    let row = i32(local.y) * TILE;
-    // RUN + 2r ≤ 2 RUN texels per line: each invocation loads its one or two texels before
-    // storing either, so both loads are in flight together (a loop over them waited for each in
-    // turn: 5 % slower on an H200, BENCHMARKS.md).
-    let k0 = i32(local.x);
-    let k1 = k0 + RUN;
-    let second = k1 < RUN + 2 * r;
-    let a = tile_texel(start + k0, across);
-    var b = vec2<f32>(0.0);
-    if (second) {
-        b = tile_texel(start + k1, across);
-    }
-    tile_depth[row + k0] = a.x;
-    tile_ao[row + k0] = a.y;
-    if (second) {
-        tile_depth[row + k1] = b.x;
-        tile_ao[row + k1] = b.y;
-    }
-    workgroupBarrier();
-
-    let p = pixel_at(start + r + i32(local.x), across);
+    let row = line * TILE;
+    let p = pixel_at(x, across);
     if (any(p >= size)) {
         return;
     }
-    let c = row + r + i32(local.x);
+    let c = row + k;
     let center_ao = tile_ao[c];
     let z = tile_depth[c];
     if (is_background(z)) {
@@ -102,14 +86,52 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
     for (var d = -r; d <= r; d++) {
         let ao = tile_ao[c + d];
         let zq = tile_depth[c + d];
-        if (d == 0 || ao < 0.0 || is_background(zq)) {
+        if (d == 0) {
             continue;
         }
         let dz = (zq - z - slope * f32(d)) * params.sharpness;
-        let w = exp2(-f32(d * d) * falloff - dz * dz);
+        // Taps outside the image (AO −1) or on the background weigh 0 by a select rather than a
+        // branch (4 % faster on an H200, BENCHMARKS.md); w · ao is then ±0, the sums unchanged.
+        let w = select(exp2(-f32(d * d) * falloff - dz * dz), 0.0, ao < 0.0 || is_background(zq));
         sum += w * ao;
         weight_sum += w;
     }
     // The normalised sum of values in [0, 1] can round past 1 (seen on an H200, RELIABILITY.md).
     textureStore(ao_out, p, vec4<f32>(min(sum / weight_sum, 1.0)));
+}
+
+// 64 × 4 invocations blur 8 lines, two each (lines local.y and local.y + 4), so that each has
+// four loads in flight before the barrier rather than two.
+@compute @workgroup_size(64, 4)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+    let r = RADIUS;
+    let start = i32(group.x) * RUN - r;
+    let line0 = i32(local.y);
+    let line1 = line0 + 4;
+    let across0 = i32(group.y * LINES) + line0;
+    let across1 = i32(group.y * LINES) + line1;
+    let k0 = i32(local.x);
+    let k1 = k0 + RUN;
+    let second = k1 < RUN + 2 * r;
+    let a0 = tile_texel(start + k0, across0);
+    let a1 = tile_texel(start + k0, across1);
+    var b0 = vec2<f32>(0.0);
+    var b1 = vec2<f32>(0.0);
+    if (second) {
+        b0 = tile_texel(start + k1, across0);
+        b1 = tile_texel(start + k1, across1);
+    }
+    tile_depth[line0 * TILE + k0] = a0.x;
+    tile_ao[line0 * TILE + k0] = a0.y;
+    tile_depth[line1 * TILE + k0] = a1.x;
+    tile_ao[line1 * TILE + k0] = a1.y;
+    if (second) {
+        tile_depth[line0 * TILE + k1] = b0.x;
+        tile_ao[line0 * TILE + k1] = b0.y;
+        tile_depth[line1 * TILE + k1] = b1.x;
+        tile_ao[line1 * TILE + k1] = b1.y;
+    }
+    workgroupBarrier();
+    blur_texel(line0, start + r + k0, r + k0, across0);
+    blur_texel(line1, start + r + k0, r + k0, across1);
 }

@@ -105,7 +105,8 @@ fn the_history_is_clipped_to_the_spread_of_the_pixel_and_its_four_neighbours() {
     let out = r.read_ao().unwrap();
     let depth = r.read_gbuffer().unwrap().visible_depth(GUARD);
     let (w, h) = (W as i64, H as i64);
-    let at = |x: i64, y: i64| f64::from(current[(y.clamp(0, h - 1) * w + x.clamp(0, w - 1)) as usize]);
+    let at =
+        |x: i64, y: i64| f64::from(current[(y.clamp(0, h - 1) * w + x.clamp(0, w - 1)) as usize]);
     let (mut worst, mut clipped) = (0.0f64, 0);
     for y in 0..h {
         for x in 0..w {
@@ -114,13 +115,19 @@ fn the_history_is_clipped_to_the_spread_of_the_pixel_and_its_four_neighbours() {
             let expected = if depth[i] <= 0.0 {
                 f64::from(current[i])
             } else {
-                let plus = [at(x, y), at(x - 1, y), at(x + 1, y), at(x, y - 1), at(x, y + 1)];
+                let plus = [
+                    at(x, y),
+                    at(x - 1, y),
+                    at(x + 1, y),
+                    at(x, y - 1),
+                    at(x, y + 1),
+                ];
                 let mean = plus.iter().sum::<f64>() / 5.0;
                 let sigma = (plus.iter().map(|v| v * v).sum::<f64>() / 5.0 - mean * mean)
                     .max(0.0)
                     .sqrt();
-                let history = (f64::from(first[i].clamp(0.0, 1.0)) * 16_777_215.0).round()
-                    / 16_777_215.0;
+                let history =
+                    (f64::from(first[i].clamp(0.0, 1.0)) * 16_777_215.0).round() / 16_777_215.0;
                 let past = history.clamp(mean - sigma, mean + sigma);
                 if (past - history).abs() > 1e-3 {
                     clipped += 1;

@@ -88,21 +88,21 @@ impl super::AoFilter for BilateralBlur {
         mut profiler: Option<&mut PassProfiler>,
     ) {
         let (w, h) = (inputs.screen.width, inputs.screen.height);
-        // Workgroups: runs of 64 pixels along the direction × 4 lines across (bilateral_blur.wgsl).
+        // Workgroups: runs of 64 pixels along the direction × 8 lines across (bilateral_blur.wgsl).
         let steps = [
             (
                 "blur_x",
                 input,
                 &self.intermediate,
                 &self.params[0],
-                (w.div_ceil(64), h.div_ceil(4)),
+                (w.div_ceil(64), h.div_ceil(8)),
             ),
             (
                 "blur_y",
                 &self.intermediate,
                 output,
                 &self.params[1],
-                (h.div_ceil(64), w.div_ceil(4)),
+                (h.div_ceil(64), w.div_ceil(8)),
             ),
         ];
         for (name, src, dst, params, (groups_along, groups_across)) in steps {
