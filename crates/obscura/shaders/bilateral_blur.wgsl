@@ -57,17 +57,22 @@ fn tile_texel(along: i32, across: i32) -> vec2<f32> {
     return vec2<f32>(textureLoad(depth_tex, zq, 0).r, ao);
 }
 
-// Blurs the texel at index `k` of the tile's line `line` (image position `x` along the blur
-// direction, line `across`) into the output image.
-fn blur_texel(line: i32, x: i32, k: i32, across: i32) {
+// Stores texel `t` (depth, AO) at index `k` of the tile's line `line`.
+fn tile_store(line: i32, k: i32, t: vec2<f32>) {
+    tile_depth[line * TILE + k] = t.x;
+    tile_ao[line * TILE + k] = t.y;
+}
+
+// Blurs the texel at index `k` of the tile's line `line` (image line `across`, the tile starting
+// at `start` along the blur direction) into the output image.
+fn blur_texel(line: i32, k: i32, across: i32, start: i32) {
     let size = vec2<i32>(view.visible_size);
     let r = RADIUS;
-    let row = line * TILE;
-    let p = pixel_at(x, across);
+    let p = pixel_at(start + k, across);
     if (any(p >= size)) {
         return;
     }
-    let c = row + k;
+    let c = line * TILE + k;
     let center_ao = tile_ao[c];
     let z = tile_depth[c];
     if (is_background(z)) {
@@ -101,13 +106,14 @@ fn blur_texel(line: i32, x: i32, k: i32, across: i32) {
 }
 
 // 64 × 4 invocations blur 8 lines, two each (lines local.y and local.y + 4), so that each has
-// four loads in flight before the barrier rather than two.
+// four loads in flight before the barrier rather than two. The two are written out: as a loop
+// over an array they were slower (BENCHMARKS.md).
 @compute @workgroup_size(64, 4)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
     let r = RADIUS;
     let start = i32(group.x) * RUN - r;
     let line0 = i32(local.y);
-    let line1 = line0 + 4;
+    let line1 = line0 + i32(LINES / 2u);
     let across0 = i32(group.y * LINES) + line0;
     let across1 = i32(group.y * LINES) + line1;
     let k0 = i32(local.x);
@@ -121,17 +127,13 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
         b0 = tile_texel(start + k1, across0);
         b1 = tile_texel(start + k1, across1);
     }
-    tile_depth[line0 * TILE + k0] = a0.x;
-    tile_ao[line0 * TILE + k0] = a0.y;
-    tile_depth[line1 * TILE + k0] = a1.x;
-    tile_ao[line1 * TILE + k0] = a1.y;
+    tile_store(line0, k0, a0);
+    tile_store(line1, k0, a1);
     if (second) {
-        tile_depth[line0 * TILE + k1] = b0.x;
-        tile_ao[line0 * TILE + k1] = b0.y;
-        tile_depth[line1 * TILE + k1] = b1.x;
-        tile_ao[line1 * TILE + k1] = b1.y;
+        tile_store(line0, k1, b0);
+        tile_store(line1, k1, b1);
     }
     workgroupBarrier();
-    blur_texel(line0, start + r + k0, r + k0, across0);
-    blur_texel(line1, start + r + k0, r + k0, across1);
+    blur_texel(line0, r + k0, across0, start);
+    blur_texel(line1, r + k0, across1, start);
 }

@@ -111,9 +111,8 @@ fn the_history_is_clipped_to_the_spread_of_the_pixel_and_its_four_neighbours() {
     for y in 0..h {
         for x in 0..w {
             let i = (y * w + x) as usize;
-            let mut tolerance = 2e-6;
-            let expected = if depth[i] <= 0.0 {
-                f64::from(current[i])
+            let (expected, tolerance) = if depth[i] <= 0.0 {
+                (f64::from(current[i]), 2e-6)
             } else {
                 let plus = [
                     at(x, y),
@@ -137,8 +136,10 @@ fn the_history_is_clipped_to_the_spread_of_the_pixel_and_its_four_neighbours() {
                 // output moves by half of σ's error.
                 let variance_error = 4.0 * f64::from(f32::EPSILON);
                 let sigma_error = variance_error.sqrt().min(variance_error / (2.0 * sigma));
-                tolerance = 2e-6 + 0.5 * sigma_error;
-                past + (f64::from(current[i]) - past) * 0.5
+                (
+                    past + (f64::from(current[i]) - past) * 0.5,
+                    2e-6 + 0.5 * sigma_error,
+                )
             };
             worst = worst.max((f64::from(out[i]) - expected).abs() / tolerance);
         }
