@@ -884,7 +884,6 @@ fn stochastic_depth_options_are_clear_errors() {
         .is_some_and(|n| n.contains("llvmpipe"))
     {
         assert_eq!(info["sd_early_tests"], true, "{info}");
-        assert_eq!(info["sd_stencil"], true, "{info}");
         assert_eq!(info["visibility_words"], true, "{info}");
     }
 }

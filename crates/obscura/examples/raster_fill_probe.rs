@@ -178,7 +178,7 @@ pub fn run(
         ("d32f", wgpu::TextureFormat::Depth32Float),
         ("d24", wgpu::TextureFormat::Depth24Plus),
         ("d16", wgpu::TextureFormat::Depth16Unorm),
-        ("d32fs8", wgpu::TextureFormat::Depth32FloatStencil8),
+        ("d24s8", wgpu::TextureFormat::Depth24PlusStencil8),
     ];
     let zero = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("zero"),

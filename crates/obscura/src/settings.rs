@@ -589,7 +589,7 @@ impl fmt::Display for SdSelection {
 pub enum SdMask {
     /// The paper's way (seed 000 §3.9): a full-screen pass copies the request mask into the
     /// map's stencil, then the scene is drawn with the stencil test, before shading where the
-    /// device has early tests. Needs the `Depth32FloatStencil8` format.
+    /// device has early tests.
     Stencil,
     /// The request mask folded into the depth the map is early-tested against: the reset
     /// writes the far plane at the pixels nobody requested, which no fragment lies behind, so

@@ -485,8 +485,7 @@ pub struct Needs {
     pub bvh: bool,
     /// The second depth layer (depth peeling).
     pub second_layer: bool,
-    /// The scene is rasterised into a stochastic depth map (with `--sd-mask stencil`, the
-    /// paper's, its stencil needs `Depth32FloatStencil8`; the default depth mask does not).
+    /// The scene is rasterised into a stochastic depth map.
     pub stochastic_depth_map: bool,
 }
 

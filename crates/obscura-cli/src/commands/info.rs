@@ -29,7 +29,6 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
             object.insert("visibility_words".into(), words.into());
             object.insert("sd_format".into(), sd.format.clone().into());
             object.insert("sd_early_tests".into(), sd.early_tests.into());
-            object.insert("sd_stencil".into(), sd.stencil.into());
             object.insert(
                 "sd_sample_counts".into(),
                 serde_json::to_value(&sd.sample_counts)?,
@@ -98,13 +97,6 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
         yes_no(
             sd.early_tests,
             "no (SHADER_EARLY_DEPTH_TEST missing: the same map, slower)"
-        )
-    );
-    println!(
-        "SD stencil   {}",
-        yes_no(
-            sd.stencil,
-            "no (DEPTH32FLOAT_STENCIL8 missing: --sd-mask depth or discard only)"
         )
     );
     Ok(())

@@ -219,9 +219,7 @@ impl Gpu {
 
     /// Wrap a device the caller made (an engine's), with its adapter and queue. obscura uses the
     /// features the device has: without `TIMESTAMP_QUERY` there are no pass timings, without
-    /// `DEPTH32FLOAT_STENCIL8` no stencil for the stochastic depth map (`--sd-mask stencil`
-    /// then returns an error naming the feature; the default `depth` needs none), without `SHADER_EARLY_DEPTH_TEST` the map is
-    /// the same but slower. Validation errors the device does not capture are collected for
+    /// `SHADER_EARLY_DEPTH_TEST` the stochastic depth map is the same but slower. Validation errors the device does not capture are collected for
     /// [`Gpu::check_errors`]: this installs the device's uncaptured-error handler.
     pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
         let info = adapter.get_info();
@@ -351,11 +349,11 @@ pub(crate) fn pipeline_from_module(
 
 /// The optional features obscura uses where the adapter has them (and [`Gpu::new`] requests):
 /// pass timings, fragment counts, render targets of the formats WebGPU does not guarantee
-/// (the G-buffer's `R32Float`), the stochastic depth map's stencil and early tests.
+/// (the G-buffer's `R32Float`), early tests for the stochastic depth map, 64-bit atomics for
+/// the visibility pass.
 pub const WANTED_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::PIPELINE_STATISTICS_QUERY)
     .union(wgpu::Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES)
-    .union(wgpu::Features::DEPTH32FLOAT_STENCIL8)
     .union(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
     .union(wgpu::Features::SHADER_INT64)
     .union(wgpu::Features::SHADER_INT64_ATOMIC_MIN_MAX);

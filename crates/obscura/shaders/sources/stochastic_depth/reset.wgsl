@@ -19,6 +19,10 @@
 // far (relative) towards the camera, past any difference between this expression and the
 // rasteriser's interpolated depth (a few ulps).
 const SD_CULL_MARGIN: f32 = 1.0e-5;
+// Two steps of a fixed-point target's depth (0 for a float target): whatever way the written
+// value and the fragments' depths are rounded to it, a fragment behind the point still tests
+// behind what is stored.
+override SD_CULL_QUANTUM: f32 = 0.0;
 
 @vertex
 fn vs_full_screen(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
@@ -39,7 +43,7 @@ fn sd_cull_depth(pixel: vec2<u32>) -> f32 {
     // view_to_clip's depth for a point `separation` behind the first layer (the projection's z and
     // w rows do not depend on x and y).
     let clip = camera.projection * vec4<f32>(0.0, 0.0, -(first + sd.separation), 1.0);
-    return min(clip.z / clip.w * (1.0 + SD_CULL_MARGIN), 1.0);
+    return min(clip.z / clip.w * (1.0 + SD_CULL_MARGIN) + SD_CULL_QUANTUM, 1.0);
 }
 
 @fragment

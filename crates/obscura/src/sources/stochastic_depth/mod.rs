@@ -64,13 +64,22 @@ impl SdLayout {
     }
 }
 
-/// The depth format of the map's early-test target: 32-bit float, as precise as the
-/// rasteriser's depth; with the stencil of SD-SVAO where the map is stenciled.
-fn cull_format(stenciled: bool) -> wgpu::TextureFormat {
+/// The depth format of the map's early-test target. Where its reset writes that depth: 24 bits,
+/// with the stencil of SD-SVAO where the map is stenciled (both formats every WebGPU device
+/// has). The map pass tests 24-bit depth faster than 32-bit float: on an H200 at 1080p its
+/// `sd_map` took 1.064 → 1.019 ms with the depth mask and 1.368 → 1.235 with the stencil (16 bits,
+/// depth mask: 1.055; BENCHMARKS.md, issue 16). The reset moves its depth two steps towards the
+/// camera (reset.wgsl, SD_CULL_QUANTUM), so no rounding rejects a fragment the shader would keep.
+/// A whole map tested against the G-buffer's depth buffer (`gbuffer_z`) takes that buffer's
+/// `Depth32Float`, which its pipelines must match: a 24-bit reset there measured slower (map
+/// 1.708 ms after a 0.160 ms reset, against 1.701 with no reset).
+fn cull_format(stenciled: bool, gbuffer_z: bool) -> wgpu::TextureFormat {
     if stenciled {
-        wgpu::TextureFormat::Depth32FloatStencil8
-    } else {
+        wgpu::TextureFormat::Depth24PlusStencil8
+    } else if gbuffer_z {
         wgpu::TextureFormat::Depth32Float
+    } else {
+        wgpu::TextureFormat::Depth24Plus
     }
 }
 
@@ -81,14 +90,6 @@ thread_local! {
     pub(crate) static RESET_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
     /// Tests: frames whose map was tested against the G-buffer's depth on this thread.
     pub(crate) static GBUFFER_Z_FRAMES: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
-}
-
-/// Whether this device can stencil the map (wgpu feature `DEPTH32FLOAT_STENCIL8`, requested by
-/// [`crate::Gpu`] where the adapter has it); without it `--sd-mask discard` limits the map.
-pub fn stencil_available(device: &wgpu::Device) -> bool {
-    device
-        .features()
-        .contains(wgpu::Features::DEPTH32FLOAT_STENCIL8)
 }
 
 /// Whether the map's fragments are tested before they are shaded (wgpu feature
@@ -172,8 +173,6 @@ pub struct SdCapabilities {
     pub sample_counts: Vec<u32>,
     /// The map's fragments are depth- and stencil-tested before shading.
     pub early_tests: bool,
-    /// `stochastic_depth.mask = "stencil"` is available.
-    pub stencil: bool,
 }
 
 impl SdCapabilities {
@@ -183,7 +182,6 @@ impl SdCapabilities {
             format: "storage buffer, S f32 per pixel".to_string(),
             sample_counts: SD_SAMPLE_COUNTS.to_vec(),
             early_tests: early_tests_available(device),
-            stencil: stencil_available(device),
         }
     }
 }
@@ -266,15 +264,6 @@ impl StochasticDepthMap {
         requested: Option<SdMask>,
     ) -> Result<Self, Error> {
         let stenciled = requested == Some(SdMask::Stencil);
-        if stenciled && !stencil_available(device) {
-            return Err(crate::SettingsError::Unsupported {
-                field: "stochastic_depth.mask",
-                value: "stencil".to_string(),
-                adapter: adapter.get_info().name,
-                reason: "the device has no Depth32FloatStencil8 format (wgpu feature DEPTH32FLOAT_STENCIL8) for the map's stencil; use --sd-mask depth (the default) or --sd-mask discard, which give the same image".to_string(),
-            }
-            .into());
-        }
         let layout =
             SdLayout::plan(settings.samples).ok_or_else(|| crate::SettingsError::Invalid {
                 field: "stochastic_depth.samples",
@@ -316,7 +305,18 @@ impl StochasticDepthMap {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let format = cull_format(stenciled);
+        // The G-buffer's depth buffer holds the first layer's own depth: tested against it (no
+        // writes, `Less`), the first layer's fragments fail, and those behind it pass early; the
+        // shader drops what lies within `separation` behind (as it does with the reset's
+        // depth). Only a fragment the rasteriser puts at the first layer's own depth while its
+        // linear depth lies more than `separation` behind would be lost: that takes a separation
+        // within the depth's rounding (about 1e-7 of the depth), and a separation of 0 keeps
+        // the reset.
+        let gbuffer_z_usable =
+            requested.is_none() && band == 0 && separation > 0.0 && early_tests_available(device);
+        #[cfg(test)]
+        let gbuffer_z_usable = gbuffer_z_usable && !RESET_ONLY.with(|r| r.get());
+        let format = cull_format(stenciled, gbuffer_z_usable);
         let cull = crate::gpu::texture_2d(
             device,
             "stochastic depth cull",
@@ -421,17 +421,6 @@ impl StochasticDepthMap {
             }
             .create(device)
         });
-        // The G-buffer's depth buffer holds the first layer's own depth: tested against it (no
-        // writes, `Less`), the first layer's fragments fail, and those behind it pass early; the
-        // shader drops what lies within `separation` behind (as it does with the reset's
-        // depth). Only a fragment the rasteriser puts at the first layer's own depth while its
-        // linear depth lies more than `separation` behind would be lost: that takes a separation
-        // within the depth's rounding (about 1e-7 of the depth), and a separation of 0 keeps
-        // the reset.
-        let gbuffer_z_usable =
-            requested.is_none() && band == 0 && separation > 0.0 && early_tests_available(device);
-        #[cfg(test)]
-        let gbuffer_z_usable = gbuffer_z_usable && !RESET_ONLY.with(|r| r.get());
         let scope = match requested {
             Some(SdMask::Stencil) => ResetScope::Stenciled,
             Some(SdMask::Depth) => ResetScope::RequestedByDepth,
@@ -597,7 +586,7 @@ impl StochasticDepthMap {
             .filter(|z| {
                 self.gbuffer_z_usable
                     && !self.all_layers
-                    && z.format() == cull_format(false)
+                    && z.format() == wgpu::TextureFormat::Depth32Float
                     && z.sample_count() == 1
                     && (z.width(), z.height()) == self.size
             })

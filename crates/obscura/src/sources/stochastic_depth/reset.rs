@@ -21,6 +21,18 @@ pub(crate) enum ResetScope {
     RequestedByDepth,
 }
 
+/// Two steps of `format`'s depth where it may be 24-bit fixed point (reset.wgsl's
+/// SD_CULL_QUANTUM), 0 for a float format. A device may store `Depth24Plus` as a float: two
+/// 24-bit steps then only let a few more fragments reach the shader, which drops them.
+fn cull_quantum(format: wgpu::TextureFormat) -> f64 {
+    match format {
+        wgpu::TextureFormat::Depth24Plus | wgpu::TextureFormat::Depth24PlusStencil8 => {
+            2.0 / 16777215.0
+        }
+        _ => 0.0,
+    }
+}
+
 pub(crate) struct SdReset {
     clear: ZeroFill,
     pipeline: wgpu::RenderPipeline,
@@ -82,7 +94,10 @@ impl SdReset {
                     ResetScope::Stenciled => "fs_reset_requested",
                     ResetScope::RequestedByDepth => "fs_reset_requested_by_depth",
                 }),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &[("SD_CULL_QUANTUM", cull_quantum(format))],
+                    ..Default::default()
+                },
                 targets: &[],
             }),
             multiview_mask: None,
