@@ -113,6 +113,45 @@ fn each_hidden_fragment_is_stored_in_floor_alpha_s_plus_xi_samples() {
 }
 
 #[test]
+fn a_fragments_samples_are_a_uniform_choice_among_the_masks_of_its_count() {
+    // Seed 001 §3.1: a fragment stored in R samples takes them "uniformly" from the C(S, R)
+    // subsets. With αS a whole number every fragment has R = αS; one hidden layer (at 2) then
+    // fills exactly the samples of its mask, and every mask must appear with probability
+    // 1 / C(S, R). The marginals alone (each sample with probability α, the test above) would
+    // not notice, e.g., masks of R neighbouring samples.
+    let gpu = gpu();
+    let depths = [1.0, 2.0];
+    let scene = facing_layers(&depths);
+    for (s, alpha) in [(4u32, 0.5f32), (8, 0.375)] {
+        let layers = sd_layers(&gpu, &scene, &settings(Technique::SdVao, s, alpha));
+        let r = (alpha * s as f32) as u32;
+        let pixels = (SIZE * SIZE) as usize;
+        let mut counts = std::collections::HashMap::<u32, usize>::new();
+        for p in 0..pixels {
+            let mask = layers.iter().enumerate().fold(0u32, |m, (j, layer)| {
+                m | (u32::from(layer_of(layer[p], &depths) == Some(1)) << j)
+            });
+            assert_eq!(
+                mask.count_ones(),
+                r,
+                "S {s}: pixel {p} stores mask {mask:b}"
+            );
+            *counts.entry(mask).or_default() += 1;
+        }
+        let masks = (0..1u32 << s).filter(|m| m.count_ones() == r).count();
+        assert_eq!(counts.len(), masks, "S {s}: masks seen {}", counts.len());
+        for (mask, n) in counts {
+            within_5_sigma(
+                n as f64 / pixels as f64,
+                1.0 / masks as f64,
+                pixels,
+                &format!("S {s}: share of mask {mask:b}"),
+            );
+        }
+    }
+}
+
+#[test]
 fn samples_keep_the_nearest_chosen_layer() {
     // First layer at 1, hidden layers at 2, 3, 4 (increasing depth). Each hidden layer picks each
     // sample with probability α, independently of the others, and the depth test keeps the
