@@ -219,8 +219,9 @@ impl Gpu {
 
     /// Wrap a device the caller made (an engine's), with its adapter and queue. obscura uses the
     /// features the device has: without `TIMESTAMP_QUERY` there are no pass timings, without
-    /// `SHADER_EARLY_DEPTH_TEST` the stochastic depth map is the same but slower. Validation errors the device does not capture are collected for
-    /// [`Gpu::check_errors`]: this installs the device's uncaptured-error handler.
+    /// `SHADER_EARLY_DEPTH_TEST` the stochastic depth map is the same but slower. Validation
+    /// errors the device does not capture are collected for [`Gpu::check_errors`]: this installs
+    /// the device's uncaptured-error handler.
     pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
         let info = adapter.get_info();
         let features = device.features();
