@@ -769,6 +769,42 @@ mod tests {
             }
         }
         assert!(non_empty > 0, "every map was empty");
+        // Far away, where the reset's 24-bit steps are coarse (the near plane is 1e-5 of the
+        // scene's diagonal: about 0.2 world units a step at depth 1000 here), a layer 0.1 behind
+        // the first is kept as the G-buffer's 32-bit depth keeps it: the steps of margin the
+        // reset adds let through every fragment the shader would keep.
+        let mut far = scene::Scene {
+            name: "far layers".into(),
+            materials: vec![scene::Material::default()],
+            ..Default::default()
+        };
+        for d in [1000.0f32, 1000.1] {
+            let base = far.positions.len() as u32;
+            far.positions.extend([
+                glam::Vec3::new(-10.0 * d, -10.0 * d, -d),
+                glam::Vec3::new(10.0 * d, -10.0 * d, -d),
+                glam::Vec3::new(0.0, 10.0 * d, -d),
+            ]);
+            far.uvs.extend([glam::Vec2::ZERO; 3]);
+            far.triangles.push([base, base + 1, base + 2]);
+            far.triangle_materials.push(0);
+        }
+        let eye = scene::Camera::new(glam::Vec3::ZERO, glam::Vec3::NEG_Z, 90.0).unwrap();
+        let map = |reset_only: bool| {
+            // (Set while the map is made, at the first frame.)
+            RESET_ONLY.with(|r| r.set(reset_only));
+            let mut r = Renderer::new(&gpu, &far, &cases[0], 64, 64, 0).unwrap();
+            r.render(&eye, None).unwrap();
+            RESET_ONLY.with(|r| r.set(false));
+            r.read_stochastic_depth_as_written().unwrap().unwrap()
+        };
+        let (z, reset) = (map(false), map(true));
+        let stored = reset.iter().flatten().filter(|&&d| d > 0.0).count();
+        assert!(stored > 64 * 64, "the far map stored {stored} depths");
+        assert!(
+            z == reset,
+            "far away, the 24-bit reset's map differs from the G-buffer's"
+        );
         // Its own band: the reset, always.
         let mut s = AoSettings {
             technique: Technique::SdVao,
