@@ -1,8 +1,8 @@
-// BVH traversal on the GPU: the flat BVH2 of src/bvh (root at 0, an empty pad at 1, sibling pairs
-// at even indices; leaves index the leaf-ordered triangle list) walked nearest child first with a
-// bounded stack — the loop of src/bvh/traverse.rs, and the watertight ray/triangle test of
-// src/bvh/triangle.rs (Woop, Benthin, Wald, JCGT 2(1) 2013) without its f64 tie-break: a ray that
-// passes exactly through an edge counts as inside for both triangles here.
+// BVH traversal on the GPU: the four-wide tree of src/bvh/wide.rs (collapsed from the flat BVH2 of
+// src/bvh: the same boxes and leaves; leaves index the leaf-ordered triangle list) walked nearest
+// child first with a bounded stack, as src/bvh/traverse.rs walks the BVH2, and the watertight
+// ray/triangle test of src/bvh/triangle.rs (Woop, Benthin, Wald, JCGT 2(1) 2013) without its f64
+// tie-break: a ray that passes exactly through an edge counts as inside for both triangles here.
 //
 // Every ray-tracing pass includes this file once (after common/material.wgsl) and defines
 //     fn bvh_on_hit(hit: BvhHit) -> u32
@@ -10,11 +10,18 @@
 // the shape of an any-hit shader. Hits reach it only after the back-face and alpha rules.
 // bvh_closest_hit and bvh_any_hit are built in and do not call it.
 
+// Four children (src/bvh/wide.rs WideNode): their boxes per axis; child k is a leaf of the
+// triangle slots child[k] .. child[k] + count[k] when count[k] > 0, else the inner node child[k].
+// Unused slots have inverted boxes, which no ray enters.
 struct BvhNode {
-    min: vec3<f32>,
-    first: u32,
-    max: vec3<f32>,
-    count: u32,
+    min_x: vec4<f32>,
+    max_x: vec4<f32>,
+    min_y: vec4<f32>,
+    max_y: vec4<f32>,
+    min_z: vec4<f32>,
+    max_z: vec4<f32>,
+    child: vec4<u32>,
+    count: vec4<u32>,
 }
 
 @group(BVH_GROUP) @binding(BVH_BINDING) var<storage, read> bvh_nodes: array<BvhNode>;
@@ -29,8 +36,9 @@ struct BvhNode {
 const BVH_CONTINUE: u32 = 0u;
 const BVH_SHRINK: u32 = 1u;
 const BVH_STOP: u32 = 2u;
-// Entries of the traversal stack. A deeper tree sets `bvh_stack_overflow` (never silently).
-const BVH_STACK_SIZE: u32 = 64u;
+// Entries of the traversal stack (src/bvh/gpu.rs STACK_SIZE says why this many). A tree whose walk
+// needs more sets `bvh_stack_overflow` (never silently).
+const BVH_STACK_SIZE: u32 = 96u;
 // Relative slack of box exits (src/bvh/triangle.rs: T_SLACK).
 const BVH_T_SLACK: f32 = 4.76837158e-7;
 
@@ -116,16 +124,54 @@ fn bvh_ray(origin: vec3<f32>, dir: vec3<f32>) -> BvhRay {
     return r;
 }
 
-// Entry distance of the ray into the box, or -1 when it misses [t_lo, t_hi] (t_lo >= 0).
-// Entry and exit planes are chosen by the direction's sign, so an inverted (empty) box never hits.
-fn bvh_box_entry(r: BvhRay, lo: vec3<f32>, hi: vec3<f32>, t_lo: f32, t_hi: f32) -> f32 {
+// Entry distances of the ray into the node's four boxes, -1 for those it misses in [t_lo, t_hi]
+// (t_lo >= 0). Entry and exit planes are chosen by the direction's sign, so an inverted (empty)
+// box never hits.
+fn bvh_box_entries(r: BvhRay, node: u32, t_lo: f32, t_hi: f32) -> vec4<f32> {
+    // Field by field: only what the test needs is loaded (and live) here; the children's links
+    // are loaded after it.
     let negative = r.inv_dir < vec3<f32>(0.0);
-    let near = (select(lo, hi, negative) - r.origin) * r.inv_dir;
-    let far = (select(hi, lo, negative) - r.origin) * r.inv_dir;
-    let entry = max(max(max(near.x, near.y), near.z), t_lo);
-    var exit = min(min(far.x, far.y), far.z);
-    exit = min(max(exit * (1.0 + BVH_T_SLACK), exit * (1.0 - BVH_T_SLACK)), t_hi);
-    return select(-1.0, entry, entry <= exit);
+    let min_x = bvh_nodes[node].min_x;
+    let max_x = bvh_nodes[node].max_x;
+    let min_y = bvh_nodes[node].min_y;
+    let max_y = bvh_nodes[node].max_y;
+    let min_z = bvh_nodes[node].min_z;
+    let max_z = bvh_nodes[node].max_z;
+    let near_x = (select(min_x, max_x, negative.x) - r.origin.x) * r.inv_dir.x;
+    let far_x = (select(max_x, min_x, negative.x) - r.origin.x) * r.inv_dir.x;
+    let near_y = (select(min_y, max_y, negative.y) - r.origin.y) * r.inv_dir.y;
+    let far_y = (select(max_y, min_y, negative.y) - r.origin.y) * r.inv_dir.y;
+    let near_z = (select(min_z, max_z, negative.z) - r.origin.z) * r.inv_dir.z;
+    let far_z = (select(max_z, min_z, negative.z) - r.origin.z) * r.inv_dir.z;
+    let entry = max(max(max(near_x, near_y), near_z), vec4<f32>(t_lo));
+    var exit = min(min(far_x, far_y), far_z);
+    exit = min(max(exit * (1.0 + BVH_T_SLACK), exit * (1.0 - BVH_T_SLACK)), vec4<f32>(t_hi));
+    return select(vec4<f32>(-1.0), entry, entry <= exit);
+}
+
+// The node's four slots ordered by entry distance, nearest first, the missed ones last (their
+// entry is -1). Branch-free: each slot's key is its entry's bits (non-negative floats order as
+// their bits do) with the slot in the two low bits, sorted by a network of min/max.
+fn bvh_order(entry: vec4<f32>) -> vec4<u32> {
+    let key = (select(vec4<u32>(0xfffffffcu), bitcast<vec4<u32>>(entry), entry >= vec4<f32>(0.0))
+        & vec4<u32>(0xfffffffcu)) | vec4<u32>(0u, 1u, 2u, 3u);
+    let a = min(key.x, key.y);
+    let b = max(key.x, key.y);
+    let c = min(key.z, key.w);
+    let d = max(key.z, key.w);
+    let e = min(b, d);
+    let f = max(a, c);
+    return vec4<u32>(min(a, c), min(e, f), max(e, f), max(b, d)) & vec4<u32>(3u);
+}
+
+// Component k of v, by selects: a vector indexed by a value the shader computes can be put in
+// memory by the compiler, where every access is a load.
+fn bvh_pick_f32(v: vec4<f32>, k: u32) -> f32 {
+    return select(select(v.x, v.y, k == 1u), select(v.z, v.w, k == 3u), k >= 2u);
+}
+
+fn bvh_pick_u32(v: vec4<u32>, k: u32) -> u32 {
+    return select(select(v.x, v.y, k == 1u), select(v.z, v.w, k == 3u), k >= 2u);
 }
 
 fn bvh_sheared(r: BvhRay, p: vec3<f32>) -> vec3<f32> {
@@ -178,61 +224,36 @@ fn bvh_passes_rules(hit: BvhHit) -> bool {
     return material_passes_alpha(m, bvh_textures, uv);
 }
 
+// A stack entry or the item walked next: a wide node's index, or a leaf as its wide node's
+// index times 4 plus its slot, with this bit set. The leaf's triangles are read from the node when
+// it is walked, so the stack holds one word per entry for either.
+const BVH_LEAF: u32 = 0x80000000u;
+const BVH_NONE: u32 = 0xffffffffu;
+
 // Walks the BVH over [t_min, t_max] (t_min >= 0), handing every hit that passes the rules to
-// bvh_on_hit.
+// bvh_on_hit. At a node, the children the ray enters go onto the stack farthest first, leaves and
+// inner nodes alike, and the nearest is walked into; a leaf's triangles are tested when it is
+// walked, so the nearest leaves come first as in the BVH2 walk of src/bvh/traverse.rs. Leaves
+// stay stack entries rather than being tested at their node, so that nothing of the node is live
+// while a triangle is tested (the column rays trace inside the AO pass, where registers are few).
 fn bvh_traverse(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32) {
-    if (arrayLength(&bvh_nodes) < 2u || !(t_min <= t_max_in)) {
+    if (!(t_min <= t_max_in)) {
         return;
     }
     let r = bvh_ray(origin, dir);
     var t_max = t_max_in;
     var t_cull = max(t_max * (1.0 + BVH_T_SLACK), t_max * (1.0 - BVH_T_SLACK));
-    var stack_node: array<u32, BVH_STACK_SIZE>;
+    var stack_item: array<u32, BVH_STACK_SIZE>;
     var stack_t: array<f32, BVH_STACK_SIZE>;
     var sp = 0u;
-    var pair = 0u;
+    var item = 0u;
     loop {
-        // Both children of the pair; go on with the nearer one that is hit, push the other.
-        let left = bvh_nodes[2u * pair];
-        let right = bvh_nodes[2u * pair + 1u];
-        let tl = bvh_box_entry(r, left.min, left.max, t_min, t_cull);
-        let tr = bvh_box_entry(r, right.min, right.max, t_min, t_cull);
-        var node = 0xffffffffu;
-        if (tl >= 0.0 && tr >= 0.0) {
-            let near_is_right = tr < tl;
-            node = select(2u * pair, 2u * pair + 1u, near_is_right);
-            if (sp < BVH_STACK_SIZE) {
-                stack_node[sp] = select(2u * pair + 1u, 2u * pair, near_is_right);
-                stack_t[sp] = select(tr, tl, near_is_right);
-                sp += 1u;
-            } else {
-                bvh_stack_overflow = true;
-            }
-        } else if (tl >= 0.0) {
-            node = 2u * pair;
-        } else if (tr >= 0.0) {
-            node = 2u * pair + 1u;
-        }
-        loop {
-            if (node == 0xffffffffu) {
-                // Pop the next node that still overlaps the (possibly shrunk) interval.
-                loop {
-                    if (sp == 0u) {
-                        return;
-                    }
-                    sp -= 1u;
-                    if (stack_t[sp] <= t_cull) {
-                        node = stack_node[sp];
-                        break;
-                    }
-                }
-            }
-            let n = bvh_nodes[node];
-            if (n.count == 0u) {
-                pair = n.first / 2u;
-                break;
-            }
-            for (var slot = n.first; slot < n.first + n.count; slot++) {
+        if ((item & BVH_LEAF) != 0u) {
+            let w = (item & ~BVH_LEAF) >> 2u;
+            let k = item & 3u;
+            let first = bvh_nodes[w].child[k];
+            let count = bvh_nodes[w].count[k];
+            for (var slot = first; slot < first + count; slot++) {
                 let hit = bvh_intersect(r, slot, t_min, t_max);
                 if (hit.t < 0.0 || !bvh_passes_rules(hit)) {
                     continue;
@@ -246,7 +267,47 @@ fn bvh_traverse(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32) {
                     t_cull = max(t_max * (1.0 + BVH_T_SLACK), t_max * (1.0 - BVH_T_SLACK));
                 }
             }
-            node = 0xffffffffu;
+            item = BVH_NONE;
+        } else {
+            let entry = bvh_box_entries(r, item, t_min, t_cull);
+            let order = bvh_order(entry);
+            let child = bvh_nodes[item].child;
+            let count = bvh_nodes[item].count;
+            let node = item;
+            item = BVH_NONE;
+            var item_t = 0.0;
+            // Farthest first: each child but the nearest waits on the stack.
+            for (var i = 0u; i < 4u; i++) {
+                let k = bvh_pick_u32(order, 3u - i);
+                let e = bvh_pick_f32(entry, k);
+                if (e < 0.0) {
+                    continue;
+                }
+                if (item != BVH_NONE) {
+                    if (sp < BVH_STACK_SIZE) {
+                        stack_item[sp] = item;
+                        stack_t[sp] = item_t;
+                        sp += 1u;
+                    } else {
+                        bvh_stack_overflow = true;
+                    }
+                }
+                item = select(bvh_pick_u32(child, k), BVH_LEAF | (node << 2u) | k, bvh_pick_u32(count, k) != 0u);
+                item_t = e;
+            }
+        }
+        if (item == BVH_NONE) {
+            // Pop the next entry that still overlaps the (possibly shrunk) interval.
+            loop {
+                if (sp == 0u) {
+                    return;
+                }
+                sp -= 1u;
+                if (stack_t[sp] <= t_cull) {
+                    item = stack_item[sp];
+                    break;
+                }
+            }
         }
     }
 }

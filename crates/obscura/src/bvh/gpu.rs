@@ -13,35 +13,32 @@ use wgpu::util::DeviceExt;
 /// the buffers.
 #[derive(Clone)]
 pub struct GpuBvh {
-    /// [`Bvh::nodes`] as WGSL `BvhNode`s, 32 bytes each (two empty boxes for an empty tree).
+    /// The four-wide tree of [`Bvh::nodes`] ([`super::wide::WideNode`], WGSL `BvhNode`, 128
+    /// bytes each; one node of unused slots for an empty tree).
     pub nodes: wgpu::Buffer,
     /// `(i0, i1, i2, material)` per leaf slot.
     pub triangles: wgpu::Buffer,
     /// Leaf slot → index into `scene.triangles`.
     pub primitive_ids: wgpu::Buffer,
-    /// Depth of the deepest leaf; the WGSL stack holds 64 entries (deeper trees are reported).
+    /// Depth of the deepest leaf of the BVH2.
     pub max_depth: usize,
+    /// The most stack entries the GPU traversal can need on this tree; the WGSL stack holds
+    /// [`STACK_SIZE`] (rays that need more are reported).
+    pub stack_bound: usize,
 }
 
-/// `BVH_STACK_SIZE` in bvh.wgsl.
-pub const STACK_SIZE: usize = 64;
+/// `BVH_STACK_SIZE` in bvh.wgsl: twice [`super::build::MAX_DEPTH`]. The wide walk holds up to three
+/// entries per wide level, and a wide level spans one to two BVH2 levels; the trees of real scenes
+/// need about 1.5 entries per BVH2 level (Crytek Sponza: 52 for a BVH2 36 deep).
+pub const STACK_SIZE: usize = 96;
 
 impl GpuBvh {
-    /// Uploads `bvh`, built over `scene`, with the triangles copied into leaf order. Logs a warning
-    /// when the tree is deeper than the GPU stack ([`STACK_SIZE`]); overflowing rays are counted.
+    /// Uploads `bvh`, built over `scene`, as its four-wide tree ([`super::wide`]) with the
+    /// triangles copied into leaf order. Logs a warning when a walk of that tree could need more
+    /// than the GPU stack's [`STACK_SIZE`] entries; overflowing rays are counted.
     pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Self {
-        // An empty tree still binds: two inverted (empty) boxes that no ray enters.
-        let empty = super::BvhNode {
-            min: [1.0; 3],
-            first: 0,
-            max: [-1.0; 3],
-            count: 0,
-        };
-        let nodes: Vec<super::BvhNode> = if bvh.nodes().len() >= 2 {
-            bvh.nodes().to_vec()
-        } else {
-            vec![empty, empty]
-        };
+        // An empty tree still binds: one node of unused slots, which no ray enters.
+        let (nodes, stack_bound) = super::wide::widen(bvh.nodes());
         let ids = bvh.primitive_indices();
         let mut triangles: Vec<[u32; 4]> = ids
             .iter()
@@ -55,10 +52,10 @@ impl GpuBvh {
             triangles.push([0; 4]);
             ids.push(0);
         }
-        if bvh.max_depth() >= STACK_SIZE {
+        if stack_bound > STACK_SIZE {
             log::warn!(
-                "BVH depth {} exceeds the GPU traversal stack ({STACK_SIZE}); overflowing rays are counted",
-                bvh.max_depth()
+                "the BVH may need {stack_bound} stack entries, more than the GPU traversal's \
+                 {STACK_SIZE}; overflowing rays are counted"
             );
         }
         let storage = |label, contents: &[u8]| {
@@ -73,6 +70,7 @@ impl GpuBvh {
             triangles: storage("bvh triangles", bytemuck::cast_slice(&triangles)),
             primitive_ids: storage("bvh primitive ids", bytemuck::cast_slice(&ids)),
             max_depth: bvh.max_depth(),
+            stack_bound,
         }
     }
 

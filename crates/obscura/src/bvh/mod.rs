@@ -20,8 +20,9 @@
 //!   rays), (b) its ray/box test clamps tiny direction components to ±1/ε, which is not
 //!   conservative and can cull boxes the ray does pass through — unacceptable in an oracle — and it
 //!   mishandles origins lying exactly on a box face of a zero direction component, and (c) the GPU
-//!   traversal will walk *this* node layout with the same algorithm, so the CPU version is its
-//!   line-by-line reference.
+//!   traversal walks the same boxes and leaves with the same tests (four-wide, `wide.rs`), so the
+//!   CPU version is its reference.
+//! - `wide.rs`: the four-wide tree the GPU walks, collapsed from this BVH2.
 //!
 //! # Rules a hit must pass (the scene contract, `scene/types.rs`)
 //! A candidate triangle hit with parameter `t` in `[t_min, t_max]` (inclusive, in units of
@@ -57,6 +58,7 @@ pub mod build;
 pub mod gpu;
 mod traverse;
 mod triangle;
+pub mod wide;
 
 #[cfg(test)]
 mod tests;
@@ -211,7 +213,8 @@ impl Bvh {
         self.primitive_indices.len()
     }
 
-    /// Depth of the deepest leaf (root = 0); a GPU traversal stack of this many entries suffices.
+    /// Depth of the deepest leaf (root = 0); the CPU traversal's stack never holds more entries
+    /// (the GPU's wide walk has its own bound, [`gpu::GpuBvh::stack_bound`]).
     pub fn max_depth(&self) -> usize {
         self.max_depth
     }

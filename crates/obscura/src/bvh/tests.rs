@@ -765,6 +765,79 @@ fn flat_layout_is_consistent() {
     assert!(bytemuck::cast_slice::<_, u8>(nodes).len() == nodes.len() * 32);
 }
 
+#[test]
+fn the_wide_tree_holds_the_bvh2_leaves_and_boxes() {
+    use super::wide::{widen, WideNode};
+    assert_eq!(std::mem::size_of::<WideNode>(), 128);
+    let scene = random_soup(22, 4_000);
+    let bvh = Bvh::build(&scene);
+    let nodes = bvh.nodes();
+    let (wide, bound) = widen(nodes);
+    // Every BVH2 leaf is one wide slot with the leaf's own box, and every wide slot a BVH2 node's
+    // box: the GPU tests exactly the boxes the CPU tests, so both report the same hits.
+    let leaf_boxes: std::collections::HashMap<(u32, u32), ([f32; 3], [f32; 3])> = nodes
+        .iter()
+        .filter(|n| n.is_leaf())
+        .map(|n| ((n.first, n.count), (n.min, n.max)))
+        .collect();
+    let mut leaves_seen = 0;
+    let mut reached = vec![0u32; wide.len()];
+    reached[0] = 1;
+    // (wide node, stack entries its walk can hold on arrival).
+    let mut todo = vec![(0usize, 0usize)];
+    let mut deepest_stack = 0;
+    while let Some((w, held)) = todo.pop() {
+        let n = wide[w];
+        let used: Vec<usize> = (0..4)
+            .filter(|&k| n.bounds[0][k] <= n.bounds[1][k])
+            .collect();
+        assert!(
+            used.len() >= 2 || wide.len() == 1,
+            "node {w} has {} children",
+            used.len()
+        );
+        // Unused slots are inverted boxes; used ones come first.
+        assert!(
+            used.iter().enumerate().all(|(i, &k)| i == k),
+            "node {w}: {used:?}"
+        );
+        let pushes = used.len().saturating_sub(1);
+        deepest_stack = deepest_stack.max(held + pushes);
+        for &k in &used {
+            let lo = [n.bounds[0][k], n.bounds[2][k], n.bounds[4][k]];
+            let hi = [n.bounds[1][k], n.bounds[3][k], n.bounds[5][k]];
+            if n.count[k] > 0 {
+                assert_eq!(
+                    leaf_boxes.get(&(n.child[k], n.count[k])),
+                    Some(&(lo, hi)),
+                    "node {w} slot {k}"
+                );
+                leaves_seen += 1;
+            } else {
+                let c = n.child[k] as usize;
+                assert!(c > w, "children come after their parents");
+                reached[c] += 1;
+                assert!(nodes
+                    .iter()
+                    .any(|b| !b.is_leaf() && b.min == lo && b.max == hi));
+                todo.push((c, held + pushes));
+            }
+        }
+    }
+    assert_eq!(leaves_seen, leaf_boxes.len());
+    assert!(
+        reached.iter().all(|&r| r == 1),
+        "every wide node has one parent"
+    );
+    assert_eq!(bound, deepest_stack);
+    // Fewer levels than the BVH2: about half (log 4 against log 2 of the leaf count).
+    assert!(wide.len() * 2 < nodes.len(), "{} wide nodes", wide.len());
+    // An empty tree is one node that no ray enters.
+    let (empty, bound) = widen(&[]);
+    assert_eq!((empty.len(), bound), (1, 0));
+    assert!((0..4).all(|k| empty[0].bounds[0][k] > empty[0].bounds[1][k]));
+}
+
 /// A ~250k-triangle synthetic scene (Y up): a 256×256-cell heightfield plus 10k rotated boxes.
 fn benchmark_scene() -> Scene {
     let mut rng = Pcg::new(2024);
