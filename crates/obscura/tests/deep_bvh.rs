@@ -127,6 +127,13 @@ fn a_polygon_fan_traces_without_overflow() {
     println!("unbounded: {overflowed} of 64 rays overflowed, {missed} found no hit");
     assert!(overflowed > 0, "the unbounded tree must show the defect");
     assert!(bounded.max_depth() <= obscura::bvh::build::MAX_DEPTH);
+    // Whatever its shape, a bounded tree's walk fits the GPU stack (two-wide where four-wide
+    // could not).
+    let bound = GpuBvh::new(&gpu.device, &bounded, &scene).stack_bound;
+    assert!(
+        bound <= obscura::bvh::gpu::STACK_SIZE,
+        "stack bound {bound}"
+    );
     // Every ray through the disc hits it, and none overflows.
     assert_eq!(trace(&bounded), (0, 0));
 }

@@ -38,7 +38,7 @@ const BVH_SHRINK: u32 = 1u;
 const BVH_STOP: u32 = 2u;
 // Entries of the traversal stack (src/bvh/gpu.rs STACK_SIZE says why this many). A tree whose walk
 // needs more sets `bvh_stack_overflow` (never silently).
-const BVH_STACK_SIZE: u32 = 96u;
+const BVH_STACK_SIZE: u32 = 64u;
 // Relative slack of box exits (src/bvh/triangle.rs: T_SLACK).
 const BVH_T_SLACK: f32 = 4.76837158e-7;
 

@@ -56,8 +56,9 @@ pub(super) fn triangle_vertices(scene: &Scene, i: usize) -> Option<[Vec3A; 3]> {
     Some([p(0)?, p(1)?, p(2)?])
 }
 
-/// Deepest tree [`crate::bvh::Bvh::build`] keeps from the SAH builder by default, so that the GPU
-/// traversal's stack (`gpu::STACK_SIZE`, twice this) holds the walk of its wide tree. SAH cannot separate triangles whose centroids coincide or
+/// Deepest tree [`crate::bvh::Bvh::build`] keeps from the SAH builder by default: inside the GPU
+/// traversal's 64-entry stack (`gpu::STACK_SIZE`) when the tree is walked two-wide, as it is where
+/// its four-wide walk could need more. SAH cannot separate triangles whose centroids coincide or
 /// line up far apart (a polygon fan, duplicated geometry, exponentially spaced parts) and then
 /// builds a chain about as deep as the triangle count.
 pub const MAX_DEPTH: usize = 48;

@@ -27,18 +27,26 @@ pub struct GpuBvh {
     pub stack_bound: usize,
 }
 
-/// `BVH_STACK_SIZE` in bvh.wgsl: twice [`super::build::MAX_DEPTH`]. The wide walk holds up to three
-/// entries per wide level, and a wide level spans one to two BVH2 levels; the trees of real scenes
-/// need about 1.5 entries per BVH2 level (Crytek Sponza: 52 for a BVH2 36 deep).
-pub const STACK_SIZE: usize = 96;
+/// `BVH_STACK_SIZE` in bvh.wgsl. The four-wide walk of real scenes' trees holds about 1.5 entries
+/// per BVH2 level (Crytek Sponza: 52 for a BVH2 36 deep); a tree whose four-wide walk could need
+/// more is walked two-wide, which needs no more than its depth ([`super::build::MAX_DEPTH`]). A
+/// stack of 96 entries made every ray-traced pass 1–12 % slower on an H200 (BENCHMARKS.md).
+pub const STACK_SIZE: usize = 64;
 
 impl GpuBvh {
-    /// Uploads `bvh`, built over `scene`, as its four-wide tree ([`super::wide`]) with the
-    /// triangles copied into leaf order. Logs a warning when a walk of that tree could need more
-    /// than the GPU stack's [`STACK_SIZE`] entries; overflowing rays are counted.
+    /// Uploads `bvh`, built over `scene`, as its four-wide tree ([`super::wide`]), or two-wide
+    /// where a four-wide walk could outgrow the GPU stack, with the triangles copied into leaf
+    /// order. Logs a warning when even that could need more than the stack's [`STACK_SIZE`]
+    /// entries (a tree deeper than the build's bound); overflowing rays are counted.
     pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Self {
         // An empty tree still binds: one node of unused slots, which no ray enters.
-        let (nodes, stack_bound) = super::wide::widen(bvh.nodes());
+        let (mut nodes, mut stack_bound) = super::wide::widen(bvh.nodes(), 4);
+        if stack_bound > STACK_SIZE {
+            // Four-wide, a path can hold up to three entries a level: where that outgrows the
+            // stack, two children a node push at most one a level, which a tree of
+            // build::MAX_DEPTH levels never outgrows.
+            (nodes, stack_bound) = super::wide::widen(bvh.nodes(), 2);
+        }
         let ids = bvh.primitive_indices();
         let mut triangles: Vec<[u32; 4]> = ids
             .iter()

@@ -772,7 +772,7 @@ fn the_wide_tree_holds_the_bvh2_leaves_and_boxes() {
     let scene = random_soup(22, 4_000);
     let bvh = Bvh::build(&scene);
     let nodes = bvh.nodes();
-    let (wide, bound) = widen(nodes);
+    let (wide, bound) = widen(nodes, 4);
     // Every BVH2 leaf is one wide slot with the leaf's own box, and every wide slot a BVH2 node's
     // box: the GPU tests exactly the boxes the CPU tests, so both report the same hits.
     let leaf_boxes: std::collections::HashMap<(u32, u32), ([f32; 3], [f32; 3])> = nodes
@@ -832,8 +832,16 @@ fn the_wide_tree_holds_the_bvh2_leaves_and_boxes() {
     assert_eq!(bound, deepest_stack);
     // Fewer levels than the BVH2: about half (log 4 against log 2 of the leaf count).
     assert!(wide.len() * 2 < nodes.len(), "{} wide nodes", wide.len());
+    // Two-wide, the tree is the BVH2 again: one wide node per inner node (the BVH2 counts its pad
+    // at index 1 among them), and a walk holds at most one entry a level.
+    let (binary, binary_bound) = widen(nodes, 2);
+    assert_eq!(
+        binary.len(),
+        nodes.iter().filter(|n| !n.is_leaf()).count() - 1
+    );
+    assert!(binary_bound <= bvh.max_depth(), "{binary_bound}");
     // An empty tree is one node that no ray enters.
-    let (empty, bound) = widen(&[]);
+    let (empty, bound) = widen(&[], 4);
     assert_eq!((empty.len(), bound), (1, 0));
     assert!((0..4).all(|k| empty[0].bounds[0][k] > empty[0].bounds[1][k]));
 }

@@ -54,11 +54,13 @@ impl WideNode {
     }
 }
 
-/// The wide tree of a flat BVH2, root at index 0 (one node of unused slots for an empty tree),
-/// and a bound on the GPU traversal's stack: the most entries a nearest-child-first walk can hold,
-/// the sum over a root-to-leaf path of each node's children (leaves too: they wait on the stack)
-/// less the one walked into.
-pub fn widen(nodes: &[BvhNode]) -> (Vec<WideNode>, usize) {
+/// The wide tree of a flat BVH2 with at most `width` (2 to 4) children a node, root at index 0
+/// (one node of unused slots for an empty tree), and a bound on the GPU traversal's stack: the most
+/// entries a nearest-child-first walk can hold, the sum over a root-to-leaf path of each node's
+/// children (leaves too: they wait on the stack) less the one walked into. At width 2 the tree is
+/// the BVH2 itself, whose bound is at most its depth.
+pub fn widen(nodes: &[BvhNode], width: usize) -> (Vec<WideNode>, usize) {
+    assert!((2..=4).contains(&width), "a wide node has 2 to 4 children");
     let mut wide = vec![WideNode::empty()];
     if nodes.len() < 2 {
         return (wide, 0);
@@ -80,7 +82,7 @@ pub fn widen(nodes: &[BvhNode]) -> (Vec<WideNode>, usize) {
         } else {
             vec![root.first as usize, root.first as usize + 1]
         };
-        while kids.len() < 4 {
+        while kids.len() < width {
             let Some(open) = (0..kids.len())
                 .filter(|&i| !nodes[kids[i]].is_leaf())
                 .max_by(|&a, &b| area(&nodes[kids[a]]).total_cmp(&area(&nodes[kids[b]])))
