@@ -30,7 +30,7 @@ pub struct GpuBvh {
 /// `BVH_STACK_SIZE` in bvh.wgsl. The four-wide walk of real scenes' trees holds about 1.5 entries
 /// per BVH2 level (Crytek Sponza: 52 for a BVH2 36 deep); a tree whose four-wide walk could need
 /// more is walked two-wide, which needs no more than its depth ([`super::build::MAX_DEPTH`]). A
-/// stack of 96 entries made the ray-traced passes 3–16 % slower on an H200 (BENCHMARKS.md).
+/// stack of 96 entries made the ray-traced passes 2–16 % slower on an H200 (BENCHMARKS.md).
 pub const STACK_SIZE: usize = 64;
 
 impl GpuBvh {
