@@ -225,8 +225,9 @@ fn bvh_passes_rules(hit: BvhHit) -> bool {
 }
 
 // A stack entry or the item walked next: a wide node's index, or a leaf as its wide node's
-// index times 4 plus its slot, with this bit set. The leaf's triangles are read from the node when
-// it is walked, so the stack holds one word per entry for either.
+// index times 4 plus its slot, with this bit set (so at most 2^29 nodes, 64 GiB: more than any
+// storage binding holds). The leaf's triangles are read from the node when it is walked, so the
+// stack holds one word per entry for either.
 const BVH_LEAF: u32 = 0x80000000u;
 const BVH_NONE: u32 = 0xffffffffu;
 
@@ -292,7 +293,8 @@ fn bvh_traverse(origin: vec3<f32>, dir: vec3<f32>, t_min: f32, t_max_in: f32) {
                         bvh_stack_overflow = true;
                     }
                 }
-                item = select(bvh_pick_u32(child, k), BVH_LEAF | (node << 2u) | k, bvh_pick_u32(count, k) != 0u);
+                let is_leaf = bvh_pick_u32(count, k) != 0u;
+                item = select(bvh_pick_u32(child, k), BVH_LEAF | (node << 2u) | k, is_leaf);
                 item_t = e;
             }
         }
