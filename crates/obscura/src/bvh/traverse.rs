@@ -3,8 +3,8 @@
 //! Nearest child first: at an inner node both children's boxes are tested (one 4-wide test of the
 //! sibling pair), the ray goes on with the child it enters first and pushes the other with its
 //! entry distance, which is checked again on pop (the interval may have shrunk meanwhile). The GPU
-//! walks the same boxes four at a time (`wide.rs`, `shaders/common/bvh.wgsl`) in the same order:
-//! nearest first, every pushed entry checked again on pop.
+//! walks the same boxes four at a time (`wide.rs`, `shaders/common/bvh.wgsl`), likewise
+//! nearest child first, every pushed entry checked again on pop.
 
 use glam::Vec2;
 
