@@ -161,3 +161,59 @@ fn gpu_traversal_applies_the_alpha_test() {
         closest[48].t
     );
 }
+
+#[test]
+fn the_smallest_trees_trace_as_on_the_cpu() {
+    // One triangle (the root is a leaf: the wide tree's one node has one slot), one quad (two
+    // triangles, one leaf or two), and no triangle at all (one node of unused slots).
+    let mut one = quads("one triangle", &[]);
+    for p in [
+        Vec3::new(-1.0, -1.0, -2.0),
+        Vec3::new(1.0, -1.0, -2.0),
+        Vec3::new(0.0, 1.0, -2.0),
+    ] {
+        one.positions.push(p);
+        one.uvs.push(Vec2::ZERO);
+    }
+    one.triangles.push([0, 1, 2]);
+    one.triangle_materials.push(0);
+    let quad = quads(
+        "one quad",
+        &[[
+            Vec3::new(-1.0, -1.0, -2.0),
+            Vec3::new(1.0, -1.0, -2.0),
+            Vec3::new(1.0, 1.0, -2.0),
+            Vec3::new(-1.0, 1.0, -2.0),
+        ]],
+    );
+    let rays: Vec<QueryRay> = (0..16)
+        .map(|i| QueryRay {
+            origin: [0.0; 3],
+            t_min: 0.0,
+            dir: [
+                (i as f32 - 7.5) / 6.0,
+                ((i * 5) % 16) as f32 / 8.0 - 1.0,
+                -1.0,
+            ],
+            t_max: f32::MAX,
+        })
+        .collect();
+    let (hits, _) = compare(&one, &rays);
+    assert!(hits > 0, "the triangle must be hit");
+    let (hits, _) = compare(&quad, &rays);
+    assert!(hits > 0, "the quad must be hit");
+    let empty = quads("empty", &[]);
+    let gpu = gpu();
+    let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &empty, &gpu.device.limits()).unwrap();
+    let gpu_bvh = GpuBvh::new(&gpu.device, &Bvh::build(&empty), &empty);
+    for mode in [QueryMode::ClosestHit, QueryMode::AllHits] {
+        let results = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &rays, mode).unwrap();
+        assert!(
+            results
+                .iter()
+                .all(|r| r.t < 0.0 && r.hit_count == 0 && r.stack_overflow == 0),
+            "{mode:?}: {:?}",
+            results[0]
+        );
+    }
+}

@@ -223,10 +223,16 @@ impl GpuScene {
             })
             .collect();
 
+        // A scene without triangles (or vertices) still binds: an empty buffer is below every
+        // binding's minimum size, so it gets 256 zero bytes, more than any one element here.
         let storage = |label, contents: &[u8]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
-                contents,
+                contents: if contents.is_empty() {
+                    &[0; 256]
+                } else {
+                    contents
+                },
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
