@@ -137,3 +137,41 @@ fn a_polygon_fan_traces_without_overflow() {
     // Every ray through the disc hits it, and none overflows.
     assert_eq!(trace(&bounded), (0, 0));
 }
+
+#[test]
+fn a_tree_too_deep_for_the_four_wide_walk_is_walked_two_wide() {
+    // 200 triangles of the chain: the BVH2 is 54 levels deep, within the GPU stack, but its
+    // four-wide walk could need 79 entries. The upload falls back to two children a node, and
+    // the ray along the chain then finds every hit the CPU finds, with no overflow.
+    let scene = chain(200);
+    let bvh = Bvh::build_unbounded(&scene);
+    let (_, four_wide) = obscura::bvh::wide::widen(bvh.nodes(), 4);
+    let stack = obscura::bvh::gpu::STACK_SIZE;
+    assert!(
+        bvh.max_depth() <= stack && four_wide > stack,
+        "the test needs a tree between the two bounds: depth {}, four-wide {four_wide}",
+        bvh.max_depth()
+    );
+    let gpu = gpu();
+    let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
+    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene);
+    assert!(
+        gpu_bvh.stack_bound <= stack,
+        "bound {}",
+        gpu_bvh.stack_bound
+    );
+    let along = QueryRay {
+        origin: [0.5, 0.0, 0.0],
+        t_min: 0.0,
+        dir: [1.0, 0.0, 0.0],
+        t_max: f32::MAX,
+    };
+    let result = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &[along], QueryMode::AllHits).unwrap();
+    let ray = obscura::bvh::Ray::new(Vec3::from(along.origin), Vec3::from(along.dir));
+    let cpu = bvh.all_hits(&scene, &ray, along.t_min, along.t_max).len();
+    assert!(cpu > 100, "the ray must cross the chain: {cpu} hits");
+    assert_eq!(
+        (result[0].stack_overflow, result[0].hit_count as usize),
+        (0, cpu)
+    );
+}
