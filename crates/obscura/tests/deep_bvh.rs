@@ -30,6 +30,16 @@ fn chain(count: u32) -> obscura::scene::Scene {
     s
 }
 
+/// Along +x through every triangle of the chain: every level has both children to visit.
+fn along_the_chain() -> QueryRay {
+    QueryRay {
+        origin: [0.5, 0.0, 0.0],
+        t_min: 0.0,
+        dir: [1.0, 0.0, 0.0],
+        t_max: f32::MAX,
+    }
+}
+
 #[test]
 fn stack_overflow_is_reported() {
     let scene = chain(330);
@@ -46,13 +56,7 @@ fn stack_overflow_is_reported() {
         gpu_bvh.stack_bound > obscura::bvh::gpu::STACK_SIZE,
         "the test needs a deeper tree"
     );
-    // Along +x through every triangle: every level has both children to visit.
-    let along = QueryRay {
-        origin: [0.5, 0.0, 0.0],
-        t_min: 0.0,
-        dir: [1.0, 0.0, 0.0],
-        t_max: f32::MAX,
-    };
+    let along = along_the_chain();
     let result = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &[along], QueryMode::AllHits).unwrap();
     assert_eq!(
         result[0].stack_overflow, 1,
@@ -160,12 +164,7 @@ fn a_tree_too_deep_for_the_four_wide_walk_is_walked_two_wide() {
         "bound {}",
         gpu_bvh.stack_bound
     );
-    let along = QueryRay {
-        origin: [0.5, 0.0, 0.0],
-        t_min: 0.0,
-        dir: [1.0, 0.0, 0.0],
-        t_max: f32::MAX,
-    };
+    let along = along_the_chain();
     let result = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &[along], QueryMode::AllHits).unwrap();
     let ray = obscura::bvh::Ray::new(Vec3::from(along.origin), Vec3::from(along.dir));
     let cpu = bvh.all_hits(&scene, &ray, along.t_min, along.t_max).len();
