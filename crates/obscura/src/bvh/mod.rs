@@ -40,15 +40,14 @@
 //! Every query takes the `&Scene` the BVH was built from: vertex positions are copied into the BVH
 //! (leaf order), but materials, uvs and textures are read from the scene at hit time.
 //!
-//! # GPU layout
-//! [`Bvh::nodes`] is a flat array of 32-byte [`BvhNode`]s (upload with `bytemuck::cast_slice`):
-//! the root at index 0, an unused pad at index 1 (an empty box, `min > max`), so that every sibling
-//! pair starts at an even index and a GPU can fetch both children as one 64-byte block; an inner
-//! node's two children are adjacent (`first`, `first + 1`); a leaf's triangles are
-//! `primitive_indices[first .. first + count]` (original indices into `scene.triangles`). It maps
-//! onto WGSL as `struct BvhNode { min: vec3<f32>, first: u32, max: vec3<f32>, count: u32 }` (size
-//! 32, align 16). [`Bvh::max_depth`] bounds the traversal stack. Upload the triangles in leaf order
-//! (`scene.triangles[primitive_indices[i]]` at slot `i`) and the GPU loop needs no indirection.
+//! # Layout
+//! [`Bvh::nodes`] is a flat array of 32-byte [`BvhNode`]s: the root at index 0, an unused pad at
+//! index 1 (an empty box, `min > max`), so that every sibling pair starts at an even index; an
+//! inner node's two children are adjacent (`first`, `first + 1`); a leaf's triangles are
+//! `primitive_indices[first .. first + count]` (original indices into `scene.triangles`).
+//! [`Bvh::max_depth`] bounds the CPU traversal's stack. The GPU does not read these nodes: it
+//! walks their four-wide collapse (`wide.rs`, uploaded by [`gpu::GpuBvh`] with the triangles in
+//! leaf order, `scene.triangles[primitive_indices[i]]` at slot `i`).
 //!
 //! Build threading: obvhs parallelises its build only with its `parallel` feature, which our
 //! dependency line does not enable, so the build runs on one thread (about 2 s for 250k

@@ -72,9 +72,6 @@ pub fn widen(nodes: &[BvhNode], width: usize) -> (Vec<WideNode>, usize) {
     // (wide node, the BVH2 node whose children it holds); the BVH2 root is itself a leaf in a
     // one-triangle tree.
     let mut todo = vec![(0usize, 0usize)];
-    // Per wide node: its parent and its children's count, for the stack bound.
-    let mut parent = vec![usize::MAX];
-    let mut children = vec![0usize];
     while let Some((w, opened)) = todo.pop() {
         let root = &nodes[opened];
         let mut kids: Vec<usize> = if root.is_leaf() {
@@ -92,7 +89,6 @@ pub fn widen(nodes: &[BvhNode], width: usize) -> (Vec<WideNode>, usize) {
             let first = nodes[kids.swap_remove(open)].first as usize;
             kids.extend([first, first + 1]);
         }
-        children[w] = kids.len();
         for (k, &kid) in kids.iter().enumerate() {
             let n = nodes[kid];
             if n.is_leaf() {
@@ -100,20 +96,24 @@ pub fn widen(nodes: &[BvhNode], width: usize) -> (Vec<WideNode>, usize) {
             } else {
                 let index = wide.len();
                 wide.push(WideNode::empty());
-                parent.push(w);
-                children.push(0);
                 wide[w].set_slot(k, &n, index as u32, 0);
                 todo.push((index, kid));
             }
         }
     }
-    // Children come after their parents, so one pass from the back sums each path's pushes.
+    // Children come after their parents, so one pass from the back has every child's need ready:
+    // a node's pushes (its used slots less the one walked into) plus its neediest inner child's.
     let mut need = vec![0usize; wide.len()];
     for w in (0..wide.len()).rev() {
-        need[w] += children[w].saturating_sub(1);
-        if parent[w] != usize::MAX {
-            need[parent[w]] = need[parent[w]].max(need[w]);
-        }
+        let n = &wide[w];
+        let used = (0..4).filter(|&k| n.bounds[0][k] <= n.bounds[1][k]);
+        let pushes = used.clone().count().saturating_sub(1);
+        let deepest = used
+            .filter(|&k| n.count[k] == 0)
+            .map(|k| need[n.child[k] as usize])
+            .max()
+            .unwrap_or(0);
+        need[w] = pushes + deepest;
     }
     (wide, need[0])
 }
