@@ -1,11 +1,15 @@
 //! The four-wide BVH the GPU walks (`shaders/common/bvh.wgsl`), collapsed from the flat BVH2 of
-//! [`super::Bvh::nodes`]: the same leaves and boxes, about half of the BVH2's levels gone. Why: a
-//! GPU ray waits on each node's load before it can choose the next, and the ray-traced passes run
-//! too few rays to hide that wait (the 1/4-resolution stochastic depth map of seed 002 §3.3
-//! traces at most 1.5·10⁵), so fewer, wider steps are what shortens them: on an H200 that map
-//! took 0.71 ms on Crytek Sponza over the BVH2 and 0.50 over this tree (BENCHMARKS.md). The
-//! collapse is the common greedy one: a node takes its BVH2 node's two children, then keeps
-//! opening the inner child of largest surface area until it has four.
+//! [`super::Bvh::nodes`]: the same leaves and boxes, about half of the BVH2's levels gone, so a
+//! ray takes about half as many steps: on an H200 the 1/4-resolution stochastic depth map of
+//! seed 002 §3.3 took 0.71 ms on Crytek Sponza over the BVH2 and 0.50 over this tree
+//! (BENCHMARKS.md). The collapse is the common greedy one: a node takes its BVH2 node's two
+//! children, then keeps opening the inner child of largest surface area until it has four.
+//!
+//! Measured and not kept (BENCHMARKS.md, 2026-12-04): boxes stored in bytes on a per-node grid
+//! (64-byte nodes, Ylitie et al. 2017) made that map 4–9 % slower, the decoding costing more
+//! than the bytes saved; and the map does not wait on single rays' latency either (each ray split
+//! over several invocations cost the sum of the parts, not the longest part). A reading, not
+//! measured directly: its rays are bound by their instructions.
 //!
 //! The CPU traversal (`traverse.rs`) stays on the BVH2; both visit the same leaves with the same
 //! boxes, so both report the same hits (the GPU's order differs, which only the any-hit stages
