@@ -14,12 +14,10 @@
 // triangle slots child[k] .. child[k] + count[k] when count[k] > 0, else the inner node child[k].
 // Unused slots have inverted boxes, which no ray enters.
 struct BvhNode {
-    min_x: vec4<f32>,
-    max_x: vec4<f32>,
-    min_y: vec4<f32>,
-    max_y: vec4<f32>,
-    min_z: vec4<f32>,
-    max_z: vec4<f32>,
+    // Per axis a: bounds[2a] the children's minima, bounds[2a + 1] their maxima (a ray reads the
+    // planes it enters and leaves by index, BvhRay.near / far, or reads both and chooses:
+    // BVH_PLANES_BY_INDEX).
+    bounds: array<vec4<f32>, 6>,
     child: vec4<u32>,
     count: vec4<u32>,
 }
@@ -39,6 +37,12 @@ const BVH_STOP: u32 = 2u;
 // Entries of the traversal stack (src/bvh/gpu.rs STACK_SIZE says why this many). A tree whose walk
 // needs more sets `bvh_stack_overflow` (never silently).
 const BVH_STACK_SIZE: u32 = 64u;
+// How a node's box test reads the planes a ray enters and leaves a box by: by their index for the
+// ray's direction (true), or both planes of an axis and a choice between them. Ours, measured on
+// an H200 (BENCHMARKS.md, 2026-12-04): by index, the rays traced in the AO passes (`rt-vao`,
+// `rt-svao`) were 3–5 % faster and the ray-traced stochastic depth map 1–9 % slower, so the
+// map's pipeline sets it false.
+override BVH_PLANES_BY_INDEX: bool = true;
 // Relative slack of box exits (src/bvh/triangle.rs: T_SLACK).
 const BVH_T_SLACK: f32 = 4.76837158e-7;
 
@@ -97,6 +101,10 @@ struct BvhRay {
     // Axis permutation of the watertight test and its shear constants.
     k: vec3<u32>,
     shear: vec3<f32>,
+    // Per axis, the index into BvhNode.bounds of the planes the ray enters and leaves a box by
+    // (the minima for a positive direction).
+    near: vec3<u32>,
+    far: vec3<u32>,
 }
 
 fn bvh_ray(origin: vec3<f32>, dir: vec3<f32>) -> BvhRay {
@@ -121,6 +129,9 @@ fn bvh_ray(origin: vec3<f32>, dir: vec3<f32>) -> BvhRay {
     r.inv_dir = select(1.0 / dir, select(vec3<f32>(1e30), vec3<f32>(-1e30), dir < vec3<f32>(0.0)), tiny);
     r.k = vec3<u32>(kx, ky, kz);
     r.shear = vec3<f32>(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
+    let negative = select(vec3<u32>(0u), vec3<u32>(1u), r.inv_dir < vec3<f32>(0.0));
+    r.near = vec3<u32>(0u, 2u, 4u) + negative;
+    r.far = vec3<u32>(1u, 3u, 5u) - negative;
     return r;
 }
 
@@ -128,24 +139,49 @@ fn bvh_ray(origin: vec3<f32>, dir: vec3<f32>) -> BvhRay {
 // (t_lo >= 0). Entry and exit planes are chosen by the direction's sign, so an inverted (empty)
 // box never hits.
 fn bvh_box_entries(r: BvhRay, node: u32, t_lo: f32, t_hi: f32) -> vec4<f32> {
-    // Field by field: only what the test needs is loaded (and live) here; the children's links
-    // are loaded after it.
-    let negative = r.inv_dir < vec3<f32>(0.0);
-    let min_x = bvh_nodes[node].min_x;
-    let max_x = bvh_nodes[node].max_x;
-    let min_y = bvh_nodes[node].min_y;
-    let max_y = bvh_nodes[node].max_y;
-    let min_z = bvh_nodes[node].min_z;
-    let max_z = bvh_nodes[node].max_z;
-    let near_x = (select(min_x, max_x, negative.x) - r.origin.x) * r.inv_dir.x;
-    let far_x = (select(max_x, min_x, negative.x) - r.origin.x) * r.inv_dir.x;
-    let near_y = (select(min_y, max_y, negative.y) - r.origin.y) * r.inv_dir.y;
-    let far_y = (select(max_y, min_y, negative.y) - r.origin.y) * r.inv_dir.y;
-    let near_z = (select(min_z, max_z, negative.z) - r.origin.z) * r.inv_dir.z;
-    let far_z = (select(max_z, min_z, negative.z) - r.origin.z) * r.inv_dir.z;
+    // Only the planes the test needs are loaded (and live) here; the children's links are loaded
+    // after it.
+    var near_x: vec4<f32>;
+    var far_x: vec4<f32>;
+    var near_y: vec4<f32>;
+    var far_y: vec4<f32>;
+    var near_z: vec4<f32>;
+    var far_z: vec4<f32>;
+    if (BVH_PLANES_BY_INDEX) {
+        near_x = bvh_nodes[node].bounds[r.near.x];
+        far_x = bvh_nodes[node].bounds[r.far.x];
+        near_y = bvh_nodes[node].bounds[r.near.y];
+        far_y = bvh_nodes[node].bounds[r.far.y];
+        near_z = bvh_nodes[node].bounds[r.near.z];
+        far_z = bvh_nodes[node].bounds[r.far.z];
+    } else {
+        // From the direction, not from `r.near`: that would keep the indices live through the
+        // walk (measured slower).
+        let negative = r.inv_dir < vec3<f32>(0.0);
+        let min_x = bvh_nodes[node].bounds[0];
+        let max_x = bvh_nodes[node].bounds[1];
+        let min_y = bvh_nodes[node].bounds[2];
+        let max_y = bvh_nodes[node].bounds[3];
+        let min_z = bvh_nodes[node].bounds[4];
+        let max_z = bvh_nodes[node].bounds[5];
+        near_x = select(min_x, max_x, negative.x);
+        far_x = select(max_x, min_x, negative.x);
+        near_y = select(min_y, max_y, negative.y);
+        far_y = select(max_y, min_y, negative.y);
+        near_z = select(min_z, max_z, negative.z);
+        far_z = select(max_z, min_z, negative.z);
+    }
+    near_x = (near_x - r.origin.x) * r.inv_dir.x;
+    far_x = (far_x - r.origin.x) * r.inv_dir.x;
+    near_y = (near_y - r.origin.y) * r.inv_dir.y;
+    far_y = (far_y - r.origin.y) * r.inv_dir.y;
+    near_z = (near_z - r.origin.z) * r.inv_dir.z;
+    far_z = (far_z - r.origin.z) * r.inv_dir.z;
     let entry = max(max(max(near_x, near_y), near_z), vec4<f32>(t_lo));
-    var exit = min(min(far_x, far_y), far_z);
-    exit = min(max(exit * (1.0 + BVH_T_SLACK), exit * (1.0 - BVH_T_SLACK)), vec4<f32>(t_hi));
+    // The exit widened by the relative slack: exit (1 + slack) for exits at or beyond 0, and an
+    // exit below 0 misses either way (entry >= t_lo >= 0). (Written as the larger of exit (1 ±
+    // slack) it cost the ray-traced passes up to 1.5 % on an H200, BENCHMARKS.md.)
+    let exit = min(min(min(far_x, far_y), far_z) * (1.0 + BVH_T_SLACK), vec4<f32>(t_hi));
     return select(vec4<f32>(-1.0), entry, entry <= exit);
 }
 
