@@ -663,6 +663,15 @@ impl Estimator {
         self.order_independent() && matches!(self, Estimator::Vao | Estimator::Ssao)
     }
 
+    /// Whether the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a sample's depth
+    /// only after testing whether the sample falls on the shading pixel, rather than before it as
+    /// every other pass does. Measured on an H200 (BENCHMARKS.md, 2026-12-04): with bent normals
+    /// the early load made VAO's pass 7 % and GTAO's 10 % slower, while HBAO+'s and GTAO-VB's were
+    /// 1 % faster with it; without bent normals it is faster for all.
+    pub fn late_first_layer_load(self, bent_normals: bool) -> bool {
+        bent_normals && matches!(self, Estimator::Vao | Estimator::Gtao)
+    }
+
     /// Whether the estimator's result is independent of the order its samples arrive in, as a
     /// two-phase schedule needs (phase 2 adds the flagged samples after all others). HBAO and
     /// GTAO walk each direction outwards, carrying a running horizon: single pass only.

@@ -14,6 +14,9 @@
 // `bent_normals` (seed 001 §4): the single-pass schedule writes the estimator's bent normal
 // (estimator_bent_normal) next to its AO; estimators keep what only it needs behind it.
 override BENT_NORMALS: bool = false;
+// first_layer_lookup loads a sample's depth after its shading-pixel test instead of before it
+// (src/technique.rs Estimator::late_first_layer_load says where).
+override FIRST_LAYER_LOAD_LATE: bool = false;
 
 // The shading point of a visible pixel in the view the estimators work in (`frame_point`, made by
 // frame/point.wgsl or, in the multi-view schedule's second view, schedules/multiview/point.wgsl).
@@ -57,10 +60,17 @@ fn first_layer_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     let sample_pixel = vec2<u32>(clamp(estimator_sample_px(p, s), vec2<f32>(0.0), vec2<f32>(view.full_size) - 0.5));
     l.px = vec2<f32>(sample_pixel) + 0.5;
     // Loaded before the test below, whose answer it does not need: the load is then issued
-    // without waiting on a branch (0.5–1.7 % off the AO passes on an H200, BENCHMARKS.md).
-    let z = textureLoad(depth_tex, sample_pixel, 0).r;
+    // without waiting on a branch (0.5–1.7 % off the AO passes on an H200, BENCHMARKS.md), unless
+    // FIRST_LAYER_LOAD_LATE.
+    var z = 0.0;
+    if (!FIRST_LAYER_LOAD_LATE) {
+        z = textureLoad(depth_tex, sample_pixel, 0).r;
+    }
     if (all(sample_pixel == estimator_shading_pixel(p))) {
         return l;
+    }
+    if (FIRST_LAYER_LOAD_LATE) {
+        z = textureLoad(depth_tex, sample_pixel, 0).r;
     }
     if (is_background(z)) {
         return l;

@@ -215,6 +215,9 @@ impl SchedulePass {
             if outputs.bent_normals {
                 stage.constants.push(("BENT_NORMALS", 1.0));
             }
+            if row.estimator.late_first_layer_load(outputs.bent_normals) {
+                stage.constants.push(("FIRST_LAYER_LOAD_LATE", 1.0));
+            }
             if deferred_resolve(row) {
                 stage.constants.push(("DEFERRED_RESOLVE", 1.0));
             }
