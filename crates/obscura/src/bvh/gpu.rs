@@ -48,35 +48,26 @@ impl GpuBvh {
             (nodes, stack_bound) = super::wide::widen(bvh.nodes(), 2);
         }
         let ids = bvh.primitive_indices();
-        let mut triangles: Vec<[u32; 4]> = ids
+        let triangles: Vec<[u32; 4]> = ids
             .iter()
             .map(|&t| {
                 let [a, b, c] = scene.triangles[t as usize];
                 [a, b, c, scene.triangle_materials[t as usize]]
             })
             .collect();
-        let mut ids = ids.to_vec();
-        if triangles.is_empty() {
-            triangles.push([0; 4]);
-            ids.push(0);
-        }
         if stack_bound > STACK_SIZE {
             log::warn!(
                 "the BVH may need {stack_bound} stack entries, more than the GPU traversal's \
                  {STACK_SIZE}; overflowing rays are counted"
             );
         }
-        let storage = |label, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        // Empty buffers (an empty scene) are padded to bind (gpu::storage_buffer_init).
+        let storage =
+            |label, contents: &[u8]| crate::gpu::storage_buffer_init(device, label, contents);
         Self {
             nodes: storage("bvh nodes", bytemuck::cast_slice(&nodes)),
             triangles: storage("bvh triangles", bytemuck::cast_slice(&triangles)),
-            primitive_ids: storage("bvh primitive ids", bytemuck::cast_slice(&ids)),
+            primitive_ids: storage("bvh primitive ids", bytemuck::cast_slice(ids)),
             max_depth: bvh.max_depth(),
             stack_bound,
         }

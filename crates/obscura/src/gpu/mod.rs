@@ -289,6 +289,22 @@ impl Gpu {
     }
 }
 
+/// A storage buffer holding `contents`. Empty contents (a scene without triangles or
+/// vertices) still bind: an empty buffer is below every binding's minimum size, so it gets 256
+/// zero bytes, more than any one element the shaders read.
+pub fn storage_buffer_init(device: &wgpu::Device, label: &str, contents: &[u8]) -> wgpu::Buffer {
+    use wgpu::util::DeviceExt;
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: if contents.is_empty() {
+            &[0; 256]
+        } else {
+            contents
+        },
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
 /// A compute pipeline from WGSL source with entry point `main`, an automatic layout and values
 /// for the shader's `override` constants.
 pub fn compute_pipeline_with(

@@ -6,7 +6,6 @@ use super::chunks;
 use crate::gpu::GpuError;
 use crate::scene::{AlphaMode, Scene};
 use glam::{Vec2, Vec3};
-use wgpu::util::DeviceExt;
 
 /// GPU mirror of `Material` in `shaders/gbuffer.wgsl`.
 #[repr(C)]
@@ -223,19 +222,8 @@ impl GpuScene {
             })
             .collect();
 
-        // A scene without triangles (or vertices) still binds: an empty buffer is below every
-        // binding's minimum size, so it gets 256 zero bytes, more than any one element here.
-        let storage = |label, contents: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: if contents.is_empty() {
-                    &[0; 256]
-                } else {
-                    contents
-                },
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
+        let storage =
+            |label, contents: &[u8]| crate::gpu::storage_buffer_init(device, label, contents);
         Ok(Self {
             positions: storage("positions", bytemuck::cast_slice(&positions)),
             attributes: storage("vertex attributes", bytemuck::cast_slice(&attributes)),
