@@ -663,6 +663,16 @@ impl Estimator {
         self.order_independent() && matches!(self, Estimator::Vao | Estimator::Ssao)
     }
 
+    /// Whether a sample that reads the raster stochastic depth map makes a value of each distinct
+    /// depth of the pixel once, nearest first, instead of one per stored sample
+    /// (stochastic_depth/samples.wgsl's `SD_DISTINCT`; S ≤ 4). Measured on an H200
+    /// (BENCHMARKS.md, 2026-12-04): GTAO-VB's pass 11–14 % faster and HBAO's 2–8 %, where a value
+    /// costs many instructions; VAO's cheap values 1–3 % slower, HBAO+ and SSAO within ±6 %
+    /// either way by scene.
+    pub fn resolves_distinct_depths(self) -> bool {
+        matches!(self, Estimator::GtaoVb | Estimator::Hbao)
+    }
+
     /// Whether the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a sample's depth
     /// only after testing whether the sample falls on the shading pixel, rather than before it as
     /// every other pass does. Measured on an H200 (BENCHMARKS.md, 2026-12-04): with bent normals

@@ -13,7 +13,7 @@ use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
-use crate::technique::{Schedule, TechniqueRow};
+use crate::technique::{Schedule, Source, TechniqueRow};
 use crate::view::ScreenGeometry;
 use crate::Error;
 
@@ -183,6 +183,23 @@ fn deferred_resolve(row: &TechniqueRow) -> bool {
         && row.source.costly_resolve()
 }
 
+#[cfg(test)]
+thread_local! {
+    /// Tests: `Some(on)` resolves each distinct depth once (`SD_DISTINCT`) for every row over
+    /// the raster map, or for none, whatever the estimator.
+    static DISTINCT_DEPTHS: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
+}
+
+/// Whether `row`'s samples that read the raster stochastic depth map make a value of each
+/// distinct depth once (samples.wgsl's `SD_DISTINCT`, [`crate::technique::Estimator::resolves_distinct_depths`]).
+fn distinct_depths(row: &TechniqueRow) -> bool {
+    #[cfg(test)]
+    if let Some(on) = DISTINCT_DEPTHS.with(|d| d.get()) {
+        return row.source == Source::StochasticDepth && on;
+    }
+    row.source == Source::StochasticDepth && row.estimator.resolves_distinct_depths()
+}
+
 /// A schedule as an [`crate::AmbientOcclusion`] holds it.
 pub(crate) enum SchedulePass {
     Single(single::Single),
@@ -220,6 +237,9 @@ impl SchedulePass {
             }
             if deferred_resolve(row) {
                 stage.constants.push(("DEFERRED_RESOLVE", 1.0));
+            }
+            if distinct_depths(row) {
+                stage.constants.push(("SD_DISTINCT", 1.0));
             }
         }
         Ok(match schedule {
@@ -305,5 +325,69 @@ impl SchedulePass {
             }
             SchedulePass::TwoPhase(s) => Some(s.records()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DISTINCT_DEPTHS;
+    use crate::raster::test_support::gpu;
+    use crate::settings::Preset;
+    use crate::{scene, AoSettings, Renderer, Technique};
+
+    /// Resolving each distinct depth of a map pixel once, nearest first, gives the same AO as
+    /// resolving every stored sample in turn, for every estimator over the raster map (each
+    /// combine keeps one of its arguments) and for the two-phase schedule, at S = 2 and 4 and
+    /// with missing-occlusion compensation; and the maps hold a depth twice in many pixels, so
+    /// the copies were there to skip.
+    #[test]
+    fn distinct_depths_change_no_pixel() {
+        let gpu = gpu();
+        let mut pixels_with_copies = 0;
+        for name in ["stairs", "grass", "layers"] {
+            let scene = scene::builtin(name).unwrap();
+            let camera = scene.cameras[0].camera;
+            for technique in [
+                Technique::SdVao,
+                Technique::SdSvao,
+                Technique::SdGtaoVb,
+                Technique::SdHbao,
+                Technique::SdHbaoPlus,
+                Technique::SdSsao,
+            ] {
+                for (samples, compensation) in [(4, 1.0), (2, 1.0), (4, 2.0)] {
+                    let mut settings = AoSettings::preset(technique, Preset::Medium);
+                    settings.stochastic_depth.samples = samples;
+                    settings.stochastic_depth.compensation = compensation;
+                    let render = |on: bool| {
+                        DISTINCT_DEPTHS.with(|d| d.set(Some(on)));
+                        let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();
+                        r.render(&camera, None).unwrap();
+                        DISTINCT_DEPTHS.with(|d| d.set(None));
+                        (
+                            r.read_ao().unwrap(),
+                            r.read_stochastic_depth().unwrap().unwrap(),
+                        )
+                    };
+                    let (each, map) = render(false);
+                    let (distinct, _) = render(true);
+                    let what =
+                        format!("{name} {technique} S = {samples}, compensation {compensation}");
+                    assert!(each == distinct, "{what}: distinct depths changed the AO");
+                    pixels_with_copies += (0..map[0].len())
+                        .filter(|&p| {
+                            (0..map.len()).any(|a| {
+                                (a + 1..map.len())
+                                    .any(|b| map[a][p] > 0.0 && map[a][p] == map[b][p])
+                            })
+                        })
+                        .count();
+                }
+            }
+        }
+        assert!(
+            pixels_with_copies > 1000,
+            "only {pixels_with_copies} map pixels hold a depth twice"
+        );
     }
 }

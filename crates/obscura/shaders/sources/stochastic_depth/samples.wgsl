@@ -25,22 +25,67 @@ override SD_COMPENSATION: f32 = 1.0;
 // anywhere (Alg. 1's stochastic choice, the ray-traced reservoir).
 override SD_SORTED: bool = false;
 
+// The value of the stored depth `v` (reversed Z) as the sample's occluder.
+fn sd_occluder(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup, v: f32) -> EstimatorValue {
+    var value = estimator_occluder_at(p, s, l.px, sd_near.x / v).value;
+    if (SD_COMPENSATION != 1.0) {
+        value = estimator_compensate(p, s, value, SD_COMPENSATION);
+    }
+    return value;
+}
+
+// Up to four stored depths of a pixel (0: empty) with every later copy of one depth emptied,
+// sorted nearest (largest reversed Z) first, so the empty ones come last.
+fn sd_distinct_nearest_first(stored: vec4<f32>) -> vec4<f32> {
+    var v = stored;
+    v.y = select(v.y, 0.0, v.y == v.x);
+    v.z = select(v.z, 0.0, v.z == v.x || v.z == v.y);
+    v.w = select(v.w, 0.0, v.w == v.x || v.w == v.y || v.w == v.z);
+    // A sorting network of four: (x, y), (z, w), (x, z), (y, w), (y, z).
+    var a = vec4<f32>(max(v.x, v.y), min(v.x, v.y), max(v.z, v.w), min(v.z, v.w));
+    a = vec4<f32>(max(a.x, a.z), max(a.y, a.w), min(a.x, a.z), min(a.y, a.w));
+    return vec4<f32>(a.x, max(a.y, a.z), min(a.y, a.z), a.w);
+}
+
+// Resolve each distinct depth of a pixel once, nearest first (set by src/schedules/mod.rs where
+// the estimator measured faster with it, `Estimator::resolves_distinct_depths`; up to S = 4). The
+// stochastic map stores a hidden fragment in ⌊αS + ξ⌋ of a pixel's samples (1.5 on average at the
+// default α = 1.5/S) and leaves others empty anywhere, and the unrolled loop over the samples made
+// a value wherever any lane of a warp had a depth in sample k. With the copies emptied and the
+// depths sorted, the loop ends at the first empty one, and a warp runs as many values as its
+// busiest lane has distinct depths. Every estimator's combine keeps one of its arguments (a
+// minimum, a maximum, a union of bits, the larger by a key), so a depth met once instead of twice
+// and in another order gives the same value. A loop over the depths that took the nearest left
+// each turn was twice as slow (H200, BENCHMARKS.md, issue 11).
+override SD_DISTINCT: bool = false;
+
 // `l.value` combined with the values of every sample the map stores at `l.px`.
 fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let pixel = vec2<i32>(floor(l.px));
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {
+        if (SD_DISTINCT && SD_SAMPLES <= 4u && !SD_SORTED) {
+            var stored = vec4<f32>(0.0);
+            for (var k = 0u; k < min(SD_SAMPLES, 4u); k++) {
+                stored[k] = sd_load(m, pixel, k);
+            }
+            let d = sd_distinct_nearest_first(stored);
+            for (var k = 0u; k < 4u; k++) {
+                let v = d[k];
+                if (!(v > 0.0)) {
+                    break;
+                }
+                value = estimator_combine(value, sd_occluder(p, s, l, v));
+            }
+            continue;
+        }
         for (var k = 0u; k < SD_SAMPLES; k++) {
             let v = sd_load(m, pixel, k);
             if (SD_SORTED && !(v > 0.0)) {
                 break;
             }
             if (v > 0.0) {
-                var sample_value = estimator_occluder_at(p, s, l.px, sd_near.x / v).value;
-                if (SD_COMPENSATION != 1.0) {
-                    sample_value = estimator_compensate(p, s, sample_value, SD_COMPENSATION);
-                }
-                value = estimator_combine(value, sample_value);
+                value = estimator_combine(value, sd_occluder(p, s, l, v));
             }
         }
     }
