@@ -447,3 +447,46 @@ fn the_map_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
         );
     }
 }
+
+#[test]
+fn the_reservoir_fills_its_slots_in_order() {
+    // The readers stop at a texel's first empty slot (samples.wgsl's SD_COMPACT): the first N
+    // distinct hits take the slots in order and a later hit only overwrites one, so no slot is
+    // empty before a filled one. Built-in scenes with few and many layers, every texel traced
+    // (`ray-sd-vao-full`) and the two-phase row at 1/4 resolution with its guard band, with and
+    // without z-culling.
+    let gpu = gpu();
+    let (mut partly_filled, mut full) = (0, 0);
+    for name in ["stairs", "grass", "layers"] {
+        let scene = scene::builtin(name).unwrap();
+        for technique in [Technique::RaySdVaoFull, Technique::RaySdVao] {
+            for z_cull in [true, false] {
+                let settings = AoSettings {
+                    technique,
+                    ray_sd: RaySdSettings {
+                        z_cull,
+                        ..RaySdSettings::default()
+                    },
+                    ..Default::default()
+                };
+                let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();
+                r.render(&scene.cameras[0].camera, None).unwrap();
+                let slots = r.read_stochastic_depth().unwrap().unwrap();
+                for p in 0..slots[0].len() {
+                    let filled: Vec<bool> = slots.iter().map(|l| l[p] > 0.0).collect();
+                    let count = filled.iter().filter(|&&f| f).count();
+                    assert!(
+                        filled.iter().take(count).all(|&f| f),
+                        "{name} {technique} z_cull {z_cull}: texel of pixel {p} holds {filled:?}"
+                    );
+                    partly_filled += usize::from(count > 0 && count < slots.len());
+                    full += usize::from(count == slots.len());
+                }
+            }
+        }
+    }
+    assert!(
+        partly_filled > 1000 && full > 1000,
+        "{partly_filled} partly filled, {full} full"
+    );
+}

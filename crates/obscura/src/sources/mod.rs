@@ -284,10 +284,10 @@ impl SourcePass {
             if sd.compensation != 1.0 {
                 constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
             }
-            if kind == Source::StochasticDepth
-                && sd.selection == crate::settings::SdSelection::Nearest
+            if kind == Source::RayStochasticDepth
+                || sd.selection == crate::settings::SdSelection::Nearest
             {
-                constants.push(("SD_SORTED", 1.0));
+                constants.push(("SD_COMPACT", 1.0));
             }
             let cutoff = settings.ray_sd.radius_cutoff;
             if kind == Source::RayStochasticDepth && cutoff > 0.0 {

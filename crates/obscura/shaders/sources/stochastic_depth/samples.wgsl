@@ -20,10 +20,12 @@
 // estimator's (`estimator_compensate`).
 override SD_COMPENSATION: f32 = 1.0;
 
-// The raster map's `nearest` selection (map.wgsl, sd_store_nearest) fills a pixel's samples
-// from the first on: the first empty one ends the pixel's depths. Off: empty samples may lie
-// anywhere (Alg. 1's stochastic choice, the ray-traced reservoir).
-override SD_SORTED: bool = false;
+// A map that fills a pixel's samples from the first on, so that the first empty one ends the
+// pixel's depths: the raster map's `nearest` selection (map.wgsl, sd_store_nearest), and the
+// ray-traced map's reservoir (its first N distinct hits take the slots in order, and a later hit
+// only ever overwrites one: ray_stochastic_depth/collect.wgsl). Off: empty samples may lie
+// anywhere (Alg. 1's stochastic choice).
+override SD_COMPACT: bool = false;
 
 // The value of the stored depth `v` (reversed Z) as the sample's occluder.
 fn sd_occluder(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup, v: f32) -> EstimatorValue {
@@ -64,7 +66,7 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
     let pixel = vec2<i32>(floor(l.px));
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {
-        if (SD_DISTINCT && SD_SAMPLES <= 4u && !SD_SORTED) {
+        if (SD_DISTINCT && SD_SAMPLES <= 4u && !SD_COMPACT) {
             var stored = vec4<f32>(0.0);
             for (var k = 0u; k < min(SD_SAMPLES, 4u); k++) {
                 stored[k] = sd_load(m, pixel, k);
@@ -81,7 +83,7 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
         }
         for (var k = 0u; k < SD_SAMPLES; k++) {
             let v = sd_load(m, pixel, k);
-            if (SD_SORTED && !(v > 0.0)) {
+            if (SD_COMPACT && !(v > 0.0)) {
                 break;
             }
             if (v > 0.0) {
