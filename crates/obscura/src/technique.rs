@@ -665,12 +665,24 @@ impl Estimator {
 
     /// Whether a sample that reads the raster stochastic depth map makes a value of each distinct
     /// depth of the pixel once, nearest first, instead of one per stored sample
-    /// (stochastic_depth/samples.wgsl's `SD_DISTINCT`; S ≤ 4). Measured on an H200
-    /// (BENCHMARKS.md, 2026-12-04): GTAO-VB's pass 11–14 % faster and HBAO's 2–8 %, where a value
-    /// costs many instructions; VAO's cheap values 1–3 % slower, HBAO+ and SSAO within ±6 %
-    /// either way by scene.
+    /// (stochastic_depth/samples.wgsl's `SD_DISTINCT`; S = 4), stopping where the estimator's
+    /// `hidden` is exact ([`Estimator::exact_hidden`]). Measured on an H200 (BENCHMARKS.md,
+    /// 2026-12-04, four views): GTAO-VB's pass 13–17 % faster and HBAO's 2–8 %, whose values
+    /// cost many instructions; VAO's cheap values 5–9 % slower even with the stop, HBAO+'s and
+    /// SSAO's from 6 % faster to 1 % slower by view.
     pub fn resolves_distinct_depths(self) -> bool {
         matches!(self, Estimator::GtaoVb | Estimator::Hbao)
+    }
+
+    /// Whether its occluders' `hidden` is exact: false only where no deeper surface at the
+    /// sample's pixel can change the sample's value. VAO's (only an occluder beyond the column's
+    /// constant area can hide a lower visibility) and GTAO-VB's (a front face below the tangent
+    /// plane, or a back face at the hemisphere's edge with its sector marked) are. HBAO's,
+    /// HBAO+'s and SSAO's follow seed 001 §3.3's heuristic (a sample that is not occluded reads no
+    /// hidden depth), which a deeper surface can contradict (a horizon closer in 3D, a hidden
+    /// occluder behind a free sample).
+    pub fn exact_hidden(self) -> bool {
+        matches!(self, Estimator::Vao | Estimator::GtaoVb)
     }
 
     /// Whether the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a sample's depth

@@ -240,6 +240,9 @@ impl SchedulePass {
             }
             if distinct_depths(row) {
                 stage.constants.push(("SD_DISTINCT", 1.0));
+                if row.estimator.exact_hidden() {
+                    stage.constants.push(("SD_SETTLED_STOPS", 1.0));
+                }
             }
         }
         Ok(match schedule {
@@ -337,9 +340,11 @@ mod tests {
 
     /// Resolving each distinct depth of a map pixel once, nearest first, gives the same AO as
     /// resolving every stored sample in turn, for every estimator over the raster map (each
-    /// combine keeps one of its arguments) and for the two-phase schedule, at S = 2 and 4 and
-    /// with missing-occlusion compensation; and the maps hold a depth twice in many pixels, so
-    /// the copies were there to skip.
+    /// combine keeps one of its arguments; VAO and GTAO-VB also stop at the first depth whose
+    /// `hidden` is false, which holds their flags exact) and for the two-phase schedule, at
+    /// S = 2 (which keeps the loop over the samples) and 4 and with missing-occlusion
+    /// compensation; and the maps hold a depth twice in many pixels, so the copies were there
+    /// to skip.
     #[test]
     fn distinct_depths_change_no_pixel() {
         let gpu = gpu();

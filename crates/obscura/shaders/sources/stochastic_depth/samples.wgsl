@@ -36,7 +36,7 @@ fn sd_occluder(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup, v: f32) ->
     return value;
 }
 
-// Up to four stored depths of a pixel (0: empty) with every later copy of one depth emptied,
+// The four stored depths of a pixel (0: empty) with every later copy of one depth emptied,
 // sorted nearest (largest reversed Z) first, so the empty ones come last.
 fn sd_distinct_nearest_first(stored: vec4<f32>) -> vec4<f32> {
     var v = stored;
@@ -50,34 +50,51 @@ fn sd_distinct_nearest_first(stored: vec4<f32>) -> vec4<f32> {
 }
 
 // Resolve each distinct depth of a pixel once, nearest first (set by src/schedules/mod.rs where
-// the estimator measured faster with it, `Estimator::resolves_distinct_depths`; up to S = 4). The
+// the estimator measured faster with it, `Estimator::resolves_distinct_depths`; S = 4, the default). The
 // stochastic map stores a hidden fragment in ⌊αS + ξ⌋ of a pixel's samples (1.5 on average at the
 // default α = 1.5/S) and leaves others empty anywhere, and the unrolled loop over the samples made
 // a value wherever any lane of a warp had a depth in sample k. With the copies emptied and the
 // depths sorted, the loop ends at the first empty one, and a warp runs as many values as its
-// busiest lane has distinct depths. Every estimator's combine keeps one of its arguments (a
-// minimum, a maximum, a union of bits, the larger by a key), so a depth met once instead of twice
-// and in another order gives the same value. A loop over the depths that took the nearest left
+// busiest lane has distinct depths (or fewer, SD_SETTLED_STOPS). Every estimator's combine
+// keeps one of its arguments (a minimum, a maximum, a union of bits, the larger by a key), so a
+// depth met once instead of twice and in another order gives the same value. A loop over the depths that took the nearest left
 // each turn was twice as slow (H200, BENCHMARKS.md, issue 11).
 override SD_DISTINCT: bool = false;
+
+// With SD_DISTINCT, for an estimator whose `hidden` is exact (no deeper surface at the pixel can
+// change the value when it is false; `Estimator::exact_hidden`): nearest first, the rest lie
+// deeper, so the loop ends at the first depth that says so. Compensated values are not held to
+// that, so they go on.
+override SD_SETTLED_STOPS: bool = false;
 
 // `l.value` combined with the values of every sample the map stores at `l.px`.
 fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let pixel = vec2<i32>(floor(l.px));
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {
-        if (SD_DISTINCT && SD_SAMPLES <= 4u && !SD_COMPACT) {
-            var stored = vec4<f32>(0.0);
-            for (var k = 0u; k < min(SD_SAMPLES, 4u); k++) {
-                stored[k] = sd_load(m, pixel, k);
-            }
-            let d = sd_distinct_nearest_first(stored);
+        if (SD_DISTINCT && SD_SAMPLES == 4u && !SD_COMPACT) {
+            // The four loads written out: loaded in a loop into a vector the passes measured
+            // 6–16 % slower (H200, BENCHMARKS.md).
+            let d = sd_distinct_nearest_first(vec4<f32>(
+                sd_load(m, pixel, 0u),
+                sd_load(m, pixel, 1u),
+                sd_load(m, pixel, 2u),
+                sd_load(m, pixel, 3u),
+            ));
             for (var k = 0u; k < 4u; k++) {
                 let v = d[k];
                 if (!(v > 0.0)) {
                     break;
                 }
-                value = estimator_combine(value, sd_occluder(p, s, l, v));
+                let o = estimator_occluder_at(p, s, l.px, sd_near.x / v);
+                if (SD_COMPENSATION != 1.0) {
+                    value = estimator_combine(value, estimator_compensate(p, s, o.value, SD_COMPENSATION));
+                    continue;
+                }
+                value = estimator_combine(value, o.value);
+                if (SD_SETTLED_STOPS && !o.hidden) {
+                    break;
+                }
             }
             continue;
         }
