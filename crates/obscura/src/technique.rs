@@ -490,6 +490,12 @@ pub struct Needs {
 }
 
 impl Source {
+    /// Whether it is a stochastic depth map, rasterised or ray-traced (read by
+    /// `shaders/sources/stochastic_depth/samples.wgsl`).
+    pub fn maps_hidden_depth(self) -> bool {
+        matches!(self, Source::StochasticDepth | Source::RayStochasticDepth)
+    }
+
     /// Whether resolving one flagged sample costs much more than looking at the first layer: a
     /// map's S depths, or a ray through the BVH. Not the second depth layer (one more read),
     /// which a deferred resolve made slower (BENCHMARKS.md).
@@ -675,14 +681,17 @@ impl Estimator {
     }
 
     /// Whether its occluders' `hidden` is exact: false only where no deeper surface at the
-    /// sample's pixel can change the sample's value. VAO's (only an occluder beyond the column's
-    /// constant area can hide a lower visibility) and GTAO-VB's (a front face below the tangent
-    /// plane, or a back face at the hemisphere's edge with its sector marked) are. HBAO's,
-    /// HBAO+'s and SSAO's follow seed 001 §3.3's heuristic (a sample that is not occluded reads no
-    /// hidden depth), which a deeper surface can contradict (a horizon closer in 3D, a hidden
-    /// occluder behind a free sample).
+    /// sample's pixel can change the sample's value, so that a sample reading its pixel's depths
+    /// nearest first may stop there (samples.wgsl's `SD_SETTLED_STOPS`). GTAO-VB's is (a front
+    /// face below the tangent plane, or a back face at the hemisphere's edge with its sector
+    /// marked: every deeper point of the pixel's ray lies lower still). VAO's is not: a depth's
+    /// column height along one pixel's ray rises with depth where the tangent-plane correction
+    /// for the pixel's offset outweighs the view axis (tilted planes seen at a slant), so a
+    /// deeper depth can lower the value (stopping changed `ray-sd-vao` on `stairs`). HBAO's,
+    /// HBAO+'s and SSAO's follow seed 001 §3.3's heuristic (a sample that is not occluded reads
+    /// no hidden depth), which a deeper surface can contradict.
     pub fn exact_hidden(self) -> bool {
-        matches!(self, Estimator::Vao | Estimator::GtaoVb)
+        matches!(self, Estimator::GtaoVb)
     }
 
     /// Whether the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a sample's depth

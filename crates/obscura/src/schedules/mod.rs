@@ -185,8 +185,9 @@ fn deferred_resolve(row: &TechniqueRow) -> bool {
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: `Some(on)` resolves each distinct depth once (`SD_DISTINCT`) for every row over
-    /// the raster map, or for none, whatever the estimator.
+    /// Tests: `Some(true)` resolves each distinct depth once (`SD_DISTINCT`) for every row over
+    /// the raster map, whatever the estimator; `Some(false)` for none, and no row stops at a
+    /// settled depth (`SD_SETTLED_STOPS`).
     static DISTINCT_DEPTHS: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
 }
 
@@ -198,6 +199,17 @@ fn distinct_depths(row: &TechniqueRow) -> bool {
         return row.source == Source::StochasticDepth && on;
     }
     row.source == Source::StochasticDepth && row.estimator.resolves_distinct_depths()
+}
+
+/// Whether `row`'s samples that read a map's depths nearest first stop at the first depth
+/// behind which nothing can change their value (samples.wgsl's `SD_SETTLED_STOPS`,
+/// [`crate::technique::Estimator::exact_hidden`]).
+fn settled_stops(row: &TechniqueRow) -> bool {
+    #[cfg(test)]
+    if DISTINCT_DEPTHS.with(|d| d.get()) == Some(false) {
+        return false;
+    }
+    row.source.maps_hidden_depth() && row.estimator.exact_hidden()
 }
 
 /// A schedule as an [`crate::AmbientOcclusion`] holds it.
@@ -240,9 +252,9 @@ impl SchedulePass {
             }
             if distinct_depths(row) {
                 stage.constants.push(("SD_DISTINCT", 1.0));
-                if row.estimator.exact_hidden() {
-                    stage.constants.push(("SD_SETTLED_STOPS", 1.0));
-                }
+            }
+            if settled_stops(row) {
+                stage.constants.push(("SD_SETTLED_STOPS", 1.0));
             }
         }
         Ok(match schedule {
@@ -335,16 +347,16 @@ impl SchedulePass {
 mod tests {
     use super::DISTINCT_DEPTHS;
     use crate::raster::test_support::gpu;
-    use crate::settings::Preset;
+    use crate::settings::{Preset, SdSelection};
     use crate::{scene, AoSettings, Renderer, Technique};
 
     /// Resolving each distinct depth of a map pixel once, nearest first, gives the same AO as
     /// resolving every stored sample in turn, for every estimator over the raster map (each
-    /// combine keeps one of its arguments; VAO and GTAO-VB also stop at the first depth whose
-    /// `hidden` is false, which holds their flags exact) and for the two-phase schedule, at
+    /// combine keeps one of its arguments; GTAO-VB also stops at the first depth whose `hidden`
+    /// is false, which holds its flag exact) and for the two-phase schedule, at
     /// S = 2 (which keeps the loop over the samples) and 4 and with missing-occlusion
-    /// compensation; and the maps hold a depth twice in many pixels, so the copies were there
-    /// to skip.
+    /// compensation; the `nearest` map, sorted by construction, with and without GTAO-VB's stop;
+    /// and the maps hold a depth twice in many pixels, so the copies were there to skip.
     #[test]
     fn distinct_depths_change_no_pixel() {
         let gpu = gpu();
@@ -360,10 +372,16 @@ mod tests {
                 Technique::SdHbaoPlus,
                 Technique::SdSsao,
             ] {
-                for (samples, compensation) in [(4, 1.0), (2, 1.0), (4, 2.0)] {
+                for (samples, compensation, selection) in [
+                    (4, 1.0, SdSelection::Stochastic),
+                    (2, 1.0, SdSelection::Stochastic),
+                    (4, 2.0, SdSelection::Stochastic),
+                    (4, 1.0, SdSelection::Nearest),
+                ] {
                     let mut settings = AoSettings::preset(technique, Preset::Medium);
                     settings.stochastic_depth.samples = samples;
                     settings.stochastic_depth.compensation = compensation;
+                    settings.stochastic_depth.selection = selection;
                     let render = |on: bool| {
                         DISTINCT_DEPTHS.with(|d| d.set(Some(on)));
                         let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();

@@ -226,8 +226,7 @@ impl SourcePass {
             .two_phase()
             .then(|| layout_of(request_entries(kind), "source request"))
             .flatten();
-        let maps_hidden_depth =
-            matches!(kind, Source::StochasticDepth | Source::RayStochasticDepth);
+        let maps_hidden_depth = kind.maps_hidden_depth();
         // The raster map's requests are per pixel, the ray-traced map's per texel, each map's
         // own guard band included (what it rasterises or traces).
         let request_cells = match &held {
@@ -284,10 +283,10 @@ impl SourcePass {
             if sd.compensation != 1.0 {
                 constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
             }
-            if kind == Source::RayStochasticDepth
-                || sd.selection == crate::settings::SdSelection::Nearest
-            {
+            if kind == Source::RayStochasticDepth {
                 constants.push(("SD_COMPACT", 1.0));
+            } else if sd.selection == crate::settings::SdSelection::Nearest {
+                constants.push(("SD_SORTED", 1.0));
             }
             let cutoff = settings.ray_sd.radius_cutoff;
             if kind == Source::RayStochasticDepth && cutoff > 0.0 {

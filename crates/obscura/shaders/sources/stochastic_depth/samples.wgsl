@@ -21,11 +21,34 @@
 override SD_COMPENSATION: f32 = 1.0;
 
 // A map that fills a pixel's samples from the first on, so that the first empty one ends the
-// pixel's depths: the raster map's `nearest` selection (map.wgsl, sd_store_nearest), and the
-// ray-traced map's reservoir (its first N distinct hits take the slots in order, and a later hit
-// only ever overwrites one: ray_stochastic_depth/collect.wgsl). Off: empty samples may lie
-// anywhere (Alg. 1's stochastic choice).
+// pixel's depths: the ray-traced map's reservoir (its first N distinct hits take the slots in
+// order, and a later hit only ever overwrites one: ray_stochastic_depth/collect.wgsl), and the
+// raster map's `nearest` selection. Off: empty samples may lie anywhere (Alg. 1's stochastic
+// choice).
 override SD_COMPACT: bool = false;
+
+// A compact map whose depths are also nearest first: the raster map's `nearest` selection
+// (map.wgsl, sd_store_nearest). The ray-traced reservoir, stored sorted, made its map pass 1–2 %
+// slower and only GTAO-VB's reads faster (H200, BENCHMARKS.md): it is not sorted.
+override SD_SORTED: bool = false;
+
+// Resolve each distinct depth of a pixel once, nearest first (set by src/schedules/mod.rs where
+// the estimator measured faster with it, `Estimator::resolves_distinct_depths`; S = 4, the
+// default). The stochastic map stores a hidden fragment in ⌊αS + ξ⌋ of a pixel's samples (1.5 on
+// average at the default α = 1.5/S) and leaves others empty anywhere, and the unrolled loop over
+// the samples made a value wherever any lane of a warp had a depth in sample k. With the copies
+// emptied and the depths sorted, the loop ends at the first empty one, and a warp runs as many
+// values as its busiest lane has distinct depths (or fewer, SD_SETTLED_STOPS). Every estimator's
+// combine keeps one of its arguments (a minimum, a maximum, a union of bits, the larger by a key),
+// so a depth met once instead of twice and in another order gives the same value. A loop over the
+// depths that took the nearest left each turn was twice as slow (H200, BENCHMARKS.md, issue 11).
+override SD_DISTINCT: bool = false;
+
+// For an estimator whose `hidden` is exact (no deeper surface at the pixel can change the value
+// when it is false; `Estimator::exact_hidden`), wherever the depths come nearest first
+// (SD_DISTINCT, SD_SORTED): the rest lie deeper, so the loop ends at the first depth that says
+// so. Compensated values are not held to that, so they go on.
+override SD_SETTLED_STOPS: bool = false;
 
 // The value of the stored depth `v` (reversed Z) as the sample's occluder.
 fn sd_occluder(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup, v: f32) -> EstimatorValue {
@@ -34,6 +57,28 @@ fn sd_occluder(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup, v: f32) ->
         value = estimator_compensate(p, s, value, SD_COMPENSATION);
     }
     return value;
+}
+
+// One step of a pixel's depths taken nearest first: `value` combined with the stored depth `v`'s,
+// and whether no deeper depth at the pixel can change it any more (SD_SETTLED_STOPS).
+struct SdNearestStep {
+    value: EstimatorValue,
+    settled: bool,
+}
+
+fn sd_nearest_step(
+    p: EstimatorPixel,
+    s: EstimatorSample,
+    l: DepthLookup,
+    value: EstimatorValue,
+    v: f32,
+) -> SdNearestStep {
+    let o = estimator_occluder_at(p, s, l.px, sd_near.x / v);
+    if (SD_COMPENSATION != 1.0) {
+        let compensated = estimator_compensate(p, s, o.value, SD_COMPENSATION);
+        return SdNearestStep(estimator_combine(value, compensated), false);
+    }
+    return SdNearestStep(estimator_combine(value, o.value), SD_SETTLED_STOPS && !o.hidden);
 }
 
 // The four stored depths of a pixel (0: empty) with every later copy of one depth emptied,
@@ -49,30 +94,12 @@ fn sd_distinct_nearest_first(stored: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(a.x, max(a.y, a.z), min(a.y, a.z), a.w);
 }
 
-// Resolve each distinct depth of a pixel once, nearest first (set by src/schedules/mod.rs where
-// the estimator measured faster with it, `Estimator::resolves_distinct_depths`; S = 4, the default). The
-// stochastic map stores a hidden fragment in ⌊αS + ξ⌋ of a pixel's samples (1.5 on average at the
-// default α = 1.5/S) and leaves others empty anywhere, and the unrolled loop over the samples made
-// a value wherever any lane of a warp had a depth in sample k. With the copies emptied and the
-// depths sorted, the loop ends at the first empty one, and a warp runs as many values as its
-// busiest lane has distinct depths (or fewer, SD_SETTLED_STOPS). Every estimator's combine
-// keeps one of its arguments (a minimum, a maximum, a union of bits, the larger by a key), so a
-// depth met once instead of twice and in another order gives the same value. A loop over the depths that took the nearest left
-// each turn was twice as slow (H200, BENCHMARKS.md, issue 11).
-override SD_DISTINCT: bool = false;
-
-// With SD_DISTINCT, for an estimator whose `hidden` is exact (no deeper surface at the pixel can
-// change the value when it is false; `Estimator::exact_hidden`): nearest first, the rest lie
-// deeper, so the loop ends at the first depth that says so. Compensated values are not held to
-// that, so they go on.
-override SD_SETTLED_STOPS: bool = false;
-
 // `l.value` combined with the values of every sample the map stores at `l.px`.
 fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> EstimatorValue {
     let pixel = vec2<i32>(floor(l.px));
     var value = l.value;
     for (var m = 0u; m < SD_MAPS; m++) {
-        if (SD_DISTINCT && SD_SAMPLES == 4u && !SD_COMPACT) {
+        if (SD_DISTINCT && SD_SAMPLES == 4u && !SD_COMPACT && !SD_SORTED) {
             // The four loads written out: loaded in a loop into a vector the passes measured
             // 6–16 % slower (H200, BENCHMARKS.md).
             let d = sd_distinct_nearest_first(vec4<f32>(
@@ -82,17 +109,12 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
                 sd_load(m, pixel, 3u),
             ));
             for (var k = 0u; k < 4u; k++) {
-                let v = d[k];
-                if (!(v > 0.0)) {
+                if (!(d[k] > 0.0)) {
                     break;
                 }
-                let o = estimator_occluder_at(p, s, l.px, sd_near.x / v);
-                if (SD_COMPENSATION != 1.0) {
-                    value = estimator_combine(value, estimator_compensate(p, s, o.value, SD_COMPENSATION));
-                    continue;
-                }
-                value = estimator_combine(value, o.value);
-                if (SD_SETTLED_STOPS && !o.hidden) {
+                let step = sd_nearest_step(p, s, l, value, d[k]);
+                value = step.value;
+                if (step.settled) {
                     break;
                 }
             }
@@ -100,10 +122,16 @@ fn sd_resolve(p: EstimatorPixel, s: EstimatorSample, l: DepthLookup) -> Estimato
         }
         for (var k = 0u; k < SD_SAMPLES; k++) {
             let v = sd_load(m, pixel, k);
-            if (SD_COMPACT && !(v > 0.0)) {
+            if ((SD_COMPACT || SD_SORTED) && !(v > 0.0)) {
                 break;
             }
-            if (v > 0.0) {
+            if (SD_SORTED) {
+                let step = sd_nearest_step(p, s, l, value, v);
+                value = step.value;
+                if (step.settled) {
+                    break;
+                }
+            } else if (v > 0.0) {
                 value = estimator_combine(value, sd_occluder(p, s, l, v));
             }
         }
