@@ -313,11 +313,30 @@ pub fn compute_pipeline_with(
     source: &str,
     constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+    let module = shader_module(device, label, source);
+    pipeline_from_module(device, label, &module, constants, None)
+}
+
+/// A shader module from WGSL `source` with wgpu's bounds checks but without its loop bounding:
+/// wgpu gives every loop a counter of its own, so that a loop the driver might prove infinite
+/// cannot be compiled into undefined behaviour. On an H200 that counter cost the AO passes 4–20 %
+/// (`rt-vao` 20 %, `sd-vao` 18 %, `sd-gtao-vb` 12 %, `gtao-vb` 9 %, `vao` 6 %) and the occlusion
+/// pyramid 16 %; the bounds checks cost nothing measurable (BENCHMARKS.md, 2026-12-04).
+///
+/// Every loop in obscura's compute shaders ends: `for` loops count to a bound fixed before they
+/// start (settings validated on the CPU, a BVH leaf's triangle count); the `while` loops over a
+/// bit mask clear at least its lowest set bit each turn; the BVH walk (`common/bvh.wgsl`) enters
+/// each node at most once, as every inner node's children come after it in the node array
+/// (`bvh::wide::widen`, held by its tests), and its stack pops end at an empty stack.
+pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    let desc = wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    pipeline_from_module(device, label, &module, constants, None)
+    };
+    let mut checks = wgpu::ShaderRuntimeChecks::checked();
+    checks.force_loop_bounding = false;
+    // SAFETY: bounds checks stay; every loop of the shaders given here ends (see above).
+    unsafe { device.create_shader_module_trusted(desc, checks) }
 }
 
 /// [`compute_pipeline_with`] without the bounds checks wgpu adds to every array and texture access.
