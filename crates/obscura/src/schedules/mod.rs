@@ -394,8 +394,9 @@ mod tests {
                     };
                     let (each, map) = render(false);
                     let (distinct, _) = render(true);
-                    let what =
-                        format!("{name} {technique} S = {samples}, compensation {compensation}");
+                    let what = format!(
+                        "{name} {technique} S = {samples}, compensation {compensation}, {selection:?}"
+                    );
                     assert!(each == distinct, "{what}: distinct depths changed the AO");
                     pixels_with_copies += (0..map[0].len())
                         .filter(|&p| {
