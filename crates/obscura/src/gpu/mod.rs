@@ -329,13 +329,27 @@ pub fn compute_pipeline_with(
 /// each node at most once, as every inner node's children come after it in the node array
 /// (`bvh::wide::widen`, held by its tests), and its stack pops end at an empty stack.
 pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    let mut checks = wgpu::ShaderRuntimeChecks::checked();
+    checks.force_loop_bounding = false;
+    // SAFETY: bounds checks stay; every loop of the shaders given here ends (see above).
+    unsafe { trusted_module(device, label, source, checks) }
+}
+
+/// The WGSL module `source` with only the runtime `checks` given.
+///
+/// # Safety
+/// What [`wgpu::ShaderRuntimeChecks`] asks of a shader for each check left out.
+unsafe fn trusted_module(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    checks: wgpu::ShaderRuntimeChecks,
+) -> wgpu::ShaderModule {
     let desc = wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     };
-    let mut checks = wgpu::ShaderRuntimeChecks::checked();
-    checks.force_loop_bounding = false;
-    // SAFETY: bounds checks stay; every loop of the shaders given here ends (see above).
+    // SAFETY: forwarded to the caller.
     unsafe { device.create_shader_module_trusted(desc, checks) }
 }
 
@@ -350,13 +364,14 @@ pub unsafe fn compute_pipeline_unchecked(
     source: &str,
     constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
-    let desc = wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    };
     // SAFETY: forwarded to the caller (see above).
     let module = unsafe {
-        device.create_shader_module_trusted(desc, wgpu::ShaderRuntimeChecks::unchecked())
+        trusted_module(
+            device,
+            label,
+            source,
+            wgpu::ShaderRuntimeChecks::unchecked(),
+        )
     };
     pipeline_from_module(device, label, &module, constants, None)
 }
