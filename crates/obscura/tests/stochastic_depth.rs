@@ -74,6 +74,7 @@ fn each_hidden_fragment_is_stored_in_floor_alpha_s_plus_xi_samples() {
         let low = (alpha * s as f32).floor() as usize;
         let mut above = 0usize;
         let mut per_sample = vec![0usize; s as usize];
+        let mut counts = vec![0usize; pixels];
         for p in 0..pixels {
             let mut count = 0;
             for (j, layer) in layers.iter().enumerate() {
@@ -92,20 +93,31 @@ fn each_hidden_fragment_is_stored_in_floor_alpha_s_plus_xi_samples() {
                 "α {alpha}: pixel {p} stores the layer in {count} samples"
             );
             above += usize::from(count == low + 1);
+            counts[p] = count;
+        }
+        // Both pixels of a pair (x even and x + 1) draw the same ξ (map.wgsl, sd_fragment_hash),
+        // so they store the layer in as many samples; the pairs are then the independent units
+        // of the statistics below (n = pixels / 2, which bounds their variance).
+        for p in (0..pixels).step_by(2) {
+            assert_eq!(
+                counts[p],
+                counts[p + 1],
+                "α {alpha}: the pixels of pair {p} store the layer in different counts"
+            );
         }
         // P(R = ⌊αS⌋ + 1) = frac(αS); every sample is chosen with probability α.
         let frac = f64::from(alpha * s as f32) - low as f64;
         within_5_sigma(
             above as f64 / pixels as f64,
             frac,
-            pixels,
+            pixels / 2,
             &format!("α {alpha}: share of R = ⌊αS⌋ + 1"),
         );
         for (j, n) in per_sample.iter().enumerate() {
             within_5_sigma(
                 *n as f64 / pixels as f64,
                 f64::from(alpha),
-                pixels,
+                pixels / 2,
                 &format!("α {alpha}: share of pixels storing in sample {j}"),
             );
         }
@@ -127,6 +139,7 @@ fn a_fragments_samples_are_a_uniform_choice_among_the_masks_of_its_count() {
         let r = (alpha * s as f32) as u32;
         let pixels = (SIZE * SIZE) as usize;
         let mut counts = std::collections::HashMap::<u32, usize>::new();
+        let mut pixel_masks = vec![0u32; pixels];
         for p in 0..pixels {
             let mask = layers.iter().enumerate().fold(0u32, |m, (j, layer)| {
                 m | (u32::from(layer_of(layer[p], &depths) == Some(1)) << j)
@@ -137,9 +150,23 @@ fn a_fragments_samples_are_a_uniform_choice_among_the_masks_of_its_count() {
                 "S {s}: pixel {p} stores mask {mask:b}"
             );
             *counts.entry(mask).or_default() += 1;
+            pixel_masks[p] = mask;
         }
         let masks = (0..1u32 << s).filter(|m| m.count_ones() == r).count();
         assert_eq!(counts.len(), masks, "S {s}: masks seen {}", counts.len());
+        // The two pixels of a pair share their count's ξ but draw their masks apart: they
+        // agree as often as two independent uniform draws do.
+        let pairs = pixels / 2;
+        let same = (0..pixels)
+            .step_by(2)
+            .filter(|&p| pixel_masks[p] == pixel_masks[p + 1])
+            .count();
+        within_5_sigma(
+            same as f64 / pairs as f64,
+            1.0 / masks as f64,
+            pairs,
+            &format!("S {s}: share of pixel pairs with one mask"),
+        );
         for (mask, n) in counts {
             within_5_sigma(
                 n as f64 / pixels as f64,

@@ -5,8 +5,9 @@
 // The map is a storage buffer of S depths per pixel (`sd_depths`, pixel-major, the layout the
 // ray-traced map of seed 002 uses too): every fragment behind the first layer (more than
 // `separation` behind the G-buffer's linear depth, the same rule as depth peeling) draws xi from a
-// hash of its pixel, triangle and the map's seed, is stored in R = floor(alpha * S + xi)
-// samples (mean alpha * S), chosen uniformly among the S-bit masks with R bits set (`sd_lut`: all
+// hash of its pixel pair, triangle and the map's seed (sd_fragment_hash says why a pair), is
+// stored in R = floor(alpha * S + xi) samples (mean alpha * S), chosen by the pixel's own hash
+// uniformly among the S-bit masks with R bits set (`sd_lut`: all
 // masks sorted by popcount), and each chosen sample keeps the nearest fragment (`atomicMax` of the
 // depth's bits: positive floats order as their bits do). That is Alg. 1's depth test per sample
 // with every sample at the pixel centre, as the paper places them (programmable sample positions,
@@ -70,7 +71,7 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
     return (pixel.y * sd.width + pixel.x) * sd.samples;
 }
 
-// The fragment's hash: its pixel and triangle, and the map's seed. Seed 001 §3.1 hashes "the
+// The fragment's hash: its pixel pair and triangle, and the map's seed. Seed 001 §3.1 hashes "the
 // pixel location, sample index, and sample depth", and the authors' code the world position
 // (seed-code-notes §1.5): both change with every move of the camera, so every hidden fragment
 // drew new samples each frame and the map flickered in motion (BENCHMARKS.md, issue 13). The
@@ -82,9 +83,29 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 // that chain, and one round made the map pass 4.5 % faster on an H200 (BENCHMARKS.md, issue 16).
 // The key, pixel index + triangle · 0x9E3779B9 (odd), differs for any two triangles at one
 // pixel and any two pixels of one triangle, which is all the choices must tell apart.
+//
+// The key is the pixel pair (x rounded down to even, y): both pixels of a pair draw the same ξ,
+// so a triangle is stored in as many samples at both (sd_coverage; each pixel still draws its
+// own samples, from sd_mask_hash). Why: the map's cost is its atomics, and on an H200 those cost
+// by the 32-byte sectors a warp's atomic instruction touches (BENCHMARKS.md, issue 16). At
+// S = 4 a sector holds a pixel pair's depths (where the map's width and band are even), and
+// the second atomic of the fragments stored twice touches about half as many sectors when both
+// pixels of a pair agree on it: whole maps 5-6 % faster. Each pixel's ξ is as uniform as
+// before, so each pixel's map has Alg. 1's distribution; only neighbours' counts are tied.
 fn sd_fragment_hash(map_pixel: vec2<u32>, triangle: u32) -> u32 {
-    let pixel = select(map_pixel, map_pixel - vec2<u32>(sd.band), SD_MAP_BAND);
+    let pixel = sd_frame_pixel(map_pixel) & vec2<u32>(~1u, ~0u);
     return pcg_hash((pixel.y * sd.first_size.x + pixel.x + triangle * 0x9E3779B9u) ^ sd.seed);
+}
+
+// The hash that picks the samples of the fragment of pixel pair hash `h` at map pixel
+// `map_pixel`: another PCG round, of `h` for the pair's left pixel and of h ^ 1 for its right.
+fn sd_mask_hash(map_pixel: vec2<u32>, h: u32) -> u32 {
+    return pcg_hash(h ^ (sd_frame_pixel(map_pixel).x & 1u));
+}
+
+// The framebuffer pixel of map pixel `map_pixel` (they differ by the map's own band).
+fn sd_frame_pixel(map_pixel: vec2<u32>) -> vec2<u32> {
+    return select(map_pixel, map_pixel - vec2<u32>(sd.band), SD_MAP_BAND);
 }
 
 // What the map's triangles without an alpha test hand to their fragments: the linear depth and
@@ -139,12 +160,12 @@ fn sd_coverage(pixel: vec2<u32>, depth: f32, triangle: u32) -> u32 {
     if (count == 0u) {
         return 0u;
     }
-    // Uniform choice among the masks with `count` bits, from a second hash's 24-bit unit (a
-    // multiply rather than an integer division; at most C(16, 8) = 12,870 choices, so each is
-    // within 12,870 / 2^24 < 0.08 % of its share).
+    // Uniform choice among the masks with `count` bits, from the pixel's own second hash's
+    // 24-bit unit (a multiply rather than an integer division; at most C(16, 8) = 12,870
+    // choices, so each is within 12,870 / 2^24 < 0.08 % of its share).
     let first_mask = sd_lut[count];
     let choices = sd_lut[count + 1u] - first_mask;
-    let choice = min(u32(hash_to_unit(pcg_hash(h)) * f32(choices)), choices - 1u);
+    let choice = min(u32(hash_to_unit(sd_mask_hash(pixel, h)) * f32(choices)), choices - 1u);
     return sd_lut[sd.samples + 2u + first_mask + choice];
 }
 
