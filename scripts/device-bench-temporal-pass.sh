@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # What temporal accumulation costs, several builds in one device call (issue 13's ≤ 0.03 ms
 # target): `obscura bench --techniques vao [--temporal]` at 1920x1080, medians of 200 frames after
-# 20 warm-up frames, ROUNDS rounds (default 2) alternating the builds. Where the blur's first pass
-# accumulates (`temporal_blur_x`), the cost is that pass less the same round's plain `blur_x`;
-# where accumulation is a pass of its own, that pass (`temporal`). Views:
+# 20 warm-up frames, ROUNDS rounds (default 2) alternating the builds. The cost is the pass
+# `temporal`, or for a build whose blur accumulates in its first pass (`temporal_blur_x`, the
+# variant of BENCHMARKS.md 2026-12-04, not kept) that pass less the same round's plain
+# `blur_x`. Views:
 #   still  — Crytek Sponza, camera of BENCHMARKS.md (a still camera reads one history texel);
 #   moving — the built-in stairs `dolly` path (every frame moves: four texels, bilinear).
 # BUILDS is a list of name:binary (xz-compressed binaries are unpacked first), e.g.
