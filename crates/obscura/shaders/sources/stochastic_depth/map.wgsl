@@ -7,9 +7,9 @@
 // `separation` behind the G-buffer's linear depth, the same rule as depth peeling) draws xi from a
 // hash of its pixel pair, triangle and the map's seed (sd_fragment_hash says why a pair), is
 // stored in R = floor(alpha * S + xi) samples (mean alpha * S), chosen by the pixel's own hash
-// uniformly among the S-bit masks with R bits set (`sd_lut`: all
-// masks sorted by popcount), and each chosen sample keeps the nearest fragment (`atomicMax` of the
-// depth's bits: positive floats order as their bits do). That is Alg. 1's depth test per sample
+// uniformly among the S-bit masks with R bits set (`sd_lut`: all masks sorted by popcount),
+// and each chosen sample keeps the nearest fragment (`atomicMax` of the depth's bits: positive
+// floats order as their bits do). That is Alg. 1's depth test per sample
 // with every sample at the pixel centre, as the paper places them (programmable sample positions,
 // which WebGPU lacks; the rasteriser runs at one sample per pixel, so the fragment is the pixel
 // centre's).
@@ -82,7 +82,8 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 // One PCG round of a key, not a PCG round per input nested four deep: the fragments wait on
 // that chain, and one round made the map pass 4.5 % faster on an H200 (BENCHMARKS.md, issue 16).
 // The key, pixel index + triangle · 0x9E3779B9 (odd), differs for any two triangles at one
-// pixel and any two pixels of one triangle, which is all the choices must tell apart.
+// pixel and any two pixels of one triangle, which is all the choices must tell apart (below,
+// the index of the pair's left pixel, and the mask's hash tells the pair's pixels apart).
 //
 // The key is the pixel pair (x rounded down to even, y): both pixels of a pair draw the same ξ,
 // so a triangle is stored in as many samples at both (sd_coverage; each pixel still draws its
