@@ -10,8 +10,8 @@
 // uniformly among the S-bit masks with R bits set (`sd_lut`: all masks sorted by popcount),
 // and each chosen sample keeps the nearest fragment (`atomicMax` of the depth's bits: positive
 // floats order as their bits do). That is Alg. 1's depth test per sample with every sample at
-// the pixel centre, as the paper places them (programmable sample positions, which WebGPU lacks; the rasteriser runs at one sample per pixel, so the fragment is the pixel
-// centre's).
+// the pixel centre, as the paper places them (programmable sample positions, which WebGPU
+// lacks; the rasteriser runs at one sample per pixel, so the fragment is the pixel centre's).
 //
 // With `stochastic_depth.selection = "nearest"` (ours) the S depths are instead the pixel's S
 // nearest hidden depths, by a k-buffer of atomics (sd_store_nearest): no hash, no α.
