@@ -8,11 +8,11 @@
 // complement makes the lower triangle win a tie of equal depths, as the first drawn wins a colour
 // target's `Greater` depth test (draws go in triangle order).
 // `VISIBILITY_WIDTH` (the framebuffer's width) and `VISIBILITY_WORDS_BINDING` are generated in
-// front by src/raster/gbuffer.rs.
+// front by src/raster/gbuffer.rs, and visibility_words_index.wgsl places the words.
 
 @group(0) @binding(VISIBILITY_WORDS_BINDING) var<storage, read_write> visibility_atomic: array<atomic<u64>>;
 
 fn visibility_store(clip: vec4<f32>, id: u32) {
-    let i = u32(clip.y) * VISIBILITY_WIDTH + u32(clip.x);
+    let i = visibility_word(vec2<u32>(clip.xy), VISIBILITY_WIDTH);
     atomicMax(&visibility_atomic[i], (u64(bitcast<u32>(clip.z)) << 32u) | u64(~id));
 }

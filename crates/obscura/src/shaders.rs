@@ -64,6 +64,7 @@ pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_
 pub const VISIBILITY_TARGET_LOAD: &str = include_str!("../shaders/visibility_target_load.wgsl");
 pub const VISIBILITY_WORDS_LOAD: &str = include_str!("../shaders/visibility_words_load.wgsl");
 pub const VISIBILITY_WORDS_STORE: &str = include_str!("../shaders/visibility_words_store.wgsl");
+pub const VISIBILITY_WORDS_INDEX: &str = include_str!("../shaders/visibility_words_index.wgsl");
 pub const GBUFFER_VISIBILITY_ATOMIC: &str =
     include_str!("../shaders/gbuffer_visibility_atomic.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
