@@ -85,7 +85,11 @@ const HIDDEN_TILES: u32 = 8u;
 // Tiles per side of the first, coarse test (coarse_tiles_hide).
 const COARSE_TILES: u32 = 2u;
 
-var<workgroup> kept_before: array<u32, GROUP_SIZE>;
+// The workgroup's kept triangles as bits, one word per 32 invocations: words 0 to 7 the list this
+// dispatch writes, 8 to 15 the first phase's list without occlusion culling. Each invocation's
+// place in a list is the count of set bits before its own: one barrier after the bits are set,
+// where a prefix sum over the workgroup (Hillis and Steele) took sixteen.
+var<workgroup> kept_bits: array<atomic<u32>, 16>;
 
 // The same two products as gbuffer.wgsl's `view_to_clip(to_view(p))`.
 fn clip_of(vertex: u32) -> vec4<f32> {
@@ -321,6 +325,11 @@ fn main(
     if (d >= params.draws) {
         return;
     }
+    // Workgroup memory starts unset (src/gpu: no zero-initialisation); the barrier after the
+    // coverage tests orders these stores before the bits are set.
+    if (i < 16u) {
+        atomicStore(&kept_bits[i], 0u);
+    }
     let draw = draw_list[d];
     let t = draw.x + i;
     // Bit 0: kept by this dispatch; bit 16: kept without occlusion culling (the first phase's
@@ -345,20 +354,28 @@ fn main(
             }
         }
     }
-    // Inclusive prefix sum of `keep` over the workgroup (Hillis and Steele): the kept triangles
-    // stay in their order, so depth ties resolve as they did without culling.
-    kept_before[i] = keep;
+    // The kept triangles stay in their order, so depth ties resolve as they did without
+    // culling: each one's place is the number kept up to it (inclusive), both lists at once
+    // (`before`: this dispatch's list in the low half, the full list in the high half).
     workgroupBarrier();
-    for (var offset = 1u; offset < GROUP_SIZE; offset <<= 1u) {
-        var sum = kept_before[i];
-        if (i >= offset) {
-            sum += kept_before[i - offset];
-        }
-        workgroupBarrier();
-        kept_before[i] = sum;
-        workgroupBarrier();
+    let word = i >> 5u;
+    let bit = 1u << (i & 31u);
+    if ((keep & 1u) != 0u) {
+        atomicOr(&kept_bits[word], bit);
     }
-    let before = kept_before[i];
+    if ((keep & 0x10000u) != 0u) {
+        atomicOr(&kept_bits[8u + word], bit);
+    }
+    workgroupBarrier();
+    // The bits of this word up to this invocation's (bit << 1 wraps to 0 for the last: all).
+    let up_to = (bit << 1u) - 1u;
+    var kept = countOneBits(atomicLoad(&kept_bits[word]) & up_to);
+    var kept_full = countOneBits(atomicLoad(&kept_bits[8u + word]) & up_to);
+    for (var w = 0u; w < word; w++) {
+        kept += countOneBits(atomicLoad(&kept_bits[w]));
+        kept_full += countOneBits(atomicLoad(&kept_bits[8u + w]));
+    }
+    let before = kept | (kept_full << 16u);
     if ((keep & 1u) != 0u) {
         drawn[params.list_triangles + draw.x + (before & 0xffffu) - 1u] = t;
     }
