@@ -31,6 +31,13 @@ pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Base colour for composites (white where nothing is drawn).
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Depth peeling's own depth buffer, which only picks the nearest of the fragments its shader
+/// keeps (the shader decides what lies behind the first layer, from the linear depth): 24 bits
+/// made the peeling pass 11–13 % faster than the G-buffer's 32-bit buffer on an H200
+/// (BENCHMARKS.md, issue 16). Of two kept fragments within one 24-bit step of each other the
+/// first drawn wins, so the peeled layer can lie that much (z²/near · 2⁻²⁴) behind the nearest;
+/// `tests` hold it to that.
+const PEEL_Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
 /// The visible triangle's index + 1 per pixel. Never cleared: where the pass's depth buffer holds
 /// its clear value (0) no triangle was drawn, and the resolves read it there as background. Why:
 /// on the H200 clearing this target cost 0.15 ms of the visibility pass's 1.07 on Crytek Sponza
@@ -78,6 +85,18 @@ thread_local! {
     /// Tests: G-buffers made on this thread use the colour target even where the device has
     /// the atomics (the twin of [`Visibility::Words`]).
     pub(crate) static VISIBILITY_TARGET_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Tests: G-buffers made on this thread peel with this depth format instead of
+    /// [`PEEL_Z_FORMAT`] (the 32-bit twin).
+    pub(crate) static PEEL_Z_OVERRIDE: std::cell::Cell<Option<wgpu::TextureFormat>> = const { std::cell::Cell::new(None) };
+}
+
+/// Depth peeling's depth format: [`PEEL_Z_FORMAT`] (in tests, the thread's override).
+fn peel_z_format() -> wgpu::TextureFormat {
+    #[cfg(test)]
+    if let Some(format) = PEEL_Z_OVERRIDE.with(|f| f.get()) {
+        return format;
+    }
+    PEEL_Z_FORMAT
 }
 
 /// `Camera` of gbuffer.wgsl.
@@ -111,6 +130,8 @@ struct Peel {
     /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
     resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
+    /// The pass's depth buffer ([`PEEL_Z_FORMAT`]); the G-buffer's own keeps the first layer.
+    z: wgpu::Texture,
 }
 
 /// The G-buffer's targets and pipelines over the guard-banded framebuffer: what
@@ -213,10 +234,15 @@ impl GBuffer {
             // Depth peeling keeps its colour target: with words and no depth test it was slower
             // on Crytek Sponza (BENCHMARKS.md, issue 16), whose hidden layers all store.
             let layout = scene_layout(device, &behind_first_layer_entries());
+            let peel_format = peel_z_format();
+            let peel_depth = wgpu::DepthStencilState {
+                format: peel_format,
+                ..depth.clone()
+            };
             let pipelines = group_pipelines(
                 device,
                 module,
-                &depth,
+                &peel_depth,
                 ("fs_peel", "fs_peel_masked"),
                 &visibility_targets,
                 Some(&layout),
@@ -240,6 +266,7 @@ impl GBuffer {
                     DEPTH_FORMAT,
                     wgpu::TextureUsages::STORAGE_BINDING,
                 ),
+                z: target("depth peeling z", peel_format),
             }
         });
         let (visibility, visibility_pipelines, visibility_load) = if words {
@@ -429,6 +456,7 @@ impl GBuffer {
                     lists: &[list],
                     clear,
                     keep_depth: true,
+                    z: &self.z,
                 },
                 "gbuffer",
                 profiler.as_deref_mut(),
@@ -485,7 +513,8 @@ impl GBuffer {
                 DrawLists {
                     lists: &[CullList::All],
                     clear: true,
-                    keep_depth: true,
+                    keep_depth: false,
+                    z: &peel.z,
                 },
                 "depth_peel",
                 profiler.as_deref_mut(),
@@ -533,6 +562,7 @@ impl GBuffer {
                 lists: &[CullList::SeenLastFrame, CullList::NotHidden],
                 clear: true,
                 keep_depth: false,
+                z: &self.z,
             },
             "albedo",
             None,
@@ -616,7 +646,7 @@ impl GBuffer {
                 })
             })
             .collect();
-        let z_view = self.z.create_view(&Default::default());
+        let z_view = lists.z.create_view(&Default::default());
         let mut profiler = profiler;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(name));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -661,6 +691,8 @@ struct DrawLists<'a> {
     lists: &'a [CullList],
     clear: bool,
     keep_depth: bool,
+    /// The depth buffer the draws test against.
+    z: &'a wgpu::Texture,
 }
 
 /// The visibility pass's draws: the chunks `view` may see ([`super::chunks`]), nearest first
@@ -867,7 +899,9 @@ impl ScenePipeline<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{visibility_words_available, visibility_words_fit, VISIBILITY_TARGET_ONLY};
+    use super::{
+        visibility_words_available, visibility_words_fit, PEEL_Z_OVERRIDE, VISIBILITY_TARGET_ONLY,
+    };
     use crate::raster::test_support::{gpu, moved};
     use crate::{scene, AoSettings, Renderer, Technique};
 
@@ -948,5 +982,62 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Depth peeling's 24-bit depth buffer (`PEEL_Z_FORMAT`) against a 32-bit one, on every
+    /// built-in scene and camera: the G-buffer is the same, and the peeled layer is too except
+    /// where two kept surfaces lie within one 24-bit step of each other (reversed Z: d = near /
+    /// z, so a step of 2⁻²⁴ in d is z² / near · 2⁻²⁴ in depth), where the first drawn may win
+    /// over the nearer; there it lies at most two steps behind.
+    #[test]
+    fn depth_peeling_in_24_bits_keeps_the_layer_within_a_step() {
+        let gpu = gpu();
+        let settings = AoSettings::preset(Technique::VaoDual, crate::settings::Preset::Medium);
+        let (mut pixels, mut differ) = (0usize, 0usize);
+        for name in scene::builtin_names() {
+            let scene = scene::builtin(name).unwrap();
+            let near = f64::from(crate::near_plane(&scene));
+            for named in &scene.cameras {
+                let render = |format: Option<wgpu::TextureFormat>| {
+                    PEEL_Z_OVERRIDE.with(|f| f.set(format));
+                    let mut r = Renderer::new(&gpu, &scene, &settings, 96, 64, 8).unwrap();
+                    PEEL_Z_OVERRIDE.with(|f| f.set(None));
+                    r.render(&named.camera, None).unwrap();
+                    (
+                        r.read_gbuffer().unwrap().depth,
+                        r.read_second_layer().unwrap().unwrap(),
+                    )
+                };
+                let (first, second) = render(None);
+                let (first_32, second_32) = render(Some(wgpu::TextureFormat::Depth32Float));
+                assert_eq!(
+                    first, first_32,
+                    "{name} {}: the G-buffer changed",
+                    named.name
+                );
+                assert!(
+                    second_32.iter().any(|&z| z > 0.0),
+                    "{name} {}: nothing peeled",
+                    named.name
+                );
+                for (i, (&a, &b)) in second.iter().zip(&second_32).enumerate() {
+                    pixels += 1;
+                    if a == b {
+                        continue;
+                    }
+                    differ += 1;
+                    let (a, b) = (f64::from(a), f64::from(b));
+                    let z = a.max(b);
+                    let step = z * z / near * 2f64.powi(-24);
+                    assert!(
+                        a > 0.0 && b > 0.0 && a >= b && a - b <= 2.0 * step,
+                        "{name} {}, pixel {i}: peeled {a} in 24 bits, {b} in 32 (step {step})",
+                        named.name
+                    );
+                }
+            }
+        }
+        println!("depth peeling in 24 bits: {differ} of {pixels} pixels differ");
+        assert!(differ * 100 < pixels, "{differ} of {pixels} pixels differ");
     }
 }
