@@ -36,7 +36,7 @@ const Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// made the peeling pass 11–13 % faster than the G-buffer's 32-bit buffer on an H200
 /// (BENCHMARKS.md, issue 16). Of two kept fragments within one 24-bit step of each other the
 /// first drawn wins, so the peeled layer can lie that much (z²/near · 2⁻²⁴) behind the nearest;
-/// `tests` hold it to that.
+/// `tests::depth_peeling_in_24_bits_keeps_the_layer_within_a_step` holds it to two such steps.
 const PEEL_Z_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
 /// The visible triangle's index + 1 per pixel. Never cleared: where the pass's depth buffer holds
 /// its clear value (0) no triangle was drawn, and the resolves read it there as background. Why:
