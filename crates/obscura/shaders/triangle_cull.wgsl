@@ -85,11 +85,12 @@ const HIDDEN_TILES: u32 = 8u;
 // Tiles per side of the first, coarse test (coarse_tiles_hide).
 const COARSE_TILES: u32 = 2u;
 
-// The workgroup's kept triangles as bits, one word per 32 invocations: words 0 to 7 the list this
-// dispatch writes, 8 to 15 the first phase's list without occlusion culling. Each invocation's
-// place in a list is the count of set bits before its own: one barrier after the bits are set,
-// where a prefix sum over the workgroup (Hillis and Steele) took sixteen.
-var<workgroup> kept_bits: array<atomic<u32>, 16>;
+// The workgroup's kept triangles as bits, one word per 32 invocations: the first KEPT_WORDS words
+// the list this dispatch writes, the next KEPT_WORDS the first phase's list without occlusion
+// culling. Each invocation's place in a list is the count of set bits before its own: one barrier
+// after the bits are set, where a prefix sum over the workgroup (Hillis and Steele) took sixteen.
+const KEPT_WORDS: u32 = GROUP_SIZE / 32u;
+var<workgroup> kept_bits: array<atomic<u32>, 2u * KEPT_WORDS>;
 
 // The same two products as gbuffer.wgsl's `view_to_clip(to_view(p))`.
 fn clip_of(vertex: u32) -> vec4<f32> {
@@ -327,7 +328,7 @@ fn main(
     }
     // Workgroup memory starts unset (src/gpu: no zero-initialisation); the barrier after the
     // coverage tests orders these stores before the bits are set.
-    if (i < 16u) {
+    if (i < 2u * KEPT_WORDS) {
         atomicStore(&kept_bits[i], 0u);
     }
     let draw = draw_list[d];
@@ -364,16 +365,16 @@ fn main(
         atomicOr(&kept_bits[word], bit);
     }
     if ((keep & 0x10000u) != 0u) {
-        atomicOr(&kept_bits[8u + word], bit);
+        atomicOr(&kept_bits[KEPT_WORDS + word], bit);
     }
     workgroupBarrier();
     // The bits of this word up to this invocation's (bit << 1 wraps to 0 for the last: all).
     let up_to = (bit << 1u) - 1u;
     var kept = countOneBits(atomicLoad(&kept_bits[word]) & up_to);
-    var kept_full = countOneBits(atomicLoad(&kept_bits[8u + word]) & up_to);
+    var kept_full = countOneBits(atomicLoad(&kept_bits[KEPT_WORDS + word]) & up_to);
     for (var w = 0u; w < word; w++) {
         kept += countOneBits(atomicLoad(&kept_bits[w]));
-        kept_full += countOneBits(atomicLoad(&kept_bits[8u + w]));
+        kept_full += countOneBits(atomicLoad(&kept_bits[KEPT_WORDS + w]));
     }
     let before = kept | (kept_full << 16u);
     if ((keep & 1u) != 0u) {
