@@ -92,6 +92,8 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 // the second atomic of the fragments stored twice touches about half as many sectors when both
 // pixels of a pair agree on it: whole maps 5-6 % faster. Each pixel's ξ is as uniform as
 // before, so each pixel's map has Alg. 1's distribution; only neighbours' counts are tied.
+// The sector count is a fit of this pixel-major map, not a law: a map in 2×2 quads with the
+// quad's pixels choosing together halved the sectors and was slower (BENCHMARKS.md).
 fn sd_fragment_hash(map_pixel: vec2<u32>, triangle: u32) -> u32 {
     let pixel = sd_frame_pixel(map_pixel) & vec2<u32>(~1u, ~0u);
     return pcg_hash((pixel.y * sd.first_size.x + pixel.x + triangle * 0x9E3779B9u) ^ sd.seed);
