@@ -86,14 +86,15 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 //
 // The key is the pixel pair (x rounded down to even, y): both pixels of a pair draw the same ξ,
 // so a triangle is stored in as many samples at both (sd_coverage; each pixel still draws its
-// own samples, from sd_mask_hash). Why: the map's cost is its atomics, and on an H200 those cost
-// by the 32-byte sectors a warp's atomic instruction touches (BENCHMARKS.md, issue 16). At
+// own samples, from sd_mask_hash). Why: on an H200 how the map's cost varies with its stores
+// follows the 32-byte sectors a warp's atomic instruction touches (BENCHMARKS.md, issue 16). At
 // S = 4 a sector holds a pixel pair's depths (where the map's width and band are even), and
 // the second atomic of the fragments stored twice touches about half as many sectors when both
 // pixels of a pair agree on it: whole maps 5-6 % faster. Each pixel's ξ is as uniform as
 // before, so each pixel's map has Alg. 1's distribution; only neighbours' counts are tied.
 // The sector count is a fit of this pixel-major map, not a law: a map in 2×2 quads with the
-// quad's pixels choosing together halved the sectors and was slower (BENCHMARKS.md).
+// quad's pixels choosing together halved the sectors and was slower, and without any atomics
+// the pass still took 92 % of its time: the fragments are the cost (BENCHMARKS.md).
 fn sd_fragment_hash(map_pixel: vec2<u32>, triangle: u32) -> u32 {
     let pixel = sd_frame_pixel(map_pixel) & vec2<u32>(~1u, ~0u);
     return pcg_hash((pixel.y * sd.first_size.x + pixel.x + triangle * 0x9E3779B9u) ^ sd.seed);
