@@ -6,8 +6,8 @@ use clap::Args;
 use glam::Vec3;
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{
-    AoSettings, Normalization, Preset, Resolution, SdMask, SdQuery, SdSelection, SectorActivation,
-    SettingsError,
+    AoSettings, Normalization, Preset, Resolution, SdMask, SdQuery, SdRasterizer, SdSelection,
+    SectorActivation, SettingsError,
 };
 use obscura::Technique;
 use std::path::PathBuf;
@@ -167,6 +167,7 @@ const FIELD_FLAGS: &[(&str, &str)] = &[
     ("stochastic_depth.mask", "--sd-mask"),
     ("stochastic_depth.query", "--sd-query"),
     ("stochastic_depth.selection", "--sd-select"),
+    ("stochastic_depth.rasterizer", "--sd-rasterizer"),
     ("stochastic_depth.compensation", "--sd-compensation"),
     ("ray_sd.reservoir", "--reservoir"),
     ("ray_sd.max_count", "--max-count"),
@@ -514,6 +515,13 @@ pub struct AoArgs {
     ))]
     pub sd_select: Option<String>,
     #[arg(long, help = help(
+        "Raster stochastic depth map: what rasterises it: 'hardware' (default, the GPU's \
+         rasteriser) or 'compute' (ours: compute passes bin and rasterise the triangles, the \
+         hardware only those crossing the near plane; the same map up to rounding).",
+        "stochastic_depth.rasterizer"
+    ))]
+    pub sd_rasterizer: Option<String>,
+    #[arg(long, help = help(
         "Stochastic-depth techniques: multiply the occlusion of stochastic samples by this \
          factor in [1, 8] (missing-occlusion compensation, seed 001 §4; 1 = off, the paper used 2).",
         "stochastic_depth.compensation"
@@ -744,6 +752,9 @@ impl AoArgs {
         }
         if let Some(q) = &self.sd_select {
             sd.selection = q.parse::<SdSelection>().map_err(with_flags)?;
+        }
+        if let Some(r) = &self.sd_rasterizer {
+            sd.rasterizer = r.parse::<SdRasterizer>().map_err(with_flags)?;
         }
         set(&mut sd.compensation, self.sd_compensation);
         set(&mut sd.guard_band, self.sd_map_guard_band);

@@ -503,6 +503,8 @@ pub struct StochasticDepthSettings {
     /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
     /// 0 (the default) is off; at most 2048. It widens the map's raster pass by that much.
     pub guard_band: u32,
+    /// What rasterises the map: the GPU's rasteriser (the default) or compute passes (ours).
+    pub rasterizer: SdRasterizer,
 }
 
 /// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
@@ -578,6 +580,46 @@ impl fmt::Display for SdSelection {
         f.write_str(match self {
             SdSelection::Stochastic => "stochastic",
             SdSelection::Nearest => "nearest",
+        })
+    }
+}
+
+/// What rasterises the stochastic depth map. In files: `"hardware"` or `"compute"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdRasterizer {
+    /// The GPU's rasteriser, every fragment shaded by `map.wgsl` after early depth (and
+    /// stencil) tests.
+    #[default]
+    Hardware,
+    /// Ours: compute passes bin the triangles and rasterise them (pixel centres, corners snapped
+    /// to 1/256 pixel, the top-left rule), handing each fragment to the same Alg. 1 code; only
+    /// the triangles that cross the near plane go to the hardware, which clips them. The map
+    /// holds the same fragments up to rounding (`compute_raster.rs`' tests bound the
+    /// difference); for GPUs whose raster units are slow next to their compute.
+    Compute,
+}
+
+impl FromStr for SdRasterizer {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "hardware" => Ok(SdRasterizer::Hardware),
+            "compute" => Ok(SdRasterizer::Compute),
+            _ => Err(invalid(
+                "stochastic_depth.rasterizer",
+                s,
+                "must be 'hardware' (default, the GPU's rasteriser) or 'compute' (compute passes)",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdRasterizer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdRasterizer::Hardware => "hardware",
+            SdRasterizer::Compute => "compute",
         })
     }
 }
@@ -666,6 +708,7 @@ impl Default for StochasticDepthSettings {
             compensation: 1.0,
             selection: SdSelection::Stochastic,
             guard_band: 0,
+            rasterizer: SdRasterizer::Hardware,
         }
     }
 }
@@ -2116,6 +2159,10 @@ mod tests {
                 "stochastic_depth.selection",
             ),
             ("often".parse::<SdQuery>().err(), "stochastic_depth.query"),
+            (
+                "software".parse::<SdRasterizer>().err(),
+                "stochastic_depth.rasterizer",
+            ),
             ("quarter".parse::<Resolution>().err(), "resolution"),
             (
                 "half".parse::<SectorActivation>().err(),

@@ -38,6 +38,8 @@ pub const RAY_SD_REQUEST: &str =
 pub const STOCHASTIC_DEPTH_REQUEST: &str =
     include_str!("../shaders/sources/stochastic_depth/request.wgsl");
 pub const STOCHASTIC_DEPTH_MAP: &str = include_str!("../shaders/sources/stochastic_depth/map.wgsl");
+pub const STOCHASTIC_DEPTH_COMPUTE_RASTER: &str =
+    include_str!("../shaders/sources/stochastic_depth/compute_raster.wgsl");
 pub const STOCHASTIC_DEPTH_RESET: &str =
     include_str!("../shaders/sources/stochastic_depth/reset.wgsl");
 

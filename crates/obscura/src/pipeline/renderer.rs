@@ -149,6 +149,14 @@ impl Renderer {
         }
     }
 
+    /// The raster stochastic depth map of the last frame, if its technique has one.
+    #[cfg(test)]
+    pub(crate) fn stochastic_depth_map(
+        &self,
+    ) -> Option<&crate::sources::stochastic_depth::StochasticDepthMap> {
+        self.ao.as_ref()?.source.stochastic_depth()
+    }
+
     fn last_ao(&self) -> Result<&AmbientOcclusion, Error> {
         self.ao
             .as_ref()

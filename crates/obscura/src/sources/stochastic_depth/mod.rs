@@ -21,6 +21,7 @@
 //! where there is no first layer, so that samples off the framebuffer read it
 //! (`read.wgsl`'s `guard_band_lookup`) instead of the framebuffer's edge.
 
+mod compute_raster;
 mod reset;
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
@@ -31,7 +32,9 @@ use crate::raster::gbuffer::{
 };
 use crate::raster::gpu_scene::GpuScene;
 use crate::raster::triangle_cull::{CullList, TriangleCull};
-use crate::settings::{SdMask, SdSelection, StochasticDepthSettings, SD_SAMPLE_COUNTS};
+use crate::settings::{
+    SdMask, SdRasterizer, SdSelection, StochasticDepthSettings, SD_SAMPLE_COUNTS,
+};
 use crate::view::FrameView;
 use crate::{shaders, Error};
 use reset::{ResetScope, SdReset};
@@ -246,6 +249,9 @@ pub struct StochasticDepthMap {
     /// The triangles of the coming frame's draws (the scene's chunks in view,
     /// [`visibility_draws`]) that may cover a pixel centre.
     triangle_cull: TriangleCull,
+    /// With `rasterizer = "compute"`: the passes that rasterise the map in compute; the
+    /// hardware then draws only the triangles they leave to it.
+    compute: Option<compute_raster::ComputeRaster>,
 }
 
 impl StochasticDepthMap {
@@ -328,7 +334,7 @@ impl StochasticDepthMap {
         .create_view(&Default::default());
         // Whether the map has a band (without one its shaders read the first layer as before)
         // and keeps the nearest layers (the stochastic map's shaders are then as they were).
-        let mut source = format!(
+        let mut map_source = format!(
             "const SD_MAP_BAND: bool = {};\nconst SD_NEAREST: bool = {};\n{}",
             band > 0,
             settings.selection == SdSelection::Nearest,
@@ -338,15 +344,24 @@ impl StochasticDepthMap {
                     shaders::HASH,
                     shaders::VERTEX_NORMAL,
                     shaders::GBUFFER,
-                    shaders::STOCHASTIC_DEPTH_MAP,
                 ],
-                shaders::STOCHASTIC_DEPTH_RESET,
+                shaders::STOCHASTIC_DEPTH_MAP,
             )
         );
         if !early_tests_available(device) {
             // The attribute needs the feature; without it the shaders decide alone (map.wgsl).
-            source = source.replace("@early_depth_test(force)", "");
+            map_source = map_source.replace("@early_depth_test(force)", "");
         }
+        let compute = (settings.rasterizer == SdRasterizer::Compute).then(|| {
+            compute_raster::ComputeRaster::new(
+                device,
+                &map_source,
+                &scene.draw_ordered(),
+                (map_width, map_height),
+                requested.is_some(),
+            )
+        });
+        let source = format!("{map_source}\n{}", shaders::STOCHASTIC_DEPTH_RESET);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("stochastic depth"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -462,6 +477,7 @@ impl StochasticDepthMap {
             gbuffer_z_usable,
             timing_name: "sd_map",
             triangle_cull: TriangleCull::new(device, &scene.draw_ordered(), "sd_cull", None),
+            compute,
         })
     }
 
@@ -607,7 +623,11 @@ impl StochasticDepthMap {
             &resources,
         );
         let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
-        self.triangle_cull.encode(encoder, profiler.as_deref_mut());
+        if let Some(compute) = &self.compute {
+            compute.encode(device, encoder, &resources, profiler.as_deref_mut());
+        } else {
+            self.triangle_cull.encode(encoder, profiler.as_deref_mut());
+        }
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
         let load = if self.all_layers {
@@ -625,11 +645,22 @@ impl StochasticDepthMap {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, map_name);
         }
-        self.triangle_cull
-            .record(&mut pass, &self.pipelines, &bind_groups, CullList::All);
+        if let Some(compute) = &self.compute {
+            compute.record_left(&mut pass, &self.pipelines, &bind_groups[0]);
+        } else {
+            self.triangle_cull
+                .record(&mut pass, &self.pipelines, &bind_groups, CullList::All);
+        }
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }
+    }
+
+    /// With `rasterizer = "compute"`, the compute passes' counters of the last frame (items,
+    /// records, triangles left to the hardware, triangles whose items did not all fit).
+    #[cfg(test)]
+    pub(crate) fn compute_counts(&self, gpu: &crate::Gpu) -> Option<[u32; 4]> {
+        self.compute.as_ref().map(|c| c.read_counts(gpu).unwrap())
     }
 
     /// What a reader binds in the source group, matching [`bindings_wgsl`] and

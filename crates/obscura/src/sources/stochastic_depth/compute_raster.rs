@@ -1,0 +1,307 @@
+//! The stochastic depth map rasterised in compute (`shaders/sources/stochastic_depth/
+//! compute_raster.wgsl`, ours; issue 16): the map's triangles binned and rasterised by compute
+//! passes instead of the hardware's rasteriser, each fragment handled by the same Alg. 1 code
+//! (`map.wgsl`'s `sd_fragment`). The triangles that cross the near plane (and any that do not fit
+//! the passes' buffers) are listed for the hardware, which clips them
+//! ([`ComputeRaster::left_draws`]). Timed as `sd_bin` and `sd_tiles`.
+
+use crate::gpu::PassProfiler;
+use crate::raster::gpu_scene::GpuScene;
+
+/// `SdComputeRaster` of compute_raster.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct SdComputeRaster {
+    size: [u32; 2],
+    triangle_count: u32,
+    culled_count: u32,
+    opaque_count: u32,
+    item_capacity: u32,
+    record_capacity: u32,
+    _pad: u32,
+}
+
+/// Bytes of one `CrRecord`.
+const RECORD_BYTES: u64 = 80;
+/// Items per 8×8 tile of the map the item buffer holds room for: every tile inside the
+/// bounding boxes of this many large triangles, each item up to 16 tiles.
+const ITEMS_PER_TILE: u64 = 4;
+/// Workgroups of the tile pass (each takes every `TILE_GROUPS`-th item): enough to fill a large
+/// GPU (an H200 holds 132 × 32 workgroups of 64 invocations at once).
+const TILE_GROUPS: u32 = 8192;
+/// Bin workgroups (64 triangles each) per dispatch row.
+const ROW: u32 = 65535;
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: the item capacity of the passes made on this thread (to make items overflow).
+    pub(crate) static ITEM_CAPACITY: std::cell::Cell<Option<u64>> = const { std::cell::Cell::new(None) };
+}
+
+pub(crate) struct ComputeRaster {
+    bin: wgpu::ComputePipeline,
+    tiles: wgpu::ComputePipeline,
+    /// Items written, records written, triangles left to the hardware, overflows.
+    counts: wgpu::Buffer,
+    own_group: wgpu::BindGroup,
+    /// `draw_indirect` arguments of the triangles left to the hardware, per group of
+    /// [`GpuScene::visibility_ranges`], and what they start from each frame (no triangle).
+    left_args: wgpu::Buffer,
+    left_args_empty: wgpu::Buffer,
+    /// The left triangles as the raster pipelines' group 1 (`drawn_triangles`).
+    pub left_group: wgpu::BindGroup,
+    triangle_count: u32,
+}
+
+/// The group-0 layout of the map's compute passes: the scene's bindings 0–5 (gbuffer.wgsl) and
+/// the map's 6–10 (map.wgsl), visible to compute.
+fn scene_group_layout(device: &wgpu::Device, requested: bool) -> wgpu::BindGroupLayout {
+    use crate::bindings::entry;
+    let compute = wgpu::ShaderStages::COMPUTE;
+    let texture = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: compute,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let mut entries = vec![
+        entry::uniform(0),
+        entry::storage(1, true),
+        entry::storage(2, true),
+        entry::storage(3, true),
+        entry::storage(4, true),
+        texture(5, wgpu::TextureViewDimension::D2Array),
+        texture(6, wgpu::TextureViewDimension::D2),
+        entry::uniform(7),
+        entry::storage(8, true),
+        entry::storage(9, false),
+    ];
+    if requested {
+        entries.push(entry::storage(10, true));
+    }
+    for e in &mut entries {
+        e.visibility = compute;
+    }
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sd compute raster scene"),
+        entries: &entries,
+    })
+}
+
+impl ComputeRaster {
+    /// The passes for a map of `map_size` pixels (its band included) over the draw-ordered
+    /// `scene`, from `source` (map.wgsl and what it needs, without this file).
+    pub fn new(
+        device: &wgpu::Device,
+        source: &str,
+        scene: &GpuScene,
+        map_size: (u32, u32),
+        requested: bool,
+    ) -> Self {
+        use crate::bindings::entry;
+        let requested_fn = if requested {
+            "fn cr_requested(pixel: vec2<u32>) -> bool { return sd_requested(pixel); }\n"
+        } else {
+            "fn cr_requested(pixel: vec2<u32>) -> bool { return true; }\n"
+        };
+        let source = format!(
+            "{source}\n{requested_fn}{}",
+            crate::shaders::STOCHASTIC_DEPTH_COMPUTE_RASTER
+        );
+        let module = crate::gpu::shader_module(device, "sd compute raster", &source);
+        let scene_group = scene_group_layout(device, requested);
+        let empty = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("empty"),
+            entries: &[],
+        });
+        let own_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sd compute raster"),
+            entries: &[
+                entry::uniform(0),
+                entry::storage(1, false),
+                entry::storage(2, false),
+                entry::storage(3, false),
+                entry::storage(4, false),
+                entry::storage(5, false),
+            ]
+            .map(|mut e| {
+                e.visibility = wgpu::ShaderStages::COMPUTE;
+                e
+            }),
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("sd compute raster"),
+            bind_group_layouts: &[Some(&scene_group), Some(&empty), Some(&own_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry_point| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry_point),
+                layout: Some(&layout),
+                module: &module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let tiles = u64::from(map_size.0.div_ceil(8)) * u64::from(map_size.1.div_ceil(8));
+        let max = device.limits().max_storage_buffer_binding_size;
+        let item_capacity = (tiles * ITEMS_PER_TILE).clamp(1024, max / 8);
+        #[cfg(test)]
+        let item_capacity = ITEM_CAPACITY.with(|c| c.get()).unwrap_or(item_capacity);
+        let record_capacity = u64::from(scene.triangle_count)
+            .max(1)
+            .min(max / RECORD_BYTES);
+        let buffer = |label, size: u64| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(16),
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let params = SdComputeRaster {
+            size: [map_size.0, map_size.1],
+            triangle_count: scene.triangle_count,
+            culled_count: scene.culled_count,
+            opaque_count: scene.opaque_count,
+            item_capacity: item_capacity as u32,
+            record_capacity: record_capacity as u32,
+            _pad: 0,
+        };
+        let params = wgpu::util::DeviceExt::create_buffer_init(
+            device,
+            &wgpu::util::BufferInitDescriptor {
+                label: Some("sd compute raster params"),
+                contents: bytemuck::bytes_of(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            },
+        );
+        let counts = buffer("sd compute raster counts", 16);
+        let items = buffer("sd compute raster items", item_capacity * 8);
+        let records = buffer("sd compute raster records", record_capacity * RECORD_BYTES);
+        let left = buffer(
+            "sd compute raster left",
+            u64::from(scene.triangle_count) * 4,
+        );
+        // Each group's list starts at its first triangle: a draw's vertex v reads entry v / 3.
+        let empty_args: Vec<u32> = scene
+            .visibility_ranges()
+            .iter()
+            .flat_map(|r| [0, 1, 3 * r.start, 0])
+            .collect();
+        let left_args_empty = wgpu::util::DeviceExt::create_buffer_init(
+            device,
+            &wgpu::util::BufferInitDescriptor {
+                label: Some("sd compute raster left args, empty"),
+                contents: bytemuck::cast_slice(&empty_args),
+                usage: wgpu::BufferUsages::COPY_SRC,
+            },
+        );
+        let left_args = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sd compute raster left args"),
+            size: 48,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let left_group = crate::gpu::bind_group(
+            device,
+            "sd compute raster left",
+            &crate::raster::triangle_cull::drawn_layout(device),
+            &[left.as_entire_binding()],
+        );
+        let own_group = crate::gpu::bind_group(
+            device,
+            "sd compute raster",
+            &own_layout,
+            &[
+                params.as_entire_binding(),
+                counts.as_entire_binding(),
+                items.as_entire_binding(),
+                records.as_entire_binding(),
+                left.as_entire_binding(),
+                left_args.as_entire_binding(),
+            ],
+        );
+        Self {
+            bin: pipeline("sd_raster_bin"),
+            tiles: pipeline("sd_raster_tiles"),
+            counts,
+            own_group,
+            left_args,
+            left_args_empty,
+            left_group,
+            triangle_count: scene.triangle_count,
+        }
+    }
+
+    /// Bins and rasterises the frame's triangles into the map; `resources`: the map pass's
+    /// bindings of group 0.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        resources: &[wgpu::BindingResource],
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        let scene_group = crate::gpu::bind_group(
+            device,
+            "sd compute raster scene",
+            &self.bin.get_bind_group_layout(0),
+            resources,
+        );
+        encoder.clear_buffer(&self.counts, 0, None);
+        encoder.copy_buffer_to_buffer(&self.left_args_empty, 0, &self.left_args, 0, 48);
+        let groups = self.triangle_count.div_ceil(64).max(1);
+        for (name, pipeline, (x, y)) in [
+            ("sd_bin", &self.bin, (groups.min(ROW), groups.div_ceil(ROW))),
+            ("sd_tiles", &self.tiles, (TILE_GROUPS, 1)),
+        ] {
+            let timestamp_writes = profiler.as_deref_mut().map(|p| p.compute_pass(name));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(name),
+                timestamp_writes,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &scene_group, &[]);
+            pass.set_bind_group(2, &self.own_group, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+
+    /// Draws the triangles the bin pass left to the hardware with `pipelines` (the map's, one
+    /// per group of [`GpuScene::visibility_ranges`]), their group 0 being `group`.
+    pub fn record_left(
+        &self,
+        pass: &mut wgpu::RenderPass,
+        pipelines: &[wgpu::RenderPipeline; 3],
+        group: &wgpu::BindGroup,
+    ) {
+        pass.set_bind_group(0, group, &[]);
+        pass.set_bind_group(1, &self.left_group, &[]);
+        for (g, pipeline) in pipelines.iter().enumerate() {
+            pass.set_pipeline(pipeline);
+            pass.draw_indirect(&self.left_args, 16 * g as u64);
+        }
+    }
+
+    /// The four counters of the last frame (items, records, triangles left to the hardware,
+    /// triangles whose items did not all fit). Waits for the GPU.
+    #[cfg(test)]
+    pub fn read_counts(&self, gpu: &crate::Gpu) -> Result<[u32; 4], crate::Error> {
+        let bytes = crate::gpu::read_buffer_copy(gpu, &self.counts)?;
+        let v: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok([v[0], v[1], v[2], v[3]])
+    }
+}
+
+#[cfg(test)]
+mod tests;

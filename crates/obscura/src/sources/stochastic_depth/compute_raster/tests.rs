@@ -1,0 +1,225 @@
+//! The compute-rasterised map against the hardware's: the same fragments, up to rounding.
+
+use super::ITEM_CAPACITY;
+use crate::raster::test_support::{gpu, moved};
+use crate::scene::{self, AlphaMode, Camera, Material, Scene, Texture};
+use crate::settings::{AoSettings, SdMask, SdRasterizer, SdSelection};
+use crate::{Renderer, Technique};
+use glam::{Vec2, Vec3};
+
+const SIZE: (u32, u32, u32) = (96, 64, 8);
+
+/// One frame's map (sample layers as written) and the compute passes' counters.
+type Frame = (Vec<Vec<f32>>, Option<[u32; 4]>);
+
+/// The maps of `settings` rendered from each of `cameras` by `rasterizer` (sample layers as
+/// written), and the compute passes' counters of each frame.
+fn maps(
+    scene: &Scene,
+    settings: &AoSettings,
+    rasterizer: SdRasterizer,
+    cameras: &[Camera],
+) -> Vec<Frame> {
+    let gpu = gpu();
+    let mut s = *settings;
+    s.stochastic_depth.rasterizer = rasterizer;
+    let mut r = Renderer::new(&gpu, scene, &s, SIZE.0, SIZE.1, SIZE.2).unwrap();
+    cameras
+        .iter()
+        .map(|c| {
+            r.render(c, None).unwrap();
+            let map = r.read_stochastic_depth_as_written().unwrap().unwrap();
+            let counts = r.stochastic_depth_map().unwrap().compute_counts(&gpu);
+            (map, counts)
+        })
+        .collect()
+}
+
+/// Pixels whose S depths differ between `a` and `b`: in how many depths they hold, and in any
+/// depth by more than a relative 1e-3.
+fn differences(a: &[Vec<f32>], b: &[Vec<f32>]) -> (usize, usize) {
+    let held = |m: &[Vec<f32>], p: usize| m.iter().filter(|l| l[p] > 0.0).count();
+    let pixels = 0..a[0].len();
+    let count = pixels.clone().filter(|&p| held(a, p) != held(b, p)).count();
+    let depth = pixels
+        .filter(|&p| {
+            a.iter()
+                .zip(b)
+                .any(|(x, y)| (x[p] - y[p]).abs() > 1e-3 * x[p].max(y[p]))
+        })
+        .count();
+    (count, depth)
+}
+
+/// The two rasterisers' maps of `settings` agree on every camera: at most 2 of the 8,960 pixels
+/// hold a different number of depths, and at most 4 a depth more than 1e-3 (relative) apart.
+/// What differs is rounding: the hardware interpolates depth its own way, and a fragment at the
+/// separation's edge or a pixel centre within rounding of an edge can fall either way. Returns
+/// the depths stored.
+fn assert_same_maps(what: &str, scene: &Scene, settings: &AoSettings, cameras: &[Camera]) -> usize {
+    let hardware = maps(scene, settings, SdRasterizer::Hardware, cameras);
+    let compute = maps(scene, settings, SdRasterizer::Compute, cameras);
+    let mut stored = 0;
+    for (f, ((h, _), (c, counts))) in hardware.iter().zip(&compute).enumerate() {
+        let (count, depth) = differences(h, c);
+        assert!(
+            count <= 2 && depth <= 4,
+            "{what}, frame {f}: {count} pixels hold another number of depths, {depth} other \
+             depths (counters {counts:?})"
+        );
+        stored += h.iter().flatten().filter(|&&d| d > 0.0).count();
+    }
+    stored
+}
+
+fn sd(technique: Technique, edit: impl Fn(&mut AoSettings)) -> AoSettings {
+    let mut s = AoSettings {
+        technique,
+        ..AoSettings::default()
+    };
+    edit(&mut s);
+    s
+}
+
+/// Every built-in scene, camera and a moved camera; the stochastic map at S = 4, the 16 nearest
+/// layers (almost every fragment, so a missing or extra one shows), SD-SVAO's requested pixels
+/// with the depth mask and with the stencil, and a map with its own band.
+#[test]
+fn the_compute_map_holds_the_hardware_maps_fragments() {
+    let settings = [
+        ("S = 4", sd(Technique::SdVao, |_| {})),
+        (
+            "16 nearest",
+            sd(Technique::SdVao, |s| {
+                s.stochastic_depth.samples = 16;
+                s.stochastic_depth.selection = SdSelection::Nearest;
+            }),
+        ),
+        ("sd-svao, depth mask", sd(Technique::SdSvao, |_| {})),
+        (
+            "sd-svao, stencil",
+            sd(Technique::SdSvao, |s| {
+                s.stochastic_depth.mask = SdMask::Stencil
+            }),
+        ),
+        (
+            "band 6",
+            sd(Technique::SdVao, |s| s.stochastic_depth.guard_band = 6),
+        ),
+    ];
+    let mut stored = 0;
+    for name in scene::builtin_names() {
+        let scene = scene::builtin(name).unwrap();
+        for named in &scene.cameras {
+            let cameras = [named.camera, moved(&scene, &named.camera)];
+            for (label, s) in &settings {
+                let what = format!("{name} {}, {label}", named.name);
+                stored += assert_same_maps(&what, &scene, s, &cameras);
+            }
+        }
+    }
+    assert!(stored > 100_000, "the maps stored only {stored} depths");
+}
+
+/// Quad `corners` (counter-clockwise seen from its front) with material `material`, its texture
+/// repeated `repeat` times across.
+fn push_quad(scene: &mut Scene, corners: [Vec3; 4], material: u32, repeat: f32) {
+    let base = scene.positions.len() as u32;
+    scene.positions.extend(corners);
+    scene.uvs.extend(
+        [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(u, v)| Vec2::new(u, v) * repeat),
+    );
+    scene.triangles.push([base, base + 1, base + 2]);
+    scene.triangles.push([base, base + 2, base + 3]);
+    scene.triangle_materials.extend([material; 2]);
+}
+
+/// A floor that reaches behind the camera (its triangles cross the near plane), an occluder, an
+/// alpha-tested checkerboard behind it and a back wall.
+fn near_floor_scene() -> (Scene, Camera) {
+    let mut scene = Scene {
+        name: "near floor".into(),
+        materials: vec![
+            Material {
+                name: "plain".into(),
+                base_color: [1.0; 4],
+                base_color_texture: None,
+                alpha_mode: AlphaMode::Opaque,
+                double_sided: false,
+            },
+            Material {
+                name: "leaf".into(),
+                base_color: [1.0; 4],
+                base_color_texture: Some(0),
+                alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
+                double_sided: true,
+            },
+        ],
+        textures: vec![Texture {
+            name: "checker".into(),
+            width: 2,
+            height: 2,
+            rgba8: vec![
+                255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 0,
+            ],
+        }],
+        ..Default::default()
+    };
+    let v = Vec3::new;
+    // Seen from above.
+    let floor = [
+        v(-40.0, 0.0, 40.0),
+        v(40.0, 0.0, 40.0),
+        v(40.0, 0.0, -40.0),
+        v(-40.0, 0.0, -40.0),
+    ];
+    push_quad(&mut scene, floor, 0, 1.0);
+    // Facing the camera (+z).
+    let wall =
+        |x: f32, top: f32, z: f32| [v(-x, 0.0, z), v(x, 0.0, z), v(x, top, z), v(-x, top, z)];
+    push_quad(&mut scene, wall(1.0, 1.5, -3.0), 0, 1.0);
+    push_quad(&mut scene, wall(3.0, 2.5, -5.0), 1, 6.0);
+    push_quad(&mut scene, wall(8.0, 4.0, -8.0), 0, 1.0);
+    let camera = Camera::new(v(0.3, 1.0, 0.0), v(0.0, 0.6, -5.0), 70.0).unwrap();
+    (scene, camera)
+}
+
+/// The triangles that cross the near plane are drawn by the hardware (the compute passes leave
+/// them), alpha-tested ones are cut where the texture says, and the map is the hardware's.
+#[test]
+fn triangles_crossing_the_near_plane_are_left_to_the_hardware() {
+    let (scene, camera) = near_floor_scene();
+    let settings = sd(Technique::SdVao, |s| {
+        s.stochastic_depth.samples = 16;
+        s.stochastic_depth.selection = SdSelection::Nearest;
+    });
+    let stored = assert_same_maps("near floor", &scene, &settings, &[camera]);
+    assert!(stored > 1000, "the map stored {stored} depths");
+    let counts = maps(&scene, &settings, SdRasterizer::Compute, &[camera])[0]
+        .1
+        .unwrap();
+    assert!(counts[2] >= 2, "triangles left to the hardware: {counts:?}");
+    assert_eq!(counts[3], 0, "{counts:?}");
+}
+
+/// Where the items do not fit their buffer, the triangles they belong to are drawn by the
+/// hardware as well, and the map is the same.
+#[test]
+fn triangles_whose_items_do_not_fit_are_left_to_the_hardware() {
+    let scene = scene::builtin("tower").unwrap();
+    let camera = scene.cameras[0].camera;
+    let settings = sd(Technique::SdVao, |s| {
+        s.stochastic_depth.samples = 16;
+        s.stochastic_depth.selection = SdSelection::Nearest;
+    });
+    ITEM_CAPACITY.with(|c| c.set(Some(8)));
+    let small = std::panic::catch_unwind(|| {
+        let stored = assert_same_maps("tower, 8 items", &scene, &settings, &[camera]);
+        let counts = maps(&scene, &settings, SdRasterizer::Compute, &[camera])[0].1;
+        (stored, counts.unwrap())
+    });
+    ITEM_CAPACITY.with(|c| c.set(None));
+    let (stored, counts) = small.unwrap();
+    assert!(stored > 1000, "the map stored {stored} depths");
+    assert!(counts[3] > 0 && counts[0] > 8, "{counts:?}");
+}
