@@ -11,13 +11,21 @@
 // Two passes over the frame's triangles:
 // - `sd_raster_bin`, one invocation per triangle: projects it as vs_depth does, drops what the
 //   hardware would draw nothing of (outside the frustum, back faces where culled, no pixel centre
-//   inside), leaves the triangles that cross the near plane to the hardware (counted in
-//   `cr_counts[CR_NEAR]`; they need clipping), rasterises small ones itself, and for larger ones
-//   writes a record and items of up to CR_ITEM_TILES 8×8 tiles of their bounding box.
+//   inside), clips what crosses the near plane or reaches past a guard band as the hardware does
+//   (Sutherland-Hodgman; the parts interpolate what the triangle would), rasterises small
+//   triangles itself, and for larger ones writes a record and items of up to CR_ITEM_TILES 8×8
+//   tiles of their bounding box. Triangles whose items do not fit their buffer are left to the
+//   hardware (the map's raster pass draws them).
 // - `sd_raster_tiles`, workgroups of 8×8 invocations, one pixel each, over the items.
 // Coverage is the rasteriser's: pixel centres, corners snapped to 1/256 pixel (8 sub-pixel bits,
-// what Vulkan devices commonly have), the top-left rule on exact ties; depth and texture
-// coordinates interpolated perspective-correct at the pixel centre. An edge two triangles share is
+// what Vulkan devices commonly have), the top-left rule on exact ties; texture coordinates
+// interpolated perspective-correct at the pixel centre. The depth is the G-buffer's own: where
+// the pixel centre's line meets the triangle's plane (gbuffer_resolve.wgsl's
+// pixel_plane_point), not an interpolation between corners snapped to the sub-pixel grid. Why: a
+// surface's own fragment must not pass for a hidden one, and at grazing angles a 1/256-pixel
+// shift of a corner moves the interpolated depth by more than the separation the first layer is
+// skipped by (on the built-in test scene of compute_raster/tests.rs: 0.015 at 21 m, against a
+// separation of 0.01). An edge two triangles share is
 // evaluated from the same end point with the same operands by both (cr_edge), so a pixel centre
 // on it, or within rounding of it, goes to exactly one of them.
 
@@ -33,9 +41,10 @@ struct SdComputeRaster {
     _pad: u32,
 }
 
-// A triangle left to the tile pass: corners on screen in the order that makes its area
-// positive (corner 1 and 2 swapped where `swapped`), per corner 1 / w and linear depth, and the
-// pixel centres of its bounding box.
+// A triangle left to the tile pass (or a part of one, after clipping): corners on screen in the
+// order that makes its area positive, per corner 1 / w and texture coordinates, its material, the
+// pixel centres of its bounding box, and the whole triangle's first corner and face normal in
+// view space (its plane).
 struct CrRecord {
     p01: vec4<f32>,
     p2: vec2<f32>,
@@ -44,16 +53,21 @@ struct CrRecord {
     tiles_x: u32,
     triangle: u32,
     inv_w: vec3<f32>,
-    swapped: u32,
-    depth: vec3<f32>,
+    material: u32,
+    v0: vec3<f32>,
     _pad: u32,
+    face: vec3<f32>,
+    _pad1: u32,
+    uv01: vec4<f32>,
+    uv2: vec2<f32>,
+    _pad2: vec2<u32>,
 }
 
-// cr_counts: items written, records written, triangles left to the hardware, items that did not
-// fit (their triangles were left to the hardware too).
+// cr_counts: items written, records written, triangles left to the hardware, triangles whose
+// items did not all fit (left to the hardware).
 const CR_ITEMS: u32 = 0u;
 const CR_RECORDS: u32 = 1u;
-const CR_NEAR: u32 = 2u;
+const CR_LEFT: u32 = 2u;
 const CR_OVERFLOW: u32 = 3u;
 // A triangle whose bounding box holds at most this many pixel centres is rasterised by its bin
 // invocation; larger ones go to the tile pass.
@@ -68,7 +82,7 @@ const CR_SUBPIXEL: f32 = 256.0;
 // (record, first tile) per item.
 @group(2) @binding(2) var<storage, read_write> cr_items: array<vec2<u32>>;
 @group(2) @binding(3) var<storage, read_write> cr_records: array<CrRecord>;
-// The triangles left to the hardware (near plane, overflow), each group's from its first triangle
+// The triangles left to the hardware, each group's from its first triangle
 // on (the group's draw reads them as `drawn_triangles`), and the three groups' `draw_indirect`
 // arguments, whose vertex counts grow by three a triangle.
 @group(2) @binding(4) var<storage, read_write> cr_left: array<u32>;
@@ -107,13 +121,17 @@ fn cr_covers(e: CrEdge, value: f32) -> bool {
     return value > 0.0 || (value == 0.0 && e.owned);
 }
 
-// One triangle set up for its pixels.
+// One triangle set up for its pixels: its edges, per corner 1 / w and the texture coordinates
+// (read only for alpha-tested materials), and the whole triangle's plane (first corner and face
+// normal in view space).
 struct CrTriangle {
     edges: array<CrEdge, 3>,
     inv_w: vec3<f32>,
-    depth: vec3<f32>,
+    uv: array<vec2<f32>, 3>,
     triangle: u32,
-    swapped: bool,
+    material: u32,
+    v0: vec3<f32>,
+    face: vec3<f32>,
 }
 
 fn cr_triangle(p0: vec2<f32>, p1: vec2<f32>, p2: vec2<f32>) -> array<CrEdge, 3> {
@@ -133,24 +151,49 @@ fn cr_fragment(t: CrTriangle, pixel: vec2<u32>) {
     if (!(cr_covers(t.edges[0], e.x) && cr_covers(t.edges[1], e.y) && cr_covers(t.edges[2], e.z))) {
         return;
     }
-    // Perspective-correct weights (the rasteriser's interpolation of a varying).
-    let w = e * t.inv_w;
-    let total = w.x + w.y + w.z;
-    let depth = dot(w, t.depth) / total;
     if (t.triangle >= cr.opaque_count) {
-        let tri = triangles[t.triangle];
-        let c1 = select(tri.y, tri.z, t.swapped);
-        let c2 = select(tri.z, tri.y, t.swapped);
-        let uv = (w.x * attributes[tri.x].xy + w.y * attributes[c1].xy + w.z * attributes[c2].xy)
-            / total;
-        if (!material_passes_alpha(materials[tri.w], textures, uv)) {
+        // Perspective-correct weights (the rasteriser's interpolation of a varying).
+        let w = e * t.inv_w;
+        let uv = (w.x * t.uv[0] + w.y * t.uv[1] + w.z * t.uv[2]) / (w.x + w.y + w.z);
+        if (!material_passes_alpha(materials[t.material], textures, uv)) {
             return;
         }
     }
     if (!cr_requested(pixel)) {
         return;
     }
+    // A covered pixel centre's line meets a triangle of non-zero screen area in one finite
+    // point.
+    let depth = -pixel_plane_point(pixel_ndc(pixel, cr.size), t.v0, t.face).z;
     sd_fragment(pixel, depth, t.triangle);
+}
+
+// A corner of a triangle, or of the polygon left of it by clipping: clip-space position and
+// texture coordinates.
+struct CrVertex {
+    clip: vec4<f32>,
+    uv: vec2<f32>,
+}
+
+// How far the screen may reach beyond the frame, in frames (clip space: |x|, |y| ≤ CR_GUARD w):
+// corners past it are clipped away, so that snapped corners stay exact in f32 (8 × a 4096-pixel
+// map × 256 sub-pixel steps < 2^24). The hardware clips against a guard band the same way.
+const CR_GUARD: f32 = 8.0;
+
+// Plane `k` of the clip volume at `v`, non-negative inside: the near plane (reversed Z: z ≤ w),
+// then the guard band's four sides.
+fn cr_plane(k: u32, v: vec4<f32>) -> f32 {
+    switch k {
+        case 0u: { return v.w - v.z; }
+        case 1u: { return CR_GUARD * v.w - v.x; }
+        case 2u: { return CR_GUARD * v.w + v.x; }
+        case 3u: { return CR_GUARD * v.w - v.y; }
+        default: { return CR_GUARD * v.w + v.y; }
+    }
+}
+
+fn cr_lerp(a: CrVertex, b: CrVertex, t: f32) -> CrVertex {
+    return CrVertex(mix(a.clip, b.clip, t), mix(a.uv, b.uv, t));
 }
 
 @compute @workgroup_size(64)
@@ -160,56 +203,106 @@ fn sd_raster_bin(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wor
         return;
     }
     let tri = triangles[t];
-    var clip: array<vec4<f32>, 3>;
-    var depth: vec3<f32>;
+    let masked = t >= cr.opaque_count;
+    var v: array<CrVertex, 3>;
+    // The whole triangle's plane, as the G-buffer's resolve takes it.
+    var plane: CrPlane;
+    plane.v0 = to_view(positions[tri.x].xyz);
+    plane.face = view_face_normal(tri);
+    // Which planes of the clip volume each corner lies outside of (bit k: plane k), and the
+    // frustum's sides.
+    var outside_all = 0x1ffu;
+    var outside_any = 0u;
     for (var i = 0u; i < 3u; i++) {
-        let view_pos = to_view(positions[tri[i]].xyz);
-        clip[i] = view_to_clip(view_pos);
-        depth[i] = -view_pos.z;
+        let c = view_to_clip(to_view(positions[tri[i]].xyz));
+        v[i] = CrVertex(c, vec2<f32>(0.0));
+        if (masked) {
+            v[i].uv = attributes[tri[i]].xy;
+        }
+        var code = 0u;
+        for (var k = 0u; k < 5u; k++) {
+            code |= u32(cr_plane(k, c) < 0.0) << k;
+        }
+        code |= u32(c.x < -c.w) << 5u | u32(c.x > c.w) << 6u | u32(c.y < -c.w) << 7u
+            | u32(c.y > c.w) << 8u;
+        outside_all &= code;
+        outside_any |= code;
     }
-    // Outside one plane of the frustum with every corner: nothing drawn.
-    var outside = vec4<bool>(true);
-    var in_front = true;
-    var crosses = false;
-    for (var i = 0u; i < 3u; i++) {
-        let c = clip[i];
-        outside = outside & vec4<bool>((c.x < -c.w), (c.x > c.w), (c.y < -c.w), (c.y > c.w));
-        // Reversed Z: in front of the near plane is z > w.
-        in_front = in_front && c.z > c.w;
-        crosses = crosses || c.z > c.w || c.z < 0.0;
-    }
-    if (any(outside) || in_front) {
+    // Every corner outside one plane: nothing drawn.
+    if (outside_all != 0u) {
         return;
     }
-    if (crosses) {
-        cr_leave(t);
+    if ((outside_any & 0x1fu) == 0u) {
+        cr_rasterize(t, tri.w, plane, v[0], v[1], v[2]);
         return;
     }
+    // Clipped (Sutherland-Hodgman) against the planes the corners cross: at most 3 + 5 corners.
+    var poly: array<CrVertex, 8>;
+    var n = 3u;
+    for (var i = 0u; i < 3u; i++) {
+        poly[i] = v[i];
+    }
+    for (var k = 0u; k < 5u; k++) {
+        if ((outside_any & (1u << k)) == 0u) {
+            continue;
+        }
+        var next: array<CrVertex, 8>;
+        var m = 0u;
+        for (var i = 0u; i < n; i++) {
+            let a = poly[i];
+            let b = poly[(i + 1u) % n];
+            let fa = cr_plane(k, a.clip);
+            let fb = cr_plane(k, b.clip);
+            if (fa >= 0.0) {
+                next[m] = a;
+                m++;
+            }
+            if ((fa >= 0.0) != (fb >= 0.0) && m < 8u) {
+                next[m] = cr_lerp(a, b, fa / (fa - fb));
+                m++;
+            }
+        }
+        poly = next;
+        n = m;
+    }
+    // A fan of triangles, each with the triangle's own orientation.
+    for (var i = 1u; i + 1u < n; i++) {
+        cr_rasterize(t, tri.w, plane, poly[0], poly[i], poly[i + 1u]);
+    }
+}
+
+// The plane of a triangle in view space: a corner and the face normal (unnormalised).
+struct CrPlane {
+    v0: vec3<f32>,
+    face: vec3<f32>,
+}
+
+// Triangle `t` (material `material`, `plane`), or a part of it left by clipping, with corners
+// `a`, `b`, `c` inside the clip volume: rasterised here where small, else handed to the tile
+// pass.
+fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex, c: CrVertex) {
     let size = vec2<f32>(cr.size);
-    var p: array<vec2<f32>, 3>;
-    for (var i = 0u; i < 3u; i++) {
-        let ndc = clip[i].xy / clip[i].w;
-        let s = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * size;
-        p[i] = round(s * CR_SUBPIXEL) / CR_SUBPIXEL;
-    }
+    var p = array<vec2<f32>, 3>(cr_screen(a.clip, size), cr_screen(b.clip, size), cr_screen(c.clip, size));
     let area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
     // Front faces are counter-clockwise in normalised device coordinates (y up), so of negative
     // area here (y down).
     if (area == 0.0 || (t < cr.culled_count && area > 0.0)) {
         return;
     }
-    let swapped = area < 0.0;
     var r: CrTriangle;
     r.triangle = t;
-    r.swapped = swapped;
-    r.inv_w = 1.0 / vec3<f32>(clip[0].w, clip[1].w, clip[2].w);
-    r.depth = depth;
-    if (swapped) {
+    r.material = material;
+    r.inv_w = 1.0 / vec3<f32>(a.clip.w, b.clip.w, c.clip.w);
+    r.uv = array<vec2<f32>, 3>(a.uv, b.uv, c.uv);
+    r.v0 = plane.v0;
+    r.face = plane.face;
+    // Corners in the order that makes the area positive.
+    if (area < 0.0) {
         let q = p[1];
         p[1] = p[2];
         p[2] = q;
         r.inv_w = r.inv_w.xzy;
-        r.depth = r.depth.xzy;
+        r.uv = array<vec2<f32>, 3>(a.uv, c.uv, b.uv);
     }
     r.edges = cr_triangle(p[0], p[1], p[2]);
     // The pixel centres of the bounding box, within the map.
@@ -247,8 +340,11 @@ fn sd_raster_bin(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wor
     rec.tiles_x = tiles.x;
     rec.triangle = t;
     rec.inv_w = r.inv_w;
-    rec.swapped = u32(swapped);
-    rec.depth = r.depth;
+    rec.material = material;
+    rec.v0 = plane.v0;
+    rec.face = plane.face;
+    rec.uv01 = vec4<f32>(r.uv[0], r.uv[1]);
+    rec.uv2 = r.uv[2];
     cr_records[record] = rec;
     // Items past the capacity are not written (the tile pass reads only the first
     // `item_capacity`); the triangle is then drawn by the hardware as well, and the fragments
@@ -263,9 +359,17 @@ fn sd_raster_bin(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wor
     }
 }
 
+// Framebuffer position of clip-space point `c` in a map of `size` pixels, snapped to the
+// sub-pixel grid.
+fn cr_screen(c: vec4<f32>, size: vec2<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    let s = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * size;
+    return round(s * CR_SUBPIXEL) / CR_SUBPIXEL;
+}
+
 // Triangle `t` drawn by the hardware after all, by its group's draw.
 fn cr_leave(t: u32) {
-    atomicAdd(&cr_counts[CR_NEAR], 1u);
+    atomicAdd(&cr_counts[CR_LEFT], 1u);
     var group = 2u;
     var start = cr.opaque_count;
     if (t < cr.culled_count) {
@@ -293,9 +397,11 @@ fn sd_raster_tiles(
         var r: CrTriangle;
         r.edges = cr_triangle(rec.p01.xy, rec.p01.zw, rec.p2);
         r.inv_w = rec.inv_w;
-        r.depth = rec.depth;
+        r.v0 = rec.v0;
+        r.face = rec.face;
         r.triangle = rec.triangle;
-        r.swapped = rec.swapped != 0u;
+        r.material = rec.material;
+        r.uv = array<vec2<f32>, 3>(rec.uv01.xy, rec.uv01.zw, rec.uv2);
         let tiles_y = (rec.last.y - rec.first.y) / 8u + 1u;
         let end = min(item.y + CR_ITEM_TILES, rec.tiles_x * tiles_y);
         for (var k = item.y; k < end; k++) {

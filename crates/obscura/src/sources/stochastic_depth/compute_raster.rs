@@ -22,10 +22,12 @@ struct SdComputeRaster {
 }
 
 /// Bytes of one `CrRecord`.
-const RECORD_BYTES: u64 = 80;
-/// Items per 8×8 tile of the map the item buffer holds room for: every tile inside the
-/// bounding boxes of this many large triangles, each item up to 16 tiles.
-const ITEMS_PER_TILE: u64 = 4;
+const RECORD_BYTES: u64 = 128;
+/// Room for items and records per 8×8 tile of the map. Crytek Sponza from BENCHMARKS.md's camera
+/// needed 4.7 items and 3.5 records a tile at 480×270 (+ 16 px band) and 3.7 and 2.3 at 960×540
+/// (+ 32); triangles that do not fit are drawn by the hardware (correct, only slower).
+const ITEMS_PER_TILE: u64 = 16;
+const RECORDS_PER_TILE: u64 = 8;
 /// Workgroups of the tile pass (each takes every `TILE_GROUPS`-th item): enough to fill a large
 /// GPU (an H200 holds 132 × 32 workgroups of 64 invocations at once).
 const TILE_GROUPS: u32 = 8192;
@@ -34,7 +36,8 @@ const ROW: u32 = 65535;
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: the item capacity of the passes made on this thread (to make items overflow).
+    /// Tests: the item and record capacity of the passes made on this thread (to make them
+    /// overflow).
     pub(crate) static ITEM_CAPACITY: std::cell::Cell<Option<u64>> = const { std::cell::Cell::new(None) };
 }
 
@@ -153,9 +156,9 @@ impl ComputeRaster {
         let item_capacity = (tiles * ITEMS_PER_TILE).clamp(1024, max / 8);
         #[cfg(test)]
         let item_capacity = ITEM_CAPACITY.with(|c| c.get()).unwrap_or(item_capacity);
-        let record_capacity = u64::from(scene.triangle_count)
-            .max(1)
-            .min(max / RECORD_BYTES);
+        let record_capacity = (tiles * RECORDS_PER_TILE).clamp(1024, max / RECORD_BYTES);
+        #[cfg(test)]
+        let record_capacity = ITEM_CAPACITY.with(|c| c.get()).unwrap_or(record_capacity);
         let buffer = |label, size: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),

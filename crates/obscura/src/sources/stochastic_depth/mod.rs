@@ -269,7 +269,11 @@ impl StochasticDepthMap {
         scene: &GpuScene,
         requested: Option<SdMask>,
     ) -> Result<Self, Error> {
-        let stenciled = requested == Some(SdMask::Stencil);
+        // Rasterised in compute, the hardware draws only the triangles the compute passes leave
+        // to it, untested: their shaders decide for themselves (the first layer, the request
+        // mask), and no reset pass writes a depth or a stencil for so few fragments.
+        let compute_raster = settings.rasterizer == SdRasterizer::Compute;
+        let stenciled = requested == Some(SdMask::Stencil) && !compute_raster;
         let layout =
             SdLayout::plan(settings.samples).ok_or_else(|| crate::SettingsError::Invalid {
                 field: "stochastic_depth.samples",
@@ -318,8 +322,11 @@ impl StochasticDepthMap {
         // linear depth lies more than `separation` behind would be lost: that takes a separation
         // within the depth's rounding (about 1e-7 of the depth), and a separation of 0 keeps
         // the reset.
-        let gbuffer_z_usable =
-            requested.is_none() && band == 0 && separation > 0.0 && early_tests_available(device);
+        let gbuffer_z_usable = !compute_raster
+            && requested.is_none()
+            && band == 0
+            && separation > 0.0
+            && early_tests_available(device);
         #[cfg(test)]
         let gbuffer_z_usable = gbuffer_z_usable && !RESET_ONLY.with(|r| r.get());
         let format = cull_format(stenciled, gbuffer_z_usable);
@@ -352,10 +359,10 @@ impl StochasticDepthMap {
             // The attribute needs the feature; without it the shaders decide alone (map.wgsl).
             map_source = map_source.replace("@early_depth_test(force)", "");
         }
-        let compute = (settings.rasterizer == SdRasterizer::Compute).then(|| {
+        let compute = compute_raster.then(|| {
             compute_raster::ComputeRaster::new(
                 device,
-                &map_source,
+                &format!("{map_source}\n{}", shaders::GBUFFER_RESOLVE),
                 &scene.draw_ordered(),
                 (map_width, map_height),
                 requested.is_some(),
@@ -385,7 +392,8 @@ impl StochasticDepthMap {
         // keeps unrequested pixels from the shader (tests/stochastic_depth.rs holds the map empty
         // there); otherwise the shader reads the mask as well (for the stenciled map that read
         // cost 0.5 % of its pass on an H200, BENCHMARKS.md).
-        let mask_in_tests = matches!(requested, Some(SdMask::Depth | SdMask::Stencil))
+        let mask_in_tests = !compute_raster
+            && matches!(requested, Some(SdMask::Depth | SdMask::Stencil))
             && early_tests_available(device);
         let [plain, masked] = if requested.is_some() && !mask_in_tests {
             [
@@ -425,7 +433,11 @@ impl StochasticDepthMap {
                 depth_stencil: wgpu::DepthStencilState {
                     format,
                     depth_write_enabled: Some(false),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    depth_compare: Some(if compute_raster {
+                        wgpu::CompareFunction::Always
+                    } else {
+                        wgpu::CompareFunction::Less
+                    }),
                     stencil: stencil_test.clone(),
                     bias: Default::default(),
                 },
@@ -437,6 +449,7 @@ impl StochasticDepthMap {
             .create(device)
         });
         let scope = match requested {
+            _ if compute_raster => ResetScope::All,
             Some(SdMask::Stencil) => ResetScope::Stenciled,
             Some(SdMask::Depth) => ResetScope::RequestedByDepth,
             Some(SdMask::Discard) | None => ResetScope::All,
@@ -598,6 +611,10 @@ impl StochasticDepthMap {
         ];
         extra.extend(request.map(|r| r.as_entire_binding()));
         let resources = scene_resources(&self.camera, &self.scene, extra);
+        if let Some(compute) = &self.compute {
+            self.render_in_compute(device, encoder, compute, &resources, profiler);
+            return;
+        }
         let gbuffer_z = gbuffer_z
             .filter(|z| {
                 self.gbuffer_z_usable
@@ -623,11 +640,7 @@ impl StochasticDepthMap {
             &resources,
         );
         let bind_groups = [bind_group.clone(), bind_group.clone(), bind_group];
-        if let Some(compute) = &self.compute {
-            compute.encode(device, encoder, &resources, profiler.as_deref_mut());
-        } else {
-            self.triangle_cull.encode(encoder, profiler.as_deref_mut());
-        }
+        self.triangle_cull.encode(encoder, profiler.as_deref_mut());
         let map_name = self.timing_name;
         let timestamp_writes = profiler.as_deref_mut().map(|p| p.render_pass(map_name));
         let load = if self.all_layers {
@@ -645,12 +658,52 @@ impl StochasticDepthMap {
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, map_name);
         }
-        if let Some(compute) = &self.compute {
-            compute.record_left(&mut pass, &self.pipelines, &bind_groups[0]);
-        } else {
-            self.triangle_cull
-                .record(&mut pass, &self.pipelines, &bind_groups, CullList::All);
+        self.triangle_cull
+            .record(&mut pass, &self.pipelines, &bind_groups, CullList::All);
+        if let Some(p) = profiler.as_deref() {
+            p.end_fragments(&mut pass);
         }
+    }
+
+    /// [`StochasticDepthMap::render`] with `rasterizer = "compute"`: the map emptied, the compute
+    /// passes (`sd_bin`, `sd_tiles`), then the triangles they left to the hardware (`sd_map`),
+    /// drawn without depth tests over a target cleared for the pass.
+    fn render_in_compute(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        compute: &compute_raster::ComputeRaster,
+        resources: &[wgpu::BindingResource],
+        mut profiler: Option<&mut PassProfiler>,
+    ) {
+        self.reset.encode(
+            device,
+            encoder,
+            &self.depths,
+            None,
+            resources,
+            profiler.as_deref_mut(),
+        );
+        compute.encode(device, encoder, resources, profiler.as_deref_mut());
+        let bind_group = crate::gpu::bind_group(
+            device,
+            "stochastic depth",
+            &self.pipelines[0].get_bind_group_layout(0),
+            resources,
+        );
+        let timestamp_writes = profiler
+            .as_deref_mut()
+            .map(|p| p.render_pass(self.timing_name));
+        let mut pass = begin(
+            encoder,
+            &self.cull,
+            wgpu::LoadOp::Clear(0.0),
+            timestamp_writes,
+        );
+        if let Some(p) = profiler.as_deref_mut() {
+            p.begin_fragments(&mut pass, self.timing_name);
+        }
+        compute.record_left(&mut pass, &self.pipelines, &bind_group);
         if let Some(p) = profiler.as_deref() {
             p.end_fragments(&mut pass);
         }
