@@ -3,7 +3,7 @@
 scripts/device-bench-sd-map.sh: per scene and build, the median over rounds of each raster pass
 (G-buffer = triangle cull + visibility pass + occlusion pyramid + resolve, depth peeling = pass +
 resolve, SD map =
-clear + reset + triangle cull + map, for
+clear + reset + triangle cull + map, or with `--sd-rasterizer compute` clear + bin + tiles + map, for
 `sd-vao` and for `sd-svao`, whose map covers the requested pixels only) with fragments per
 framebuffer pixel; then each stochastic-depth technique's total without the G-buffer; then the
 peer's prepass. A run file is SCENE-SIDE-ROUND.json (SIDE: old or new)."""
@@ -16,8 +16,8 @@ runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
 PASSES = {
     "G-buffer": ("vao", ["triangle_cull", "gbuffer", "occlusion_pyramid", "gbuffer_resolve"], "gbuffer"),
     "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
-    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
-    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_map"], "sd_map"),
+    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], "sd_map"),
+    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], "sd_map"),
 }
 # Whole techniques without the G-buffer (what the stencil of sd-svao is for, seed 000 §3.9).
 TOTALS = ["sd-vao", "sd-svao"]

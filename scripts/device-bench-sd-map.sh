@@ -8,7 +8,9 @@
 # (scripts/bench-raster-summary.py), $OUT/info.txt, $OUT/bench.txt and $OUT/runs.tar.gz.
 # Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza sibenik, plus the old binary as
 # .devbin/obscura-old or .devbin/obscura-old.xz)
-# and .gl.
+# and .gl. OLD_ARGS and NEW_ARGS: more `bench` arguments for each side, e.g. one binary twice
+# with OLD_BIN=./.devbin/obscura OLD_ARGS="--sd-rasterizer hardware" NEW_ARGS="--sd-rasterizer
+# compute".
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 new=$bin old=${OLD_BIN:-./.devbin/obscura-old}
@@ -29,12 +31,15 @@ bench() { # name, binary, scene arguments...
 }
 for round in $(seq "$rounds"); do
   for side in old new; do
-    b=$new; [ "$side" = old ] && b=$old
+    b=$new extra=${NEW_ARGS:-}
+    [ "$side" = old ] && b=$old extra=${OLD_ARGS:-}
     [ -x "$b" ] || continue
+    # shellcheck disable=SC2206
+    extra=($extra)
     for scene in sponza sponza0 colonnade sibenik; do
       scene_args "$scene" || continue
-      bench "$scene-$side-$round" "$b" "${args[@]}" --techniques sd-vao,sd-svao
-      bench "${scene}_discard-$side-$round" "$b" "${args[@]}" --techniques sd-svao \
+      bench "$scene-$side-$round" "$b" "${args[@]}" "${extra[@]}" --techniques sd-vao,sd-svao
+      bench "${scene}_discard-$side-$round" "$b" "${args[@]}" "${extra[@]}" --techniques sd-svao \
         --sd-mask discard
     done
   done

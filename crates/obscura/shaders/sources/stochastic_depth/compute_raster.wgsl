@@ -1,33 +1,33 @@
 // The stochastic depth map rasterised in compute (ours; issue 16; src/sources/stochastic_depth/
-// compute_raster.rs). Appended to gbuffer.wgsl, common/hash.wgsl, common/material.wgsl and
-// map.wgsl: the same triangles, camera, alpha test, and Alg. 1 per fragment (sd_fragment, seed
-// 001 §3.1). Why: the map's raster pass spends its time on fragments the hardware makes, not on
-// the shader's atomics (without any atomic it kept 92 % of its time on an H200, BENCHMARKS.md),
-// and the H100/H200 we measure on have few raster units and much compute. The map is
-// order-independent (every fragment's store is an atomicMax), so any order of fragments, and any
-// fragment made twice (the same pixel and triangle draw the same samples and store the same
-// depth), gives the same map: a rasteriser in compute needs no ordering and no depth buffer.
+// compute_raster.rs). Appended to gbuffer.wgsl, common/hash.wgsl, common/material.wgsl, map.wgsl
+// and gbuffer_resolve.wgsl: the same triangles, camera, alpha test, and Alg. 1 per fragment
+// (sd_fragment, seed 001 §3.1). Why: the map's raster pass spends its time on fragments the
+// hardware makes, not on the shader's atomics (without any atomic it kept 92 % of its time on an
+// H200, BENCHMARKS.md), and the H100/H200 we measure on have few raster units and much compute.
+// The map is order-independent (every fragment's store is an atomicMax), so any order of
+// fragments, and any fragment made twice (the same pixel and triangle draw the same samples and
+// store the same depth), gives the same map: a rasteriser in compute needs no ordering and no
+// depth buffer.
 //
 // Two passes over the frame's triangles:
 // - `sd_raster_bin`, one invocation per triangle: projects it as vs_depth does, drops what the
 //   hardware would draw nothing of (outside the frustum, back faces where culled, no pixel centre
 //   inside), clips what crosses the near plane or reaches past a guard band as the hardware does
-//   (Sutherland-Hodgman; the parts interpolate what the triangle would), rasterises small
-//   triangles itself, and for larger ones writes a record and items of up to CR_ITEM_TILES 8×8
-//   tiles of their bounding box. Triangles whose items do not fit their buffer are left to the
-//   hardware (the map's raster pass draws them).
+//   (Sutherland-Hodgman), rasterises small triangles itself, and for larger ones writes a record
+//   and items of up to CR_ITEM_TILES 8×8 tiles of their bounding box. Triangles whose record or
+//   items do not fit their buffers are left to the hardware (the map's raster pass draws them).
 // - `sd_raster_tiles`, workgroups of 8×8 invocations, one pixel each, over the items.
 // Coverage is the rasteriser's: pixel centres, corners snapped to 1/256 pixel (8 sub-pixel bits,
-// what Vulkan devices commonly have), the top-left rule on exact ties; texture coordinates
-// interpolated perspective-correct at the pixel centre. The depth is the G-buffer's own: where
-// the pixel centre's line meets the triangle's plane (gbuffer_resolve.wgsl's
-// pixel_plane_point), not an interpolation between corners snapped to the sub-pixel grid. Why: a
-// surface's own fragment must not pass for a hidden one, and at grazing angles a 1/256-pixel
-// shift of a corner moves the interpolated depth by more than the separation the first layer is
-// skipped by (on the built-in test scene of compute_raster/tests.rs: 0.015 at 21 m, against a
-// separation of 0.01). An edge two triangles share is
-// evaluated from the same end point with the same operands by both (cr_edge), so a pixel centre
-// on it, or within rounding of it, goes to exactly one of them.
+// what Vulkan devices commonly have), the top-left rule on exact ties. An edge two triangles
+// share is evaluated from the same end point with the same operands by both (cr_edge), so a pixel
+// centre on it, or within rounding of it, goes to exactly one of them. Texture coordinates are
+// interpolated perspective-correct at the pixel centre. The depth is the G-buffer's own: where the
+// pixel centre's line meets the triangle's plane (gbuffer_resolve.wgsl's pixel_plane_point), not
+// an interpolation between corners snapped to the sub-pixel grid. Why: a surface's own fragment
+// must not pass for a hidden one, and at grazing angles a 1/256-pixel shift of a corner moves the
+// interpolated depth by more than the separation the first layer is skipped by (on the test scene
+// of compute_raster/tests.rs with a floor reaching behind the camera: 0.015 at 21 m, against a
+// separation of 0.01).
 
 struct SdComputeRaster {
     // The map's size in pixels (its own band included).
@@ -64,7 +64,7 @@ struct CrRecord {
 }
 
 // cr_counts: items written, records written, triangles left to the hardware, triangles whose
-// items did not all fit (left to the hardware).
+// record or items did not all fit (left to the hardware).
 const CR_ITEMS: u32 = 0u;
 const CR_RECORDS: u32 = 1u;
 const CR_LEFT: u32 = 2u;

@@ -97,15 +97,31 @@ fn scene_group_layout(device: &wgpu::Device, requested: bool) -> wgpu::BindGroup
 
 impl ComputeRaster {
     /// The passes for a map of `map_size` pixels (its band included) over the draw-ordered
-    /// `scene`, from `source` (map.wgsl and what it needs, without this file).
+    /// `scene`, from `source` (map.wgsl and what it needs, without this file). Errors where the
+    /// device binds too few storage buffers per shader stage.
     pub fn new(
+        adapter: &wgpu::Adapter,
         device: &wgpu::Device,
         source: &str,
         scene: &GpuScene,
         map_size: (u32, u32),
         requested: bool,
-    ) -> Self {
+    ) -> Result<Self, crate::Error> {
         use crate::bindings::entry;
+        // The scene's four, the mask table, the map, the request mask, and this pass's five.
+        let needed = 11 + u32::from(requested);
+        let allowed = device.limits().max_storage_buffers_per_shader_stage;
+        if allowed < needed {
+            return Err(crate::SettingsError::Unsupported {
+                field: "stochastic_depth.rasterizer",
+                value: "compute".into(),
+                adapter: adapter.get_info().name,
+                reason: format!(
+                    "the compute rasteriser binds {needed} storage buffers in one shader stage and this device allows {allowed}; use rasterizer = \"hardware\""
+                ),
+            }
+            .into());
+        }
         let requested_fn = if requested {
             "fn cr_requested(pixel: vec2<u32>) -> bool { return sd_requested(pixel); }\n"
         } else {
@@ -234,7 +250,7 @@ impl ComputeRaster {
                 left_args.as_entire_binding(),
             ],
         );
-        Self {
+        Ok(Self {
             bin: pipeline("sd_raster_bin"),
             tiles: pipeline("sd_raster_tiles"),
             counts,
@@ -243,7 +259,7 @@ impl ComputeRaster {
             left_args_empty,
             left_group,
             triangle_count: scene.triangle_count,
-        }
+        })
     }
 
     /// Bins and rasterises the frame's triangles into the map; `resources`: the map pass's

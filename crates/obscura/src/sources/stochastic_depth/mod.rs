@@ -361,6 +361,7 @@ impl StochasticDepthMap {
         }
         let compute = compute_raster.then(|| {
             compute_raster::ComputeRaster::new(
+                adapter,
                 device,
                 &format!("{map_source}\n{}", shaders::GBUFFER_RESOLVE),
                 &scene.draw_ordered(),
@@ -368,6 +369,7 @@ impl StochasticDepthMap {
                 requested.is_some(),
             )
         });
+        let compute = compute.transpose()?;
         let source = format!("{map_source}\n{}", shaders::STOCHASTIC_DEPTH_RESET);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("stochastic depth"),
