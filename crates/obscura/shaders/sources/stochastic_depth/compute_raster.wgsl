@@ -63,8 +63,8 @@ struct CrRecord {
     _pad2: vec2<u32>,
 }
 
-// cr_counts: items written, records written, triangles left to the hardware, triangles whose
-// record or items did not all fit (left to the hardware).
+// cr_counts: items written, records written, triangles left to the hardware, records or item
+// runs that did not fit (their triangles are left to the hardware).
 const CR_ITEMS: u32 = 0u;
 const CR_RECORDS: u32 = 1u;
 const CR_LEFT: u32 = 2u;
@@ -233,7 +233,9 @@ fn sd_raster_bin(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wor
         return;
     }
     if ((outside_any & 0x1fu) == 0u) {
-        cr_rasterize(t, tri.w, plane, v[0], v[1], v[2]);
+        if (!cr_rasterize(t, tri.w, plane, v[0], v[1], v[2])) {
+            cr_leave(t);
+        }
         return;
     }
     // Clipped (Sutherland-Hodgman) against the planes the corners cross: at most 3 + 5 corners.
@@ -265,9 +267,14 @@ fn sd_raster_bin(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_wor
         poly = next;
         n = m;
     }
-    // A fan of triangles, each with the triangle's own orientation.
+    // A fan of triangles, each with the triangle's own orientation; the whole triangle is left
+    // to the hardware, once, if any part did not fit.
+    var fits = true;
     for (var i = 1u; i + 1u < n; i++) {
-        cr_rasterize(t, tri.w, plane, poly[0], poly[i], poly[i + 1u]);
+        fits = cr_rasterize(t, tri.w, plane, poly[0], poly[i], poly[i + 1u]) && fits;
+    }
+    if (!fits) {
+        cr_leave(t);
     }
 }
 
@@ -279,15 +286,15 @@ struct CrPlane {
 
 // Triangle `t` (material `material`, `plane`), or a part of it left by clipping, with corners
 // `a`, `b`, `c` inside the clip volume: rasterised here where small, else handed to the tile
-// pass.
-fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex, c: CrVertex) {
+// pass. False where its record or items did not fit (the caller leaves `t` to the hardware).
+fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex, c: CrVertex) -> bool {
     let size = vec2<f32>(cr.size);
     var p = array<vec2<f32>, 3>(cr_screen(a.clip, size), cr_screen(b.clip, size), cr_screen(c.clip, size));
     let area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
     // Front faces are counter-clockwise in normalised device coordinates (y up), so of negative
     // area here (y down).
     if (area == 0.0 || (t < cr.culled_count && area > 0.0)) {
-        return;
+        return true;
     }
     var r: CrTriangle;
     r.triangle = t;
@@ -311,7 +318,7 @@ fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex,
     let first = max(ceil(lo - 0.5), vec2<f32>(0.0));
     let last = min(floor(hi - 0.5), size - 1.0);
     if (any(first > last)) {
-        return;
+        return true;
     }
     let first_px = vec2<u32>(first);
     let extent = vec2<u32>(last - first) + 1u;
@@ -321,7 +328,7 @@ fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex,
                 cr_fragment(r, first_px + vec2<u32>(x, y));
             }
         }
-        return;
+        return true;
     }
     let tiles = (extent + 7u) / 8u;
     let tile_count = tiles.x * tiles.y;
@@ -329,8 +336,7 @@ fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex,
     let record = atomicAdd(&cr_counts[CR_RECORDS], 1u);
     if (record >= cr.record_capacity) {
         atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
-        cr_leave(t);
-        return;
+        return false;
     }
     var rec: CrRecord;
     rec.p01 = vec4<f32>(p[0], p[1]);
@@ -355,8 +361,9 @@ fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex,
     }
     if (base + item_count > cr.item_capacity) {
         atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
-        cr_leave(t);
+        return false;
     }
+    return true;
 }
 
 // Framebuffer position of clip-space point `c` in a map of `size` pixels, snapped to the

@@ -1,9 +1,9 @@
 //! The stochastic depth map rasterised in compute (`shaders/sources/stochastic_depth/
 //! compute_raster.wgsl`, ours; issue 16): the map's triangles binned and rasterised by compute
 //! passes instead of the hardware's rasteriser, each fragment handled by the same Alg. 1 code
-//! (`map.wgsl`'s `sd_fragment`). The triangles that cross the near plane (and any that do not fit
-//! the passes' buffers) are listed for the hardware, which clips them
-//! ([`ComputeRaster::left_draws`]). Timed as `sd_bin` and `sd_tiles`.
+//! (`map.wgsl`'s `sd_fragment`); triangles that cross the near plane are clipped there too. Any
+//! whose record or items do not fit the passes' buffers are listed for the hardware
+//! ([`ComputeRaster::record_left`]). Timed as `sd_bin` and `sd_tiles`.
 
 use crate::gpu::PassProfiler;
 use crate::raster::gpu_scene::GpuScene;
@@ -24,8 +24,9 @@ struct SdComputeRaster {
 /// Bytes of one `CrRecord`.
 const RECORD_BYTES: u64 = 128;
 /// Room for items and records per 8×8 tile of the map. Crytek Sponza from BENCHMARKS.md's camera
-/// needed 4.7 items and 3.5 records a tile at 480×270 (+ 16 px band) and 3.7 and 2.3 at 960×540
-/// (+ 32); triangles that do not fit are drawn by the hardware (correct, only slower).
+/// needed 4.7 items and 3.5 records a tile at 480×270 (+ 16 px band), 3.7 and 2.3 at 960×540
+/// (+ 32), 3.0 and 1.6 at 1920×1080 (Sibenik there: 1.3 and 0.8); triangles that do not fit are
+/// drawn by the hardware (correct, only slower).
 const ITEMS_PER_TILE: u64 = 16;
 const RECORDS_PER_TILE: u64 = 8;
 /// Workgroups of the tile pass (each takes every `TILE_GROUPS`-th item): enough to fill a large
@@ -52,7 +53,7 @@ pub(crate) struct ComputeRaster {
     left_args: wgpu::Buffer,
     left_args_empty: wgpu::Buffer,
     /// The left triangles as the raster pipelines' group 1 (`drawn_triangles`).
-    pub left_group: wgpu::BindGroup,
+    left_group: wgpu::BindGroup,
     triangle_count: u32,
 }
 
@@ -169,10 +170,10 @@ impl ComputeRaster {
         };
         let tiles = u64::from(map_size.0.div_ceil(8)) * u64::from(map_size.1.div_ceil(8));
         let max = device.limits().max_storage_buffer_binding_size;
-        let item_capacity = (tiles * ITEMS_PER_TILE).clamp(1024, max / 8);
+        let item_capacity = (tiles * ITEMS_PER_TILE).max(1024).min(max / 8);
         #[cfg(test)]
         let item_capacity = ITEM_CAPACITY.with(|c| c.get()).unwrap_or(item_capacity);
-        let record_capacity = (tiles * RECORDS_PER_TILE).clamp(1024, max / RECORD_BYTES);
+        let record_capacity = (tiles * RECORDS_PER_TILE).max(1024).min(max / RECORD_BYTES);
         #[cfg(test)]
         let record_capacity = ITEM_CAPACITY.with(|c| c.get()).unwrap_or(record_capacity);
         let buffer = |label, size: u64| {
@@ -313,7 +314,7 @@ impl ComputeRaster {
     }
 
     /// The four counters of the last frame (items, records, triangles left to the hardware,
-    /// triangles whose items did not all fit). Waits for the GPU.
+    /// records or item runs that did not fit). Waits for the GPU.
     #[cfg(test)]
     pub fn read_counts(&self, gpu: &crate::Gpu) -> Result<[u32; 4], crate::Error> {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.counts)?;

@@ -12,7 +12,9 @@
 //! (where the device has wgpu's `SHADER_EARLY_DEPTH_TEST`): the reset writes per pixel the depth
 //! a fragment must lie behind to be hidden, and the stencil. Any S of
 //! [`crate::settings::SD_SAMPLE_COUNTS`] runs on any adapter (no multisampled target). Like the
-//! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]).
+//! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]). With
+//! `rasterizer = "compute"` compute passes make its fragments instead (`compute_raster.rs`), and
+//! the hardware draws only what they leave to it.
 //! The AO passes read the map through `read.wgsl` (the source contract).
 //!
 //! Optionally the map has its own guard band (`stochastic_depth.guard_band`; ours, after the
@@ -575,9 +577,11 @@ impl StochasticDepthMap {
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&raster));
         // The G-buffer's draws (its groups: back faces culled, double-sided, alpha-tested), one
-        // pipeline of this map each.
-        self.triangle_cull
-            .prepare(queue, view, visibility_draws(&self.scene, view), false);
+        // pipeline of this map each; the compute rasteriser culls for itself.
+        if self.compute.is_none() {
+            self.triangle_cull
+                .prepare(queue, view, visibility_draws(&self.scene, view), false);
+        }
         self.near.store(view.near.to_bits(), Ordering::Relaxed);
     }
 
@@ -712,7 +716,7 @@ impl StochasticDepthMap {
     }
 
     /// With `rasterizer = "compute"`, the compute passes' counters of the last frame (items,
-    /// records, triangles left to the hardware, triangles whose items did not all fit).
+    /// records, triangles left to the hardware, records or item runs that did not fit).
     #[cfg(test)]
     pub(crate) fn compute_counts(&self, gpu: &crate::Gpu) -> Option<[u32; 4]> {
         self.compute.as_ref().map(|c| c.read_counts(gpu).unwrap())

@@ -224,6 +224,6 @@ fn triangles_whose_items_do_not_fit_are_left_to_the_hardware() {
     ITEM_CAPACITY.with(|c| c.set(None));
     let (stored, counts) = small.unwrap();
     assert!(stored > 1000, "the map stored {stored} depths");
-    // (Every triangle left to the hardware is one whose items or record did not fit.)
-    assert!(counts[3] > 100 && counts[2] == counts[3], "{counts:?}");
+    // (Every triangle left to the hardware has a record or items that did not fit.)
+    assert!(counts[2] > 100 && counts[2] <= counts[3], "{counts:?}");
 }
