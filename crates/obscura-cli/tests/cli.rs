@@ -869,6 +869,11 @@ fn stochastic_depth_options_are_clear_errors() {
         &["--technique", "sd-svao", "--sd-mask", "stencils"],
         &["stencils", "'stencil'", "'discard'"],
     );
+    let err = assert_render_fails(
+        &[&sd[..], &["--sd-rasterizer", "software"]].concat(),
+        &["software", "--sd-rasterizer", "'hardware'", "'compute'"],
+    );
+    one_line(&err);
     // The map is a storage buffer: every S runs on every adapter, as `obscura info` says; on
     // lavapipe (CI) also with early tests and the stencil.
     let info = info_json();
@@ -885,6 +890,72 @@ fn stochastic_depth_options_are_clear_errors() {
     {
         assert_eq!(info["sd_early_tests"], true, "{info}");
         assert_eq!(info["visibility_words"], true, "{info}");
+        assert_eq!(info["sd_compute_rasterizer"], true, "{info}");
+    }
+}
+
+/// `--sd-rasterizer compute` renders the image `hardware` does (the same map up to rounding:
+/// within 1e-3 everywhere; the library's tests hold the maps themselves), and `bench` times its
+/// passes.
+#[test]
+fn the_compute_rasterizer_renders_the_hardware_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let image = |rasterizer: &str| {
+        let out = dir.path().join(format!("{rasterizer}.exr"));
+        let o = obscura(&[
+            "render",
+            "--scene",
+            "colonnade",
+            "--size",
+            "96x64",
+            "--technique",
+            "sd-vao",
+            "--sd-rasterizer",
+            rasterizer,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (hardware, compute) = (image("hardware"), image("compute"));
+    let o = obscura(&[
+        "diff",
+        hardware.to_str().unwrap(),
+        compute.to_str().unwrap(),
+        "--max-abs",
+        "1e-3",
+    ]);
+    assert!(
+        o.status.success(),
+        "{}{}",
+        stderr(&o),
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let json = dir.path().join("bench.json");
+    let o = obscura(&[
+        "bench",
+        "--scene",
+        "colonnade",
+        "--size",
+        "64x48",
+        "--techniques",
+        "sd-vao",
+        "--sd-rasterizer",
+        "compute",
+        "--frames",
+        "2",
+        "--warmup",
+        "1",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let passes = &report["results"][0]["passes"];
+    for pass in ["sd_clear", "sd_bin", "sd_tiles", "sd_map"] {
+        assert!(passes[pass].as_f64().is_some(), "{pass}: {report}");
     }
 }
 

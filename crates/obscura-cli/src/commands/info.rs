@@ -29,6 +29,7 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
             object.insert("visibility_words".into(), words.into());
             object.insert("sd_format".into(), sd.format.clone().into());
             object.insert("sd_early_tests".into(), sd.early_tests.into());
+            object.insert("sd_compute_rasterizer".into(), sd.compute_rasterizer.into());
             object.insert(
                 "sd_sample_counts".into(),
                 serde_json::to_value(&sd.sample_counts)?,
@@ -97,6 +98,13 @@ pub fn run(options: &obscura::GpuOptions, args: &InfoArgs) -> Result<()> {
         yes_no(
             sd.early_tests,
             "no (SHADER_EARLY_DEPTH_TEST missing: the same map, slower)"
+        )
+    );
+    println!(
+        "SD compute rasterizer {}",
+        yes_no(
+            sd.compute_rasterizer,
+            "no (too few storage buffers per shader stage: --sd-rasterizer hardware only)"
         )
     );
     Ok(())

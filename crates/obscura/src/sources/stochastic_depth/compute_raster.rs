@@ -96,6 +96,17 @@ fn scene_group_layout(device: &wgpu::Device, requested: bool) -> wgpu::BindGroup
     })
 }
 
+/// Storage buffers the passes bind in one shader stage: the scene's four, the mask table, the
+/// map, the request mask where the map is limited to it, and the passes' own five.
+fn storage_buffers_needed(requested: bool) -> u32 {
+    11 + u32::from(requested)
+}
+
+/// Whether `device` can run the passes (for a map limited to requested pixels with `requested`).
+pub(crate) fn available(device: &wgpu::Device, requested: bool) -> bool {
+    device.limits().max_storage_buffers_per_shader_stage >= storage_buffers_needed(requested)
+}
+
 impl ComputeRaster {
     /// The passes for a map of `map_size` pixels (its band included) over the draw-ordered
     /// `scene`, from `source` (map.wgsl and what it needs, without this file). Errors where the
@@ -109,10 +120,9 @@ impl ComputeRaster {
         requested: bool,
     ) -> Result<Self, crate::Error> {
         use crate::bindings::entry;
-        // The scene's four, the mask table, the map, the request mask, and this pass's five.
-        let needed = 11 + u32::from(requested);
-        let allowed = device.limits().max_storage_buffers_per_shader_stage;
-        if allowed < needed {
+        if !available(device, requested) {
+            let needed = storage_buffers_needed(requested);
+            let allowed = device.limits().max_storage_buffers_per_shader_stage;
             return Err(crate::SettingsError::Unsupported {
                 field: "stochastic_depth.rasterizer",
                 value: "compute".into(),

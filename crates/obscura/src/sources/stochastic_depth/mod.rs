@@ -178,6 +178,8 @@ pub struct SdCapabilities {
     pub sample_counts: Vec<u32>,
     /// The map's fragments are depth- and stencil-tested before shading.
     pub early_tests: bool,
+    /// `--sd-rasterizer compute` runs here (the device binds enough storage buffers per stage).
+    pub compute_rasterizer: bool,
 }
 
 impl SdCapabilities {
@@ -187,6 +189,7 @@ impl SdCapabilities {
             format: "storage buffer, S f32 per pixel".to_string(),
             sample_counts: SD_SAMPLE_COUNTS.to_vec(),
             early_tests: early_tests_available(device),
+            compute_rasterizer: compute_raster::available(device, true),
         }
     }
 }
