@@ -74,6 +74,8 @@ const CR_OVERFLOW: u32 = 3u;
 const CR_SMALL_PIXELS: u32 = 16u;
 // Tiles of one item (one workgroup of the tile pass takes them in turn).
 const CR_ITEM_TILES: u32 = 16u;
+// The record of an item slot left empty.
+const CR_NO_RECORD: u32 = 0xffffffffu;
 // Sub-pixel steps per pixel of the snapped corners.
 const CR_SUBPIXEL: f32 = 256.0;
 
@@ -357,18 +359,20 @@ fn cr_rasterize(t: u32, material: u32, plane: CrPlane, a: CrVertex, b: CrVertex,
     rec.uv01 = vec4<f32>(r.uv[0], r.uv[1]);
     rec.uv2 = r.uv[2];
     cr_records[record] = rec;
-    // Items past the capacity are not written (the tile pass reads only the first
-    // `item_capacity`); the triangle is then drawn by the hardware as well, and the fragments
-    // both make store the same depths twice.
+    // Items that do not all fit are not rasterised here: the slots they got within the capacity
+    // are marked empty (the tile pass reads the first `item_capacity` slots) and the hardware
+    // draws the triangle. (Of a clipped triangle, parts that fitted are rasterised here as well;
+    // where the hardware's fragments of it store again, at depths a rounding apart, the
+    // stochastic map keeps the nearer, and the nearest layers may hold both.)
     let base = atomicAdd(&cr_counts[CR_ITEMS], item_count);
+    let fits = base + item_count <= cr.item_capacity;
     for (var i = 0u; i < item_count && base + i < cr.item_capacity; i++) {
-        cr_items[base + i] = vec2<u32>(record, i * CR_ITEM_TILES);
+        cr_items[base + i] = select(vec2<u32>(CR_NO_RECORD, 0u), vec2<u32>(record, i * CR_ITEM_TILES), fits);
     }
-    if (base + item_count > cr.item_capacity) {
+    if (!fits) {
         atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
-        return false;
     }
-    return true;
+    return fits;
 }
 
 // Framebuffer position of clip-space point `c` in a map of `size` pixels, snapped to the
@@ -405,6 +409,9 @@ fn sd_raster_tiles(
     let stride = groups.x * groups.y;
     for (var i = group.x + group.y * groups.x; i < count; i += stride) {
         let item = cr_items[i];
+        if (item.x == CR_NO_RECORD) {
+            continue;
+        }
         let rec = cr_records[item.x];
         var r: CrTriangle;
         r.edges = cr_triangle(rec.p01.xy, rec.p01.zw, rec.p2);
