@@ -4,7 +4,7 @@
 //! and an invalid combination is reported by `Renderer::new`'s validation in the panel, not here.
 
 use eframe::egui;
-use obscura::settings::{Preset, Resolution, SD_SAMPLE_COUNTS};
+use obscura::settings::{Preset, Resolution, SdRasterizer, SD_SAMPLE_COUNTS};
 use obscura::technique::{Estimator, Source};
 use obscura::{AoSettings, Technique};
 
@@ -119,6 +119,12 @@ pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32
                 }
             });
             ui.add(egui::Slider::new(&mut sd.compensation, 1.0..=8.0).text("compensation"));
+            ui.horizontal(|ui| {
+                ui.label("map rasteriser");
+                for r in [SdRasterizer::Hardware, SdRasterizer::Compute] {
+                    ui.selectable_value(&mut sd.rasterizer, r, r.to_string());
+                }
+            });
         }
         Source::RayStochasticDepth => {
             let r = &mut settings.ray_sd;
