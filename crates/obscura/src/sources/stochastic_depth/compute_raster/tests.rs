@@ -53,8 +53,9 @@ fn differences(a: &[Vec<f32>], b: &[Vec<f32>]) -> (usize, usize) {
 
 /// The two rasterisers' maps of `settings` agree on every camera: at most 2 of the 8,960 pixels
 /// hold a different number of depths, and at most 4 a depth more than 1e-3 (relative) apart.
-/// What differs is rounding: the hardware interpolates depth its own way, and a fragment at the
-/// separation's edge or a pixel centre within rounding of an edge can fall either way. Returns
+/// What differs is rounding: the hardware interpolates depth between its snapped corners where
+/// the compute passes take the triangle's plane, and a fragment at the separation's edge or a
+/// pixel centre within rounding of an edge can fall either way. Returns
 /// the depths stored.
 fn assert_same_maps(what: &str, scene: &Scene, settings: &AoSettings, cameras: &[Camera]) -> usize {
     let hardware = maps(scene, settings, SdRasterizer::Hardware, cameras);
@@ -72,6 +73,7 @@ fn assert_same_maps(what: &str, scene: &Scene, settings: &AoSettings, cameras: &
     stored
 }
 
+/// The default settings of `technique`, edited by `edit`.
 fn sd(technique: Technique, edit: impl Fn(&mut AoSettings)) -> AoSettings {
     let mut s = AoSettings {
         technique,
