@@ -31,11 +31,11 @@ bench() { # name, binary, scene arguments...
 }
 for round in $(seq "$rounds"); do
   for side in old new; do
-    b=$new extra=${NEW_ARGS:-}
-    [ "$side" = old ] && b=$old extra=${OLD_ARGS:-}
+    b=$new more=${NEW_ARGS:-}
+    [ "$side" = old ] && b=$old more=${OLD_ARGS:-}
     [ -x "$b" ] || continue
     # shellcheck disable=SC2206
-    extra=($extra)
+    extra=($more)
     for scene in sponza sponza0 colonnade sibenik; do
       scene_args "$scene" || continue
       bench "$scene-$side-$round" "$b" "${args[@]}" "${extra[@]}" --techniques sd-vao,sd-svao
