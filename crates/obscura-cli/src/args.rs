@@ -516,8 +516,8 @@ pub struct AoArgs {
     pub sd_select: Option<String>,
     #[arg(long, help = help(
         "Raster stochastic depth map: what rasterises it: 'hardware' (default, the GPU's \
-         rasteriser) or 'compute' (ours: compute passes bin and rasterise the triangles, the \
-         hardware only those crossing the near plane; the same map up to rounding).",
+         rasteriser) or 'compute' (ours: compute passes clip, bin and rasterise the triangles; \
+         the same map up to rounding).",
         "stochastic_depth.rasterizer"
     ))]
     pub sd_rasterizer: Option<String>,

@@ -592,9 +592,9 @@ pub enum SdRasterizer {
     /// stencil) tests.
     #[default]
     Hardware,
-    /// Ours: compute passes bin the triangles and rasterise them (pixel centres, corners snapped
-    /// to 1/256 pixel, the top-left rule), handing each fragment to the same Alg. 1 code; only
-    /// the triangles that cross the near plane go to the hardware, which clips them. The map
+    /// Ours: compute passes clip, bin and rasterise the triangles (pixel centres, corners
+    /// snapped to 1/256 pixel, the top-left rule), handing each fragment to the same Alg. 1
+    /// code; the hardware draws only triangles that do not fit the passes' buffers. The map
     /// holds the same fragments up to rounding (`compute_raster.rs`' tests bound the
     /// difference); for GPUs whose raster units are slow next to their compute.
     Compute,
