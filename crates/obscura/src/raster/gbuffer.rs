@@ -740,61 +740,56 @@ pub(crate) fn scene_layout(
     device: &wgpu::Device,
     extra: &[(wgpu::ShaderStages, wgpu::BindingType)],
 ) -> wgpu::PipelineLayout {
-    let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-    let storage = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: stages,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    let entries = [
-        wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: stages,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        },
-        storage(1),
-        storage(2),
-        storage(3),
-        storage(4),
-        wgpu::BindGroupLayoutEntry {
-            binding: 5,
-            visibility: stages,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2Array,
-                multisampled: false,
-            },
-            count: None,
-        },
-    ];
-    let extra = (6..)
-        .zip(extra)
-        .map(|(binding, &(visibility, ty))| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility,
-            ty,
-            count: None,
-        });
-    let entries: Vec<_> = entries.into_iter().chain(extra).collect();
-    let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("scene"),
-        entries: &entries,
-    });
+    let group = scene_group_layout(device, wgpu::ShaderStages::VERTEX_FRAGMENT, extra);
     let drawn = super::triangle_cull::drawn_layout(device);
     device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("scene"),
         bind_group_layouts: &[Some(&group), Some(&drawn)],
         immediate_size: 0,
+    })
+}
+
+/// The bind group layout of [`scene_layout`]'s group 0: bindings 0–5 visible to `stages`, then
+/// `extra` from binding 6 on (also for the compute passes that read the scene).
+pub(crate) fn scene_group_layout(
+    device: &wgpu::Device,
+    stages: wgpu::ShaderStages,
+    extra: &[(wgpu::ShaderStages, wgpu::BindingType)],
+) -> wgpu::BindGroupLayout {
+    let storage = wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only: true },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    let scene = [
+        wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        storage,
+        storage,
+        storage,
+        storage,
+        wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+    ]
+    .map(|ty| (stages, ty));
+    let entries: Vec<_> = (0..)
+        .zip(scene.iter().chain(extra))
+        .map(|(binding, &(visibility, ty))| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        })
+        .collect();
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("scene"),
+        entries: &entries,
     })
 }
 

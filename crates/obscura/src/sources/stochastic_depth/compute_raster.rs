@@ -57,45 +57,6 @@ pub(crate) struct ComputeRaster {
     triangle_count: u32,
 }
 
-/// The group-0 layout of the map's compute passes: the scene's bindings 0–5 (gbuffer.wgsl) and
-/// the map's 6–10 (map.wgsl), visible to compute.
-fn scene_group_layout(device: &wgpu::Device, requested: bool) -> wgpu::BindGroupLayout {
-    use crate::bindings::entry;
-    let compute = wgpu::ShaderStages::COMPUTE;
-    let texture = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: compute,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension,
-            multisampled: false,
-        },
-        count: None,
-    };
-    let mut entries = vec![
-        entry::uniform(0),
-        entry::storage(1, true),
-        entry::storage(2, true),
-        entry::storage(3, true),
-        entry::storage(4, true),
-        texture(5, wgpu::TextureViewDimension::D2Array),
-        texture(6, wgpu::TextureViewDimension::D2),
-        entry::uniform(7),
-        entry::storage(8, true),
-        entry::storage(9, false),
-    ];
-    if requested {
-        entries.push(entry::storage(10, true));
-    }
-    for e in &mut entries {
-        e.visibility = compute;
-    }
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sd compute raster scene"),
-        entries: &entries,
-    })
-}
-
 /// Storage buffers the passes bind in one shader stage: the scene's four, the mask table, the
 /// map, the request mask where the map is limited to it, and the passes' own five.
 fn storage_buffers_needed(requested: bool) -> u32 {
@@ -109,14 +70,16 @@ pub(crate) fn available(device: &wgpu::Device, requested: bool) -> bool {
 
 impl ComputeRaster {
     /// The passes for a map of `map_size` pixels (its band included) over the draw-ordered
-    /// `scene`, from `source` (map.wgsl and what it needs, without this file). Errors where the
-    /// device binds too few storage buffers per shader stage.
+    /// `scene`, from `source` (map.wgsl and what it needs, without this file), binding the map
+    /// pass's `map_bindings` after the scene's (the request mask last where `requested`). Errors
+    /// where the device binds too few storage buffers per shader stage.
     pub fn new(
         adapter: &wgpu::Adapter,
         device: &wgpu::Device,
         source: &str,
         scene: &GpuScene,
         map_size: (u32, u32),
+        map_bindings: &[(wgpu::ShaderStages, wgpu::BindingType)],
         requested: bool,
     ) -> Result<Self, crate::Error> {
         use crate::bindings::entry;
@@ -143,7 +106,10 @@ impl ComputeRaster {
             crate::shaders::STOCHASTIC_DEPTH_COMPUTE_RASTER
         );
         let module = crate::gpu::shader_module(device, "sd compute raster", &source);
-        let scene_group = scene_group_layout(device, requested);
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let map_bindings: Vec<_> = map_bindings.iter().map(|&(_, ty)| (compute, ty)).collect();
+        let scene_group =
+            crate::raster::gbuffer::scene_group_layout(device, compute, &map_bindings);
         let empty = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("empty"),
             entries: &[],

@@ -194,6 +194,24 @@ impl SdCapabilities {
     }
 }
 
+/// The map pass's bindings after the scene's (from binding 6 on; stages and type): the first
+/// layer and `SdRaster`, the mask table, the map, and the request mask where the map is limited
+/// to it. The compute rasteriser binds the same, visible to compute.
+fn map_bindings(requested: bool) -> Vec<(wgpu::ShaderStages, wgpu::BindingType)> {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    let storage = |read_only| wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    let mut bindings = behind_first_layer_entries();
+    bindings.extend([(fragment, storage(true)), (fragment, storage(false))]);
+    if requested {
+        bindings.push((fragment, storage(true)));
+    }
+    bindings
+}
+
 /// `SdRaster` of map.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -371,6 +389,7 @@ impl StochasticDepthMap {
                 &format!("{map_source}\n{}", shaders::GBUFFER_RESOLVE),
                 &scene.draw_ordered(),
                 (map_width, map_height),
+                &map_bindings(requested.is_some()),
                 requested.is_some(),
             )
         });
@@ -411,19 +430,7 @@ impl StochasticDepthMap {
             ["fs_stochastic_depth", "fs_stochastic_depth_masked"]
         };
         // One layout for the three pipelines (the lean ones bind less than they are given).
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let storage = |read_only| wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
-        // The first layer and `SdRaster`, then the mask table and the map.
-        let mut extra = behind_first_layer_entries();
-        extra.extend([(fragment, storage(true)), (fragment, storage(false))]);
-        if requested.is_some() {
-            extra.push((fragment, storage(true)));
-        }
-        let layout = scene_layout(device, &extra);
+        let layout = scene_layout(device, &map_bindings(requested.is_some()));
         // The G-buffer's three groups: back faces culled, double-sided, alpha-tested (drawn
         // double-sided, as the G-buffer draws them).
         let pipelines = [
