@@ -207,6 +207,80 @@ fn triangles_crossing_the_near_plane_are_clipped() {
     );
 }
 
+/// Slivers that reach far past the guard band on the left (so they are clipped) and show a few
+/// pixel centres each inside the frame (so their parts are small), behind a wall: the parts
+/// that clipping leaves are rasterised by the invocation that clipped them, and the map is the
+/// hardware's.
+#[test]
+fn small_parts_of_clipped_triangles_are_rasterised() {
+    let mut scene = Scene {
+        name: "slivers".into(),
+        materials: vec![Material {
+            name: "plain".into(),
+            base_color: [1.0; 4],
+            base_color_texture: None,
+            alpha_mode: AlphaMode::Opaque,
+            double_sided: true,
+        }],
+        ..Default::default()
+    };
+    let v = Vec3::new;
+    // The first layer: a wall over the whole frame, 2 m in front of the camera.
+    push_quad(
+        &mut scene,
+        [
+            v(-10.0, -10.0, -2.0),
+            v(10.0, -10.0, -2.0),
+            v(10.0, 10.0, -2.0),
+            v(-10.0, 10.0, -2.0),
+        ],
+        0,
+        1.0,
+    );
+    // Slivers 4 m away, in framebuffer pixels (SIZE plus its band on each side): from far left
+    // of the guard band to a tip at column `tip`, 0.8 px high around the centres of row `row`.
+    let (fw, fh) = (SIZE.0 + 2 * SIZE.2, SIZE.1 + 2 * SIZE.2);
+    let depth = 4.0;
+    let pixel = 2.0 * depth * 30f32.to_radians().tan() / SIZE.1 as f32;
+    let at = |x: f32, y: f32| {
+        v(
+            (x - fw as f32 / 2.0) * pixel,
+            (fh as f32 / 2.0 - y) * pixel,
+            -depth,
+        )
+    };
+    let mut tips = 0;
+    for i in 0..12u32 {
+        let row = 10.0 + 5.0 * i as f32;
+        let tip = 6.0 + (i % 8) as f32;
+        tips += tip as usize;
+        let base = scene.positions.len() as u32;
+        scene.positions.extend([
+            at(-20_000.0, row + 0.5),
+            at(tip, row + 0.1),
+            at(tip, row + 0.9),
+        ]);
+        scene.uvs.extend([Vec2::ZERO; 3]);
+        scene.triangles.push([base, base + 1, base + 2]);
+        scene.triangle_materials.push(0);
+    }
+    let camera = Camera::new(Vec3::ZERO, v(0.0, 0.0, -1.0), 60.0).unwrap();
+    let settings = sd(Technique::SdVao, |s| {
+        s.stochastic_depth.samples = 16;
+        s.stochastic_depth.selection = SdSelection::Nearest;
+    });
+    let stored = assert_same_maps("slivers", &scene, &settings, &[camera]);
+    // Each sliver covers the centres left of its tip in its row (about `tip` of them).
+    assert!(
+        stored >= tips * 9 / 10 && stored <= tips,
+        "the map stored {stored} depths of the slivers' {tips} pixel centres"
+    );
+    let counts = maps(&scene, &settings, SdRasterizer::Compute, &[camera])[0]
+        .1
+        .unwrap();
+    assert_eq!(counts[2..], [0, 0], "{counts:?}");
+}
+
 /// Where the records or items do not fit their buffers, the triangles they belong to are drawn
 /// by the hardware as well, each once (a clipped triangle too), and the map is the same.
 #[test]
