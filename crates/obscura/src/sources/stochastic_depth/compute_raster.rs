@@ -40,6 +40,9 @@ thread_local! {
     /// Tests: the item and record capacity of the passes made on this thread (to make them
     /// overflow).
     pub(crate) static ITEM_CAPACITY: std::cell::Cell<Option<u64>> = const { std::cell::Cell::new(None) };
+    /// Tests: false makes the passes on this thread hand on and test every tile of a box, as if
+    /// the triangle touched them all (`CR_TILE_TESTS`), to hold the tests to skipping work only.
+    pub(crate) static TILE_TESTS: std::cell::Cell<bool> = const { std::cell::Cell::new(true) };
 }
 
 pub(crate) struct ComputeRaster {
@@ -101,8 +104,12 @@ impl ComputeRaster {
         } else {
             "fn cr_requested(pixel: vec2<u32>) -> bool { return true; }\n"
         };
+        #[cfg(not(test))]
+        let tile_tests = true;
+        #[cfg(test)]
+        let tile_tests = TILE_TESTS.with(|t| t.get());
         let source = format!(
-            "{source}\n{requested_fn}{}",
+            "{source}\n{requested_fn}const CR_TILE_TESTS: bool = {tile_tests};\n{}",
             crate::shaders::STOCHASTIC_DEPTH_COMPUTE_RASTER
         );
         let module = crate::gpu::shader_module(device, "sd compute raster", &source);

@@ -1,6 +1,6 @@
 //! The compute-rasterised map against the hardware's: the same fragments, up to rounding.
 
-use super::ITEM_CAPACITY;
+use super::{ITEM_CAPACITY, TILE_TESTS};
 use crate::raster::test_support::{gpu, moved};
 use crate::scene::{self, AlphaMode, Camera, Material, Scene, Texture};
 use crate::settings::{AoSettings, SdMask, SdRasterizer, SdSelection};
@@ -117,6 +117,59 @@ fn the_compute_map_holds_the_hardware_maps_fragments() {
             for (label, s) in &settings {
                 let what = format!("{name} {}, {label}", named.name);
                 stored += assert_same_maps(&what, &scene, s, &cameras);
+            }
+        }
+    }
+    assert!(stored > 100_000, "the maps stored only {stored} depths");
+}
+
+/// The tile tests (which tiles of a box, and which items, a triangle may touch) only skip work:
+/// with them and without them the compute passes make the same map, bit for bit, on every
+/// built-in view and the near-plane scene, for the 16 nearest layers (every hidden fragment
+/// counts) and `sd-svao`'s requested pixels.
+#[test]
+fn the_tile_tests_skip_no_fragment() {
+    let nearest = sd(Technique::SdVao, |s| {
+        s.stochastic_depth.samples = 16;
+        s.stochastic_depth.selection = SdSelection::Nearest;
+    });
+    let requested = sd(Technique::SdSvao, |_| {});
+    let (near_floor, near_camera) = near_floor_scene();
+    let mut views = vec![(near_floor, vec![near_camera])];
+    for name in scene::builtin_names() {
+        let scene = scene::builtin(name).unwrap();
+        let cameras = scene
+            .cameras
+            .iter()
+            .flat_map(|n| [n.camera, moved(&scene, &n.camera)])
+            .collect();
+        views.push((scene, cameras));
+    }
+    let mut stored = 0;
+    for (scene, cameras) in &views {
+        for (label, s) in [("16 nearest", &nearest), ("sd-svao", &requested)] {
+            // Room for every triangle (the small frames overflow the default room on `layers`),
+            // so that none is left to the hardware, which rounds otherwise.
+            ITEM_CAPACITY.with(|c| c.set(Some(1 << 20)));
+            let with = std::panic::catch_unwind(|| maps(scene, s, SdRasterizer::Compute, cameras));
+            TILE_TESTS.with(|t| t.set(false));
+            let without =
+                std::panic::catch_unwind(|| maps(scene, s, SdRasterizer::Compute, cameras));
+            TILE_TESTS.with(|t| t.set(true));
+            ITEM_CAPACITY.with(|c| c.set(None));
+            let (with, without) = (with.unwrap(), without.unwrap());
+            for (f, m) in with.iter().chain(&without).enumerate() {
+                let counts = m.1.unwrap();
+                assert_eq!(
+                    counts[2..],
+                    [0, 0],
+                    "{} {label}, {f}: {counts:?}",
+                    scene.name
+                );
+            }
+            for (f, ((a, _), (b, _))) in with.iter().zip(&without).enumerate() {
+                assert!(a == b, "{} {label}, frame {f}: the maps differ", scene.name);
+                stored += a.iter().flatten().filter(|&&d| d > 0.0).count();
             }
         }
     }
