@@ -5,7 +5,7 @@ scripts/device-bench-sd-map.sh: per scene and build, the median over rounds of e
 resolve, SD map =
 clear + reset + triangle cull + map, or with `--sd-rasterizer compute` clear + bin + tiles + map, for
 `sd-vao` and for `sd-svao`, whose map covers the requested pixels only) with fragments per
-framebuffer pixel; then each stochastic-depth technique's total without the G-buffer; then the
+framebuffer pixel (for the compute rasteriser, the pixel centres its passes shade); then each stochastic-depth technique's total without the G-buffer; then the
 peer's prepass. A run file is SCENE-SIDE-ROUND.json (SIDE: old or new)."""
 import json
 import pathlib
@@ -14,10 +14,10 @@ import sys
 
 runs = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "/tmp/out/runs")
 PASSES = {
-    "G-buffer": ("vao", ["triangle_cull", "gbuffer", "occlusion_pyramid", "gbuffer_resolve"], "gbuffer"),
-    "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], "depth_peel"),
-    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], "sd_map"),
-    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], "sd_map"),
+    "G-buffer": ("vao", ["triangle_cull", "gbuffer", "occlusion_pyramid", "gbuffer_resolve"], ["gbuffer"]),
+    "depth peeling": ("vao-dual", ["depth_peel", "depth_peel_resolve"], ["depth_peel"]),
+    "SD map S = 4": ("sd-vao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], ["sd_map", "sd_bin", "sd_tiles"]),
+    "SD map S = 4, requested pixels": ("sd-svao", ["sd_clear", "sd_reset", "sd_cull", "sd_bin", "sd_tiles", "sd_map"], ["sd_map", "sd_bin", "sd_tiles"]),
 }
 # Whole techniques without the G-buffer (what the stencil of sd-svao is for, seed 000 §3.9).
 TOTALS = ["sd-vao", "sd-svao"]
@@ -44,7 +44,11 @@ for path in sorted(runs.glob("*-*-*.json")):
                 continue
             ms = sum(r["passes"].get(p, 0.0) for p in passes)
             parts = "+".join(f"{r['passes'][p]:.3f}" for p in passes if p in r["passes"])
-            frags = r.get("fragments", {}).get(counted, {}).get("per_pixel")
+            # The compute rasteriser's passes count the pixel centres they shade, the first
+            # layer's own included (the hardware's early depth test drops those before its count).
+            counts = [r.get("fragments", {}).get(c, {}).get("per_pixel") for c in counted]
+            counts = [c for c in counts if c is not None]
+            frags = sum(counts) if counts else None
             cells.setdefault((scene, label, side), []).append((ms, parts, frags))
 print(f"Adapter: {adapter}. Medians over rounds of per-run medians, ms.\n")
 print("| scene | pass | old | new | new/old | fragments per pixel old → new |")

@@ -957,6 +957,14 @@ fn the_compute_rasterizer_renders_the_hardware_image() {
     for pass in ["sd_clear", "sd_bin", "sd_tiles", "sd_map"] {
         assert!(passes[pass].as_f64().is_some(), "{pass}: {report}");
     }
+    // The compute passes count the fragments they shade; none is left to the hardware here.
+    let fragments = &report["results"][0]["fragments"];
+    let made = |pass: &str| fragments[pass]["invocations"].as_u64();
+    assert!(
+        made("sd_tiles").is_some_and(|n| n > 0) && made("sd_bin").is_some(),
+        "{report}"
+    );
+    assert_eq!(made("sd_map"), Some(0), "{report}");
 }
 
 /// Grey levels of an 8-bit PNG.

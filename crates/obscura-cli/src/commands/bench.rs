@@ -63,7 +63,10 @@ struct BenchResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     path: Option<PathTiming>,
     /// Raster passes: the median fragment-shader invocations per frame, and per framebuffer pixel
-    /// (overdraw); absent where the adapter has no pipeline statistics queries.
+    /// (overdraw); absent where the adapter has no pipeline statistics queries. The compute
+    /// rasteriser's passes (`sd_bin`, `sd_tiles`) count theirs themselves: the pixel centres
+    /// they shade: covered and requested, the first layer's own included, which the
+    /// hardware's early depth test drops before its count.
     #[serde(skip_serializing_if = "Option::is_none")]
     fragments: Option<BTreeMap<String, Fragments>>,
 }

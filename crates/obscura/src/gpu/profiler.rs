@@ -1,5 +1,6 @@
 //! Per-pass GPU timings with timestamp queries, and, where the device has pipeline statistics
-//! queries, the fragment-shader invocations of each raster pass (overdraw made visible).
+//! queries, the fragment-shader invocations of each raster pass (overdraw made visible); passes
+//! that rasterise in compute count their fragments themselves ([`PassProfiler::copy_fragments`]).
 //!
 //! Every pass that wants timing asks for its timestamp writes by name; each frame's queries are
 //! resolved into their own slot of one buffer, read back once at the end. Benchmarks take medians
@@ -29,12 +30,23 @@ struct FragmentQueries {
 /// Fragment queries per frame slot (8 bytes each).
 const MAX_RASTER_PASSES: u32 = (SLOT_BYTES / 8) as u32;
 
+/// Fragments counted by compute passes' shaders: a `u32` per pass, copied per frame into
+/// `buffer` (slots of `MAX_COUNTED_PASSES` words).
+struct CountedFragments {
+    buffer: wgpu::Buffer,
+    pass_names: Vec<String>,
+    frame_passes: Vec<Vec<String>>,
+}
+
+const MAX_COUNTED_PASSES: u64 = 8;
+
 /// GPU times per named pass over up to `max_frames` frames: each pass asks for its timestamp
 /// writes by name ([`PassProfiler::compute_pass`], [`PassProfiler::render_pass`]),
 /// [`PassProfiler::end_frame`] resolves the frame and [`PassProfiler::read`] returns milliseconds
 /// per pass name (summed over passes of one name).
 pub struct PassProfiler {
     fragments: Option<FragmentQueries>,
+    counted: CountedFragments,
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     pass_names: Vec<String>,
@@ -85,8 +97,19 @@ impl PassProfiler {
                 pass_names: Vec::new(),
                 frame_passes: Vec::new(),
             });
+        let counted = CountedFragments {
+            buffer: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("counted fragments"),
+                size: 4 * MAX_COUNTED_PASSES * u64::from(max_frames.max(1)),
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            pass_names: Vec::new(),
+            frame_passes: Vec::new(),
+        };
         Ok(Self {
             fragments,
+            counted,
             queries,
             resolve,
             pass_names: Vec::new(),
@@ -150,8 +173,35 @@ impl PassProfiler {
         }
     }
 
+    /// The fragments compute pass `name` of the current frame made, as its shader counted them:
+    /// the `u32` at byte `offset` of `counter`, copied once the pass has run (encode this after
+    /// it). At most 8 such passes a frame; panics past that.
+    pub fn copy_fragments(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        name: &str,
+        counter: &wgpu::Buffer,
+        offset: u64,
+    ) {
+        let index = self.counted.pass_names.len() as u64;
+        assert!(
+            index < MAX_COUNTED_PASSES,
+            "too many counted compute passes"
+        );
+        assert!(
+            self.frame < self.max_frames,
+            "profiler frame budget exhausted"
+        );
+        self.counted.pass_names.push(name.to_string());
+        let slot = 4 * (MAX_COUNTED_PASSES * u64::from(self.frame) + index);
+        encoder.copy_buffer_to_buffer(counter, offset, &self.counted.buffer, slot, 4);
+    }
+
     /// Resolve this frame's queries into its slot. Call once per frame after its passes.
     pub fn end_frame(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        self.counted
+            .frame_passes
+            .push(std::mem::take(&mut self.counted.pass_names));
         if let Some(f) = &mut self.fragments {
             let count = f.pass_names.len() as u32;
             if count > 0 {
@@ -178,10 +228,13 @@ impl PassProfiler {
     }
 
     /// Every recorded frame's fragment-shader invocations per raster pass (summed over passes of
-    /// one name), or `None` where the device has no pipeline statistics queries.
+    /// one name) and the fragments compute passes counted ([`PassProfiler::copy_fragments`]),
+    /// or `None` where the device has no pipeline statistics queries and no pass counted.
     pub fn read_fragments(&self, gpu: &Gpu) -> Result<Option<Vec<FrameFragments>>, GpuError> {
+        let counted = self.read_counted(gpu)?;
         let Some(f) = &self.fragments else {
-            return Ok(None);
+            let any = counted.iter().any(|frame| !frame.is_empty());
+            return Ok(any.then_some(counted));
         };
         let size = SLOT_BYTES * u64::from(self.frame);
         if size == 0 {
@@ -202,8 +255,8 @@ impl PassProfiler {
             f.frame_passes
                 .iter()
                 .enumerate()
-                .map(|(frame, names)| {
-                    let mut out = FrameFragments::new();
+                .zip(counted)
+                .map(|((frame, names), mut out)| {
                     for (p, name) in names.iter().enumerate() {
                         *out.entry(name.clone()).or_insert(0) += counts[frame * stride + p];
                     }
@@ -211,6 +264,28 @@ impl PassProfiler {
                 })
                 .collect(),
         ))
+    }
+
+    /// Every recorded frame's fragments as compute passes counted them.
+    fn read_counted(&self, gpu: &Gpu) -> Result<Vec<FrameFragments>, GpuError> {
+        let c = &self.counted;
+        if c.frame_passes.iter().all(|names| names.is_empty()) {
+            return Ok(vec![FrameFragments::new(); c.frame_passes.len()]);
+        }
+        let words: Vec<u32> =
+            bytemuck::pod_collect_to_vec(&super::read_buffer_copy(gpu, &c.buffer)?);
+        let stride = MAX_COUNTED_PASSES as usize;
+        Ok(c.frame_passes
+            .iter()
+            .enumerate()
+            .map(|(frame, names)| {
+                let mut out = FrameFragments::new();
+                for (p, name) in names.iter().enumerate() {
+                    *out.entry(name.clone()).or_insert(0) += u64::from(words[frame * stride + p]);
+                }
+                out
+            })
+            .collect())
     }
 
     /// The recorded frames' timestamp ticks, each frame's from the start of its slot.

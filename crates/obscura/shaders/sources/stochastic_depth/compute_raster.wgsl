@@ -66,11 +66,15 @@ struct CrRecord {
 }
 
 // cr_counts: items written, records written, triangles left to the hardware, records or item
-// runs that did not fit (their triangles are left to the hardware).
+// runs that did not fit (their triangles are left to the hardware), and the fragments each pass
+// shaded (pixel centres covered and requested, before the alpha and first-layer tests; `bench`
+// reports them as the passes' fragments).
 const CR_ITEMS: u32 = 0u;
 const CR_RECORDS: u32 = 1u;
 const CR_LEFT: u32 = 2u;
 const CR_OVERFLOW: u32 = 3u;
+const CR_SHADED_BIN: u32 = 4u;
+const CR_SHADED_TILES: u32 = 5u;
 // A triangle whose bounding box holds at most this many pixel centres is rasterised by the bin
 // pass; larger ones go to the tile pass. At most 16 (the bin pass's queue entries index a box's
 // pixels in 4 bits).
@@ -83,7 +87,7 @@ const CR_NO_RECORD: u32 = 0xffffffffu;
 const CR_SUBPIXEL: f32 = 256.0;
 
 @group(2) @binding(0) var<uniform> cr: SdComputeRaster;
-@group(2) @binding(1) var<storage, read_write> cr_counts: array<atomic<u32>, 4>;
+@group(2) @binding(1) var<storage, read_write> cr_counts: array<atomic<u32>, 6>;
 // (record, first tile) per item.
 @group(2) @binding(2) var<storage, read_write> cr_items: array<vec2<u32>>;
 @group(2) @binding(3) var<storage, read_write> cr_records: array<CrRecord>;
@@ -257,6 +261,9 @@ fn sd_raster_bin(
     }
     workgroupBarrier();
     let queued = atomicLoad(&cr_queued);
+    if (lane == 0u && queued > 0u) {
+        atomicAdd(&cr_counts[CR_SHADED_BIN], queued);
+    }
     for (var q = lane; q < queued; q += 64u) {
         // The owner's lane, then the pixel's index in its box.
         let rec = cr_small[cr_queue[q] >> 4u];
@@ -426,6 +433,7 @@ fn cr_rasterize(
             let e = cr_edges_at(r, pixel);
             if (cr_covered(r, pixel, e)) {
                 if (lane == CR_INLINE) {
+                    atomicAdd(&cr_counts[CR_SHADED_BIN], 1u);
                     cr_shade(r, pixel, e);
                 } else {
                     cr_queue[atomicAdd(&cr_queued, 1u)] = (lane << 4u) | i;
@@ -563,6 +571,8 @@ fn sd_raster_tiles(
     let count = workgroupUniformLoad(&cr_item_count);
     let local = vec2<u32>(lane % 8u, lane / 8u);
     let stride = groups.x * groups.y;
+    // The fragments this workgroup shades (counted in its first invocation, added once).
+    var shaded = 0u;
     for (var i = group.x + group.y * groups.x; i < count; i += stride) {
         if (lane == 0u) {
             cr_item = cr_items[i];
@@ -594,6 +604,7 @@ fn sd_raster_tiles(
             }
             workgroupBarrier();
             let queued = atomicLoad(&cr_queued);
+            shaded += queued;
             for (var q = lane; q < queued; q += 64u) {
                 let pixel = vec2<u32>(cr_queue[q] & 0xffffu, cr_queue[q] >> 16u);
                 cr_shade(r, pixel, cr_edges_at(r, pixel));
@@ -602,5 +613,8 @@ fn sd_raster_tiles(
         // Nobody changes the item or empties the queue while another invocation still reads
         // them.
         workgroupBarrier();
+    }
+    if (lane == 0u && shaded > 0u) {
+        atomicAdd(&cr_counts[CR_SHADED_TILES], shaded);
     }
 }

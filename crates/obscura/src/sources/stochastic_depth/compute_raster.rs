@@ -21,6 +21,10 @@ struct SdComputeRaster {
     _pad: u32,
 }
 
+/// `cr_counts` of compute_raster.wgsl: items, records, triangles left to the hardware,
+/// overflows, fragments shaded by the bin pass and by the tile pass.
+const COUNTERS: usize = 6;
+
 /// Bytes of one `CrRecord`.
 const RECORD_BYTES: u64 = 128;
 /// Room for items and records per 8×8 tile of the map. Crytek Sponza from BENCHMARKS.md's camera
@@ -48,7 +52,8 @@ thread_local! {
 pub(crate) struct ComputeRaster {
     bin: wgpu::ComputePipeline,
     tiles: wgpu::ComputePipeline,
-    /// Items written, records written, triangles left to the hardware, overflows.
+    /// Items written, records written, triangles left to the hardware, overflows, and the
+    /// fragments the bin and tile passes shaded.
     counts: wgpu::Buffer,
     own_group: wgpu::BindGroup,
     /// `draw_indirect` arguments of the triangles left to the hardware, per group of
@@ -186,7 +191,7 @@ impl ComputeRaster {
                 usage: wgpu::BufferUsages::UNIFORM,
             },
         );
-        let counts = buffer("sd compute raster counts", 16);
+        let counts = buffer("sd compute raster counts", 4 * COUNTERS as u64);
         let items = buffer("sd compute raster items", item_capacity * 8);
         let records = buffer("sd compute raster records", record_capacity * RECORD_BYTES);
         let left = buffer(
@@ -278,6 +283,10 @@ impl ComputeRaster {
             pass.set_bind_group(2, &self.own_group, &[]);
             pass.dispatch_workgroups(x, y, 1);
         }
+        if let Some(p) = profiler {
+            p.copy_fragments(encoder, "sd_bin", &self.counts, 16);
+            p.copy_fragments(encoder, "sd_tiles", &self.counts, 20);
+        }
     }
 
     /// Draws the triangles the bin pass left to the hardware with `pipelines` (the map's, one
@@ -296,13 +305,14 @@ impl ComputeRaster {
         }
     }
 
-    /// The four counters of the last frame (items, records, triangles left to the hardware,
-    /// records or item runs that did not fit). Waits for the GPU.
+    /// The counters of the last frame (items, records, triangles left to the hardware, records
+    /// or item runs that did not fit, fragments shaded by the bin and the tile pass). Waits for
+    /// the GPU.
     #[cfg(test)]
-    pub fn read_counts(&self, gpu: &crate::Gpu) -> Result<[u32; 4], crate::Error> {
+    pub fn read_counts(&self, gpu: &crate::Gpu) -> Result<[u32; COUNTERS], crate::Error> {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.counts)?;
         let v: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-        Ok([v[0], v[1], v[2], v[3]])
+        Ok(std::array::from_fn(|i| v[i]))
     }
 }
 

@@ -726,9 +726,10 @@ impl StochasticDepthMap {
     }
 
     /// With `rasterizer = "compute"`, the compute passes' counters of the last frame (items,
-    /// records, triangles left to the hardware, records or item runs that did not fit).
+    /// records, triangles left to the hardware, records or item runs that did not fit,
+    /// fragments shaded by the bin and the tile pass).
     #[cfg(test)]
-    pub(crate) fn compute_counts(&self, gpu: &crate::Gpu) -> Option<[u32; 4]> {
+    pub(crate) fn compute_counts(&self, gpu: &crate::Gpu) -> Option<[u32; 6]> {
         self.compute.as_ref().map(|c| c.read_counts(gpu).unwrap())
     }
 
