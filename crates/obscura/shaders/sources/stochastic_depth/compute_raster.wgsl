@@ -14,11 +14,12 @@
 //   hardware would draw nothing of (outside the frustum, back faces where culled, no pixel centre
 //   inside), clips what crosses the near plane or reaches past a guard band as the hardware does
 //   (Sutherland-Hodgman), rasterises small triangles in its workgroup (their covered pixels
-//   queued, then shaded an invocation each), and for larger ones writes a record
-//   and items of up to CR_ITEM_TILES 8×8 tiles of their bounding box. Triangles whose record or
-//   items do not fit their buffers are left to the hardware (the map's raster pass draws them).
-// - `sd_raster_tiles`, workgroups of 64 invocations over the items: the covered pixels of an
-//   item's tiles queued, then shaded one an invocation.
+//   queued, then shaded an invocation each), and for larger ones writes a record and the items
+//   (runs of up to CR_ITEM_TILES 8×8 tiles of their bounding box) they may touch. Triangles
+//   whose record or items do not fit their buffers are left to the hardware (the map's raster
+//   pass draws them).
+// - `sd_raster_tiles`, workgroups of 64 invocations over the items: the covered pixels of the
+//   item's tiles the triangle may touch queued, then shaded an invocation each.
 // Coverage is the rasteriser's: pixel centres, corners snapped to 1/256 pixel (8 sub-pixel bits,
 // what Vulkan devices commonly have), the top-left rule on exact ties. An edge two triangles
 // share is evaluated from the same end point with the same operands by both (cr_edge), so a pixel
