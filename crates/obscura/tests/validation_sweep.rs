@@ -9,6 +9,7 @@
 mod common;
 use common::*;
 use obscura::scene::{self, Scene};
+use obscura::settings::{SdRasterizer, SdSelection};
 use obscura::{AoSettings, Renderer, Technique};
 
 /// Renders `scene`'s first camera with `settings` at `size` + `guard_band`, and checks the AO.
@@ -87,6 +88,30 @@ fn every_technique_at_degenerate_and_odd_sizes() {
     }
 }
 
+/// The stochastic depth map rasterised in compute at the same sizes, with and without its own
+/// band (boxes clamped to maps of one pixel, tiles cut by the map's edge).
+#[test]
+fn the_compute_rasterised_map_at_degenerate_and_odd_sizes() {
+    let gpu = gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    for technique in [
+        Technique::SdVao,
+        Technique::SdSvao,
+        Technique::SdHbaoPlusMultiview,
+    ] {
+        for size in [(1, 1), (7, 5), (64, 64), (3, 61)] {
+            for (guard_band, map_band) in [(0, 0), (48, 0), (0, 5)] {
+                let mut settings = technique_settings(technique, true);
+                settings.stochastic_depth.rasterizer = SdRasterizer::Compute;
+                settings.stochastic_depth.guard_band = map_band;
+                check(&gpu, &scene, &settings, size, guard_band).unwrap_or_else(|e| {
+                    panic!("{technique} at {size:?}+{guard_band}, band {map_band}: {e}")
+                });
+            }
+        }
+    }
+}
+
 /// The settings at the edges of what `AoSettings::validate` accepts, one change at a time.
 fn extremes(technique: Technique) -> Vec<AoSettings> {
     let base = technique_settings(technique, true);
@@ -130,6 +155,12 @@ fn extremes(technique: Technique) -> Vec<AoSettings> {
     push(&|s| s.stochastic_depth.samples = 16);
     push(&|s| s.stochastic_depth.alpha = Some(1e-4));
     push(&|s| s.stochastic_depth.alpha = Some(1.0));
+    push(&|s| s.stochastic_depth.rasterizer = SdRasterizer::Compute);
+    push(&|s| {
+        s.stochastic_depth.rasterizer = SdRasterizer::Compute;
+        s.stochastic_depth.samples = 16;
+        s.stochastic_depth.selection = SdSelection::Nearest;
+    });
     push(&|s| s.blur.radius = 16);
     push(&|s| s.blur.sharpness = 0.0);
     out
