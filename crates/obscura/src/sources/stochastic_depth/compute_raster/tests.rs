@@ -332,6 +332,10 @@ fn small_parts_of_clipped_triangles_are_rasterised() {
         .1
         .unwrap();
     assert_eq!(counts[2..4], [0, 0], "{counts:?}");
+    // The fragments each pass counted: the slivers' centres by the bin pass (the clipping
+    // invocation's own), the wall's, over the whole framebuffer, by the tile pass.
+    assert_eq!(counts[4] as usize, tips, "{counts:?}");
+    assert_eq!(counts[5], fw * fh, "{counts:?}");
 }
 
 /// Where the records or items do not fit their buffers, the triangles they belong to are drawn
