@@ -683,7 +683,7 @@ impl StochasticDepthMap {
 
     /// [`StochasticDepthMap::render`] with `rasterizer = "compute"`: the map emptied, the compute
     /// passes (`sd_bin`, `sd_tiles`), then the triangles they left to the hardware (`sd_map`),
-    /// drawn without depth tests over a target cleared for the pass.
+    /// drawn without depth tests (over the target as it is: nothing reads it).
     fn render_in_compute(
         &self,
         device: &wgpu::Device,
@@ -710,12 +710,10 @@ impl StochasticDepthMap {
         let timestamp_writes = profiler
             .as_deref_mut()
             .map(|p| p.render_pass(self.timing_name));
-        let mut pass = begin(
-            encoder,
-            &self.cull,
-            wgpu::LoadOp::Clear(0.0),
-            timestamp_writes,
-        );
+        // Its pipelines neither test (`Always`) nor write depth, so the target's contents do
+        // not matter: loaded, not cleared. Why: the clear alone cost 0.12-0.14 ms a frame on an
+        // H200 at 1080p (the pass with nothing left to draw, BENCHMARKS.md 2026-12-05).
+        let mut pass = begin(encoder, &self.cull, wgpu::LoadOp::Load, timestamp_writes);
         if let Some(p) = profiler.as_deref_mut() {
             p.begin_fragments(&mut pass, self.timing_name);
         }
