@@ -47,7 +47,13 @@ thread_local! {
     /// Tests: false makes the passes on this thread hand on and test every tile of a box, as if
     /// the triangle touched them all (`CR_TILE_TESTS`), to hold the tests to skipping work only.
     pub(crate) static TILE_TESTS: std::cell::Cell<bool> = const { std::cell::Cell::new(true) };
+    /// Tests: how many items a triangle's own invocation writes before its workgroup writes
+    /// them together (`CR_OWN_ITEMS`); test frames are too small to reach the default.
+    pub(crate) static OWN_ITEMS: std::cell::Cell<u32> = const { std::cell::Cell::new(OWN_ITEMS_DEFAULT) };
 }
+
+/// `CR_OWN_ITEMS` of compute_raster.wgsl.
+const OWN_ITEMS_DEFAULT: u32 = 16;
 
 pub(crate) struct ComputeRaster {
     bin: wgpu::ComputePipeline,
@@ -110,11 +116,12 @@ impl ComputeRaster {
             "fn cr_requested(pixel: vec2<u32>) -> bool { return true; }\n"
         };
         #[cfg(not(test))]
-        let tile_tests = true;
+        let (tile_tests, own_items) = (true, OWN_ITEMS_DEFAULT);
         #[cfg(test)]
-        let tile_tests = TILE_TESTS.with(|t| t.get());
+        let (tile_tests, own_items) = (TILE_TESTS.with(|t| t.get()), OWN_ITEMS.with(|o| o.get()));
         let source = format!(
-            "{source}\n{requested_fn}const CR_TILE_TESTS: bool = {tile_tests};\n{}",
+            "{source}\n{requested_fn}const CR_TILE_TESTS: bool = {tile_tests};\n\
+             const CR_OWN_ITEMS: u32 = {own_items}u;\n{}",
             crate::shaders::STOCHASTIC_DEPTH_COMPUTE_RASTER
         );
         let module = crate::gpu::shader_module(device, "sd compute raster", &source);

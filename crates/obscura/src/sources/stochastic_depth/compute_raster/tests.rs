@@ -1,6 +1,6 @@
 //! The compute-rasterised map against the hardware's: the same fragments, up to rounding.
 
-use super::{ITEM_CAPACITY, TILE_TESTS};
+use super::{ITEM_CAPACITY, OWN_ITEMS, TILE_TESTS};
 use crate::raster::test_support::{gpu, moved};
 use crate::scene::{self, AlphaMode, Camera, Material, Scene, Texture};
 use crate::settings::{AoSettings, SdMask, SdRasterizer, SdSelection};
@@ -156,9 +156,22 @@ fn the_tile_tests_skip_no_fragment() {
             let without =
                 std::panic::catch_unwind(|| maps(scene, s, SdRasterizer::Compute, cameras));
             TILE_TESTS.with(|t| t.set(true));
+            // Every large triangle's items written by its workgroup together.
+            OWN_ITEMS.with(|o| o.set(0));
+            let together =
+                std::panic::catch_unwind(|| maps(scene, s, SdRasterizer::Compute, cameras));
+            OWN_ITEMS.with(|o| o.set(super::OWN_ITEMS_DEFAULT));
             ITEM_CAPACITY.with(|c| c.set(None));
             let (with, without) = (with.unwrap(), without.unwrap());
-            for (f, m) in with.iter().chain(&without).enumerate() {
+            let together = together.unwrap();
+            for (f, ((a, _), (b, _))) in with.iter().zip(&together).enumerate() {
+                assert!(
+                    a == b,
+                    "{} {label}, frame {f}: written together, the maps differ",
+                    scene.name
+                );
+            }
+            for (f, m) in with.iter().chain(&without).chain(&together).enumerate() {
                 let counts = m.1.unwrap();
                 assert_eq!(
                     counts[2..4],
@@ -349,11 +362,14 @@ fn triangles_whose_items_do_not_fit_are_left_to_the_hardware() {
         s.stochastic_depth.samples = 16;
         s.stochastic_depth.selection = SdSelection::Nearest;
     });
-    for (scene, camera, capacity, at_least) in [
-        (&tower, tower_camera, 8, 100),
-        (&near_floor, near_camera, 1, 2),
+    for (scene, camera, capacity, at_least, own_items) in [
+        (&tower, tower_camera, 8, 100, super::OWN_ITEMS_DEFAULT),
+        (&near_floor, near_camera, 1, 2, super::OWN_ITEMS_DEFAULT),
+        // Items written by the workgroup together, overflowing.
+        (&tower, tower_camera, 8, 100, 0),
     ] {
         ITEM_CAPACITY.with(|c| c.set(Some(capacity)));
+        OWN_ITEMS.with(|o| o.set(own_items));
         let small = std::panic::catch_unwind(|| {
             let what = format!("{}, {capacity} items", scene.name);
             let stored = assert_same_maps(&what, scene, &settings, &[camera]);
@@ -361,6 +377,7 @@ fn triangles_whose_items_do_not_fit_are_left_to_the_hardware() {
             (stored, counts.unwrap())
         });
         ITEM_CAPACITY.with(|c| c.set(None));
+        OWN_ITEMS.with(|o| o.set(super::OWN_ITEMS_DEFAULT));
         let (stored, counts) = small.unwrap();
         assert!(
             stored > 1000,
