@@ -236,12 +236,14 @@ fn cr_lerp(a: CrVertex, b: CrVertex, t: f32) -> CrVertex {
 var<workgroup> cr_queue: array<u32, 1024>;
 var<workgroup> cr_queued: atomic<u32>;
 
-// The bin pass's workgroup: each invocation's small triangle, or triangle of many items (where
-// it has one), set up as a record; the latter's (invocation, record) and how many, and the
-// items of the one being written: how many it may touch, (first slot, that count), and the
-// slots taken.
+// The bin pass's workgroup: each invocation's small triangle (where it has one), set up as a
+// record; the (record, invocation) of triangles (or parts of clipped ones: up to 6 an
+// invocation) with many items, and how many; and the items of the one being written: how many it may touch, (first
+// slot, that count), and the slots taken.
 var<workgroup> cr_small: array<CrRecord, 64>;
-var<workgroup> cr_big: array<vec2<u32>, 64>;
+var<workgroup> cr_big: array<vec2<u32>, 384>;
+// Bit i: invocation i's triangle is left to the hardware (cr_leave, once, at the pass's end).
+var<workgroup> cr_leaving: array<atomic<u32>, 2>;
 var<workgroup> cr_big_count: atomic<u32>;
 var<workgroup> cr_big_total: u32;
 var<workgroup> cr_big_touched: atomic<u32>;
@@ -263,6 +265,8 @@ fn sd_raster_bin(
     if (lane == 0u) {
         atomicStore(&cr_queued, 0u);
         atomicStore(&cr_big_count, 0u);
+        atomicStore(&cr_leaving[0], 0u);
+        atomicStore(&cr_leaving[1], 0u);
     }
     workgroupBarrier();
     let t = gid.x + gid.y * groups.x * 64u;
@@ -286,19 +290,33 @@ fn sd_raster_bin(
     if (lane == 0u) {
         cr_big_total = atomicLoad(&cr_big_count);
     }
+    // (The records the invocations wrote, visible to the whole workgroup.)
+    storageBarrier();
     let bigs = workgroupUniformLoad(&cr_big_total);
     for (var b = 0u; b < bigs; b++) {
         cr_items_together(cr_big[b].x, cr_big[b].y, lane);
     }
+    // Each triangle that did not fit is left to the hardware once, however many of its parts
+    // did not (the lists of left triangles have room for each once).
+    if (t < cr.triangle_count && (atomicLoad(&cr_leaving[lane / 32u]) & (1u << (lane % 32u))) != 0u) {
+        cr_leave(t);
+    }
 }
 
-// The items invocation `owner`'s triangle (record `record`, set up in cr_small) may touch,
-// written by the workgroup, invocation `lane` taking every 64th: counted, given their slots by
-// one atomic, written in any order (the tile pass takes items in any order). Where they do not
-// fit, their slots are marked empty and the triangle is left to the hardware, as
-// cr_rasterize does.
-fn cr_items_together(owner: u32, record: u32, lane: u32) {
-    let rec = cr_small[owner];
+// The invocation (of its workgroup) binning the triangle cr_rasterize is given parts of.
+var<private> cr_owner: u32;
+
+// Marks invocation `lane`'s triangle as left to the hardware.
+fn cr_mark_left(lane: u32) {
+    atomicOr(&cr_leaving[lane / 32u], 1u << (lane % 32u));
+}
+
+// The items the triangle of record `record` may touch, written by the workgroup, invocation
+// `lane` taking every 64th: counted, given their slots by one atomic, written in any order (the
+// tile pass takes items in any order). Where they do not fit, their slots are marked empty and
+// the triangle (invocation `owner`'s) is left to the hardware, as cr_rasterize does.
+fn cr_items_together(record: u32, owner: u32, lane: u32) {
+    let rec = cr_records[record];
     let r = cr_triangle_of(rec);
     let tile_count = rec.tiles_x * ((rec.last.y - rec.first.y) / 8u + 1u);
     let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
@@ -329,7 +347,7 @@ fn cr_items_together(owner: u32, record: u32, lane: u32) {
     }
     if (lane == 0u && !fits) {
         atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
-        cr_leave(rec.triangle);
+        cr_mark_left(owner);
     }
     // Nobody resets the counts for the next triangle while another invocation still uses them.
     workgroupBarrier();
@@ -337,6 +355,7 @@ fn cr_items_together(owner: u32, record: u32, lane: u32) {
 
 // Bins triangle `t` (invocation `lane` of its workgroup).
 fn cr_bin(t: u32, lane: u32) {
+    cr_owner = lane;
     let tri = triangles[t];
     let masked = t >= cr.opaque_count;
     var v: array<CrVertex, 3>;
@@ -369,7 +388,7 @@ fn cr_bin(t: u32, lane: u32) {
     }
     if ((outside_any & 0x1fu) == 0u) {
         if (!cr_rasterize(t, tri.w, plane, v[0], v[1], v[2], lane)) {
-            cr_leave(t);
+            cr_mark_left(lane);
         }
         return;
     }
@@ -409,7 +428,7 @@ fn cr_bin(t: u32, lane: u32) {
         fits = cr_rasterize(t, tri.w, plane, poly[0], poly[i], poly[i + 1u], CR_INLINE) && fits;
     }
     if (!fits) {
-        cr_leave(t);
+        cr_mark_left(lane);
     }
 }
 
@@ -419,9 +438,8 @@ struct CrPlane {
     face: vec3<f32>,
 }
 
-// Where cr_rasterize shades a small triangle itself instead of queueing it, and writes a large
-// one's items itself however many (a clipped triangle's parts: an invocation hands one triangle
-// to its workgroup at most).
+// Where cr_rasterize shades a small triangle itself instead of queueing it (a clipped triangle's
+// parts: an invocation queues one small triangle at most).
 const CR_INLINE: u32 = 0xffffffffu;
 // CR_OWN_ITEMS (generated by compute_raster.rs, 16; tests set 0): a triangle with more items
 // than this has them written by its whole workgroup. Why: one invocation writing them one after
@@ -512,7 +530,7 @@ fn cr_rasterize(
     // triangle across the frame), and the tile pass would spend a round on each item.
     let tile_count = tiles.x * tiles.y;
     let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
-    if (lane != CR_INLINE && item_count > CR_OWN_ITEMS) {
+    if (item_count > CR_OWN_ITEMS) {
         // Many items: written by the whole workgroup after binning (cr_items_together).
         let record = atomicAdd(&cr_counts[CR_RECORDS], 1u);
         if (record >= cr.record_capacity) {
@@ -520,8 +538,7 @@ fn cr_rasterize(
             return false;
         }
         cr_records[record] = rec;
-        cr_small[lane] = rec;
-        cr_big[atomicAdd(&cr_big_count, 1u)] = vec2<u32>(lane, record);
+        cr_big[atomicAdd(&cr_big_count, 1u)] = vec2<u32>(record, cr_owner);
         return true;
     }
     var touched = 0u;

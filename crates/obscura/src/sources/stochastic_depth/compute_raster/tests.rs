@@ -365,8 +365,9 @@ fn triangles_whose_items_do_not_fit_are_left_to_the_hardware() {
     for (scene, camera, capacity, at_least, own_items) in [
         (&tower, tower_camera, 8, 100, super::OWN_ITEMS_DEFAULT),
         (&near_floor, near_camera, 1, 2, super::OWN_ITEMS_DEFAULT),
-        // Items written by the workgroup together, overflowing.
+        // Items written by the workgroup together, overflowing (clipped triangles' parts too).
         (&tower, tower_camera, 8, 100, 0),
+        (&near_floor, near_camera, 1, 2, 0),
     ] {
         ITEM_CAPACITY.with(|c| c.set(Some(capacity)));
         OWN_ITEMS.with(|o| o.set(own_items));
