@@ -257,9 +257,7 @@ impl PassProfiler {
                 .enumerate()
                 .zip(counted)
                 .map(|((frame, names), mut out)| {
-                    for (p, name) in names.iter().enumerate() {
-                        *out.entry(name.clone()).or_insert(0) += counts[frame * stride + p];
-                    }
+                    add_by_name(&mut out, names, |p| counts[frame * stride + p]);
                     out
                 })
                 .collect(),
@@ -280,9 +278,7 @@ impl PassProfiler {
             .enumerate()
             .map(|(frame, names)| {
                 let mut out = FrameFragments::new();
-                for (p, name) in names.iter().enumerate() {
-                    *out.entry(name.clone()).or_insert(0) += u64::from(words[frame * stride + p]);
-                }
+                add_by_name(&mut out, names, |p| u64::from(words[frame * stride + p]));
                 out
             })
             .collect())
@@ -339,5 +335,12 @@ impl PassProfiler {
                 (timings, ms(last.saturating_sub(first)))
             })
             .unzip())
+    }
+}
+
+/// Adds `value(p)` to `out` under the name of pass `p` of `names` (passes of one name summed).
+fn add_by_name(out: &mut FrameFragments, names: &[String], value: impl Fn(usize) -> u64) {
+    for (p, name) in names.iter().enumerate() {
+        *out.entry(name.clone()).or_insert(0) += value(p);
     }
 }

@@ -238,8 +238,8 @@ var<workgroup> cr_queued: atomic<u32>;
 
 // The bin pass's workgroup: each invocation's small triangle (where it has one), set up as a
 // record; the (record, invocation) of triangles (or parts of clipped ones: up to 6 an
-// invocation) with many items, and how many; and the items of the one being written: how many it may touch, (first
-// slot, that count), and the slots taken.
+// invocation) with many items, and how many; and of the one whose items are being written, how
+// many it may touch, (first slot, that count), and the slots taken.
 var<workgroup> cr_small: array<CrRecord, 64>;
 var<workgroup> cr_big: array<vec2<u32>, 384>;
 // Bit i: invocation i's triangle is left to the hardware (cr_leave, once, at the pass's end).
@@ -318,7 +318,7 @@ fn cr_mark_left(lane: u32) {
 fn cr_items_together(record: u32, owner: u32, lane: u32) {
     let rec = cr_records[record];
     let r = cr_triangle_of(rec);
-    let tile_count = rec.tiles_x * ((rec.last.y - rec.first.y) / 8u + 1u);
+    let tile_count = cr_tile_count(rec);
     let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
     if (lane == 0u) {
         atomicStore(&cr_big_touched, 0u);
@@ -341,7 +341,7 @@ fn cr_items_together(record: u32, owner: u32, lane: u32) {
         if (cr_item_touched(r, rec, tile_count, i)) {
             let slot = slots.x + atomicAdd(&cr_big_cursor, 1u);
             if (slot < cr.item_capacity) {
-                cr_items[slot] = select(vec2<u32>(CR_NO_RECORD, 0u), vec2<u32>(record, i * CR_ITEM_TILES), fits);
+                cr_items[slot] = cr_item_entry(record, i, fits);
             }
         }
     }
@@ -532,12 +532,10 @@ fn cr_rasterize(
     let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
     if (item_count > CR_OWN_ITEMS) {
         // Many items: written by the whole workgroup after binning (cr_items_together).
-        let record = atomicAdd(&cr_counts[CR_RECORDS], 1u);
-        if (record >= cr.record_capacity) {
-            atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
+        let record = cr_write_record(rec);
+        if (record == CR_NO_RECORD) {
             return false;
         }
-        cr_records[record] = rec;
         cr_big[atomicAdd(&cr_big_count, 1u)] = vec2<u32>(record, cr_owner);
         return true;
     }
@@ -548,12 +546,10 @@ fn cr_rasterize(
     if (touched == 0u) {
         return true;
     }
-    let record = atomicAdd(&cr_counts[CR_RECORDS], 1u);
-    if (record >= cr.record_capacity) {
-        atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
+    let record = cr_write_record(rec);
+    if (record == CR_NO_RECORD) {
         return false;
     }
-    cr_records[record] = rec;
     // Items that do not all fit are not rasterised here: the slots they got within the capacity
     // are marked empty (the tile pass reads the first `item_capacity` slots) and the hardware
     // draws the triangle. (Of a clipped triangle, parts that fitted are rasterised here as well;
@@ -564,7 +560,7 @@ fn cr_rasterize(
     var slot = base;
     for (var i = 0u; i < item_count && slot < cr.item_capacity; i++) {
         if (cr_item_touched(r, rec, tile_count, i)) {
-            cr_items[slot] = select(vec2<u32>(CR_NO_RECORD, 0u), vec2<u32>(record, i * CR_ITEM_TILES), fits);
+            cr_items[slot] = cr_item_entry(record, i, fits);
             slot++;
         }
     }
@@ -572,6 +568,29 @@ fn cr_rasterize(
         atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
     }
     return fits;
+}
+
+// Record `rec` written to a free slot: its index, or CR_NO_RECORD where none is left (counted
+// as an overflow; the caller leaves the triangle to the hardware).
+fn cr_write_record(rec: CrRecord) -> u32 {
+    let record = atomicAdd(&cr_counts[CR_RECORDS], 1u);
+    if (record >= cr.record_capacity) {
+        atomicAdd(&cr_counts[CR_OVERFLOW], 1u);
+        return CR_NO_RECORD;
+    }
+    cr_records[record] = rec;
+    return record;
+}
+
+// Item `i` of record `record` as the tile pass reads it: (record, first tile), or an empty slot
+// where the triangle's items do not all `fit`.
+fn cr_item_entry(record: u32, i: u32, fit: bool) -> vec2<u32> {
+    return select(vec2<u32>(CR_NO_RECORD, 0u), vec2<u32>(record, i * CR_ITEM_TILES), fit);
+}
+
+// The 8×8 tiles of record `rec`'s box.
+fn cr_tile_count(rec: CrRecord) -> u32 {
+    return rec.tiles_x * ((rec.last.y - rec.first.y) / 8u + 1u);
 }
 
 // Whether `t` (record `rec`, of `tile_count` tiles) may touch item `i`'s tiles: the rectangle of
@@ -678,8 +697,7 @@ fn sd_raster_tiles(
         if (item.x != CR_NO_RECORD) {
             let rec = cr_records[item.x];
             let r = cr_triangle_of(rec);
-            let tiles_y = (rec.last.y - rec.first.y) / 8u + 1u;
-            let end = min(item.y + CR_ITEM_TILES, rec.tiles_x * tiles_y);
+            let end = min(item.y + CR_ITEM_TILES, cr_tile_count(rec));
             // The item's tiles that the triangle may touch, an invocation a tile.
             let own_tile = item.y + lane;
             let own_origin = cr_tile_origin(rec, own_tile);
