@@ -515,7 +515,8 @@ pub struct AoArgs {
     ))]
     pub sd_select: Option<String>,
     #[arg(long, help = help(
-        "Raster stochastic depth map: what rasterises it: 'hardware' (default, the GPU's \
+        "Raster stochastic depth map: what rasterises it: 'auto' (default: 'compute' where the \
+         GPU binds its buffers and is not a CPU adapter, else 'hardware'), 'hardware' (the GPU's \
          rasteriser) or 'compute' (ours: compute passes clip, bin and rasterise the triangles; \
          the same map up to rounding).",
         "stochastic_depth.rasterizer"

@@ -401,16 +401,21 @@ fn bench_reports_every_pass() {
         4,
         "{r}"
     );
-    for pass in [
+    // The map's own passes are the rasteriser's that `auto` chose.
+    let map_passes: &[&str] = match sd["rasterizer"].as_str() {
+        Some("hardware") => &["sd_reset", "sd_map"],
+        Some("compute") => &["sd_bin", "sd_tiles", "sd_map"],
+        other => panic!("rasterizer {other:?} in {r}"),
+    };
+    let passes = [
         "gbuffer",
         "sd_request_clear",
         "sd_clear",
-        "sd_reset",
-        "sd_map",
         "svao_phase1",
         "svao_phase2",
         "blur",
-    ] {
+    ];
+    for pass in passes.iter().chain(map_passes) {
         assert!(
             r["passes"][pass].as_f64().is_some_and(|ms| ms >= 0.0),
             "{pass} missing in {r}"
@@ -896,7 +901,7 @@ fn stochastic_depth_options_are_clear_errors() {
 
 /// `--sd-rasterizer compute` renders the image `hardware` does (the same map up to rounding:
 /// within 1e-3 everywhere; the library's tests hold the maps themselves), and `bench` times its
-/// passes.
+/// passes; left to `auto`, it names the rasteriser it chose.
 #[test]
 fn the_compute_rasterizer_renders_the_hardware_image() {
     let dir = tempfile::tempdir().unwrap();
@@ -965,6 +970,34 @@ fn the_compute_rasterizer_renders_the_hardware_image() {
         "{report}"
     );
     assert_eq!(made("sd_map"), Some(0), "{report}");
+    let rasterizer = |report: &serde_json::Value| {
+        report["results"][0]["settings"]["stochastic_depth"]["rasterizer"].clone()
+    };
+    assert_eq!(rasterizer(&report), "compute", "{report}");
+    // Left to `auto`, the report names the rasteriser chosen, in the JSON and the text.
+    let o = obscura(&[
+        "bench",
+        "--scene",
+        "colonnade",
+        "--size",
+        "64x48",
+        "--techniques",
+        "sd-vao",
+        "--frames",
+        "1",
+        "--warmup",
+        "0",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let chosen = rasterizer(&report);
+    assert!(chosen == "hardware" || chosen == "compute", "{report}");
+    let text = String::from_utf8_lossy(&o.stdout);
+    let named = format!("{} rasteriser", chosen.as_str().unwrap());
+    assert!(text.contains(&named), "{text}");
 }
 
 /// Grey levels of an 8-bit PNG.

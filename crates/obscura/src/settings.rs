@@ -503,7 +503,8 @@ pub struct StochasticDepthSettings {
     /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
     /// 0 (the default) is off; at most 2048. It widens the map's raster pass by that much.
     pub guard_band: u32,
-    /// What rasterises the map: the GPU's rasteriser (the default) or compute passes (ours).
+    /// What rasterises the map: compute passes (ours) where the GPU allows them (the default),
+    /// or the GPU's rasteriser.
     pub rasterizer: SdRasterizer,
 }
 
@@ -584,13 +585,19 @@ impl fmt::Display for SdSelection {
     }
 }
 
-/// What rasterises the stochastic depth map. In files: `"hardware"` or `"compute"`.
+/// What rasterises the stochastic depth map. In files: `"auto"`, `"hardware"` or `"compute"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SdRasterizer {
+    /// `Compute` where the device binds the storage buffers it needs and is not a CPU
+    /// (software) adapter, else `Hardware`. Why: on an H200 the compute map took a quarter of
+    /// the hardware map's time on every view measured; on lavapipe (the CPU) a Sponza frame took
+    /// 3.5× longer with it (BENCHMARKS.md, 2026-12-05). A renderer reports the one it chose
+    /// ([`crate::Renderer::settings`]).
+    #[default]
+    Auto,
     /// The GPU's rasteriser, every fragment shaded by `map.wgsl` after early depth (and
     /// stencil) tests.
-    #[default]
     Hardware,
     /// Ours: compute passes clip, bin and rasterise the triangles (pixel centres, corners
     /// snapped to 1/256 pixel, the top-left rule), handing each fragment to the same Alg. 1
@@ -604,12 +611,14 @@ impl FromStr for SdRasterizer {
     type Err = SettingsError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(SdRasterizer::Auto),
             "hardware" => Ok(SdRasterizer::Hardware),
             "compute" => Ok(SdRasterizer::Compute),
             _ => Err(invalid(
                 "stochastic_depth.rasterizer",
                 s,
-                "must be 'hardware' (default, the GPU's rasteriser) or 'compute' (compute passes)",
+                "must be 'auto' (default: compute passes where the GPU allows them), 'hardware' \
+                 (the GPU's rasteriser) or 'compute' (compute passes)",
             )),
         }
     }
@@ -618,6 +627,7 @@ impl FromStr for SdRasterizer {
 impl fmt::Display for SdRasterizer {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
+            SdRasterizer::Auto => "auto",
             SdRasterizer::Hardware => "hardware",
             SdRasterizer::Compute => "compute",
         })
@@ -708,7 +718,7 @@ impl Default for StochasticDepthSettings {
             compensation: 1.0,
             selection: SdSelection::Stochastic,
             guard_band: 0,
-            rasterizer: SdRasterizer::Hardware,
+            rasterizer: SdRasterizer::Auto,
         }
     }
 }

@@ -5,6 +5,7 @@ use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, Technique
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
+use obscura::technique::Source;
 use obscura::{output, AoSettings, PassProfiler, Renderer};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -253,7 +254,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         });
         results.push(BenchResult {
             technique: technique.name().into(),
-            settings: settings.resolved(),
+            settings: renderer.settings().resolved(),
             layout,
             scene: scene.name.clone(),
             camera: camera_name.clone(),
@@ -292,7 +293,17 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
                 } else {
                     String::new()
                 };
-                format!(", S = {} ({maps}), α = {}{mask}", sd.samples, sd.alpha())
+                // The raster map's rasteriser (`auto` resolved by the renderer).
+                let rasterizer = if r.settings.technique.source() == Source::StochasticDepth {
+                    format!(", {} rasteriser", sd.rasterizer)
+                } else {
+                    String::new()
+                };
+                format!(
+                    ", S = {} ({maps}), α = {}{mask}{rasterizer}",
+                    sd.samples,
+                    sd.alpha()
+                )
             }
             None => String::new(),
         };

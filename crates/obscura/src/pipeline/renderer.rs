@@ -73,6 +73,15 @@ impl Renderer {
             .bvh
             .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
         gpu.check_errors()?;
+        // The rasteriser named, so that `settings()` says which one `auto` chose (for the
+        // larger need, a map limited to requested pixels: one setting for every row).
+        let mut settings = *settings;
+        settings.stochastic_depth.rasterizer = crate::sources::stochastic_depth::resolve_rasterizer(
+            &gpu.adapter,
+            &gpu.device,
+            settings.stochastic_depth.rasterizer,
+            true,
+        );
         Ok(Self {
             gpu: gpu.clone(),
             bvh,
@@ -81,7 +90,7 @@ impl Renderer {
             width,
             height,
             guard_band,
-            settings: *settings,
+            settings,
             gbuffer,
             ao: None,
             view: None,
@@ -163,7 +172,8 @@ impl Renderer {
             .ok_or_else(|| Error::Input("nothing rendered yet: call render() first".into()))
     }
 
-    /// The settings this renderer was made with.
+    /// The settings this renderer was made with, `stochastic_depth.rasterizer` resolved
+    /// (`auto` is reported as the rasteriser it chose on this device).
     pub fn settings(&self) -> &AoSettings {
         &self.settings
     }

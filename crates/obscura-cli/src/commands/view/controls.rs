@@ -121,7 +121,11 @@ pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32
             ui.add(egui::Slider::new(&mut sd.compensation, 1.0..=8.0).text("compensation"));
             ui.horizontal(|ui| {
                 ui.label("map rasteriser");
-                for r in [SdRasterizer::Hardware, SdRasterizer::Compute] {
+                for r in [
+                    SdRasterizer::Auto,
+                    SdRasterizer::Hardware,
+                    SdRasterizer::Compute,
+                ] {
                     ui.selectable_value(&mut sd.rasterizer, r, r.to_string());
                 }
             });

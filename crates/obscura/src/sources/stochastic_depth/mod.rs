@@ -13,8 +13,9 @@
 //! a fragment must lie behind to be hidden, and the stencil. Any S of
 //! [`crate::settings::SD_SAMPLE_COUNTS`] runs on any adapter (no multisampled target). Like the
 //! G-buffer it draws only the scene's chunks in view ([`crate::raster::chunks`]). With
-//! `rasterizer = "compute"` compute passes make its fragments instead (`compute_raster.rs`), and
-//! the hardware draws only what they leave to it.
+//! `rasterizer = "compute"`, or `"auto"` (the default) on a GPU that binds their buffers
+//! ([`resolve_rasterizer`]), compute passes make its fragments instead (`compute_raster.rs`),
+//! and the hardware draws only what they leave to it.
 //! The AO passes read the map through `read.wgsl` (the source contract).
 //!
 //! Optionally the map has its own guard band (`stochastic_depth.guard_band`; ours, after the
@@ -194,6 +195,28 @@ impl SdCapabilities {
     }
 }
 
+/// The rasteriser `wanted` resolves to on `adapter` for a map limited to requested pixels
+/// (`requested`) or not: `Auto` becomes `Compute` where the passes can be bound and the adapter is
+/// not a CPU, else `Hardware` (see [`SdRasterizer::Auto`] for why); the others stay as they are
+/// (an explicit `Compute` the device cannot bind is refused when the map is made).
+pub fn resolve_rasterizer(
+    adapter: &wgpu::Adapter,
+    device: &wgpu::Device,
+    wanted: SdRasterizer,
+    requested: bool,
+) -> SdRasterizer {
+    match wanted {
+        SdRasterizer::Auto
+            if adapter.get_info().device_type != wgpu::DeviceType::Cpu
+                && compute_raster::available(device, requested) =>
+        {
+            SdRasterizer::Compute
+        }
+        SdRasterizer::Auto => SdRasterizer::Hardware,
+        other => other,
+    }
+}
+
 /// The map pass's bindings after the scene's (from binding 6 on; stages and type): the first
 /// layer and `SdRaster`, the mask table, the map, and the request mask where the map is limited
 /// to it. The compute rasteriser binds the same, visible to compute.
@@ -295,7 +318,9 @@ impl StochasticDepthMap {
         // Rasterised in compute, the hardware draws only the triangles the compute passes leave
         // to it, untested: their shaders decide for themselves (the first layer, the request
         // mask), and no reset pass writes a depth or a stencil for so few fragments.
-        let compute_raster = settings.rasterizer == SdRasterizer::Compute;
+        let rasterizer =
+            resolve_rasterizer(adapter, device, settings.rasterizer, requested.is_some());
+        let compute_raster = rasterizer == SdRasterizer::Compute;
         let stenciled = requested == Some(SdMask::Stencil) && !compute_raster;
         let layout =
             SdLayout::plan(settings.samples).ok_or_else(|| crate::SettingsError::Invalid {

@@ -123,6 +123,34 @@ fn the_compute_map_holds_the_hardware_maps_fragments() {
     assert!(stored > 100_000, "the maps stored only {stored} depths");
 }
 
+/// `auto` is resolved when a renderer is made and the renderer names the rasteriser it chose:
+/// on a CPU adapter (lavapipe in CI) the hardware, as documented, and the map made under `auto`
+/// is, bit for bit, the map of the rasteriser it names (for `sd-vao` and `sd-svao`).
+#[test]
+fn auto_names_the_rasteriser_it_chose() {
+    let gpu = gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let cameras: Vec<Camera> = scene.cameras.iter().map(|n| n.camera).collect();
+    for technique in [Technique::SdVao, Technique::SdSvao] {
+        let settings = sd(technique, |_| {});
+        assert_eq!(settings.stochastic_depth.rasterizer, SdRasterizer::Auto);
+        let r = Renderer::new(&gpu, &scene, &settings, SIZE.0, SIZE.1, SIZE.2).unwrap();
+        let chosen = r.settings().stochastic_depth.rasterizer;
+        assert_ne!(chosen, SdRasterizer::Auto, "{technique:?}");
+        if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+            assert_eq!(chosen, SdRasterizer::Hardware, "{technique:?}");
+        }
+        let auto = maps(&scene, &settings, SdRasterizer::Auto, &cameras);
+        let named = maps(&scene, &settings, chosen, &cameras);
+        for (f, ((a, _), (b, _))) in auto.iter().zip(&named).enumerate() {
+            assert!(
+                a == b,
+                "{technique:?}, camera {f}: auto's map is not {chosen}'s"
+            );
+        }
+    }
+}
+
 /// The tile tests (which tiles of a box, and which items, a triangle may touch) only skip work:
 /// with them and without them the compute passes make the same map, bit for bit, on every
 /// built-in view and the near-plane scene, for the 16 nearest layers (every hidden fragment
