@@ -937,27 +937,38 @@ fn the_compute_rasterizer_renders_the_hardware_image() {
         stderr(&o),
         String::from_utf8_lossy(&o.stdout)
     );
+    // `bench` of sd-vao on colonnade with `rasterizer` (`auto` when none): its JSON report and
+    // its text.
     let json = dir.path().join("bench.json");
-    let o = obscura(&[
-        "bench",
-        "--scene",
-        "colonnade",
-        "--size",
-        "64x48",
-        "--techniques",
-        "sd-vao",
-        "--sd-rasterizer",
-        "compute",
-        "--frames",
-        "2",
-        "--warmup",
-        "1",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let bench = |rasterizer: Option<&str>| {
+        let mut args = vec![
+            "bench",
+            "--scene",
+            "colonnade",
+            "--size",
+            "64x48",
+            "--techniques",
+            "sd-vao",
+            "--frames",
+            "2",
+            "--warmup",
+            "1",
+            "--json",
+            json.to_str().unwrap(),
+        ];
+        if let Some(r) = rasterizer {
+            args.extend(["--sd-rasterizer", r]);
+        }
+        let o = obscura(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        (report, String::from_utf8_lossy(&o.stdout).into_owned())
+    };
+    let rasterizer = |report: &serde_json::Value| {
+        report["results"][0]["settings"]["stochastic_depth"]["rasterizer"].clone()
+    };
+    let (report, _) = bench(Some("compute"));
     let passes = &report["results"][0]["passes"];
     for pass in ["sd_clear", "sd_bin", "sd_tiles", "sd_map"] {
         assert!(passes[pass].as_f64().is_some(), "{pass}: {report}");
@@ -970,32 +981,11 @@ fn the_compute_rasterizer_renders_the_hardware_image() {
         "{report}"
     );
     assert_eq!(made("sd_map"), Some(0), "{report}");
-    let rasterizer = |report: &serde_json::Value| {
-        report["results"][0]["settings"]["stochastic_depth"]["rasterizer"].clone()
-    };
     assert_eq!(rasterizer(&report), "compute", "{report}");
     // Left to `auto`, the report names the rasteriser chosen, in the JSON and the text.
-    let o = obscura(&[
-        "bench",
-        "--scene",
-        "colonnade",
-        "--size",
-        "64x48",
-        "--techniques",
-        "sd-vao",
-        "--frames",
-        "1",
-        "--warmup",
-        "0",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let (report, text) = bench(None);
     let chosen = rasterizer(&report);
     assert!(chosen == "hardware" || chosen == "compute", "{report}");
-    let text = String::from_utf8_lossy(&o.stdout);
     let named = format!("{} rasteriser", chosen.as_str().unwrap());
     assert!(text.contains(&named), "{text}");
 }
