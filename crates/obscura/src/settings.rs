@@ -1452,6 +1452,20 @@ impl AoSettings {
         }
     }
 
+    /// The settings field that holds [`Self::radius`] (`vao.radius`, `hbao.radius`, …).
+    pub fn radius_field(&self) -> &'static str {
+        match self.technique.estimator() {
+            Estimator::Vao => "vao.radius",
+            Estimator::Hbao => "hbao.radius",
+            Estimator::HbaoPlus => "hbao_plus.radius",
+            Estimator::Gtao => "gtao.radius",
+            Estimator::GtaoVb => "gtao_vb.radius",
+            Estimator::Ssao => "ssao.radius",
+            Estimator::Sao => "sao.radius",
+            Estimator::PyramidHbao => "pyramid_hbao.radius",
+        }
+    }
+
     /// The path of every field, as settings files and [`SettingsError::Invalid`] name them
     /// (`technique`, `vao.radius`, …, `stochastic_depth.mask`), sorted.
     pub fn field_paths() -> Vec<String> {

@@ -12,6 +12,41 @@ use crate::view::FrameView;
 use crate::Error;
 use glam::Vec3;
 
+/// A warning where the technique's AO radius (world units, as the papers and engines take it:
+/// metres for glTF files) is far off the scene's extent: below 1/300 of its bounding box's
+/// diagonal, as for a scene modelled in centimetres or millimetres (then the AO only darkens
+/// thin creases; a 3.6 m room in centimetres with HBAO+'s 1 is at 1/358), or above the whole
+/// diagonal (then every surface occludes every other). The built-in scenes and the shared real
+/// scenes, in metres, lie between 1/110 (Sibenik's 53 m) and 1/3.5 (the Cornell box) at the
+/// defaults; a scene in metres wider than 150 m is warned about too, harmlessly.
+pub fn radius_scale_warning(settings: &AoSettings, scene: &Scene) -> Option<String> {
+    let diagonal = scene.bounds().diagonal();
+    let radius = settings.radius();
+    if scene.triangles.is_empty() || !(diagonal > 0.0 && diagonal.is_finite()) {
+        return None;
+    }
+    let (name, field) = (&scene.name, settings.radius_field());
+    if radius * 300.0 < diagonal {
+        Some(format!(
+            "the AO radius {field} = {radius} is {:.3} % of scene '{name}''s extent ({diagonal:.0} \
+             units corner to corner): if the scene is in centimetres or millimetres, the AO will \
+             only darken thin creases; set {field} in the scene's units (e.g. {} for {radius} m \
+             in centimetres)",
+            100.0 * radius / diagonal,
+            radius * 100.0,
+        ))
+    } else if radius > diagonal {
+        Some(format!(
+            "the AO radius {field} = {radius} is larger than scene '{name}' ({diagonal:.3} units \
+             corner to corner): every surface occludes every other; set {field} in the scene's \
+             units (e.g. {:.3}, a tenth of its extent)",
+            diagonal * 0.1,
+        ))
+    } else {
+        None
+    }
+}
+
 /// Renders AO images of one scene at one size. Owns what it uses (a [`Gpu`] is a cheap handle on
 /// a shared device), so a viewer or a game loop can keep it.
 pub struct Renderer {
@@ -44,6 +79,9 @@ impl Renderer {
             .check_extent()
             .map_err(|e| Error::Input(e.to_string()))?
         {
+            log::warn!("{warning}");
+        }
+        if let Some(warning) = radius_scale_warning(settings, scene) {
             log::warn!("{warning}");
         }
         if width == 0 || height == 0 {
@@ -401,5 +439,47 @@ impl Renderer {
             );
         }
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::radius_scale_warning;
+    use crate::scene;
+    use crate::settings::AoSettings;
+    use crate::Technique;
+
+    /// The built-in scenes (metres) at every technique's default radius draw no warning; the
+    /// same scene in centimetres or at a hundredth of its size does, naming the technique's
+    /// radius field (a real settings path).
+    #[test]
+    fn a_radius_far_off_the_scenes_scale_is_warned_about() {
+        let paths = AoSettings::field_paths();
+        for name in scene::builtin_names() {
+            let metres = scene::builtin(name).unwrap();
+            for technique in Technique::all() {
+                let settings = AoSettings {
+                    technique,
+                    ..AoSettings::default()
+                };
+                assert_eq!(
+                    radius_scale_warning(&settings, &metres),
+                    None,
+                    "{name} {technique:?}"
+                );
+                let field = settings.radius_field();
+                assert!(paths.iter().any(|p| p == field), "{field}");
+                for (scale, says) in [(100.0, "centimetres"), (0.01, "larger than")] {
+                    let mut scaled = metres.clone();
+                    scaled.positions.iter_mut().for_each(|p| *p *= scale);
+                    let warning = radius_scale_warning(&settings, &scaled)
+                        .unwrap_or_else(|| panic!("{name} ×{scale} {technique:?}: no warning"));
+                    assert!(
+                        warning.contains(field) && warning.contains(says),
+                        "{warning}"
+                    );
+                }
+            }
+        }
     }
 }
