@@ -319,7 +319,7 @@ fn cr_items_together(record: u32, owner: u32, lane: u32) {
     let rec = cr_records[record];
     let r = cr_triangle_of(rec);
     let tile_count = cr_tile_count(rec);
-    let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
+    let item_count = cr_items_of(tile_count);
     if (lane == 0u) {
         atomicStore(&cr_big_touched, 0u);
         atomicStore(&cr_big_cursor, 0u);
@@ -529,7 +529,7 @@ fn cr_rasterize(
     // Only the items the triangle may touch: its box can be far larger than it (a long thin
     // triangle across the frame), and the tile pass would spend a round on each item.
     let tile_count = tiles.x * tiles.y;
-    let item_count = (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
+    let item_count = cr_items_of(tile_count);
     if (item_count > CR_OWN_ITEMS) {
         // Many items: written by the whole workgroup after binning (cr_items_together).
         let record = cr_write_record(rec);
@@ -586,6 +586,11 @@ fn cr_write_record(rec: CrRecord) -> u32 {
 // where the triangle's items do not all `fit`.
 fn cr_item_entry(record: u32, i: u32, fit: bool) -> vec2<u32> {
     return select(vec2<u32>(CR_NO_RECORD, 0u), vec2<u32>(record, i * CR_ITEM_TILES), fit);
+}
+
+// The items (runs of CR_ITEM_TILES tiles) of a box of `tile_count` tiles.
+fn cr_items_of(tile_count: u32) -> u32 {
+    return (tile_count + CR_ITEM_TILES - 1u) / CR_ITEM_TILES;
 }
 
 // The 8×8 tiles of record `rec`'s box.
