@@ -63,14 +63,13 @@ pub const SOURCE_PYRAMID_LEVELS: u32 = 1;
 
 /// Group 3, the two-phase schedule.
 pub const SCHEDULE_PIXELS: u32 = 0;
-/// The atomic count of pixels phase 1 left flagged for phase 2.
-pub const SCHEDULE_WORK_COUNT: u32 = 1;
-/// The compacted list of flagged pixel indices phase 2 works through.
-pub const SCHEDULE_WORK_LIST: u32 = 2;
+/// The compacted list of flagged pixel indices phase 2 works through, after their count
+/// (`WorkList` in schedules/two_phase.wgsl).
+pub const SCHEDULE_WORK_LIST: u32 = 1;
 /// Group 3 of the interleaved schedule: the 16 quarter-resolution depth layers.
 pub const SCHEDULE_DEPTH_LAYERS: u32 = 0;
-/// Group 0 of the two-phase schedule's indirect-arguments pass.
-pub const INDIRECT_WORK_COUNT: u32 = 0;
+/// Group 0 of the two-phase schedule's indirect-arguments pass: the work list (its count).
+pub const INDIRECT_WORK_LIST: u32 = 0;
 /// The three `u32` workgroup counts of phase 2's indirect dispatch, written by the pass.
 pub const INDIRECT_DISPATCH: u32 = 1;
 /// Group 3 of the ground truth (its own parameters and output in the schedule's place).
@@ -103,10 +102,9 @@ const NAMED: &[(&str, u32)] = &[
     ("SOURCE_PYRAMID_PARAMS", SOURCE_PYRAMID_PARAMS),
     ("SOURCE_PYRAMID_LEVELS", SOURCE_PYRAMID_LEVELS),
     ("SCHEDULE_PIXELS", SCHEDULE_PIXELS),
-    ("SCHEDULE_WORK_COUNT", SCHEDULE_WORK_COUNT),
     ("SCHEDULE_WORK_LIST", SCHEDULE_WORK_LIST),
     ("SCHEDULE_DEPTH_LAYERS", SCHEDULE_DEPTH_LAYERS),
-    ("INDIRECT_WORK_COUNT", INDIRECT_WORK_COUNT),
+    ("INDIRECT_WORK_LIST", INDIRECT_WORK_LIST),
     ("INDIRECT_DISPATCH", INDIRECT_DISPATCH),
     ("REFERENCE_PARAMS", REFERENCE_PARAMS),
     ("REFERENCE_OUT", REFERENCE_OUT),

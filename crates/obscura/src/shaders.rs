@@ -56,6 +56,7 @@ pub const MULTIVIEW_LOOKUP: &str = include_str!("../shaders/schedules/multiview/
 pub const MULTIVIEW_MAIN: &str = include_str!("../shaders/schedules/multiview/main.wgsl");
 pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
     include_str!("../shaders/schedules/two_phase_indirect.wgsl");
+pub const SCHEDULE_WORK_LIST: &str = include_str!("../shaders/schedules/work_list.wgsl");
 
 pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
 pub const TRIANGLE_CULL: &str = include_str!("../shaders/triangle_cull.wgsl");

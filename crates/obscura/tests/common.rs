@@ -1,10 +1,11 @@
 //! Shared helpers for the GPU integration tests (lavapipe in CI).
 #![allow(dead_code)]
 
-use glam::{UVec2, Vec2, Vec3};
+use glam::{Mat4, UVec2, Vec2, Vec3};
+use obscura::reference::cpu_vao::GBufferImage;
 use obscura::scene::{Camera, Material, Scene};
 use obscura::settings::AoSettings;
-use obscura::{Gpu, GpuOptions, Renderer, Technique};
+use obscura::{Gpu, GpuOptions, Renderer, ScreenGeometry, Technique};
 
 /// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI). As the CLI does, gives
 /// Mesa's Vulkan window-system layer a runtime directory when XDG_RUNTIME_DIR is unset, so the
@@ -147,6 +148,27 @@ pub fn masked_quad_before_wall() -> Scene {
     });
     push_quad(&mut scene, quad(1.0, -2.0), 1);
     scene
+}
+
+/// NDC z of every framebuffer pixel of `g` under `projection` (the engine's depth buffer), the
+/// background at `far`.
+pub fn hardware_depth(
+    g: &GBufferImage,
+    screen: &ScreenGeometry,
+    projection: Mat4,
+    far: f32,
+) -> Vec<f32> {
+    (0..g.height)
+        .flat_map(|y| (0..g.width).map(move |x| UVec2::new(x, y)))
+        .map(|p| {
+            let z = g.depth_at(p);
+            if z <= 0.0 {
+                return far;
+            }
+            let v = screen.pixel_to_view(p.as_vec2() + 0.5, z);
+            projection.project_point3(v).z
+        })
+        .collect()
 }
 
 /// A `width`×`height` texture of `format` (`texel` bytes each) holding `bytes`, with the usages

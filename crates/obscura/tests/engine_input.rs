@@ -6,7 +6,7 @@
 mod common;
 use common::*;
 use glam::camera::rh::proj::directx as proj;
-use glam::{Mat4, UVec2, Vec3};
+use glam::{Mat4, Vec3};
 use obscura::gpu::{read_texture_bytes, read_texture_f32};
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::{
@@ -32,27 +32,6 @@ fn our_frame(gpu: &Gpu, settings: &AoSettings) -> (GBufferImage, Vec<f32>, Frame
 
 fn upload(gpu: &Gpu, format: wgpu::TextureFormat, bytes: &[u8], texel: u32) -> wgpu::Texture {
     upload_texture(gpu, format, (W + 2 * BAND, H + 2 * BAND), bytes, texel)
-}
-
-/// NDC z of every framebuffer pixel of `g` under `projection` (the engine's depth buffer), the
-/// background at `far_clear`.
-fn hardware_depth(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    projection: Mat4,
-    far: f32,
-) -> Vec<f32> {
-    (0..g.height)
-        .flat_map(|y| (0..g.width).map(move |x| UVec2::new(x, y)))
-        .map(|p| {
-            let z = g.depth_at(p);
-            if z <= 0.0 {
-                return far;
-            }
-            let v = screen.pixel_to_view(p.as_vec2() + 0.5, z);
-            projection.project_point3(v).z
-        })
-        .collect()
 }
 
 /// AO of `textures` through the engine path with `settings`.

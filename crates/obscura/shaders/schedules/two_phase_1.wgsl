@@ -7,8 +7,7 @@
 // flagged pixels are appended to a work list (when COMPACT) for an indirect phase 2.
 
 @group(GROUP_SCHEDULE) @binding(SCHEDULE_PIXELS) var<storage, read_write> two_phase_pixels: array<TwoPhasePixel>;
-@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_COUNT) var<storage, read_write> work_count: atomic<u32>;
-@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_LIST) var<storage, read_write> work_list: array<u32>;
+@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_LIST) var<storage, read_write> work: WorkList;
 
 // Work-list compaction per workgroup: flagged pixels take consecutive local slots, then one
 // global atomic reserves the workgroup's range, so the list keeps each 32x8 tile together (phase 2
@@ -31,11 +30,11 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>, @builtin(local_invo
     }
     workgroupBarrier();
     if (COMPACT && local == 0u) {
-        group_base = atomicAdd(&work_count, atomicLoad(&group_count));
+        group_base = atomicAdd(&work.count, atomicLoad(&group_count));
     }
     workgroupBarrier();
     if (COMPACT && flagged) {
-        work_list[group_base + slot] = index;
+        work.items[group_base + slot] = index;
     }
 }
 

@@ -5,8 +5,7 @@
 // pixel); otherwise one thread per visible pixel returns at once when its mask is empty.
 
 @group(GROUP_SCHEDULE) @binding(SCHEDULE_PIXELS) var<storage, read> two_phase_pixels: array<TwoPhasePixel>;
-@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_COUNT) var<storage, read> work_count: u32;
-@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_LIST) var<storage, read> work_list: array<u32>;
+@group(GROUP_SCHEDULE) @binding(SCHEDULE_WORK_LIST) var<storage, read> work: WorkListRead;
 
 // Dispatches wider than the 65535-workgroup limit wrap into y rows of 65535 workgroups.
 const ROW_THREADS: u32 = 65535u * 64u;
@@ -15,10 +14,10 @@ const ROW_THREADS: u32 = 65535u * 64u;
 fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     var index = global_id.x + global_id.y * ROW_THREADS;
     if (COMPACT) {
-        if (index >= work_count) {
+        if (index >= work.count) {
             return;
         }
-        index = work_list[index];
+        index = work.items[index];
     } else if (index >= view.visible_size.x * view.visible_size.y) {
         return;
     }

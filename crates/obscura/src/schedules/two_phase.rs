@@ -10,8 +10,8 @@
 
 use super::{FrameContext, FrameGroups, SourceGroup, Stage};
 use crate::bindings::{
-    self, entry, GROUP_SCHEDULE, INDIRECT_DISPATCH, INDIRECT_WORK_COUNT, SCHEDULE_PIXELS,
-    SCHEDULE_WORK_COUNT, SCHEDULE_WORK_LIST,
+    self, entry, GROUP_SCHEDULE, INDIRECT_DISPATCH, INDIRECT_WORK_LIST, SCHEDULE_PIXELS,
+    SCHEDULE_WORK_LIST,
 };
 use crate::estimators::EstimatorPass;
 use crate::frame::workgroups_32x8;
@@ -25,6 +25,10 @@ use crate::Error;
 /// estimator's three-word partial state).
 const PIXEL_BYTES: u64 = 16;
 
+/// Where the work list's pixel indices start in its buffer, after their count (`WorkList` in
+/// schedules/two_phase.wgsl: `@align(128)`).
+const WORK_ITEMS_OFFSET: u64 = 128;
+
 /// Workgroups (x, y) for `threads` threads of 64 per group, in rows of at most 65535 workgroups
 /// (the per-dimension dispatch limit; a 4K image needs 129,600 groups). Phase 2 recovers the
 /// thread index as `x + y · 65535 · 64`.
@@ -36,7 +40,6 @@ pub fn dispatch_rows(threads: u32) -> (u32, u32) {
 fn schedule_entries(read_only: bool) -> Vec<wgpu::BindGroupLayoutEntry> {
     vec![
         entry::storage(SCHEDULE_PIXELS, read_only),
-        entry::storage(SCHEDULE_WORK_COUNT, read_only),
         entry::storage(SCHEDULE_WORK_LIST, read_only),
     ]
 }
@@ -47,7 +50,11 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
     vec![
         Stage {
             label: "two-phase phase 1",
-            parts: vec![shaders::SCHEDULE_TWO_PHASE, shaders::SCHEDULE_TWO_PHASE_1],
+            parts: vec![
+                shaders::SCHEDULE_WORK_LIST,
+                shaders::SCHEDULE_TWO_PHASE,
+                shaders::SCHEDULE_TWO_PHASE_1,
+            ],
             source_group: SourceGroup::Request,
             schedule_entries: schedule_entries(false),
             own_source: false,
@@ -55,7 +62,11 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
         },
         Stage {
             label: "two-phase phase 2",
-            parts: vec![shaders::SCHEDULE_TWO_PHASE, shaders::SCHEDULE_TWO_PHASE_2],
+            parts: vec![
+                shaders::SCHEDULE_WORK_LIST,
+                shaders::SCHEDULE_TWO_PHASE,
+                shaders::SCHEDULE_TWO_PHASE_2,
+            ],
             source_group: SourceGroup::Resolve,
             schedule_entries: schedule_entries(true),
             own_source: false,
@@ -67,9 +78,12 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
 /// The indirect-arguments pass's WGSL and group-0 layout entries.
 pub(crate) fn indirect_stage() -> (String, Vec<wgpu::BindGroupLayoutEntry>) {
     (
-        shaders::compose(&[shaders::SCHEDULE_TWO_PHASE_INDIRECT]),
+        shaders::compose(&[
+            shaders::SCHEDULE_WORK_LIST,
+            shaders::SCHEDULE_TWO_PHASE_INDIRECT,
+        ]),
         vec![
-            entry::storage(INDIRECT_WORK_COUNT, true),
+            entry::storage(INDIRECT_WORK_LIST, true),
             entry::storage(INDIRECT_DISPATCH, false),
         ],
     )
@@ -81,7 +95,8 @@ pub(crate) struct TwoPhase {
     phase2: wgpu::ComputePipeline,
     indirect: wgpu::ComputePipeline,
     pixels: wgpu::Buffer,
-    work_count: wgpu::Buffer,
+    /// The count of flagged pixels, then their indices (`WorkList` in two_phase.wgsl).
+    work_list: wgpu::Buffer,
     dispatch: wgpu::Buffer,
     phase1_group: wgpu::BindGroup,
     phase2_group: wgpu::BindGroup,
@@ -131,15 +146,13 @@ impl TwoPhase {
             pixels * PIXEL_BYTES,
             wgpu::BufferUsages::COPY_SRC,
         );
-        let work_count = buffer(
-            "two-phase work count",
-            4,
-            wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-        );
+        // The count and the list in one buffer: one storage binding fewer, so that phase 2 of
+        // the ray-traced rows (the BVH's five buffers and the source's own) stays within
+        // WebGPU's default of 8 storage buffers per stage (tests/webgpu_limits.rs).
         let work_list = buffer(
             "two-phase work list",
-            pixels * 4,
-            wgpu::BufferUsages::empty(),
+            WORK_ITEMS_OFFSET + pixels * 4,
+            wgpu::BufferUsages::COPY_DST,
         );
         let dispatch = buffer("two-phase dispatch", 12, wgpu::BufferUsages::INDIRECT);
         let work = |layout| {
@@ -149,7 +162,6 @@ impl TwoPhase {
                 layout,
                 &[
                     (SCHEDULE_PIXELS, records.as_entire_binding()),
-                    (SCHEDULE_WORK_COUNT, work_count.as_entire_binding()),
                     (SCHEDULE_WORK_LIST, work_list.as_entire_binding()),
                 ],
             )
@@ -159,7 +171,7 @@ impl TwoPhase {
             "two-phase indirect",
             &indirect_layout,
             &[
-                (INDIRECT_WORK_COUNT, work_count.as_entire_binding()),
+                (INDIRECT_WORK_LIST, work_list.as_entire_binding()),
                 (INDIRECT_DISPATCH, dispatch.as_entire_binding()),
             ],
         );
@@ -172,7 +184,7 @@ impl TwoPhase {
             phase2,
             indirect,
             pixels: records,
-            work_count,
+            work_list,
             dispatch,
         }
     }
@@ -196,7 +208,7 @@ impl TwoPhase {
             source,
             ..
         } = *ctx;
-        encoder.clear_buffer(&self.work_count, 0, None);
+        encoder.clear_buffer(&self.work_list, 0, Some(4));
         source.begin_frame(device, encoder, profiler.as_deref_mut());
         let mut groups = FrameGroups {
             frame: frame_group,

@@ -43,7 +43,7 @@ struct RaySdParams {
     divisor: u32,
     intervals: u32,
     guard: u32,
-    _pad: u32,
+    hits_offset: u32,
     jitter: [[f32; 4]; 16],
 }
 
@@ -155,10 +155,11 @@ pub struct RayStochasticDepthMap {
     scene: GpuScene,
     bvh: GpuBvh,
     params: wgpu::Buffer,
-    /// `reservoir` floats per pixel: reversed-Z `near / depth`, 0 = empty.
+    /// `reservoir` floats per texel: reversed-Z `near / depth`, 0 = empty; then, from word
+    /// [`Self::hits_offset`] on, one u32 per texel: the hits its ray handled (at most
+    /// `max_count`). One buffer for both, so that the collection binds at most WebGPU's default
+    /// of 8 storage buffers per stage with the BVH's five (tests/webgpu_limits.rs).
     depths: wgpu::Buffer,
-    /// Hits each pixel's ray handled (at most `max_count`).
-    hits: wgpu::Buffer,
     /// Bound where no request mask is (single pass).
     no_request: wgpu::Buffer,
     /// Traces every texel (collect_all.wgsl); made on first use ([`Self::collect_pipeline`]).
@@ -186,7 +187,8 @@ impl RayStochasticDepthMap {
         let guard = guard_band.div_ceil(settings.resolution);
         let (mw, mh) = map_size(settings.resolution, guard, (width, height));
         let pixels = u64::from(mw) * u64::from(mh);
-        let bytes = pixels * u64::from(settings.reservoir) * 4;
+        // The slots, then the hit counts.
+        let bytes = pixels * (u64::from(settings.reservoir) + 1) * 4;
         let limit = device.limits().max_storage_buffer_binding_size;
         if bytes > limit {
             return Err(Error::Input(format!(
@@ -221,8 +223,7 @@ impl RayStochasticDepthMap {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
-            depths: storage("ray sd depths", bytes),
-            hits: storage("ray sd hits", pixels * 4),
+            depths: storage("ray sd depths and hits", bytes),
             no_request: storage("ray sd no request", 8),
             pipeline: OnceLock::new(),
             requested_pipeline: OnceLock::new(),
@@ -290,7 +291,7 @@ impl RayStochasticDepthMap {
             divisor: self.settings.resolution,
             intervals: u32::from(self.settings.intervals && requested_only),
             guard: self.guard,
-            _pad: 0,
+            hits_offset: self.hits_offset(),
             jitter: std::array::from_fn(|i| {
                 let [x, y] = table[(i + frame as usize) % table.len()];
                 [x, y, 0.0, 0.0]
@@ -327,7 +328,6 @@ impl RayStochasticDepthMap {
                 wgpu::BindingResource::TextureView(first_layer),
                 request.unwrap_or(&self.no_request).as_entire_binding(),
                 self.depths.as_entire_binding(),
-                self.hits.as_entire_binding(),
                 interval.unwrap_or(&self.no_request).as_entire_binding(),
             ],
         );
@@ -432,8 +432,17 @@ impl RayStochasticDepthMap {
     /// nothing was traced), map-sized ([`Self::map_size`], guard band included): the debug
     /// output "hits per ray" (seed 002).
     pub fn read_hits(&self, gpu: &crate::Gpu) -> Result<Vec<u32>, Error> {
-        let bytes = crate::gpu::read_buffer_copy(gpu, &self.hits)?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        let bytes = crate::gpu::read_buffer_copy(gpu, &self.depths)?;
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        let (w, h) = self.map_size();
+        let start = self.hits_offset() as usize;
+        Ok(words[start..start + (w * h) as usize].to_vec())
+    }
+
+    /// The word of the depths buffer where the hit counts start (after every texel's slots).
+    fn hits_offset(&self) -> u32 {
+        let (w, h) = self.map_size();
+        w * h * self.settings.reservoir
     }
 }
 

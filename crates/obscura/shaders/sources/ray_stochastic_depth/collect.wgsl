@@ -50,7 +50,8 @@ struct RaySdParams {
     intervals: u32,
     // The map's guard band in texels on each side (§3.5).
     guard: u32,
-    _pad: u32,
+    // The word of `sd_map` where the hit counts start.
+    hits_offset: u32,
     // xy: the jitter of texels with (t.y % 4) · 4 + t.x % 4 = index, in [0, 1)².
     jitter: array<vec4<f32>, 16>,
 }
@@ -67,13 +68,13 @@ override Z_CULL: bool = true;
 // One u32 per map texel, non-zero = requested (read when `requested_only`;
 // ray_stochastic_depth/request.wgsl marks the texel of every flagged sample).
 @group(0) @binding(2) var<storage, read> sd_request: array<u32>;
-// RESERVOIR floats per map texel, row-major.
-@group(0) @binding(3) var<storage, read_write> sd_depths: array<f32>;
-// Hits handled per texel (the debug output "hits per ray").
-@group(0) @binding(4) var<storage, read_write> sd_hits: array<u32>;
+// RESERVOIR f32 bits per map texel, row-major (what the AO passes read as floats); then from
+// `hits_offset` on the hits handled per texel (the debug output "hits per ray"). One buffer, so
+// that with the BVH's five this pass binds WebGPU's default of 8 storage buffers per stage.
+@group(0) @binding(3) var<storage, read_write> sd_map: array<u32>;
 // Per map texel, read when `intervals`: the complement of the nearest needed depth's bits (0:
 // none) and the farthest needed depth's bits (ray_stochastic_depth/request.wgsl).
-@group(0) @binding(5) var<storage, read> sd_interval: array<u32>;
+@group(0) @binding(4) var<storage, read> sd_interval: array<u32>;
 
 var<private> slots: array<f32, 8>;
 var<private> count: u32;
@@ -141,7 +142,7 @@ fn collect_texel(id: vec2<u32>) {
         bvh_traverse(origin, dir, t_min, needed.y);
     }
     for (var i = 0u; i < RESERVOIR; i++) {
-        sd_depths[texel * RESERVOIR + i] = select(0.0, params.near / slots[i], slots[i] < 3.0e38);
+        sd_map[texel * RESERVOIR + i] = bitcast<u32>(select(0.0, params.near / slots[i], slots[i] < 3.0e38));
     }
-    sd_hits[texel] = count;
+    sd_map[params.hits_offset + texel] = count;
 }
