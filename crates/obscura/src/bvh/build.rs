@@ -12,7 +12,7 @@
 //! the inner loop), and every box is recomputed from the vertices it bounds (the traversal's
 //! conservativeness then rests on this code alone).
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use glam::{Vec3A, Vec4};
 use obvhs::{
@@ -149,7 +149,7 @@ impl Tree {
 /// [`Bvh::build`]: SAH (obvhs), replaced by median splits where its tree is deeper than
 /// `max_depth` (`None`: any depth, for tests of the traversal's overflow report).
 pub(super) fn build(scene: &Scene, max_depth: Option<usize>) -> Bvh {
-    let start = Instant::now();
+    let start = build_clock();
 
     // Only triangles that can be hit go into the BVH.
     let mut ids = Vec::with_capacity(scene.triangles.len());
@@ -277,7 +277,13 @@ pub(super) fn build(scene: &Scene, max_depth: Option<usize>) -> Bvh {
         bvh.primitive_indices.len(),
         bvh.nodes().len(),
         bvh.max_depth,
-        start.elapsed().as_secs_f64() * 1e3
+        start.map_or(f64::NAN, |s| s.elapsed().as_secs_f64() * 1e3)
     );
     bvh
+}
+
+/// The clock the build's debug log times it with; none on wasm32 (the WebGPU target), where
+/// std has no clock and `Instant::now` panics.
+fn build_clock() -> Option<std::time::Instant> {
+    (!cfg!(target_arch = "wasm32")).then(std::time::Instant::now)
 }

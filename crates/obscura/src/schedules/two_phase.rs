@@ -26,7 +26,7 @@ use crate::Error;
 const PIXEL_BYTES: u64 = 16;
 
 /// Where the work list's pixel indices start in its buffer, after their count (`WorkList` in
-/// schedules/two_phase.wgsl: `@align(128)`).
+/// schedules/work_list.wgsl: `@align(128)`).
 const WORK_ITEMS_OFFSET: u64 = 128;
 
 /// Workgroups (x, y) for `threads` threads of 64 per group, in rows of at most 65535 workgroups
@@ -95,7 +95,7 @@ pub(crate) struct TwoPhase {
     phase2: wgpu::ComputePipeline,
     indirect: wgpu::ComputePipeline,
     pixels: wgpu::Buffer,
-    /// The count of flagged pixels, then their indices (`WorkList` in two_phase.wgsl).
+    /// The count of flagged pixels, then their indices (`WorkList` in work_list.wgsl).
     work_list: wgpu::Buffer,
     dispatch: wgpu::Buffer,
     phase1_group: wgpu::BindGroup,
@@ -149,9 +149,11 @@ impl TwoPhase {
         // The count and the list in one buffer: one storage binding fewer, so that phase 2 of
         // the ray-traced rows (the BVH's five buffers and the source's own) stays within
         // WebGPU's default of 8 storage buffers per stage (tests/webgpu_limits.rs).
+        // WGSL sizes the struct in whole multiples of its 128-byte alignment, and a binding must
+        // hold at least one: 256 bytes for one pixel.
         let work_list = buffer(
             "two-phase work list",
-            WORK_ITEMS_OFFSET + pixels * 4,
+            WORK_ITEMS_OFFSET + (pixels.max(1) * 4).next_multiple_of(WORK_ITEMS_OFFSET),
             wgpu::BufferUsages::COPY_DST,
         );
         let dispatch = buffer("two-phase dispatch", 12, wgpu::BufferUsages::INDIRECT);
