@@ -167,12 +167,11 @@ impl EngineInput {
                         layout: &wgpu::BindGroupLayout,
                         source: &str,
                         constants: &[(&str, f64)]| {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(
-                    crate::shaders::with_common(&[crate::shaders::VIEW], source).into(),
-                ),
-            });
+            let module = crate::gpu::checked_module(
+                device,
+                label,
+                &crate::shaders::with_common(&[crate::shaders::VIEW], source),
+            );
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(label),
                 bind_group_layouts: &[Some(layout)],

@@ -11,6 +11,7 @@ pub use readback::{
     read_texture_rgba8,
 };
 
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// Where the GPU context comes from.
@@ -335,6 +336,46 @@ pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
     unsafe { trusted_module(device, label, source, checks) }
 }
 
+/// The WGSL module `source` with all of wgpu's runtime checks (the raster passes').
+pub fn checked_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
+    dump_wgsl(label, source);
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}
+
+/// With `OBSCURA_DUMP_WGSL=DIR` in the environment, write WGSL `source` to DIR, one file per
+/// distinct source (named by its label and a hash of it): every module obscura makes passes
+/// here ([`checked_module`], [`shader_module`]), so a run leaves the exact sources it compiled,
+/// for `tools/wgsl-portability` to translate to Metal's and DirectX's shading languages. A
+/// failed write is ignored: the dump must never change what the run does.
+fn dump_wgsl(label: &str, source: &str) {
+    let Some(dir) = std::env::var_os("OBSCURA_DUMP_WGSL") else {
+        return;
+    };
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    source.hash(&mut hasher);
+    let name: String = label
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let dir = std::path::Path::new(&dir);
+    let path = dir.join(format!("{name}-{:016x}.wgsl", hasher.finish()));
+    if path.exists() {
+        return;
+    }
+    // Through a file of this call's own, then a rename: tests on several threads may write the
+    // same module at once.
+    static CALLS: AtomicU32 = AtomicU32::new(0);
+    let call = CALLS.fetch_add(1, Ordering::Relaxed);
+    let temporary = dir.join(format!(".{}-{call}.tmp", std::process::id()));
+    let _ = std::fs::create_dir_all(dir)
+        .and_then(|()| std::fs::write(&temporary, source))
+        .and_then(|()| std::fs::rename(&temporary, path));
+}
+
 /// The WGSL module `source` with only the runtime `checks` given.
 ///
 /// # Safety
@@ -345,6 +386,7 @@ unsafe fn trusted_module(
     source: &str,
     checks: wgpu::ShaderRuntimeChecks,
 ) -> wgpu::ShaderModule {
+    dump_wgsl(label, source);
     let desc = wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),

@@ -187,12 +187,11 @@ impl GBuffer {
         };
         let target = |label, format| target_with(label, format, wgpu::TextureUsages::empty());
         let scene_shaders = [shaders::MATERIAL, shaders::VERTEX_NORMAL, shaders::GBUFFER];
-        let module = &device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("gbuffer"),
-            source: wgpu::ShaderSource::Wgsl(
-                shaders::with_common(&scene_shaders, shaders::DEPTH_PEEL).into(),
-            ),
-        });
+        let module = &crate::gpu::checked_module(
+            device,
+            "gbuffer",
+            &shaders::with_common(&scene_shaders, shaders::DEPTH_PEEL),
+        );
         let depth = wgpu::DepthStencilState {
             format: Z_FORMAT,
             depth_write_enabled: Some(true),
@@ -276,24 +275,22 @@ impl GBuffer {
             let constants = format!(
                 "const VISIBILITY_WIDTH: u32 = {width}u;\nconst VISIBILITY_WORDS_BINDING: u32 = 6u;"
             );
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("visibility words"),
-                source: wgpu::ShaderSource::Wgsl(
-                    shaders::with_common(
+            let module = crate::gpu::checked_module(
+                device,
+                "visibility words",
+                &shaders::with_common(
+                    &[
+                        &scene_shaders[..],
                         &[
-                            &scene_shaders[..],
-                            &[
-                                &constants,
-                                shaders::VISIBILITY_WORDS_INDEX,
-                                shaders::VISIBILITY_WORDS_STORE,
-                            ],
-                        ]
-                        .concat(),
-                        shaders::GBUFFER_VISIBILITY_ATOMIC,
-                    )
-                    .into(),
+                            &constants,
+                            shaders::VISIBILITY_WORDS_INDEX,
+                            shaders::VISIBILITY_WORDS_STORE,
+                        ],
+                    ]
+                    .concat(),
+                    shaders::GBUFFER_VISIBILITY_ATOMIC,
                 ),
-            });
+            );
             let layout = scene_layout(
                 device,
                 &[(

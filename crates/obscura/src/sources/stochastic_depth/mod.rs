@@ -420,10 +420,7 @@ impl StochasticDepthMap {
         });
         let compute = compute.transpose()?;
         let source = format!("{map_source}\n{}", shaders::STOCHASTIC_DEPTH_RESET);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("stochastic depth"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let module = crate::gpu::checked_module(device, "stochastic depth", &source);
         // Stenciled: shade only where the reset wrote this frame's stencil value.
         let stencil_test = if stenciled {
             let face = wgpu::StencilFaceState {
