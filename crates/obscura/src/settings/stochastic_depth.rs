@@ -1,0 +1,366 @@
+//! The hidden-depth sources' parameters: the rasterised stochastic depth map (seed 001 §3.1)
+//! and the ray-traced one (seed 002).
+
+use super::*;
+
+/// The stratified stochastic depth map (seed 001 §3.1, Alg. 1).
+///
+/// Defaults: S = 4 and α = 1.5/S (0.375 at S = 4), the authors' 2024 rule (seed-code-notes
+/// §2.2; DESIGN.md). Held against an outside renderer's ground truth, α = 1.5/S gave a lower MSE
+/// than the authors' 2022 α = 0.2 on every view tried (1.04× to 7.6×), and 0.2 lost to depth
+/// peeling on one; 0.2 stays reachable (`alpha = 0.2`, `--sd-alpha 0.2`) to reproduce the 2022
+/// tables.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StochasticDepthSettings {
+    /// Depth samples per pixel, S: 1, 2, 4, 8 or 16 (on every adapter: the map is a storage
+    /// buffer).
+    pub samples: u32,
+    /// Global transparency α in (0, 1]: a hidden fragment is stored in ⌊αS + ξ⌋ samples. `None`
+    /// (the default; a file that leaves it out, JSON `null`, `--sd-alpha auto`): 1.5/S, at most
+    /// 1 ([`StochasticDepthSettings::alpha`]).
+    pub alpha: Option<f32>,
+    /// Seed of the per-fragment hash (ξ and the choice of samples).
+    pub seed: u32,
+    /// `sd-svao`: how the map is limited to the pixels phase 1 requested.
+    pub mask: SdMask,
+    /// When a sample reads the map: only where the first layer cannot decide (the default, seed
+    /// 001 §3.3's query heuristic), or for every sample that finds a surface (to measure what the
+    /// heuristic saves and costs).
+    pub query: SdQuery,
+    /// Missing-occlusion compensation (seed 001 §4, Figs. 7–8): the occlusion each stochastic
+    /// sample contributes is multiplied by this factor, in [1, 8]; 1 (the default) is off, the
+    /// paper used 2 for its Figs. 7–8. Makes up for occluders the few samples miss behind many
+    /// layers, and overshoots where the samples missed nothing.
+    pub compensation: f32,
+    /// Which hidden fragments each pixel of the raster map keeps: a stochastic subset (the
+    /// default, seed 001 Alg. 1) or the S nearest (ours). The ray-traced map has its reservoir.
+    pub selection: SdSelection,
+    /// The raster map's own guard band in pixels (ours; seed 002 §3.5 gives the ray-traced map
+    /// one): the map is rasterised this far beyond the framebuffer on every side, every layer
+    /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
+    /// 0 (the default) is off; at most 2048. It widens the map's raster pass by that much.
+    pub guard_band: u32,
+    /// What rasterises the map: compute passes (ours) where the GPU allows them (the default),
+    /// or the GPU's rasteriser.
+    pub rasterizer: SdRasterizer,
+}
+
+/// When a stochastic-depth technique reads the map for a sample (seed 001 §3.3). In files:
+/// `"needed"`, `"first-layer"` or `"always"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SdQuery {
+    /// Only where the estimator says the first surface may hide more ("needs hidden depth?");
+    /// for SSAO also only where a deeper surface on the sample's camera ray could occlude at all,
+    /// for GTAO-VB only where one could mark a sector still free (exact tests: the same image as
+    /// `FirstLayer`, fewer reads).
+    #[default]
+    Needed,
+    /// Seed 001 §3.3 as worded: wherever the first surface does not decide (for SSAO: does not
+    /// occlude), without the exact tests of SSAO and GTAO-VB (to measure what they save). The
+    /// same as `Needed` for the other estimators.
+    FirstLayer,
+    /// For every sample whose pixel shows a surface.
+    Always,
+}
+
+impl FromStr for SdQuery {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "needed" => Ok(SdQuery::Needed),
+            "first-layer" => Ok(SdQuery::FirstLayer),
+            "always" => Ok(SdQuery::Always),
+            _ => Err(invalid(
+                "stochastic_depth.query",
+                s,
+                "must be 'needed' (default, seed 001 §3.3), 'first-layer' or 'always'",
+            )),
+        }
+    }
+}
+
+/// Which hidden fragments a pixel of the raster stochastic depth map keeps in its S depths. In
+/// files: `"stochastic"` or `"nearest"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdSelection {
+    /// Seed 001 Alg. 1: each fragment behind the first layer is stored in ⌊αS + ξ⌋ of the S
+    /// samples, chosen by a hash, and each sample keeps the nearest fragment that chose it: every
+    /// hidden layer has a chance, whatever lies in front of it, at the price of noise.
+    #[default]
+    Stochastic,
+    /// Ours: the S nearest distinct depths behind the first layer, with no hash and no α (a
+    /// k-buffer kept by chains of `atomicMax`, whose result does not depend on the order the
+    /// fragments arrive in). Exact wherever a pixel hides at most S layers, so it neither
+    /// flickers nor loses a layer there; where more lie behind the first, the deepest are lost
+    /// every time (the stochastic map would keep each with some chance).
+    Nearest,
+}
+
+impl FromStr for SdSelection {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "stochastic" => Ok(SdSelection::Stochastic),
+            "nearest" => Ok(SdSelection::Nearest),
+            _ => Err(invalid(
+                "stochastic_depth.selection",
+                s,
+                "must be 'stochastic' (default, seed 001 Alg. 1) or 'nearest' (the S nearest hidden layers)",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdSelection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdSelection::Stochastic => "stochastic",
+            SdSelection::Nearest => "nearest",
+        })
+    }
+}
+
+/// What rasterises the stochastic depth map. In files: `"auto"`, `"hardware"` or `"compute"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdRasterizer {
+    /// `Compute` where the device binds the storage buffers it needs and is not a CPU
+    /// (software) adapter, else `Hardware`. Why: on an H200 the compute map took a quarter of
+    /// the hardware map's time on every view measured; on lavapipe (the CPU) a Sponza frame took
+    /// 3.5× longer with it (BENCHMARKS.md, 2026-12-05). A renderer reports the one it chose
+    /// ([`crate::Renderer::settings`]).
+    #[default]
+    Auto,
+    /// The GPU's rasteriser, every fragment shaded by `map.wgsl` after early depth (and
+    /// stencil) tests.
+    Hardware,
+    /// Ours: compute passes clip, bin and rasterise the triangles (pixel centres, corners
+    /// snapped to 1/256 pixel, the top-left rule), handing each fragment to the same Alg. 1
+    /// code; the hardware draws only triangles that do not fit the passes' buffers. The map
+    /// holds the same fragments up to rounding (`compute_raster.rs`' tests bound the
+    /// difference); for GPUs whose raster units are slow next to their compute.
+    Compute,
+}
+
+impl FromStr for SdRasterizer {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(SdRasterizer::Auto),
+            "hardware" => Ok(SdRasterizer::Hardware),
+            "compute" => Ok(SdRasterizer::Compute),
+            _ => Err(invalid(
+                "stochastic_depth.rasterizer",
+                s,
+                "must be 'auto' (default: compute passes where the GPU allows them), 'hardware' \
+                 (the GPU's rasteriser) or 'compute' (compute passes)",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdRasterizer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdRasterizer::Auto => "auto",
+            SdRasterizer::Hardware => "hardware",
+            SdRasterizer::Compute => "compute",
+        })
+    }
+}
+
+/// How `sd-svao` rasterises its stochastic depth map only where phase 1 asked for it. In files:
+/// `"stencil"`, `"depth"` or `"discard"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SdMask {
+    /// The paper's way (seed 000 §3.9): a full-screen pass copies the request mask into the
+    /// map's stencil, then the scene is drawn with the stencil test, before shading where the
+    /// device has early tests.
+    Stencil,
+    /// The request mask folded into the depth the map is early-tested against: the reset
+    /// writes the far plane at the pixels nobody requested, which no fragment lies behind, so
+    /// the depth test alone rejects them before shading, as the stencil does. The reset needs no
+    /// `discard` and the target no stencil aspect (any adapter; the same image). The default:
+    /// faster than the stencil on every scene measured (BENCHMARKS.md, issue 16).
+    #[default]
+    Depth,
+    /// No stencil: the map's fragment shader reads the request mask and returns where it is
+    /// not set (the fragments are still shaded; the same image).
+    Discard,
+}
+
+impl FromStr for SdMask {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "stencil" => Ok(SdMask::Stencil),
+            "depth" => Ok(SdMask::Depth),
+            "discard" => Ok(SdMask::Discard),
+            _ => Err(invalid(
+                "stochastic_depth.mask",
+                s,
+                "must be 'depth' (default), 'stencil' (the paper's) or 'discard'",
+            )),
+        }
+    }
+}
+
+impl fmt::Display for SdMask {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SdMask::Stencil => "stencil",
+            SdMask::Depth => "depth",
+            SdMask::Discard => "discard",
+        })
+    }
+}
+
+impl StochasticDepthSettings {
+    /// The α in use: the one given, else 1.5/S capped at 1.
+    pub fn alpha(&self) -> f32 {
+        self.alpha.unwrap_or_else(|| sd_alpha_2024(self.samples))
+    }
+}
+
+impl Default for StochasticDepthSettings {
+    fn default() -> Self {
+        Self {
+            samples: 4,
+            alpha: None,
+            seed: 0,
+            mask: SdMask::Depth,
+            query: SdQuery::Needed,
+            compensation: 1.0,
+            selection: SdSelection::Stochastic,
+            guard_band: 0,
+            rasterizer: SdRasterizer::Auto,
+        }
+    }
+}
+
+/// α of the authors' 2024 code (seed-code-notes §2.2): 1.5/S, so that a hidden fragment is kept
+/// in 1.5 of its pixel's S samples on average whatever S is (at most 1).
+pub fn sd_alpha_2024(samples: u32) -> f32 {
+    (1.5 / samples as f32).min(1.0)
+}
+
+/// Depth samples per pixel the stochastic depth map accepts (before the adapter's own limits).
+pub const SD_SAMPLE_COUNTS: [u32; 5] = [1, 2, 4, 8, 16];
+
+/// The ray-traced stochastic depth map (`ray-sd-vao`; seed 002 §3.1): one camera ray per pixel
+/// through the BVH keeps `reservoir` of the depths behind the first layer by reservoir sampling.
+/// A hit must lie `peel_separation` behind the first layer, as for the raster map. Defaults: the
+/// paper's N = 4, MAX_COUNT = 8, z-culling on.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RaySdSettings {
+    /// Depth slots per pixel, N, in [1, 8].
+    pub reservoir: u32,
+    /// Hits a ray handles before it stops (MAX_COUNT), in [N, 64].
+    pub max_count: u32,
+    /// A slot is overwritten only by a nearer depth (the paper's z-culling; it favours near
+    /// layers). Off: plain reservoir sampling, every hit kept with probability N/count.
+    pub z_cull: bool,
+    /// Seed of the reservoir's hash (per map; `stochastic_depth.seed` is the raster map's).
+    pub seed: u32,
+    /// The map's resolution divisor: 1 (a ray per pixel), 2 or 4 (a ray per 2×2 or 4×4 pixels,
+    /// through a jittered point of its block; seed 002 §3.3).
+    pub resolution: u32,
+    /// Radius cutoff in pixels (seed 002 §3.4; the paper's t = 6): a sample nearer than this to
+    /// its shading pixel keeps the first layer's answer and never requests the map. 0: off (the
+    /// default, so the map is read wherever the raster map's rows read theirs).
+    pub radius_cutoff: f32,
+    /// Ray intervals (seed 002 §3.2, the authors' default): on a two-phase schedule a ray is
+    /// traced only over the depths phase 1's samples need there. Off: from the first layer to the
+    /// scene's end.
+    pub intervals: bool,
+    /// The map's own guard band in pixels (seed 002 §3.5): the map reaches this far beyond the
+    /// framebuffer (its guard band included), in ⌈g / resolution⌉ texels, so a sample that falls
+    /// off the framebuffer reads the map there instead of the framebuffer's edge; those texels
+    /// hold every layer (no first layer is known there) and are traced only where requested on
+    /// a two-phase schedule (a one-pass row traces all of them). 0: no band. `None` (the
+    /// default; a file that leaves it out, JSON `null`, `--sd-guard-band auto`): the authors'
+    /// 512 px at 1080p, scaled with the visible height, on two-phase rows, and none on one-pass
+    /// rows ([`RaySdSettings::guard_band_for`]).
+    pub guard_band: Option<u32>,
+}
+
+impl Default for RaySdSettings {
+    fn default() -> Self {
+        Self {
+            reservoir: 4,
+            max_count: 8,
+            z_cull: true,
+            seed: 0,
+            resolution: 1,
+            radius_cutoff: 0.0,
+            intervals: true,
+            guard_band: None,
+        }
+    }
+}
+
+impl RaySdSettings {
+    /// Checks the ranges above.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        if !(1..=8).contains(&self.reservoir) {
+            return Err(invalid(
+                "ray_sd.reservoir",
+                self.reservoir,
+                "must be in [1, 8] depth slots per pixel, e.g. 4",
+            ));
+        }
+        if !(self.reservoir..=64).contains(&self.max_count) {
+            return Err(invalid(
+                "ray_sd.max_count",
+                self.max_count,
+                "must be at least ray_sd.reservoir and at most 64, e.g. 8",
+            ));
+        }
+        if ![1, 2, 4].contains(&self.resolution) {
+            return Err(invalid(
+                "ray_sd.resolution",
+                self.resolution,
+                "must be 1, 2 or 4 (the map's resolution divisor)",
+            ));
+        }
+        if !(self.radius_cutoff.is_finite() && self.radius_cutoff >= 0.0) {
+            return Err(invalid(
+                "ray_sd.radius_cutoff",
+                self.radius_cutoff,
+                "must be zero (off) or a positive number of pixels, e.g. 6",
+            ));
+        }
+        if let Some(band) = self.guard_band.filter(|&b| b > MAX_SD_GUARD_BAND) {
+            return Err(invalid(
+                "ray_sd.guard_band",
+                band,
+                "must be at most 2048 pixels beyond the framebuffer, e.g. 512 (seed 002 §3.5) or 0 (off)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The map's guard band in pixels for a `visible_height` image, on a two-phase schedule or
+    /// not: `guard_band`, or where that is `None`, 512 px at 1080p scaled with the height and
+    /// rounded up to a multiple of 4 (whole texels at 1/4 resolution) on two-phase schedules,
+    /// where only requested band texels are traced, and 0 on one-pass schedules, which would
+    /// trace every band texel each frame (at 1080p + 64 px, 2.8× the rays of the framebuffer).
+    pub fn guard_band_for(&self, visible_height: u32, two_phase: bool) -> u32 {
+        self.guard_band.unwrap_or_else(|| {
+            if two_phase {
+                let scaled = 512.0 * f64::from(visible_height) / 1080.0;
+                (scaled / 4.0).ceil() as u32 * 4
+            } else {
+                0
+            }
+        })
+    }
+}
+
+/// The widest map guard band `ray_sd.guard_band` accepts (four times the authors' 512).
+pub(super) const MAX_SD_GUARD_BAND: u32 = 2048;

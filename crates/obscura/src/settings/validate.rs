@@ -1,0 +1,460 @@
+//! [`AoSettings::validate`]: every value no kernel can use is an error naming its field; the
+//! field paths those messages use ([`AoSettings::field_paths`]) and the radius of the technique
+//! in use ([`AoSettings::radius`]).
+
+use super::*;
+
+pub(super) fn invalid(
+    field: &'static str,
+    value: impl fmt::Display,
+    rule: &'static str,
+) -> SettingsError {
+    SettingsError::Invalid {
+        field,
+        value: value.to_string(),
+        rule,
+    }
+}
+
+impl AoSettings {
+    /// Reject values no kernel can use; every message names the field (`vao.radius`) and the
+    /// valid range. Every rule is about one field alone.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let v = &self.vao;
+        if !(v.radius.is_finite() && v.radius > 0.0) {
+            return Err(invalid(
+                "vao.radius",
+                v.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(v.thickness.is_finite() && v.thickness >= 0.0) {
+            return Err(invalid(
+                "vao.thickness",
+                v.thickness,
+                "must be zero or positive, e.g. 0.5",
+            ));
+        }
+        if !(v.exponent.is_finite() && v.exponent > 0.0) {
+            return Err(invalid(
+                "vao.exponent",
+                v.exponent,
+                "must be positive, e.g. 1.3",
+            ));
+        }
+        if ![8, 16, 32].contains(&v.samples) {
+            return Err(invalid("vao.samples", v.samples, "must be 8, 16 or 32"));
+        }
+        let cap = self.max_radius_px;
+        if !(cap == 0.0 || (1.0..=1e6).contains(&cap)) {
+            return Err(invalid(
+                "max_radius_px",
+                cap,
+                "must be 0 (no cap) or from 1 to 1e6 pixels, e.g. 512 (seed 002 §3.5)",
+            ));
+        }
+        if !(self.peel_separation.is_finite() && self.peel_separation >= 0.0) {
+            return Err(invalid(
+                "peel_separation",
+                self.peel_separation,
+                "must be zero or positive (world units), e.g. 0.01",
+            ));
+        }
+        let sd = &self.stochastic_depth;
+        if !SD_SAMPLE_COUNTS.contains(&sd.samples) {
+            return Err(invalid(
+                "stochastic_depth.samples",
+                sd.samples,
+                "must be 1, 2, 4, 8 or 16, e.g. 4",
+            ));
+        }
+        if let Some(alpha) = sd.alpha.filter(|a| !(*a > 0.0 && *a <= 1.0)) {
+            return Err(invalid(
+                "stochastic_depth.alpha",
+                alpha,
+                "must be in (0, 1], e.g. 0.375, or left out for 1.5/S",
+            ));
+        }
+        self.ray_sd.validate()?;
+        let mv = &self.multiview;
+        if !(mv.angle.is_finite() && mv.angle > 0.0 && mv.angle <= 60.0) {
+            return Err(invalid(
+                "multiview.angle",
+                mv.angle,
+                "must be in (0, 60] degrees, e.g. 30",
+            ));
+        }
+        if let Some(focus) = mv.focus.filter(|f| !(f.is_finite() && *f > 0.0)) {
+            return Err(invalid(
+                "multiview.focus",
+                focus,
+                "must be a positive distance in world units, or left out for the scene's centre",
+            ));
+        }
+        if !(sd.compensation.is_finite() && (1.0..=8.0).contains(&sd.compensation)) {
+            return Err(invalid(
+                "stochastic_depth.compensation",
+                sd.compensation,
+                "must be in [1, 8]: 1 is off, the paper used 2",
+            ));
+        }
+        if sd.guard_band > MAX_SD_GUARD_BAND {
+            return Err(invalid(
+                "stochastic_depth.guard_band",
+                sd.guard_band,
+                "must be at most 2048 pixels (0 is off)",
+            ));
+        }
+        let h = &self.hbao;
+        if !(h.radius.is_finite() && h.radius > 0.0) {
+            return Err(invalid(
+                "hbao.radius",
+                h.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(h.angle_bias.is_finite() && (0.0..std::f32::consts::FRAC_PI_2).contains(&h.angle_bias))
+        {
+            return Err(invalid(
+                "hbao.angle_bias",
+                h.angle_bias,
+                "must be in [0, π/2) radians, e.g. 0.1",
+            ));
+        }
+        if !(h.exponent.is_finite() && h.exponent > 0.0) {
+            return Err(invalid(
+                "hbao.exponent",
+                h.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=HBAO_MAX_DIRECTIONS).contains(&h.directions) {
+            return Err(invalid(
+                "hbao.directions",
+                h.directions,
+                "must be 1 to 64, e.g. 8",
+            ));
+        }
+        if !(1..=128).contains(&h.steps) {
+            return Err(invalid("hbao.steps", h.steps, "must be 1 to 128, e.g. 4"));
+        }
+        let g = &self.gtao;
+        if !(g.radius.is_finite() && g.radius > 0.0) {
+            return Err(invalid(
+                "gtao.radius",
+                g.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(g.thickness_blend.is_finite() && (0.0..=1.0).contains(&g.thickness_blend)) {
+            return Err(invalid(
+                "gtao.thickness_blend",
+                g.thickness_blend,
+                "must be in [0, 1], e.g. 0 (the plain maximum horizon)",
+            ));
+        }
+        if !(g.exponent.is_finite() && g.exponent > 0.0) {
+            return Err(invalid(
+                "gtao.exponent",
+                g.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=GTAO_MAX_SLICES).contains(&g.slices) {
+            return Err(invalid("gtao.slices", g.slices, "must be 1 to 16, e.g. 2"));
+        }
+        if !(1..=32).contains(&g.steps) {
+            return Err(invalid("gtao.steps", g.steps, "must be 1 to 32, e.g. 2"));
+        }
+        let py = &self.pyramid;
+        if !(1..=8).contains(&py.levels) {
+            return Err(invalid(
+                "pyramid.levels",
+                py.levels,
+                "must be 1 to 8, e.g. 5",
+            ));
+        }
+        if !(2..=4).contains(&py.factor) {
+            return Err(invalid(
+                "pyramid.factor",
+                py.factor,
+                "must be 2, 3 or 4, e.g. 3",
+            ));
+        }
+        let ph = &self.pyramid_hbao;
+        if !(ph.radius.is_finite() && ph.radius > 0.0) {
+            return Err(invalid(
+                "pyramid_hbao.radius",
+                ph.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(ph.exponent.is_finite() && ph.exponent > 0.0) {
+            return Err(invalid(
+                "pyramid_hbao.exponent",
+                ph.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=32).contains(&ph.directions) {
+            return Err(invalid(
+                "pyramid_hbao.directions",
+                ph.directions,
+                "must be 1 to 32, e.g. 8",
+            ));
+        }
+        if !(1..=16).contains(&ph.steps) {
+            return Err(invalid(
+                "pyramid_hbao.steps",
+                ph.steps,
+                "must be 1 to 16, e.g. 4",
+            ));
+        }
+        let sao = &self.sao;
+        if !(sao.radius.is_finite() && sao.radius > 0.0) {
+            return Err(invalid(
+                "sao.radius",
+                sao.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(1..=64).contains(&sao.samples) {
+            return Err(invalid(
+                "sao.samples",
+                sao.samples,
+                "must be 1 to 64, e.g. 11",
+            ));
+        }
+        if !(sao.spiral_turns.is_finite() && sao.spiral_turns > 0.0) {
+            return Err(invalid(
+                "sao.spiral_turns",
+                sao.spiral_turns,
+                "must be positive, e.g. 7",
+            ));
+        }
+        if !(sao.bias.is_finite() && sao.bias >= 0.0) {
+            return Err(invalid(
+                "sao.bias",
+                sao.bias,
+                "must be zero or positive world units, e.g. 0.01",
+            ));
+        }
+        if !(sao.intensity.is_finite() && sao.intensity > 0.0) {
+            return Err(invalid(
+                "sao.intensity",
+                sao.intensity,
+                "must be positive, e.g. 1",
+            ));
+        }
+        let ss = &self.ssao;
+        if !(ss.radius.is_finite() && ss.radius > 0.0) {
+            return Err(invalid(
+                "ssao.radius",
+                ss.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(1..=32).contains(&ss.samples) {
+            return Err(invalid(
+                "ssao.samples",
+                ss.samples,
+                "must be 1 to 32 (one bit per sample), e.g. 32",
+            ));
+        }
+        if !(ss.intensity.is_finite() && ss.intensity > 0.0) {
+            return Err(invalid(
+                "ssao.intensity",
+                ss.intensity,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(ss.bias.is_finite() && ss.bias >= 0.0) {
+            return Err(invalid(
+                "ssao.bias",
+                ss.bias,
+                "must be zero or positive, e.g. 0.0001",
+            ));
+        }
+        if !(ss.contrast.is_finite() && ss.contrast > 0.0) {
+            return Err(invalid(
+                "ssao.contrast",
+                ss.contrast,
+                "must be positive, e.g. 1",
+            ));
+        }
+        let h = &self.hbao_plus;
+        if !(h.radius.is_finite() && h.radius > 0.0) {
+            return Err(invalid(
+                "hbao_plus.radius",
+                h.radius,
+                "must be a positive number of world units, e.g. 1.0",
+            ));
+        }
+        if !(h.bias.is_finite() && (0.0..1.0).contains(&h.bias)) {
+            return Err(invalid(
+                "hbao_plus.bias",
+                h.bias,
+                "must be in [0, 1), e.g. 0.1",
+            ));
+        }
+        if !(h.exponent.is_finite() && h.exponent > 0.0) {
+            return Err(invalid(
+                "hbao_plus.exponent",
+                h.exponent,
+                "must be positive, e.g. 2",
+            ));
+        }
+        if !(1..=32).contains(&h.directions) {
+            return Err(invalid(
+                "hbao_plus.directions",
+                h.directions,
+                "must be 1 to 32, e.g. 8",
+            ));
+        }
+        if h.steps == 0 || h.directions * h.steps > 32 {
+            return Err(invalid(
+                "hbao_plus.steps",
+                h.steps,
+                "must be at least 1 with directions × steps ≤ 32 (one bit per sample), e.g. 4",
+            ));
+        }
+        let g = &self.gtao_vb;
+        if !(g.radius.is_finite() && g.radius > 0.0) {
+            return Err(invalid(
+                "gtao_vb.radius",
+                g.radius,
+                "must be a positive number of world units, e.g. 0.5",
+            ));
+        }
+        if !(g.thickness.is_finite() && g.thickness >= 0.0) {
+            return Err(invalid(
+                "gtao_vb.thickness",
+                g.thickness,
+                "must be zero or positive world units, e.g. 0.25",
+            ));
+        }
+        if !(g.exponent.is_finite() && g.exponent > 0.0) {
+            return Err(invalid(
+                "gtao_vb.exponent",
+                g.exponent,
+                "must be positive, e.g. 1",
+            ));
+        }
+        if !(1..=3).contains(&g.slices) {
+            return Err(invalid(
+                "gtao_vb.slices",
+                g.slices,
+                "must be 1, 2 or 3 (one 32-bit mask each), e.g. 2",
+            ));
+        }
+        if g.steps == 0 || g.slices * 2 * g.steps > 32 {
+            return Err(invalid(
+                "gtao_vb.steps",
+                g.steps,
+                "must be at least 1 with slices × 2 × steps ≤ 32 (one bit per sample), e.g. 2",
+            ));
+        }
+        let t = &self.temporal;
+        if !(1..=255).contains(&t.frames) {
+            return Err(invalid(
+                "temporal.frames",
+                t.frames,
+                "must be between 1 and 255, e.g. 16",
+            ));
+        }
+        if !(t.depth_tolerance > 0.0 && t.depth_tolerance < 1.0) {
+            return Err(invalid(
+                "temporal.depth_tolerance",
+                t.depth_tolerance,
+                "must be a fraction of the depth in (0, 1), e.g. 0.03",
+            ));
+        }
+        if !(t.normal_tolerance_deg > 0.0 && t.normal_tolerance_deg <= 180.0) {
+            return Err(invalid(
+                "temporal.normal_tolerance_deg",
+                t.normal_tolerance_deg,
+                "must be degrees in (0, 180], e.g. 30",
+            ));
+        }
+        let b = &self.blur;
+        if b.radius == 0 || b.radius > 16 {
+            return Err(invalid("blur.radius", b.radius, "must be between 1 and 16"));
+        }
+        if !(b.sharpness.is_finite() && b.sharpness >= 0.0) {
+            return Err(invalid(
+                "blur.sharpness",
+                b.sharpness,
+                "must be zero or positive",
+            ));
+        }
+        if let Some(sigma) = b.sigma.filter(|s| !(s.is_finite() && *s > 0.0)) {
+            return Err(invalid(
+                "blur.sigma",
+                sigma,
+                "must be a positive number of pixels, e.g. 1.5, or left out for HBAO+'s weights",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The world radius R of the technique's estimator (`vao.radius`, `hbao.radius`, …).
+    pub fn radius(&self) -> f32 {
+        let mut copy = *self;
+        *copy.radius_mut()
+    }
+
+    /// [`Self::radius`], to change.
+    pub fn radius_mut(&mut self) -> &mut f32 {
+        match self.technique.estimator() {
+            Estimator::Vao => &mut self.vao.radius,
+            Estimator::Hbao => &mut self.hbao.radius,
+            Estimator::HbaoPlus => &mut self.hbao_plus.radius,
+            Estimator::Gtao => &mut self.gtao.radius,
+            Estimator::GtaoVb => &mut self.gtao_vb.radius,
+            Estimator::Ssao => &mut self.ssao.radius,
+            Estimator::Sao => &mut self.sao.radius,
+            Estimator::PyramidHbao => &mut self.pyramid_hbao.radius,
+        }
+    }
+
+    /// The settings field that holds [`Self::radius`] (`vao.radius`, `hbao.radius`, …).
+    pub fn radius_field(&self) -> &'static str {
+        match self.technique.estimator() {
+            Estimator::Vao => "vao.radius",
+            Estimator::Hbao => "hbao.radius",
+            Estimator::HbaoPlus => "hbao_plus.radius",
+            Estimator::Gtao => "gtao.radius",
+            Estimator::GtaoVb => "gtao_vb.radius",
+            Estimator::Ssao => "ssao.radius",
+            Estimator::Sao => "sao.radius",
+            Estimator::PyramidHbao => "pyramid_hbao.radius",
+        }
+    }
+
+    /// The path of every field, as settings files and [`SettingsError::Invalid`] name them
+    /// (`technique`, `vao.radius`, …, `stochastic_depth.mask`), sorted.
+    pub fn field_paths() -> Vec<String> {
+        fn walk(prefix: &str, value: &serde_json::Value, out: &mut Vec<String>) {
+            match value {
+                serde_json::Value::Object(map) => {
+                    for (key, v) in map {
+                        let path = if prefix.is_empty() {
+                            key.clone()
+                        } else {
+                            format!("{prefix}.{key}")
+                        };
+                        walk(&path, v, out);
+                    }
+                }
+                _ => out.push(prefix.to_string()),
+            }
+        }
+        let mut out = Vec::new();
+        walk("", &to_value(&AoSettings::default()), &mut out);
+        out
+    }
+}
+
+pub(super) fn to_value(settings: &AoSettings) -> serde_json::Value {
+    serde_json::to_value(settings).expect("AoSettings serialises to JSON")
+}
