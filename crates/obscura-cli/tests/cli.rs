@@ -1617,3 +1617,132 @@ fn bent_normals_are_written_next_to_the_ao() {
         "a bent normal faces away from the camera"
     );
 }
+
+#[test]
+fn compare_takes_an_outside_renderers_image_as_its_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().join("cache");
+    let view = [
+        "--scene",
+        "stairs",
+        "--size",
+        "64x40",
+        "--timing-frames",
+        "0",
+    ];
+    let techniques = ["--techniques", "vao,gtao-vb"];
+    // The "outside" image: our own hemisphere ground truth of the view, as a file.
+    let image = dir.path().join("outside.exr");
+    let hemisphere = ["--model", "hemisphere", "--spp", "64"];
+    let args = [
+        &["reference"][..],
+        &view[..4],
+        &hemisphere,
+        &["--out", image.to_str().unwrap()],
+    ];
+    let o = obscura_cached(&args.concat(), &cache);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report = |out: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
+    };
+    // compare against the image and against the same ground truth traced by compare itself:
+    // the same numbers for every technique.
+    let with_image = dir.path().join("with-image");
+    let args = [
+        &["compare"][..],
+        &view,
+        &techniques,
+        &["--reference-image", image.to_str().unwrap()],
+        &["--out", with_image.to_str().unwrap()],
+    ];
+    let o = obscura_cached(&args.concat(), &cache);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let traced = dir.path().join("traced");
+    let args = [
+        &["compare"][..],
+        &view,
+        &techniques,
+        &["--reference-model", "hemisphere", "--spp", "64"],
+        &["--out", traced.to_str().unwrap()],
+    ];
+    let o = obscura_cached(&args.concat(), &cache);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (report(&with_image), report(&traced));
+    assert_eq!(a["reference"]["model"], "image 'outside.exr'");
+    assert_eq!(b["reference"]["model"], "hemisphere");
+    let (ra, rb) = (
+        a["results"].as_array().unwrap(),
+        b["results"].as_array().unwrap(),
+    );
+    assert_eq!(ra.len(), 2);
+    for (x, y) in ra.iter().zip(rb) {
+        for key in ["mse", "mae", "ssim", "halo_bright", "halo_dark"] {
+            let (x, y) = (x[key].as_f64().unwrap(), y[key].as_f64().unwrap());
+            assert!(
+                (x - y).abs() <= 1e-9 * y.abs().max(1e-9),
+                "{key}: {x} vs {y}"
+            );
+        }
+    }
+    // Wrong size, a path, a model alongside, or values that are not numbers: one clear error
+    // each, and no report.
+    let nan = dir.path().join("nan.exr");
+    let mut values = vec![1.0f32; 64 * 40];
+    values[100] = f32::NAN;
+    obscura::output::write_ao(&nan, 64, 40, &values).unwrap();
+    let out = dir.path().join("bad");
+    let args = [
+        &["compare"][..],
+        &view[..4],
+        &[
+            "--reference-image",
+            nan.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    ];
+    let o = obscura(&args.concat());
+    assert!(
+        !o.status.success() && stderr(&o).contains("1 of its 2560 values are NaN or infinite"),
+        "{}",
+        stderr(&o)
+    );
+    let cases: [(&[&str], &[&str]); 3] = [
+        (
+            &["--size", "64x48"],
+            &["--reference-image", "64x40", "--size 64x40"],
+        ),
+        (
+            &["--size", "64x40", "--path", "dolly"],
+            &["--reference-image", "--path"],
+        ),
+        (
+            &["--size", "64x40", "--reference-model", "vao"],
+            &["--reference-image", "--reference-model"],
+        ),
+    ];
+    for (extra, needles) in cases {
+        let out = dir.path().join("bad");
+        let args = [
+            &[
+                "compare",
+                "--scene",
+                "stairs",
+                "--reference-image",
+                image.to_str().unwrap(),
+            ][..],
+            extra,
+            &["--out", out.to_str().unwrap()],
+        ];
+        let o = obscura(&args.concat());
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{extra:?} was accepted");
+        for n in needles {
+            assert!(err.contains(n), "{extra:?}: {err}");
+        }
+        assert!(
+            !err.contains("panicked") && !out.join("report.json").exists(),
+            "{err}"
+        );
+    }
+}

@@ -24,6 +24,13 @@ pub struct CompareArgs {
     /// --temporal) or hemisphere.
     #[arg(long, value_parser = |s: &str| s.parse::<ReferenceModel>(), default_value = "vao")]
     reference_model: ReferenceModel,
+    /// An outside renderer's AO of this view to compare against instead of tracing one: EXR or
+    /// PNG, --size pixels, rows top to bottom, 1 = unoccluded, the first channel (PNG values
+    /// read as 0..1, no gamma). Render it with the same camera (--camera, or --eye, --target and
+    /// --fov, the vertical field of view) and AO distance (the techniques' radius). Used as it
+    /// is: not blurred like the vao model's reference.
+    #[arg(long, conflicts_with = "reference_model")]
+    reference_image: Option<PathBuf>,
     #[command(flatten)]
     reference: ReferenceArgs,
     #[command(flatten)]
@@ -60,6 +67,48 @@ pub struct Comparison<'a> {
     pub timing_frames: u32,
     /// The heat maps' scale; `None`: chosen from this comparison's differences.
     pub diff_scale: Option<f64>,
+    /// An outside renderer's AO of this view, compared against instead of a traced reference.
+    pub reference_image: Option<&'a ExternalReference>,
+}
+
+/// An AO image of the view made elsewhere (`compare --reference-image`).
+pub struct ExternalReference {
+    /// How the report names it: `image 'file.exr'`.
+    pub name: String,
+    /// Its values, row-major, the visible size.
+    pub values: Vec<f32>,
+}
+
+impl ExternalReference {
+    /// The image at `path`, which must be `width`×`height` with finite values.
+    pub fn load(path: &Path, (width, height): (u32, u32)) -> Result<Self> {
+        let image = obscura::output::read_ao(path)?;
+        if (image.width, image.height) != (width, height) {
+            anyhow::bail!(
+                "--reference-image '{}' is {}x{} but the comparison renders {width}x{height}: \
+                 give --size {}x{} (the size it was rendered at), or render it at {width}x{height}",
+                path.display(),
+                image.width,
+                image.height,
+                image.width,
+                image.height
+            );
+        }
+        let bad = image.values.iter().filter(|v| !v.is_finite()).count();
+        if bad > 0 {
+            anyhow::bail!(
+                "--reference-image '{}': {bad} of its {} values are NaN or infinite: give an AO \
+                 image with values in 0..1 (1 = unoccluded)",
+                path.display(),
+                image.values.len()
+            );
+        }
+        let file = path.file_name().unwrap_or(path.as_os_str());
+        Ok(Self {
+            name: format!("image '{}'", file.to_string_lossy()),
+            values: image.values,
+        })
+    }
 }
 
 /// Render every technique, get the reference (cached), write the report into `out`.
@@ -76,6 +125,10 @@ pub fn compare(
     on_render: &mut dyn FnMut(obscura::Technique, &Renderer) -> Result<()>,
 ) -> Result<Report> {
     let reference_settings = reference.settings(model, ao)?;
+    let (model_name, spp) = match c.reference_image {
+        Some(image) => (image.name.as_str(), None),
+        None => (model.name(), reference_settings.reported_spp()),
+    };
     let mut images = Vec::new();
     let mut gbuffer = None;
     for &technique in techniques {
@@ -102,15 +155,20 @@ pub fn compare(
         c.guard_band,
         obscura::near_plane(c.scene),
     );
-    let reference_image = compute_or_load(
-        reference.tracer(Some(gpu)),
-        c.scene,
-        view,
-        &reference_settings,
-        !reference.no_cache,
-    )?;
-    let blur = ao.settings(obscura::Technique::Vao)?.blur;
-    let reference_image = as_compared(reference_image, model, &blur, &gbuffer, &view);
+    let reference_image = match c.reference_image {
+        Some(image) => image.values.clone(),
+        None => {
+            let traced = compute_or_load(
+                reference.tracer(Some(gpu)),
+                c.scene,
+                view,
+                &reference_settings,
+                !reference.no_cache,
+            )?;
+            let blur = ao.settings(obscura::Technique::Vao)?.blur;
+            as_compared(traced, model, &blur, &gbuffer, &view)
+        }
+    };
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create output folder '{}'", out.display()))?;
     let input = ReportInput {
@@ -120,8 +178,8 @@ pub fn compare(
         width: c.width,
         height: c.height,
         guard_band: c.guard_band,
-        reference_model: model.name(),
-        spp: reference_settings.reported_spp(),
+        reference_model: model_name,
+        spp,
         reference: &reference_image,
         depth: &depth,
         techniques: images
@@ -194,6 +252,13 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         "the report (report.json, report.md, index.html and the images go into it)",
     )?;
     let (width, height) = args.size;
+    let reference_image = match &args.reference_image {
+        Some(_) if args.path.path.is_some() => anyhow::bail!(
+            "--reference-image is one view's AO and --path renders many: leave one of them out"
+        ),
+        Some(path) => Some(ExternalReference::load(path, (width, height))?),
+        None => None,
+    };
     let scene = args.scene.load()?;
     if args.path.path.is_some() {
         check_no_camera(&args.scene)?;
@@ -225,6 +290,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         guard_band: args.ao.guard_band(height),
         timing_frames: args.timing.timing_frames,
         diff_scale: None,
+        reference_image: reference_image.as_ref(),
     };
     let report = compare(
         &gpu,

@@ -66,6 +66,7 @@ pub fn run(options: &obscura::GpuOptions, args: &DemoArgs) -> Result<()> {
             guard_band,
             timing_frames: args.timing.timing_frames,
             diff_scale: Some(PAGE_DIFF_SCALE),
+            reference_image: None,
         };
         let report = compare(
             &gpu,

@@ -107,10 +107,11 @@ pub struct ReportInput<'a> {
     pub height: u32,
     /// Guard band the frame was rendered with, in pixels (printed only).
     pub guard_band: u32,
-    /// How the reference was computed: `"vao"`, `"vao-mean"` or `"hemisphere"`.
+    /// How the reference was computed: `"vao"`, `"vao-mean"` or `"hemisphere"`, or where it
+    /// came from: `"image 'FILE'"` for an outside renderer's image (`compare --reference-image`).
     pub reference_model: &'a str,
     /// Hemisphere rays per pixel; `Some` exactly when `reference_model` is
-    /// `"hemisphere"`, `None` for the `"vao"` and `"vao-mean"` models.
+    /// `"hemisphere"`, `None` for the `"vao"` and `"vao-mean"` models and an image.
     pub spp: Option<u32>,
     /// Reference AO, the ground truth every technique is compared against.
     pub reference: &'a [f32],
@@ -513,8 +514,15 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
         ReportError::Input(format!("a {w}x{h} image is too large for this platform"))
     })?;
 
+    let image = input.reference_model.starts_with("image '");
     match (input.reference_model, input.spp) {
         ("vao" | "vao-mean", None) => {}
+        (_, None) if image => {}
+        (model, Some(spp)) if image => {
+            return Err(ReportError::Input(format!(
+                "spp is Some({spp}) but the reference {model} was not traced here: pass spp: None"
+            )))
+        }
         ("vao" | "vao-mean", Some(spp)) => {
             return Err(ReportError::Input(format!(
                 "spp is Some({spp}) but the \"vao\" reference model has no rays per pixel: \
@@ -530,7 +538,8 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
         }
         (model, _) => {
             return Err(ReportError::Input(format!(
-                "unknown reference_model {model:?}: use \"vao\", \"vao-mean\" or \"hemisphere\""
+                "unknown reference_model {model:?}: use \"vao\", \"vao-mean\", \"hemisphere\" or \
+                 \"image 'FILE'\""
             )))
         }
     }
