@@ -17,7 +17,8 @@ struct Cli {
     /// Use the first adapter whose name contains this (see `obscura info`).
     #[arg(long, global = true)]
     adapter: Option<String>,
-    /// Force a backend: vulkan, metal, dx12 or gl (also OBSCURA_BACKEND).
+    /// Force a backend: vulkan, metal, dx12 or gl (also OBSCURA_BACKEND). On gl only `info` and
+    /// the ground truth run: the AO passes refuse it with what to use instead.
     #[arg(long, global = true)]
     backend: Option<String>,
     #[command(subcommand)]

@@ -59,6 +59,18 @@ pub enum GpuError {
         /// wgpu's error.
         source: wgpu::RequestDeviceError,
     },
+    /// An adapter on wgpu's GL backend, whose shaders and formats obscura's passes do not fit
+    /// ([`Gpu::check_backend`]).
+    #[error(
+        "'{adapter}' runs on wgpu's GL backend, where obscura's passes cannot run (its GLSL has no \
+         textureLoad of depth textures, and R32Float is no render target there): use a Vulkan, \
+         Metal or DX12 adapter (`obscura info` lists them; on Linux install your GPU's Vulkan \
+         driver, or Mesa's software one: `sudo apt-get install mesa-vulkan-drivers`)"
+    )]
+    UnsupportedBackend {
+        /// The adapter's name.
+        adapter: String,
+    },
     /// wgpu validation errors raised since the last check ([`Gpu::check_errors`]), one a line.
     #[error("GPU validation error: {0}")]
     Validation(String),
@@ -269,6 +281,16 @@ impl Gpu {
         }
     }
 
+    /// Whether obscura's passes can run on this adapter's backend: not on wgpu's GL backend
+    /// (measured on Mesa's llvmpipe, OpenGL 4.5: naga's GLSL has no `textureLoad` of depth
+    /// textures, and wgpu's downlevel rules refuse `R32Float` render targets), so
+    /// [`crate::Renderer::new`] and [`crate::AmbientOcclusion::new`] refuse it with a message
+    /// saying what to use instead, rather than a wgpu validation error. `obscura info` still
+    /// describes a GL adapter.
+    pub fn check_backend(&self) -> Result<(), GpuError> {
+        backend_supported(&self.summary.name, self.adapter.get_info().backend)
+    }
+
     /// Wait for all submitted work, then report any validation error raised since the last check.
     pub fn finish(&self) -> Result<(), GpuError> {
         self.device
@@ -440,6 +462,16 @@ pub(crate) fn pipeline_from_module(
     })
 }
 
+/// [`Gpu::check_backend`] for adapter `adapter` on `backend`.
+fn backend_supported(adapter: &str, backend: wgpu::Backend) -> Result<(), GpuError> {
+    if backend == wgpu::Backend::Gl {
+        return Err(GpuError::UnsupportedBackend {
+            adapter: adapter.to_owned(),
+        });
+    }
+    Ok(())
+}
+
 /// The optional features obscura uses where the adapter has them (and [`Gpu::new`] requests):
 /// pass timings, fragment counts, render targets of the formats WebGPU does not guarantee
 /// (the G-buffer's `R32Float`), early tests for the stochastic depth map, 64-bit atomics for
@@ -508,4 +540,32 @@ pub fn texture_2d(
         usage,
         view_formats: &[],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gl_backend_is_refused_with_what_to_use_instead() {
+        let err = backend_supported("llvmpipe (LLVM 15.0.6, 256 bits)", wgpu::Backend::Gl)
+            .unwrap_err()
+            .to_string();
+        for needle in [
+            "'llvmpipe (LLVM 15.0.6, 256 bits)'",
+            "GL backend",
+            "Vulkan",
+            "mesa-vulkan-drivers",
+        ] {
+            assert!(err.contains(needle), "{needle}: {err}");
+        }
+        for backend in [
+            wgpu::Backend::Vulkan,
+            wgpu::Backend::Metal,
+            wgpu::Backend::Dx12,
+            wgpu::Backend::BrowserWebGpu,
+        ] {
+            assert!(backend_supported("any", backend).is_ok(), "{backend:?}");
+        }
+    }
 }

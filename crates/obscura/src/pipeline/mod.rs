@@ -103,6 +103,7 @@ impl AmbientOcclusion {
         estimator_debug: bool,
     ) -> Result<Self, Error> {
         settings.validate()?;
+        gpu.check_backend()?;
         let device = &gpu.device;
         let row = settings.technique.row();
         let needs = settings.technique.needs();

@@ -75,6 +75,7 @@ impl Renderer {
         guard_band: u32,
     ) -> Result<Self, Error> {
         settings.validate()?;
+        gpu.check_backend()?;
         if let Some(warning) = scene
             .check_extent()
             .map_err(|e| Error::Input(e.to_string()))?
