@@ -2,10 +2,14 @@
 #![allow(dead_code)]
 
 use glam::{Mat4, UVec2, Vec2, Vec3};
+use obscura::gpu::{read_texture_bytes, read_texture_f32};
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::scene::{Camera, Material, Scene};
 use obscura::settings::AoSettings;
-use obscura::{Gpu, GpuOptions, Renderer, ScreenGeometry, Technique};
+use obscura::{
+    AmbientOcclusion, EngineFrame, EngineInput, Gpu, GpuOptions, Renderer, SceneResources,
+    ScreenGeometry, Technique,
+};
 
 /// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI). As the CLI does, gives
 /// Mesa's Vulkan window-system layer a runtime directory when XDG_RUNTIME_DIR is unset, so the
@@ -169,6 +173,30 @@ pub fn hardware_depth(
             projection.project_point3(v).z
         })
         .collect()
+}
+
+/// The engine path (`EngineInput`, then `AmbientOcclusion`) for `frame` with `settings`: the AO,
+/// and the linear depth and view-space normals `EngineInput` made.
+pub fn engine_path_ao(
+    gpu: &Gpu,
+    screen: ScreenGeometry,
+    settings: &AoSettings,
+    frame: &EngineFrame,
+) -> (Vec<f32>, Vec<f32>, Vec<Vec3>) {
+    let input = EngineInput::new(gpu, screen);
+    let ao = AmbientOcclusion::new(gpu, settings, screen, SceneResources::default()).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let textures = input.encode(&mut encoder, frame).unwrap();
+    ao.encode(&mut encoder, textures, None).unwrap();
+    gpu.queue.submit([encoder.finish()]);
+    let depth = read_texture_f32(gpu, textures.depth, 1).unwrap();
+    let bytes = read_texture_bytes(gpu, textures.normals, 8).unwrap();
+    let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+    let normals = halves
+        .chunks_exact(4)
+        .map(|c| Vec3::new(c[0].to_f32(), c[1].to_f32(), c[2].to_f32()))
+        .collect();
+    (ao.read_output().unwrap(), depth, normals)
 }
 
 /// A `width`×`height` texture of `format` (`texel` bytes each) holding `bytes`, with the usages

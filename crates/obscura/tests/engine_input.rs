@@ -7,7 +7,6 @@ mod common;
 use common::*;
 use glam::camera::rh::proj::directx as proj;
 use glam::{Mat4, Vec3};
-use obscura::gpu::{read_texture_bytes, read_texture_f32};
 use obscura::reference::cpu_vao::GBufferImage;
 use obscura::{
     AmbientOcclusion, AoSettings, EngineFrame, EngineInput, EngineNormals, FrameView, Gpu,
@@ -32,29 +31,6 @@ fn our_frame(gpu: &Gpu, settings: &AoSettings) -> (GBufferImage, Vec<f32>, Frame
 
 fn upload(gpu: &Gpu, format: wgpu::TextureFormat, bytes: &[u8], texel: u32) -> wgpu::Texture {
     upload_texture(gpu, format, (W + 2 * BAND, H + 2 * BAND), bytes, texel)
-}
-
-/// AO of `textures` through the engine path with `settings`.
-fn engine_ao(
-    gpu: &Gpu,
-    screen: ScreenGeometry,
-    settings: &AoSettings,
-    frame: &EngineFrame,
-) -> (Vec<f32>, Vec<f32>, Vec<Vec3>) {
-    let input = EngineInput::new(gpu, screen);
-    let ao = AmbientOcclusion::new(gpu, settings, screen, SceneResources::default()).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    let textures = input.encode(&mut encoder, frame).unwrap();
-    ao.encode(&mut encoder, textures, None).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let depth = read_texture_f32(gpu, textures.depth, 1).unwrap();
-    let bytes = read_texture_bytes(gpu, textures.normals, 8).unwrap();
-    let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
-    let normals = halves
-        .chunks_exact(4)
-        .map(|c| Vec3::new(c[0].to_f32(), c[1].to_f32(), c[2].to_f32()))
-        .collect();
-    (ao.read_output().unwrap(), depth, normals)
 }
 
 fn settings() -> AoSettings {
@@ -119,7 +95,7 @@ fn every_depth_convention_gives_our_linear_depth_and_ao() {
                 encoding: NormalEncoding::Signed,
             },
         };
-        let (ao, linear, _) = engine_ao(&gpu, from, &s, &frame);
+        let (ao, linear, _) = engine_path_ao(&gpu, from, &s, &frame);
         let mut worst = 0.0f32;
         for (a, b) in linear.iter().zip(&g.depth) {
             assert_eq!(*a == 0.0, *b == 0.0, "{what}: background differs");
@@ -177,7 +153,7 @@ fn normals_are_reconstructed_or_converted() {
         projection,
         normals: EngineNormals::Reconstruct,
     };
-    let (ao, _, normals) = engine_ao(&gpu, screen, &s, &frame);
+    let (ao, _, normals) = engine_path_ao(&gpu, screen, &s, &frame);
     let (fw, fh) = (g.width as i32, g.height as i32);
     let position = |i: i32| {
         let p = glam::IVec2::new(i % fw, i / fw).as_vec2() + 0.5;
@@ -268,7 +244,7 @@ fn normals_are_reconstructed_or_converted() {
             view_from_world: view.view_matrix(),
         },
     };
-    let (_, _, normals) = engine_ao(&gpu, screen, &s, &frame);
+    let (_, _, normals) = engine_path_ao(&gpu, screen, &s, &frame);
     let worst = angle_stats(&normals);
     // 8-bit components: at most half a step (1/255) per component.
     assert!(
@@ -334,7 +310,7 @@ fn orthographic_depth_gives_the_ao_of_a_distant_narrow_camera() {
         projection,
         normals: EngineNormals::Reconstruct,
     };
-    let (ao, linear, _) = engine_ao(&gpu, screen, &s, &frame);
+    let (ao, linear, _) = engine_path_ao(&gpu, screen, &s, &frame);
     for (a, b) in linear.iter().zip(&g.depth).filter(|(_, b)| **b > 0.0) {
         assert!(
             (a - b).abs() < 2e-3 * b,

@@ -13,8 +13,7 @@ use common::*;
 use obscura::settings::Resolution;
 use obscura::technique::{Needs, Schedule};
 use obscura::{
-    scene, AmbientOcclusion, AoSettings, EngineFrame, EngineInput, EngineNormals, Gpu, Renderer,
-    SceneResources, ScreenGeometry, Technique,
+    scene, AoSettings, EngineFrame, EngineNormals, Gpu, Renderer, ScreenGeometry, Technique,
 };
 
 /// A device of the test adapter with WebGPU's default limits and no optional features.
@@ -102,8 +101,8 @@ fn every_technique_runs_within_webgpu_default_limits_and_gives_the_same_image() 
     assert!(compared > 3 * Technique::all().count(), "{compared}");
 }
 
-/// The engine path (`EngineInput`, then `AmbientOcclusion`) on `gpu`: the stairs close-up's
-/// depth as an engine's reversed-Z `R32Float` NDC depth, its normals reconstructed from it.
+/// The engine path on `gpu`: the stairs close-up's depth as an engine's reversed-Z `R32Float`
+/// NDC depth, its normals reconstructed from it.
 fn engine_ao(gpu: &Gpu, settings: &AoSettings, ndc: &[f32], projection: glam::Mat4) -> Vec<f32> {
     let (w, h, band) = (96, 64, 16);
     let screen = ScreenGeometry::from_projection(projection, w, h, band).unwrap();
@@ -114,20 +113,14 @@ fn engine_ao(gpu: &Gpu, settings: &AoSettings, ndc: &[f32], projection: glam::Ma
         bytemuck::cast_slice(ndc),
         4,
     );
-    let input = EngineInput::new(gpu, screen);
-    let ao = AmbientOcclusion::new(gpu, settings, screen, SceneResources::default()).unwrap();
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
     let frame = EngineFrame {
         depth: &depth,
         projection,
         normals: EngineNormals::Reconstruct,
     };
-    let textures = input.encode(&mut encoder, &frame).unwrap();
-    ao.encode(&mut encoder, textures, None).unwrap();
-    gpu.queue.submit([encoder.finish()]);
-    let out = ao.read_output().unwrap();
+    let (ao, _, _) = engine_path_ao(gpu, screen, settings, &frame);
     gpu.finish().unwrap();
-    out
+    ao
 }
 
 #[test]

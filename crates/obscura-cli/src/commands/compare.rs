@@ -155,10 +155,11 @@ pub fn compare(
         c.guard_band,
         obscura::near_plane(c.scene),
     );
-    let reference_image = match c.reference_image {
-        Some(image) => image.values.clone(),
+    let traced;
+    let reference_image: &[f32] = match c.reference_image {
+        Some(image) => &image.values,
         None => {
-            let traced = compute_or_load(
+            let image = compute_or_load(
                 reference.tracer(Some(gpu)),
                 c.scene,
                 view,
@@ -166,7 +167,8 @@ pub fn compare(
                 !reference.no_cache,
             )?;
             let blur = ao.settings(obscura::Technique::Vao)?.blur;
-            as_compared(traced, model, &blur, &gbuffer, &view)
+            traced = as_compared(image, model, &blur, &gbuffer, &view);
+            &traced
         }
     };
     std::fs::create_dir_all(out)
@@ -180,7 +182,7 @@ pub fn compare(
         guard_band: c.guard_band,
         reference_model: model_name,
         spp,
-        reference: &reference_image,
+        reference: reference_image,
         depth: &depth,
         techniques: images
             .iter()
