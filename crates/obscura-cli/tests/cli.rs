@@ -1684,8 +1684,70 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
             );
         }
     }
-    // Wrong size, a path, a model alongside, or values that are not numbers: one clear error
-    // each, and no report.
+    // The same image as a 16-bit PNG through the sRGB transfer (as a renderer's display
+    // output): with --reference-srgb the numbers are the traced ones up to the PNG's
+    // quantisation; read as linear, the reference is brighter and the MSE off.
+    let linear = obscura::output::read_ao(&image).unwrap();
+    let encode = |v: f32| {
+        let v = v.clamp(0.0, 1.0);
+        let e = if v <= 0.003_130_8 {
+            12.92 * v
+        } else {
+            1.055 * v.powf(1.0 / 2.4) - 0.055
+        };
+        (e * 65535.0).round() as u16
+    };
+    let png = dir.path().join("outside-srgb.png");
+    image::ImageBuffer::<image::Luma<u16>, _>::from_raw(
+        64,
+        40,
+        linear.values.iter().map(|&v| encode(v)).collect::<Vec<_>>(),
+    )
+    .unwrap()
+    .save(&png)
+    .unwrap();
+    let compare_png = |name: &str, srgb: bool| {
+        let out = dir.path().join(name);
+        let args = [
+            &["compare"][..],
+            &view,
+            &techniques,
+            &["--reference-image", png.to_str().unwrap()],
+            if srgb { &["--reference-srgb"][..] } else { &[] },
+            &["--out", out.to_str().unwrap()],
+        ];
+        let o = obscura_cached(&args.concat(), &cache);
+        assert!(o.status.success(), "{}", stderr(&o));
+        report(&out)
+    };
+    let decoded = compare_png("srgb", true);
+    assert_eq!(
+        decoded["reference"]["model"],
+        "image 'outside-srgb.png' (sRGB decoded)"
+    );
+    let as_linear = compare_png("srgb-as-linear", false);
+    for ((x, y), z) in decoded["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(rb)
+        .zip(as_linear["results"].as_array().unwrap())
+    {
+        let (x, y, z) = (
+            x["mse"].as_f64().unwrap(),
+            y["mse"].as_f64().unwrap(),
+            z["mse"].as_f64().unwrap(),
+        );
+        // 16 bits: each decoded value within 2e-5 of the EXR's.
+        assert!((x - y).abs() <= 1e-3 * y + 1e-7, "mse {x} vs {y}");
+        // Undecoded, the encoding moves the MSE by more than 5 % (18 % here when written).
+        assert!(
+            (z - y).abs() > 0.05 * y,
+            "read as linear: mse {z} against {y}"
+        );
+    }
+    // Wrong size, a path, a model alongside, sRGB decoding of an EXR, or values that are not
+    // numbers: one clear error each, and no report.
     let nan = dir.path().join("nan.exr");
     let mut values = vec![1.0f32; 64 * 40];
     values[100] = f32::NAN;
@@ -1707,7 +1769,11 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
         "{}",
         stderr(&o)
     );
-    let cases: [(&[&str], &[&str]); 3] = [
+    let cases: [(&[&str], &[&str]); 4] = [
+        (
+            &["--size", "64x40", "--reference-srgb"],
+            &["--reference-srgb", "linear values", "outside.exr"],
+        ),
         (
             &["--size", "64x48"],
             &["--reference-image", "64x40", "--size 64x40"],

@@ -31,6 +31,11 @@ pub struct CompareArgs {
     /// is: not blurred like the vao model's reference.
     #[arg(long, conflicts_with = "reference_model")]
     reference_image: Option<PathBuf>,
+    /// The --reference-image's values are sRGB-encoded (a PNG saved through a display transform,
+    /// as renderers often write 8-bit images): decode them to linear AO before comparing. Not
+    /// with an EXR, whose values are linear.
+    #[arg(long, requires = "reference_image")]
+    reference_srgb: bool,
     #[command(flatten)]
     reference: ReferenceArgs,
     #[command(flatten)]
@@ -80,9 +85,24 @@ pub struct ExternalReference {
 }
 
 impl ExternalReference {
-    /// The image at `path`, which must be `width`×`height` with finite values.
-    pub fn load(path: &Path, (width, height): (u32, u32)) -> Result<Self> {
-        let image = obscura::output::read_ao(path)?;
+    /// The image at `path`, which must be `width`×`height` with finite values; `srgb`: its values
+    /// are sRGB-encoded (a PNG only) and are decoded to linear.
+    pub fn load(path: &Path, (width, height): (u32, u32), srgb: bool) -> Result<Self> {
+        let format = obscura::output::ImageFormat::from_path(path)?;
+        if srgb && format == obscura::output::ImageFormat::Exr {
+            anyhow::bail!(
+                "--reference-srgb with --reference-image '{}': an EXR holds linear values; leave \
+                 --reference-srgb out (it is for PNGs saved with the sRGB transfer)",
+                path.display()
+            );
+        }
+        let mut image = obscura::output::read_ao(path)?;
+        if srgb {
+            image
+                .values
+                .iter_mut()
+                .for_each(|v| *v = srgb_to_linear(*v));
+        }
         if (image.width, image.height) != (width, height) {
             anyhow::bail!(
                 "--reference-image '{}' is {}x{} but the comparison renders {width}x{height}: \
@@ -105,9 +125,22 @@ impl ExternalReference {
         }
         let file = path.file_name().unwrap_or(path.as_os_str());
         Ok(Self {
-            name: format!("image '{}'", file.to_string_lossy()),
+            name: format!(
+                "image '{}'{}",
+                file.to_string_lossy(),
+                if srgb { " (sRGB decoded)" } else { "" }
+            ),
             values: image.values,
         })
+    }
+}
+
+/// The sRGB transfer function's inverse (IEC 61966-2-1): an encoded value in [0, 1] to linear.
+fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
     }
 }
 
@@ -258,7 +291,11 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         Some(_) if args.path.path.is_some() => anyhow::bail!(
             "--reference-image is one view's AO and --path renders many: leave one of them out"
         ),
-        Some(path) => Some(ExternalReference::load(path, (width, height))?),
+        Some(path) => Some(ExternalReference::load(
+            path,
+            (width, height),
+            args.reference_srgb,
+        )?),
         None => None,
     };
     let scene = args.scene.load()?;
