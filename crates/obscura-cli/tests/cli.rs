@@ -1645,18 +1645,24 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
     let report = |out: &Path| -> serde_json::Value {
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
     };
+    // `compare` against `file` (with `extra` flags) into `name`: its stderr and report.
+    let compare_with = |file: &Path, extra: &[&str], name: &str| {
+        let out = dir.path().join(name);
+        let args = [
+            &["compare"][..],
+            &view,
+            &techniques,
+            &["--reference-image", file.to_str().unwrap()],
+            extra,
+            &["--out", out.to_str().unwrap()],
+        ];
+        let o = obscura_cached(&args.concat(), &cache);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (stderr(&o), report(&out))
+    };
     // compare against the image and against the same ground truth traced by compare itself:
     // the same numbers for every technique.
-    let with_image = dir.path().join("with-image");
-    let args = [
-        &["compare"][..],
-        &view,
-        &techniques,
-        &["--reference-image", image.to_str().unwrap()],
-        &["--out", with_image.to_str().unwrap()],
-    ];
-    let o = obscura_cached(&args.concat(), &cache);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let (_, a) = compare_with(&image, &[], "with-image");
     let traced = dir.path().join("traced");
     let args = [
         &["compare"][..],
@@ -1667,27 +1673,57 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
     ];
     let o = obscura_cached(&args.concat(), &cache);
     assert!(o.status.success(), "{}", stderr(&o));
-    let (a, b) = (report(&with_image), report(&traced));
+    let b = report(&traced);
     assert_eq!(a["reference"]["model"], "image 'outside.exr'");
     assert_eq!(b["reference"]["model"], "hemisphere");
-    let (ra, rb) = (
-        a["results"].as_array().unwrap(),
-        b["results"].as_array().unwrap(),
-    );
-    assert_eq!(ra.len(), 2);
-    for (x, y) in ra.iter().zip(rb) {
-        for key in ["mse", "mae", "ssim", "halo_bright", "halo_dark"] {
-            let (x, y) = (x[key].as_f64().unwrap(), y[key].as_f64().unwrap());
-            assert!(
-                (x - y).abs() <= 1e-9 * y.abs().max(1e-9),
-                "{key}: {x} vs {y}"
-            );
+    let rb = b["results"].as_array().unwrap();
+    let same_numbers = |a: &serde_json::Value| {
+        let ra = a["results"].as_array().unwrap();
+        assert_eq!(ra.len(), 2);
+        for (x, y) in ra.iter().zip(rb) {
+            for key in ["mse", "mae", "ssim", "halo_bright", "halo_dark"] {
+                let (x, y) = (x[key].as_f64().unwrap(), y[key].as_f64().unwrap());
+                assert!(
+                    (x - y).abs() <= 1e-9 * y.abs().max(1e-9),
+                    "{key}: {x} vs {y}"
+                );
+            }
+        }
+    };
+    same_numbers(&a);
+    // The same image with its background (no geometry: alpha 0 in a PNG render of the view)
+    // set to 0, as some renderers write it: the same numbers, and a note saying how many
+    // background pixels were taken as 1.
+    let render_png = dir.path().join("coverage.png");
+    let args = [
+        &["render"][..],
+        &view[..4],
+        &["--out", render_png.to_str().unwrap()],
+    ];
+    let o = obscura_cached(&args.concat(), &cache);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let coverage = image::open(&render_png).unwrap().to_luma_alpha8();
+    let linear = obscura::output::read_ao(&image).unwrap();
+    let mut black_background = linear.values.clone();
+    let mut background = 0;
+    for (v, p) in black_background.iter_mut().zip(coverage.pixels()) {
+        if p[1] == 0 {
+            *v = 0.0;
+            background += 1;
         }
     }
+    assert!(background > 0, "the view has no background to test");
+    let black = dir.path().join("outside-black-background.exr");
+    obscura::output::write_ao(&black, 64, 40, &black_background).unwrap();
+    let (err, with_black) = compare_with(&black, &[], "with-black");
+    assert!(
+        err.contains(&format!("{background} background pixels")),
+        "{err}"
+    );
+    same_numbers(&with_black);
     // The same image as a 16-bit PNG through the sRGB transfer (as a renderer's display
     // output): with --reference-srgb the numbers are the traced ones up to the PNG's
     // quantisation; read as linear, the reference is brighter and the MSE off.
-    let linear = obscura::output::read_ao(&image).unwrap();
     let encode = |v: f32| {
         let v = v.clamp(0.0, 1.0);
         let e = if v <= 0.003_130_8 {
@@ -1706,26 +1742,12 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
     .unwrap()
     .save(&png)
     .unwrap();
-    let compare_png = |name: &str, srgb: bool| {
-        let out = dir.path().join(name);
-        let args = [
-            &["compare"][..],
-            &view,
-            &techniques,
-            &["--reference-image", png.to_str().unwrap()],
-            if srgb { &["--reference-srgb"][..] } else { &[] },
-            &["--out", out.to_str().unwrap()],
-        ];
-        let o = obscura_cached(&args.concat(), &cache);
-        assert!(o.status.success(), "{}", stderr(&o));
-        report(&out)
-    };
-    let decoded = compare_png("srgb", true);
+    let (_, decoded) = compare_with(&png, &["--reference-srgb"], "srgb");
     assert_eq!(
         decoded["reference"]["model"],
         "image 'outside-srgb.png' (sRGB decoded)"
     );
-    let as_linear = compare_png("srgb-as-linear", false);
+    let (_, as_linear) = compare_with(&png, &[], "srgb-as-linear");
     for ((x, y), z) in decoded["results"]
         .as_array()
         .unwrap()

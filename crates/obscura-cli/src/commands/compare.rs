@@ -28,7 +28,8 @@ pub struct CompareArgs {
     /// PNG, --size pixels, rows top to bottom, 1 = unoccluded, the first channel (PNG values
     /// read as 0..1, no gamma). Render it with the same camera (--camera, or --eye, --target and
     /// --fov, the vertical field of view) and AO distance (the techniques' radius). Used as it
-    /// is: not blurred like the vao model's reference.
+    /// is (not blurred like the vao model's reference), but for its background: pixels with no
+    /// geometry in the view count as 1 whatever the file holds there.
     #[arg(long, conflicts_with = "reference_model")]
     reference_image: Option<PathBuf>,
     /// The --reference-image's values are sRGB-encoded (a PNG saved through a display transform,
@@ -135,6 +136,29 @@ impl ExternalReference {
     }
 }
 
+/// An outside reference with its background pixels (no geometry in our G-buffer) set to 1, as
+/// obscura's own images have them: renderers write the background as 0, 1 or anything, and it
+/// would otherwise count as error where no technique shades anything. Says on stderr how many
+/// background pixels held another value.
+fn outside_background_unoccluded(image: &ExternalReference, depth: &[f32]) -> Vec<f32> {
+    let mut values = image.values.clone();
+    let mut changed = 0;
+    for (v, &d) in values.iter_mut().zip(depth) {
+        if !obscura::metrics::has_geometry(d) {
+            changed += usize::from(*v != 1.0);
+            *v = 1.0;
+        }
+    }
+    if changed > 0 {
+        eprintln!(
+            "note: {changed} background pixels of the {} (no geometry there in this view) held \
+             values other than 1; they are compared as 1 (unoccluded), as obscura writes them",
+            image.name
+        );
+    }
+    values
+}
+
 /// The sRGB transfer function's inverse (IEC 61966-2-1): an encoded value in [0, 1] to linear.
 fn srgb_to_linear(v: f32) -> f32 {
     if v <= 0.04045 {
@@ -190,7 +214,10 @@ pub fn compare(
     );
     let traced;
     let reference_image: &[f32] = match c.reference_image {
-        Some(image) => &image.values,
+        Some(image) => {
+            traced = outside_background_unoccluded(image, &depth);
+            &traced
+        }
         None => {
             let image = compute_or_load(
                 reference.tracer(Some(gpu)),

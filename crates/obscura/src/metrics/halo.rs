@@ -26,7 +26,7 @@ pub struct HaloError {
 /// Whether a linear view depth sample is geometry: positive and finite.
 /// Anything else (≤ 0, NaN, ±∞) is background.
 #[inline]
-fn has_geometry(d: f32) -> bool {
+pub fn has_geometry(d: f32) -> bool {
     d.is_finite() && d > 0.0
 }
 

@@ -60,7 +60,7 @@ pub mod temporal;
 // `self::` keeps these imports unambiguous whatever extern crates the host
 // crate has.
 pub use self::error::MetricsError;
-pub use self::halo::{discontinuity_mask, halo_band, halo_error, HaloError};
+pub use self::halo::{discontinuity_mask, halo_band, halo_error, has_geometry, HaloError};
 pub use self::input::Image;
 pub use self::pointwise::{mae, mse, psnr};
 pub use self::ssim::{
