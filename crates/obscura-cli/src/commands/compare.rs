@@ -212,11 +212,12 @@ pub fn compare(
         c.guard_band,
         obscura::near_plane(c.scene),
     );
-    let traced;
+    // The reference's values, owned here whichever way they came.
+    let reference_values;
     let reference_image: &[f32] = match c.reference_image {
         Some(image) => {
-            traced = outside_background_unoccluded(image, &depth);
-            &traced
+            reference_values = outside_background_unoccluded(image, &depth);
+            &reference_values
         }
         None => {
             let image = compute_or_load(
@@ -227,8 +228,8 @@ pub fn compare(
                 !reference.no_cache,
             )?;
             let blur = ao.settings(obscura::Technique::Vao)?.blur;
-            traced = as_compared(image, model, &blur, &gbuffer, &view);
-            &traced
+            reference_values = as_compared(image, model, &blur, &gbuffer, &view);
+            &reference_values
         }
     };
     std::fs::create_dir_all(out)
