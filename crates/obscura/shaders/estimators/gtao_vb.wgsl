@@ -49,6 +49,11 @@ override SAMPLE_COUNT: u32 = 8u;
 // a constant, so its slice's state is read without a choice among the slices, and its direction
 // from the table entry of the slice's first sample, made once per slice.
 override STEPS: u32 = 2u;
+// Slices (`slices`; SAMPLE_COUNT = slices × 2 × STEPS): a constant, so the per-slice loops over the
+// pixel's and the accumulator's arrays unroll and those arrays stay in registers. With the
+// uniform `params.slices` as their bound they were indexed at run time (`gtao-vb` 18 % slower
+// at its defaults on an H100, BENCHMARKS.md).
+override SLICES: u32 = SAMPLE_COUNT / (2u * STEPS);
 // Weigh free sectors by the cosine to the normal (`gtao_vb.cosine_weighted`, ours): a constant, so
 // that seed 003's uniform count compiles without it.
 override COSINE_WEIGHTED: bool = false;
@@ -109,7 +114,7 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     p.rotation = pattern.xy;
     p.jitter = pattern.z;
     p.step_px = select(0.0, base.radius_px / f32(STEPS), base.radius_px >= 1.0);
-    for (var j = 0u; j < params.slices; j++) {
+    for (var j = 0u; j < SLICES; j++) {
         let k = params.samples[j * 2u * STEPS];
         let d = vec3<f32>(rotate_by(k.xy, p.rotation), 0.0);
         let tangent = normalize(d - p.v * dot(d, p.v));
@@ -278,7 +283,7 @@ fn cosine_weighted_visible(p: EstimatorPixel, j: u32, mask: u32) -> vec2<f32> {
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     var visible = 0.0;
     var open = 0.0;
-    for (var j = 0u; j < params.slices; j++) {
+    for (var j = 0u; j < SLICES; j++) {
         if (COSINE_WEIGHTED) {
             let v = cosine_weighted_visible(p, j, acc.masks[j]);
             visible += v.x;
@@ -295,10 +300,10 @@ fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // the pixel's slices' sectors.
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
     var occupied = 0u;
-    for (var j = 0u; j < params.slices; j++) {
+    for (var j = 0u; j < SLICES; j++) {
         occupied += countOneBits(acc.masks[j]);
     }
-    return f32(occupied) / (32.0 * f32(params.slices));
+    return f32(occupied) / (32.0 * f32(SLICES));
 }
 
 // The bent normal (`bent_normals`, seed 001 §4; ours for the bitmask): per slice, the mean
@@ -318,7 +323,7 @@ fn estimator_bent_normal(
     let step = 3.141592653589793 / 32.0;
     var visible = vec3<f32>(0.0);
     var open = vec3<f32>(0.0);
-    for (var j = 0u; j < params.slices; j++) {
+    for (var j = 0u; j < SLICES; j++) {
         let g = vec2<f32>(sin(p.normal_angles[j]), cos(p.normal_angles[j]));
         var free = ~acc.masks[j];
         var local = vec2<f32>(0.0);
