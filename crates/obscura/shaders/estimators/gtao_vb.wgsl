@@ -31,6 +31,7 @@ struct GtaoVbParams {
     exponent: f32,
     // 0 ceil, 1 round, 2 floor (seed 003: touch, half, whole sector).
     activation: u32,
+    // As set; the shader reads the constants SLICES and STEPS instead (unrolled loops).
     slices: u32,
     steps: u32,
     _pad0: u32,
