@@ -33,32 +33,16 @@ struct SinglePass {
 override DEFERRED_RESOLVE: bool = false;
 
 fn single_pass(p: EstimatorPixel) -> SinglePass {
-    let deferred = DEFERRED_RESOLVE && SAMPLE_COUNT <= 32u;
     var r: SinglePass;
     r.acc = estimator_accum_init();
     r.bent_visible = vec3<f32>(0.0);
     r.bent_open = vec3<f32>(0.0);
     // DEFERRED_RESOLVE: the samples left for the loop below, one bit each.
     var flagged = 0u;
+    // Written out as one call per sample where no costly resolve is inline
+    // (schedules::write_out_sample_loop, which finds this loop by its text).
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
-        let s = estimator_sample(p, i);
-        if (!estimator_sample_active(s)) {
-            continue;
-        }
-        let l = source_lookup(p, s);
-        if (deferred && l.trace) {
-            flagged |= 1u << i;
-        } else {
-            var value = l.value;
-            if (l.trace) {
-                value = source_resolve(p, s, l);
-            }
-            r = single_pass_value(p, s, r, value);
-        }
-        r.acc = estimator_accum_sample(r.acc, s);
-        if (BENT_NORMALS) {
-            r.bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
-        }
+        single_pass_sample(p, i, &r, &flagged);
     }
     // The flagged samples, each made again from its index with its first look (a cached read)
     // rather than held in registers.
@@ -69,6 +53,28 @@ fn single_pass(p: EstimatorPixel) -> SinglePass {
         r = single_pass_value(p, s, r, source_resolve(p, s, source_lookup(p, s)));
     }
     return r;
+}
+
+// Sample `i` of the loop above: its value into `r`, or its bit into `flagged` (DEFERRED_RESOLVE).
+fn single_pass_sample(p: EstimatorPixel, i: u32, r: ptr<function, SinglePass>, flagged: ptr<function, u32>) {
+    let s = estimator_sample(p, i);
+    if (!estimator_sample_active(s)) {
+        return;
+    }
+    let l = source_lookup(p, s);
+    if (DEFERRED_RESOLVE && SAMPLE_COUNT <= 32u && l.trace) {
+        *flagged |= 1u << i;
+    } else {
+        var value = l.value;
+        if (l.trace) {
+            value = source_resolve(p, s, l);
+        }
+        *r = single_pass_value(p, s, *r, value);
+    }
+    (*r).acc = estimator_accum_sample((*r).acc, s);
+    if (BENT_NORMALS) {
+        (*r).bent_open += estimator_bent_sample(p, s, estimator_unoccluded(p, s));
+    }
 }
 
 // Adds sample `s`'s value to the loop's results.

@@ -383,18 +383,61 @@ fn dump_wgsl(label: &str, source: &str) {
         .chars()
         .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
         .collect();
-    let dir = std::path::Path::new(&dir);
-    let path = dir.join(format!("{name}-{:016x}.wgsl", hasher.finish()));
-    if path.exists() {
-        return;
+    let stem = format!("{name}-{:016x}", hasher.finish());
+    LAST_DUMPED.with(|last| *last.borrow_mut() = Some((label.to_owned(), stem.clone())));
+    let path = std::path::Path::new(&dir).join(format!("{stem}.wgsl"));
+    if !path.exists() {
+        dump_file(&path, source);
     }
-    // Through a file of this call's own, then a rename: tests on several threads may write the
-    // same module at once.
+}
+
+thread_local! {
+    /// The label and file stem of the module this thread dumped last: the pipeline made next
+    /// with that label is made from it (every pipeline is made right after its module).
+    static LAST_DUMPED: std::cell::RefCell<Option<(String, String)>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// With `OBSCURA_DUMP_WGSL=DIR`, write the `override` constants a compute pipeline was made with
+/// beside its module's WGSL: `STEM.CONSTANTS_HASH.constants`, one `NAME=VALUE` line each, so
+/// that a tool can compile exactly what the pipeline ran (`tools/pipeline-stats`: the driver's
+/// register count and other statistics). Nothing is written for a pipeline whose module this
+/// thread did not dump just before with the same label.
+fn dump_constants(label: &str, constants: &[(&str, f64)]) {
+    let Some(dir) = std::env::var_os("OBSCURA_DUMP_WGSL") else {
+        return;
+    };
+    let Some(stem) = LAST_DUMPED.with(|last| match &*last.borrow() {
+        Some((l, stem)) if l == label => Some(stem.clone()),
+        _ => None,
+    }) else {
+        return;
+    };
+    let text: String = constants
+        .iter()
+        .map(|(name, value)| format!("{name}={value}\n"))
+        .collect();
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut hasher);
+    let path =
+        std::path::Path::new(&dir).join(format!("{stem}.{:016x}.constants", hasher.finish()));
+    if !path.exists() {
+        dump_file(&path, &text);
+    }
+}
+
+/// Writes `text` to `path` through a file of this call's own, then a rename: tests on several
+/// threads may write the same file at once. A failed write is ignored (see [`dump_wgsl`]).
+fn dump_file(path: &std::path::Path, text: &str) {
     static CALLS: AtomicU32 = AtomicU32::new(0);
     let call = CALLS.fetch_add(1, Ordering::Relaxed);
+    let Some(dir) = path.parent() else {
+        return;
+    };
     let temporary = dir.join(format!(".{}-{call}.tmp", std::process::id()));
     let _ = std::fs::create_dir_all(dir)
-        .and_then(|()| std::fs::write(&temporary, source))
+        .and_then(|()| std::fs::write(&temporary, text))
         .and_then(|()| std::fs::rename(&temporary, path));
 }
 
@@ -448,6 +491,7 @@ pub(crate) fn pipeline_from_module(
     constants: &[(&str, f64)],
     layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
+    dump_constants(label, constants);
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout,

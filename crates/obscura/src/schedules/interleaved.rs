@@ -20,6 +20,7 @@ pub(crate) fn stage() -> Stage {
         schedule_entries: vec![entry::texture_array(SCHEDULE_DEPTH_LAYERS)],
         own_source: true,
         constants: Vec::new(),
+        unrolled: false,
     }
 }
 

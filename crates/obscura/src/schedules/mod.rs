@@ -38,6 +38,8 @@ pub(crate) struct Stage {
     /// first-layer lookup): the row's source WGSL is left out.
     pub own_source: bool,
     pub constants: Vec<(&'static str, f64)>,
+    /// The single pass's sample loop written out sample by sample ([`unrolled_samples`]).
+    pub unrolled: bool,
 }
 
 impl Stage {
@@ -104,18 +106,47 @@ pub(crate) fn pipeline(
     let mut constants = estimator.constants.clone();
     constants.extend_from_slice(source.constants());
     constants.extend_from_slice(&stage.constants);
+    let mut wgsl = compose(
+        estimator.wgsl,
+        &stage.source_wgsl(source.wgsl()),
+        &stage.parts,
+    );
+    if stage.unrolled {
+        wgsl = write_out_sample_loop(&wgsl, &constants);
+    }
     bindings::compute_pipeline(
         device,
         stage.label,
-        &compose(
-            estimator.wgsl,
-            &stage.source_wgsl(source.wgsl()),
-            &stage.parts,
-        ),
+        &wgsl,
         &constants,
         &bindings::by_group(&layouts),
     )
 }
+
+/// The single pass's sample loop in `wgsl` (single.wgsl) written out as one call per sample, for
+/// the SAMPLE_COUNT in `constants` (at most 32). The driver unrolls WGSL's loops as it sees fit,
+/// and NVIDIA's left this one a loop for GTAO at any settings, GTAO-VB with bent normals or at
+/// `high`, HBAO and SAO (its register counts and binary sizes: tools/pipeline-stats). Written
+/// out, each sample's kernel entry, slice and direction are constants and what a slice or a
+/// direction shares is made once: on an H100 (BENCHMARKS.md, 2026-12-05) `gtao` 18 % faster
+/// (21 % at `high`), `hbao` 12 %, `gtao-vb` with bent normals 9 % and at `high` 16 %,
+/// `gtao-vb-dual` 10 %; rows the driver had unrolled already within ±1.4 %.
+fn write_out_sample_loop(wgsl: &str, constants: &[(&str, f64)]) -> String {
+    let count = constants
+        .iter()
+        .find(|(name, _)| *name == "SAMPLE_COUNT")
+        .map(|&(_, n)| n as u32);
+    let Some(count @ 1..=32) = count else {
+        return wgsl.to_owned();
+    };
+    let calls: String = (0..count)
+        .map(|i| format!("    single_pass_sample(p, {i}u, &r, &flagged);\n"))
+        .collect();
+    wgsl.replace(SAMPLE_LOOP, &calls)
+}
+
+/// single.wgsl's sample loop, as [`write_out_sample_loop`] finds it.
+const SAMPLE_LOOP: &str = "    for (var i = 0u; i < SAMPLE_COUNT; i++) {\n        single_pass_sample(p, i, &r, &flagged);\n    }\n";
 
 /// What a schedule records one frame with: the device, the frame's inputs and group 0, and the
 /// row's estimator and source.
@@ -181,6 +212,29 @@ fn deferred_resolve(row: &TechniqueRow) -> bool {
     matches!(row.schedule, Schedule::Single | Schedule::Multiview)
         && row.estimator.defers_resolves()
         && row.source.costly_resolve()
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: `Some(false)` keeps every single pass's sample loop a loop, `Some(true)` writes
+    /// every one out.
+    static UNROLLED: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
+}
+
+/// Whether the single pass of `row` has its sample loop written out ([`write_out_sample_loop`]):
+/// where the loop's body holds no costly resolve. A body that resolves a stochastic depth map
+/// inline written out 8 to 32 times made those passes slower on an H100 (`sd-hbao+` 27 %,
+/// `sd-gtao-vb` 55 %, `sd-hbao` 6.9 times: the code outgrew the instruction cache), and with
+/// their resolves deferred to be written out they were still 8–16 % slower than with the loop
+/// (BENCHMARKS.md), so they keep it; rows that defer their resolves anyway (DEFERRED_RESOLVE:
+/// VAO and SSAO over the maps and column rays) resolve after the written-out samples.
+fn unrolled_samples(row: &TechniqueRow) -> bool {
+    #[cfg(test)]
+    if let Some(on) = UNROLLED.with(|u| u.get()) {
+        return on && matches!(row.schedule, Schedule::Single | Schedule::Multiview);
+    }
+    matches!(row.schedule, Schedule::Single | Schedule::Multiview)
+        && (!row.source.costly_resolve() || deferred_resolve(row))
 }
 
 #[cfg(test)]
@@ -256,6 +310,7 @@ impl SchedulePass {
             if settled_stops(row) {
                 stage.constants.push(("SD_SETTLED_STOPS", 1.0));
             }
+            stage.unrolled = unrolled_samples(row);
         }
         Ok(match schedule {
             Schedule::Single => SchedulePass::Single(single::Single::new(
@@ -345,7 +400,7 @@ impl SchedulePass {
 
 #[cfg(test)]
 mod tests {
-    use super::DISTINCT_DEPTHS;
+    use super::{DISTINCT_DEPTHS, UNROLLED};
     use crate::raster::test_support::gpu;
     use crate::settings::{Preset, SdSelection};
     use crate::{scene, AoSettings, Renderer, Technique};
@@ -412,6 +467,58 @@ mod tests {
         assert!(
             pixels_with_copies > 1000,
             "only {pixels_with_copies} map pixels hold a depth twice"
+        );
+    }
+
+    /// single.wgsl holds the loop that write_out_sample_loop writes out (else nothing would be).
+    #[test]
+    fn the_sample_loop_is_found_and_written_out() {
+        let wgsl =
+            super::write_out_sample_loop(crate::shaders::SCHEDULE_SINGLE, &[("SAMPLE_COUNT", 3.0)]);
+        assert!(!wgsl.contains(super::SAMPLE_LOOP));
+        for i in 0..3 {
+            assert!(wgsl.contains(&format!("single_pass_sample(p, {i}u, &r, &flagged);")));
+        }
+        assert!(!wgsl.contains("single_pass_sample(p, 3u"));
+    }
+
+    /// The single pass's sample loop written out sample by sample computes what the loop does,
+    /// pixel for pixel, AO and bent normals alike, on every row that writes it out: the first
+    /// layer, the second layer, a map with deferred resolves, the multi-view pass, at the
+    /// presets' sample counts (8 to 32).
+    #[test]
+    fn the_written_out_sample_loop_changes_no_pixel() {
+        let gpu = gpu();
+        let scene = scene::builtin("stairs").unwrap();
+        let camera = scene.cameras[0].camera;
+        let mut written_out = 0;
+        for technique in Technique::all() {
+            let row = technique.row();
+            if !super::unrolled_samples(row) {
+                continue;
+            }
+            written_out += 1;
+            for preset in [Preset::Low, Preset::Medium, Preset::High] {
+                let mut settings = AoSettings::preset(technique, preset);
+                settings.bent_normals =
+                    row.estimator.bent_normals() && row.schedule == super::Schedule::Single;
+                let render = |unrolled: bool| {
+                    UNROLLED.with(|u| u.set(Some(unrolled)));
+                    let mut r = Renderer::new(&gpu, &scene, &settings, 64, 48, 8).unwrap();
+                    r.render(&camera, None).unwrap();
+                    UNROLLED.with(|u| u.set(None));
+                    (r.read_ao().unwrap(), r.read_bent_normals().unwrap())
+                };
+                let (looped, written) = (render(false), render(true));
+                assert!(
+                    looped == written,
+                    "{technique} at {preset:?}: the written-out loop changed the image"
+                );
+            }
+        }
+        assert!(
+            written_out >= 8,
+            "only {written_out} rows write their loop out"
         );
     }
 }

@@ -17,6 +17,7 @@ pub(crate) fn stage() -> Stage {
         schedule_entries: Vec::new(),
         own_source: false,
         constants: Vec::new(),
+        unrolled: false,
     }
 }
 

@@ -59,6 +59,7 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
             schedule_entries: schedule_entries(false),
             own_source: false,
             constants: constants.clone(),
+            unrolled: false,
         },
         Stage {
             label: "two-phase phase 2",
@@ -71,6 +72,7 @@ pub(crate) fn stages(compact: bool) -> Vec<Stage> {
             schedule_entries: schedule_entries(true),
             own_source: false,
             constants,
+            unrolled: false,
         },
     ]
 }
