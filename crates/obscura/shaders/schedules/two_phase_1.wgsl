@@ -52,24 +52,35 @@ fn shade(id: vec2<u32>, index: u32) -> bool {
         return false;
     }
     var acc = estimator_accum_init();
+    // A variable of its own: naga 30's SPIR-V writer fails on a pointer to a struct member as an
+    // argument.
+    var mask = 0u;
+    // Written out as one call per sample (schedules::write_out_sample_loop).
     for (var i = 0u; i < SAMPLE_COUNT; i++) {
-        let s = estimator_sample(p, i);
-        if (!estimator_sample_active(s)) {
-            continue;
-        }
-        acc = estimator_accum_sample(acc, s);
-        let l = source_lookup(p, s);
-        if (l.trace) {
-            out.mask |= 1u << i;
-            source_request(l);
-        } else {
-            acc = estimator_accum_value(acc, s, l.value);
-        }
+        phase_1_sample(p, i, &acc, &mask);
     }
+    out.mask = mask;
     out.accum = acc;
     two_phase_pixels[index] = out;
     if (out.mask == 0u) {
         textureStore(ao_out, id, vec4<f32>(estimator_finish(p, acc)));
     }
     return out.mask != 0u;
+}
+
+// Sample `i` of phase 1: its value into `acc`, or its bit into `mask` and its request to the
+// source.
+fn phase_1_sample(p: EstimatorPixel, i: u32, acc: ptr<function, EstimatorAccum>, mask: ptr<function, u32>) {
+    let s = estimator_sample(p, i);
+    if (!estimator_sample_active(s)) {
+        return;
+    }
+    *acc = estimator_accum_sample(*acc, s);
+    let l = source_lookup(p, s);
+    if (l.trace) {
+        *mask |= 1u << i;
+        source_request(l);
+    } else {
+        *acc = estimator_accum_value(*acc, s, l.value);
+    }
 }

@@ -38,8 +38,9 @@ pub(crate) struct Stage {
     /// first-layer lookup): the row's source WGSL is left out.
     pub own_source: bool,
     pub constants: Vec<(&'static str, f64)>,
-    /// The single pass's sample loop written out sample by sample ([`unrolled_samples`]).
-    pub unrolled: bool,
+    /// The most samples for which the stage's sample loop is written out sample by sample
+    /// ([`write_out_sample_loop`]; 0: never), where the row allows it ([`unrolled_samples`]).
+    pub written_out_up_to: u32,
 }
 
 impl Stage {
@@ -111,9 +112,7 @@ pub(crate) fn pipeline(
         &stage.source_wgsl(source.wgsl()),
         &stage.parts,
     );
-    if stage.unrolled {
-        wgsl = write_out_sample_loop(&wgsl, &constants);
-    }
+    wgsl = write_out_sample_loop(&wgsl, &constants, stage.written_out_up_to);
     bindings::compute_pipeline(
         device,
         stage.label,
@@ -123,30 +122,46 @@ pub(crate) fn pipeline(
     )
 }
 
-/// The single pass's sample loop in `wgsl` (single.wgsl) written out as one call per sample, for
-/// the SAMPLE_COUNT in `constants` (at most 32). The driver unrolls WGSL's loops as it sees fit,
-/// and NVIDIA's left this one a loop for GTAO at any settings, GTAO-VB with bent normals or at
-/// `high`, HBAO and SAO (its register counts and binary sizes: tools/pipeline-stats). Written
-/// out, each sample's kernel entry, slice and direction are constants and what a slice or a
-/// direction shares is made once: on an H100 (BENCHMARKS.md, 2026-12-05) `gtao` 18 % faster
-/// (21 % at `high`), `hbao` 12 %, `gtao-vb` with bent normals 9 % and at `high` 16 %,
-/// `gtao-vb-dual` 10 %; rows the driver had unrolled already within ±1.4 %.
-fn write_out_sample_loop(wgsl: &str, constants: &[(&str, f64)]) -> String {
+/// The sample loops of `wgsl` written out as one call per sample, for the SAMPLE_COUNT in
+/// `constants` up to `up_to`: single.wgsl's and phase 1's (two_phase_1.wgsl), each a `for` over
+/// `i` whose body is one call `NAME(p, i, …);` ([`SAMPLE_LOOP_HEAD`]). The driver unrolls WGSL's
+/// loops as it sees fit, and NVIDIA's left the single pass's a loop for GTAO at any settings,
+/// GTAO-VB with bent normals or at `high`, HBAO and SAO (its register counts and binary sizes:
+/// tools/pipeline-stats). Written out, each sample's kernel entry, slice and direction are
+/// constants and what a slice or a direction shares is made once: on an H100 (BENCHMARKS.md,
+/// 2026-12-05) `gtao` 18 % faster (21 % at `high`), `hbao` 12 %, `gtao-vb` with bent normals 9 %
+/// and at `high` 16 %, `gtao-vb-dual` 10 %; rows the driver had unrolled already within ±1.4 %.
+fn write_out_sample_loop(wgsl: &str, constants: &[(&str, f64)], up_to: u32) -> String {
     let count = constants
         .iter()
         .find(|(name, _)| *name == "SAMPLE_COUNT")
-        .map(|&(_, n)| n as u32);
-    let Some(count @ 1..=32) = count else {
+        .map_or(0, |&(_, n)| n as u32);
+    if count == 0 || count > up_to {
         return wgsl.to_owned();
-    };
-    let calls: String = (0..count)
-        .map(|i| format!("    single_pass_sample(p, {i}u, &r, &flagged);\n"))
-        .collect();
-    wgsl.replace(SAMPLE_LOOP, &calls)
+    }
+    let mut out = String::with_capacity(wgsl.len() + 2048);
+    let mut rest = wgsl;
+    while let Some(at) = rest.find(SAMPLE_LOOP_HEAD) {
+        let after = &rest[at + SAMPLE_LOOP_HEAD.len()..];
+        let body_end = after.find('\n').map_or(after.len(), |e| e + 1);
+        let (body, tail) = after.split_at(body_end);
+        let Some(tail) = tail.strip_prefix(SAMPLE_LOOP_TAIL) else {
+            break;
+        };
+        out.push_str(&rest[..at]);
+        for i in 0..count {
+            out.push_str(&body.replacen("(p, i, ", &format!("(p, {i}u, "), 1));
+        }
+        rest = tail;
+    }
+    out.push_str(rest);
+    out
 }
 
-/// single.wgsl's sample loop, as [`write_out_sample_loop`] finds it.
-const SAMPLE_LOOP: &str = "    for (var i = 0u; i < SAMPLE_COUNT; i++) {\n        single_pass_sample(p, i, &r, &flagged);\n    }\n";
+/// How single.wgsl's and two_phase_1.wgsl's sample loops begin and end: [`write_out_sample_loop`]
+/// finds them by this text (the tests check that it does).
+const SAMPLE_LOOP_HEAD: &str = "    for (var i = 0u; i < SAMPLE_COUNT; i++) {\n";
+const SAMPLE_LOOP_TAIL: &str = "    }\n";
 
 /// What a schedule records one frame with: the device, the frame's inputs and group 0, and the
 /// row's estimator and source.
@@ -216,25 +231,31 @@ fn deferred_resolve(row: &TechniqueRow) -> bool {
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: `Some(false)` keeps every single pass's sample loop a loop, `Some(true)` writes
-    /// every one out.
+    /// Tests: `Some(false)` keeps every sample loop a loop.
     static UNROLLED: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
 }
 
-/// Whether the single pass of `row` has its sample loop written out ([`write_out_sample_loop`]):
-/// where the loop's body holds no costly resolve. A body that resolves a stochastic depth map
-/// inline written out 8 to 32 times made those passes slower on an H100 (`sd-hbao+` 27 %,
-/// `sd-gtao-vb` 55 %, `sd-hbao` 6.9 times: the code outgrew the instruction cache), and with
-/// their resolves deferred to be written out they were still 8–16 % slower than with the loop
-/// (BENCHMARKS.md), so they keep it; rows that defer their resolves anyway (DEFERRED_RESOLVE:
-/// VAO and SSAO over the maps and column rays) resolve after the written-out samples.
+/// Whether `row`'s passes may have their sample loops written out ([`write_out_sample_loop`],
+/// up to each stage's `written_out_up_to`): phase 1 of the two-phase schedules (first-layer
+/// lookups only) always; the single pass where its loop body holds no costly resolve. A body
+/// that resolves a stochastic depth map inline written out 8 to 32 times made those passes
+/// slower on an H100 (`sd-hbao+` 27 %, `sd-gtao-vb` 55 %, `sd-hbao` 6.9 times: the code
+/// outgrew the instruction cache), and with their resolves deferred to be written out they
+/// were still 8–16 % slower than with the loop (BENCHMARKS.md), so they keep it; rows that defer
+/// their resolves anyway (DEFERRED_RESOLVE: VAO and SSAO over the maps and column rays) resolve
+/// after the written-out samples.
 fn unrolled_samples(row: &TechniqueRow) -> bool {
     #[cfg(test)]
-    if let Some(on) = UNROLLED.with(|u| u.get()) {
-        return on && matches!(row.schedule, Schedule::Single | Schedule::Multiview);
+    if UNROLLED.with(|u| u.get()) == Some(false) {
+        return false;
     }
-    matches!(row.schedule, Schedule::Single | Schedule::Multiview)
-        && (!row.source.costly_resolve() || deferred_resolve(row))
+    match row.schedule {
+        Schedule::Single | Schedule::Multiview => {
+            !row.source.costly_resolve() || deferred_resolve(row)
+        }
+        Schedule::TwoPhase | Schedule::TwoPhaseDense => true,
+        Schedule::Interleaved => false,
+    }
 }
 
 #[cfg(test)]
@@ -310,7 +331,9 @@ impl SchedulePass {
             if settled_stops(row) {
                 stage.constants.push(("SD_SETTLED_STOPS", 1.0));
             }
-            stage.unrolled = unrolled_samples(row);
+            if !unrolled_samples(row) {
+                stage.written_out_up_to = 0;
+            }
         }
         Ok(match schedule {
             Schedule::Single => SchedulePass::Single(single::Single::new(
@@ -470,16 +493,33 @@ mod tests {
         );
     }
 
-    /// single.wgsl holds the loop that write_out_sample_loop writes out (else nothing would be).
+    /// single.wgsl and two_phase_1.wgsl hold the loops that write_out_sample_loop writes out
+    /// (else nothing would be), and nothing else changes.
     #[test]
-    fn the_sample_loop_is_found_and_written_out() {
-        let wgsl =
-            super::write_out_sample_loop(crate::shaders::SCHEDULE_SINGLE, &[("SAMPLE_COUNT", 3.0)]);
-        assert!(!wgsl.contains(super::SAMPLE_LOOP));
-        for i in 0..3 {
-            assert!(wgsl.contains(&format!("single_pass_sample(p, {i}u, &r, &flagged);")));
+    fn the_sample_loops_are_found_and_written_out() {
+        for (wgsl, call) in [
+            (
+                crate::shaders::SCHEDULE_SINGLE,
+                "single_pass_sample(p, {}u, &r, &flagged);",
+            ),
+            (
+                crate::shaders::SCHEDULE_TWO_PHASE_1,
+                "phase_1_sample(p, {}u, &acc, &mask);",
+            ),
+        ] {
+            let out = super::write_out_sample_loop(wgsl, &[("SAMPLE_COUNT", 3.0)], 3);
+            assert_eq!(
+                super::write_out_sample_loop(wgsl, &[("SAMPLE_COUNT", 3.0)], 2),
+                wgsl
+            );
+            assert!(!out.contains(super::SAMPLE_LOOP_HEAD));
+            for i in 0..4 {
+                let written = out.contains(&call.replace("{}", &i.to_string()));
+                assert_eq!(written, i < 3, "{call} for sample {i}");
+            }
+            // The loop's head, body and tail (3 lines) became three calls.
+            assert_eq!(out.lines().count(), wgsl.lines().count(), "{call}");
         }
-        assert!(!wgsl.contains("single_pass_sample(p, 3u"));
     }
 
     /// The single pass's sample loop written out sample by sample computes what the loop does,

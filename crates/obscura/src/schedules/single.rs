@@ -17,7 +17,8 @@ pub(crate) fn stage() -> Stage {
         schedule_entries: Vec::new(),
         own_source: false,
         constants: Vec::new(),
-        unrolled: false,
+        // Every sample count the estimators allow (schedules::unrolled_samples decides by row).
+        written_out_up_to: 32,
     }
 }
 
