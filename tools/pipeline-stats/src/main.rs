@@ -55,8 +55,8 @@ fn main() -> ExitCode {
     let mut failed = 0;
     for p in &pipelines {
         println!("\n{} [{}]", p.name, p.constants_line());
-        let stats =
-            spirv(p).and_then(|(words, layout)| unsafe { driver.statistics(&words, &layout) });
+        let stats = spirv(p)
+            .and_then(|(words, layout)| unsafe { driver.statistics(&words, &layout, &p.entry) });
         match stats {
             Ok(lines) => lines.iter().for_each(|l| println!("  {l}")),
             Err(e) => {
@@ -78,15 +78,16 @@ fn main() -> ExitCode {
 struct Dumped {
     name: String,
     source: String,
+    entry: String,
     constants: Vec<(String, f64)>,
 }
 
 impl Dumped {
     fn constants_line(&self) -> String {
-        let all: Vec<String> = self
-            .constants
-            .iter()
-            .map(|(n, v)| format!("{n}={v}"))
+        let entry = (self.entry != "main").then(|| format!("entry {}", self.entry));
+        let all: Vec<String> = entry
+            .into_iter()
+            .chain(self.constants.iter().map(|(n, v)| format!("{n}={v}")))
             .collect();
         all.join(" ")
     }
@@ -108,7 +109,12 @@ fn dumped_pipelines(dir: &str, filter: &str) -> Result<Vec<Dumped>, String> {
             .map_err(|e| format!("{stem}.wgsl: {e}"))?;
         let text = std::fs::read_to_string(path.join(&name)).map_err(|e| format!("{name}: {e}"))?;
         let mut constants = Vec::new();
+        let mut entry = "main".to_owned();
         for line in text.lines().filter(|l| !l.is_empty()) {
+            if let Some(name) = line.strip_prefix("#entry=") {
+                entry = name.to_owned();
+                continue;
+            }
             let parsed = line
                 .split_once('=')
                 .and_then(|(n, v)| v.parse::<f64>().ok().map(|v| (n.to_owned(), v)));
@@ -117,6 +123,7 @@ fn dumped_pipelines(dir: &str, filter: &str) -> Result<Vec<Dumped>, String> {
         out.push(Dumped {
             name,
             source,
+            entry,
             constants,
         });
     }
@@ -126,7 +133,8 @@ fn dumped_pipelines(dir: &str, filter: &str) -> Result<Vec<Dumped>, String> {
 /// The descriptor types of the module's bindings, by group: (binding, type, count).
 type Layout = Vec<Vec<(u32, vk::DescriptorType, u32)>>;
 
-/// Pipeline `p`'s entry point `main` as SPIR-V, with its resources' layout.
+/// Pipeline `p`'s entry point as SPIR-V (naga's writer keeps only that one), with its
+/// resources' layout.
 fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
     let source = p.source.replace("@early_depth_test(force)", "");
     let module = naga::front::wgsl::parse_str(&source).map_err(|e| e.emit_to_string(&source))?;
@@ -134,7 +142,7 @@ fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
         .validate(&module)
         .map_err(|e| e.emit_to_string(&source))?;
     let constants = p.constants.iter().cloned().collect();
-    let point = (naga::ShaderStage::Compute, "main");
+    let point = (naga::ShaderStage::Compute, p.entry.as_str());
     let (module, info) =
         process_overrides(&module, &info, Some(point), &constants).map_err(|e| e.to_string())?;
     let layout = layout_of(&module);
@@ -154,7 +162,7 @@ fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
     };
     let pipeline = spv::PipelineOptions {
         shader_stage: naga::ShaderStage::Compute,
-        entry_point: "main".into(),
+        entry_point: p.entry.clone(),
     };
     let words =
         spv::write_vec(&module, &info, &options, Some(&pipeline)).map_err(|e| e.to_string())?;
@@ -297,8 +305,15 @@ impl Driver {
         })
     }
 
-    /// The driver's statistics for a compute pipeline of `words` over `layout`, one line each.
-    unsafe fn statistics(&self, words: &[u32], layout: &Layout) -> Result<Vec<String>, String> {
+    /// The driver's statistics for a compute pipeline of entry point `entry` of `words` over
+    /// `layout`, one line each.
+    unsafe fn statistics(
+        &self,
+        words: &[u32],
+        layout: &Layout,
+        entry: &str,
+    ) -> Result<Vec<String>, String> {
+        let entry = std::ffi::CString::new(entry).map_err(|e| e.to_string())?;
         let d = &self.device;
         let module = unsafe {
             d.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(words), None)
@@ -332,7 +347,7 @@ impl Driver {
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
-            .name(c"main");
+            .name(&entry);
         let flags = match self.executables {
             Some(_) => vk::PipelineCreateFlags::CAPTURE_STATISTICS_KHR,
             None => vk::PipelineCreateFlags::empty(),

@@ -399,11 +399,12 @@ thread_local! {
 }
 
 /// With `OBSCURA_DUMP_WGSL=DIR`, write the `override` constants a compute pipeline was made with
-/// beside its module's WGSL: `STEM.CONSTANTS_HASH.constants`, one `NAME=VALUE` line each, so
-/// that a tool can compile exactly what the pipeline ran (`tools/pipeline-stats`: the driver's
-/// register count and other statistics). Nothing is written for a pipeline whose module this
-/// thread did not dump just before with the same label.
-fn dump_constants(label: &str, constants: &[(&str, f64)]) {
+/// beside its module's WGSL: `STEM.CONSTANTS_HASH.constants`, one `NAME=VALUE` line each (and
+/// `#entry=NAME` for an entry point other than `main`), so that a tool can compile exactly what
+/// the pipeline ran (`tools/pipeline-stats`: the driver's register count and other statistics).
+/// `label` is its module's label; nothing is written for a pipeline whose module this thread did
+/// not dump last.
+pub(crate) fn dump_constants(label: &str, entry: &str, constants: &[(&str, f64)]) {
     let Some(dir) = std::env::var_os("OBSCURA_DUMP_WGSL") else {
         return;
     };
@@ -413,10 +414,13 @@ fn dump_constants(label: &str, constants: &[(&str, f64)]) {
     }) else {
         return;
     };
-    let text: String = constants
+    let mut text: String = constants
         .iter()
         .map(|(name, value)| format!("{name}={value}\n"))
         .collect();
+    if entry != "main" {
+        text.push_str(&format!("#entry={entry}\n"));
+    }
     use std::hash::{Hash, Hasher};
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
     text.hash(&mut hasher);
@@ -491,7 +495,7 @@ pub(crate) fn pipeline_from_module(
     constants: &[(&str, f64)],
     layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
-    dump_constants(label, constants);
+    dump_constants(label, "main", constants);
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout,

@@ -154,6 +154,7 @@ impl ComputeRaster {
             immediate_size: 0,
         });
         let pipeline = |entry_point| {
+            crate::gpu::dump_constants("sd compute raster", entry_point, &[]);
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry_point),
                 layout: Some(&layout),
