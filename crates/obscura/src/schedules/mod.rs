@@ -107,12 +107,15 @@ pub(crate) fn pipeline(
     let mut constants = estimator.constants.clone();
     constants.extend_from_slice(source.constants());
     constants.extend_from_slice(&stage.constants);
-    let mut wgsl = compose(
-        estimator.wgsl,
-        &stage.source_wgsl(source.wgsl()),
-        &stage.parts,
+    let wgsl = write_out_sample_loop(
+        &compose(
+            estimator.wgsl,
+            &stage.source_wgsl(source.wgsl()),
+            &stage.parts,
+        ),
+        &constants,
+        stage.written_out_up_to,
     );
-    wgsl = write_out_sample_loop(&wgsl, &constants, stage.written_out_up_to);
     bindings::compute_pipeline(
         device,
         stage.label,
@@ -126,7 +129,7 @@ pub(crate) fn pipeline(
 /// `constants` up to `up_to`: single.wgsl's and phase 1's (two_phase_1.wgsl), each a `for` over
 /// `i` whose body is one call `NAME(p, i, …);` ([`SAMPLE_LOOP_HEAD`]). The driver unrolls WGSL's
 /// loops as it sees fit, and NVIDIA's left the single pass's a loop for GTAO at any settings,
-/// GTAO-VB with bent normals or at `high`, HBAO and SAO (its register counts and binary sizes:
+/// GTAO-VB with bent normals or at `high`, HBAO, HBAO+ and SSAO (their binary sizes:
 /// tools/pipeline-stats). Written out, each sample's kernel entry, slice and direction are
 /// constants and what a slice or a direction shares is made once: on an H100 (BENCHMARKS.md,
 /// 2026-12-05) `gtao` 18 % faster (21 % at `high`), `hbao` 12 %, `gtao-vb` with bent normals 9 %
