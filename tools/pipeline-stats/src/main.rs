@@ -55,10 +55,24 @@ fn main() -> ExitCode {
     let mut failed = 0;
     for p in &pipelines {
         println!("\n{} [{}]", p.name, p.constants_line());
-        let stats = spirv(p)
-            .and_then(|(words, layout)| unsafe { driver.statistics(&words, &layout, &p.entry) });
+        let stats = spirv(p).and_then(|(words, layout, threads)| {
+            let lines = unsafe { driver.statistics(&words, &layout, &p.entry) }?;
+            Ok((lines, threads))
+        });
         match stats {
-            Ok(lines) => lines.iter().for_each(|l| println!("  {l}")),
+            Ok((lines, threads)) => {
+                lines.iter().for_each(|l| println!("  {l}"));
+                let registers = lines
+                    .iter()
+                    .find_map(|l| l.strip_prefix("Register Count: ")?.parse::<u32>().ok());
+                if let Some(registers) = registers {
+                    println!(
+                        "  warps an SM by registers: {} of 64 ({threads}-thread groups; an SM of \
+                         65,536 registers, as NVIDIA's since Kepler)",
+                        warps_by_registers(registers, threads)
+                    );
+                }
+            }
             Err(e) => {
                 println!("  FAILED: {e}");
                 failed += 1;
@@ -130,12 +144,23 @@ fn dumped_pipelines(dir: &str, filter: &str) -> Result<Vec<Dumped>, String> {
     Ok(out)
 }
 
+/// How many warps an NVIDIA SM keeps in flight for a pass of `registers` a thread in groups of
+/// `threads` invocations, by registers alone: registers are given out 8 a thread (256 a warp),
+/// a group runs whole or not at all, at most 64 warps and 32 groups an SM. Shared memory can
+/// lower it further (the tool prints each pass's).
+fn warps_by_registers(registers: u32, threads: u32) -> u32 {
+    let per_warp = registers.max(1).div_ceil(8) * 8 * 32;
+    let group_warps = threads.max(1).div_ceil(32);
+    let groups = (65_536 / per_warp / group_warps).min(32);
+    (groups * group_warps).min(64)
+}
+
 /// The descriptor types of the module's bindings, by group: (binding, type, count).
 type Layout = Vec<Vec<(u32, vk::DescriptorType, u32)>>;
 
 /// Pipeline `p`'s entry point as SPIR-V (naga's writer keeps only that one), with its
-/// resources' layout.
-fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
+/// resources' layout and its workgroup's invocation count.
+fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout, u32), String> {
     let source = p.source.replace("@early_depth_test(force)", "");
     let module = naga::front::wgsl::parse_str(&source).map_err(|e| e.emit_to_string(&source))?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
@@ -146,6 +171,11 @@ fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
     let (module, info) =
         process_overrides(&module, &info, Some(point), &constants).map_err(|e| e.to_string())?;
     let layout = layout_of(&module);
+    let threads = module
+        .entry_points
+        .iter()
+        .find(|e| e.name == p.entry)
+        .map_or(1, |e| e.workgroup_size.iter().product());
     // As wgpu-hal 30's Vulkan adapter sets them for a Vulkan 1.3 device, with the runtime checks
     // obscura's AO passes keep (gpu::shader_module: loop bounding off).
     let mut options = spv::Options {
@@ -166,7 +196,7 @@ fn spirv(p: &Dumped) -> Result<(Vec<u32>, Layout), String> {
     };
     let words =
         spv::write_vec(&module, &info, &options, Some(&pipeline)).map_err(|e| e.to_string())?;
-    Ok((words, layout))
+    Ok((words, layout, threads))
 }
 
 fn layout_of(module: &naga::Module) -> Layout {
@@ -482,6 +512,32 @@ impl Driver {
         unsafe {
             self.device.destroy_device(None);
             self.instance.destroy_instance(None);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The occupancy table of BENCHMARKS.md (2026-12-05): 8 × 32-thread groups keep 64 warps at
+    /// up to 32 registers, 48 at 40, 40 at 48, 32 at 64; 64-thread groups 24 warps at 80.
+    #[test]
+    fn warps_by_registers_follow_the_allocation_steps() {
+        for (registers, threads, warps) in [
+            (29, 256, 64),
+            (32, 256, 64),
+            (39, 256, 48),
+            (48, 256, 40),
+            (57, 256, 32),
+            (64, 256, 32),
+            (80, 64, 24),
+            (63, 64, 32),
+            (16, 64, 64),
+        ] {
+            assert_eq!(
+                super::warps_by_registers(registers, threads),
+                warps,
+                "{registers} × {threads}"
+            );
         }
     }
 }
