@@ -134,6 +134,7 @@ pub(crate) fn pipeline(
 /// constants and what a slice or a direction shares is made once: on an H100 (BENCHMARKS.md,
 /// 2026-12-05) `gtao` 18 % faster (21 % at `high`), `hbao` 12 %, `gtao-vb` with bent normals 9 %
 /// and at `high` 16 %, `gtao-vb-dual` 10 %; rows the driver had unrolled already within ±1.4 %.
+/// Only NVIDIA's driver has timed it; a GPU with a smaller instruction cache may prefer loops.
 fn write_out_sample_loop(wgsl: &str, constants: &[(&str, f64)], up_to: u32) -> String {
     let count = constants
         .iter()
