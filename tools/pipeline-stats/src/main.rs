@@ -10,13 +10,16 @@
 //!
 //! The SPIR-V is written by naga as wgpu 30's Vulkan backend writes it for obscura's AO passes
 //! (`gpu::shader_module`: bounds checks on, loop bounding off, `override`s resolved for the
-//! entry point `main`), so the driver sees the same program up to naga's choice of ids.
+//! pipeline's entry point: `main`, or the one its constants file names), so the driver sees the
+//! same program up to naga's choice of ids. After the driver's own lines, each pass gets the
+//! warps an SM keeps in flight by its registers and group size.
 //!
 //! Usage: `cargo run --release --manifest-path tools/pipeline-stats/Cargo.toml -- DIR [FILTER]`:
 //! every pipeline whose file name contains FILTER (all without it), one block each; with
-//! `PIPELINE_STATS_IR=1` also the text of the driver's internal representations, where it has any. Exit status
-//! 1 when a pipeline failed to compile, 2 when there is no Vulkan device or DIR is unusable. A
-//! device without the extension (lavapipe) compiles the pipelines and reports nothing more.
+//! `PIPELINE_STATS_IR=1` also the text of the driver's internal representations, where it has
+//! any (NVIDIA's 580 driver gives none). Exit status 1 when a pipeline failed to compile, 2 when
+//! there is no Vulkan device or DIR is unusable. A device without the extension (lavapipe)
+//! compiles the pipelines and reports nothing more.
 
 use ash::vk;
 use naga::back::{pipeline_constants::process_overrides, spv};
