@@ -376,14 +376,11 @@ fn dump_wgsl(label: &str, source: &str) {
     let Some(dir) = std::env::var_os("OBSCURA_DUMP_WGSL") else {
         return;
     };
-    use std::hash::{Hash, Hasher};
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    source.hash(&mut hasher);
     let name: String = label
         .chars()
         .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
         .collect();
-    let stem = format!("{name}-{:016x}", hasher.finish());
+    let stem = format!("{name}-{:016x}", text_hash(source));
     LAST_DUMPED.with(|last| *last.borrow_mut() = Some((label.to_owned(), stem.clone())));
     let path = std::path::Path::new(&dir).join(format!("{stem}.wgsl"));
     if !path.exists() {
@@ -421,14 +418,19 @@ pub(crate) fn dump_constants(label: &str, entry: &str, constants: &[(&str, f64)]
     if entry != "main" {
         text.push_str(&format!("#entry={entry}\n"));
     }
-    use std::hash::{Hash, Hasher};
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    text.hash(&mut hasher);
     let path =
-        std::path::Path::new(&dir).join(format!("{stem}.{:016x}.constants", hasher.finish()));
+        std::path::Path::new(&dir).join(format!("{stem}.{:016x}.constants", text_hash(&text)));
     if !path.exists() {
         dump_file(&path, &text);
     }
+}
+
+/// The hash that names a dumped file after its contents.
+fn text_hash(text: &str) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut hasher);
+    hasher.finish()
 }
 
 /// Writes `text` to `path` through a file of this call's own, then a rename: tests on several

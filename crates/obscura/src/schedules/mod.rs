@@ -39,7 +39,7 @@ pub(crate) struct Stage {
     pub own_source: bool,
     pub constants: Vec<(&'static str, f64)>,
     /// The most samples for which the stage's sample loop is written out sample by sample
-    /// ([`write_out_sample_loop`]; 0: never), where the row allows it ([`unrolled_samples`]).
+    /// ([`write_out_sample_loop`]; 0: never), where the row allows it ([`writes_out_sample_loops`]).
     pub written_out_up_to: u32,
 }
 
@@ -236,7 +236,7 @@ fn deferred_resolve(row: &TechniqueRow) -> bool {
 #[cfg(test)]
 thread_local! {
     /// Tests: `Some(false)` keeps every sample loop a loop.
-    static UNROLLED: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
+    static WRITTEN_OUT: std::cell::Cell<Option<bool>> = const { std::cell::Cell::new(None) };
 }
 
 /// Whether `row`'s passes may have their sample loops written out ([`write_out_sample_loop`],
@@ -248,9 +248,9 @@ thread_local! {
 /// were still 8–16 % slower than with the loop (BENCHMARKS.md), so they keep it; rows that defer
 /// their resolves anyway (DEFERRED_RESOLVE: VAO and SSAO over the maps and column rays) resolve
 /// after the written-out samples.
-fn unrolled_samples(row: &TechniqueRow) -> bool {
+fn writes_out_sample_loops(row: &TechniqueRow) -> bool {
     #[cfg(test)]
-    if UNROLLED.with(|u| u.get()) == Some(false) {
+    if WRITTEN_OUT.with(|u| u.get()) == Some(false) {
         return false;
     }
     match row.schedule {
@@ -335,7 +335,7 @@ impl SchedulePass {
             if settled_stops(row) {
                 stage.constants.push(("SD_SETTLED_STOPS", 1.0));
             }
-            if !unrolled_samples(row) {
+            if !writes_out_sample_loops(row) {
                 stage.written_out_up_to = 0;
             }
         }
@@ -427,7 +427,7 @@ impl SchedulePass {
 
 #[cfg(test)]
 mod tests {
-    use super::{DISTINCT_DEPTHS, UNROLLED};
+    use super::{DISTINCT_DEPTHS, WRITTEN_OUT};
     use crate::raster::test_support::gpu;
     use crate::settings::{Preset, SdSelection};
     use crate::{scene, AoSettings, Renderer, Technique};
@@ -538,7 +538,7 @@ mod tests {
         let mut written_out = 0;
         for technique in Technique::all() {
             let row = technique.row();
-            if !super::unrolled_samples(row) {
+            if !super::writes_out_sample_loops(row) {
                 continue;
             }
             written_out += 1;
@@ -546,11 +546,11 @@ mod tests {
                 let mut settings = AoSettings::preset(technique, preset);
                 settings.bent_normals =
                     row.estimator.bent_normals() && row.schedule == super::Schedule::Single;
-                let render = |unrolled: bool| {
-                    UNROLLED.with(|u| u.set(Some(unrolled)));
+                let render = |written_out: bool| {
+                    WRITTEN_OUT.with(|u| u.set(Some(written_out)));
                     let mut r = Renderer::new(&gpu, &scene, &settings, 64, 48, 8).unwrap();
                     r.render(&camera, None).unwrap();
-                    UNROLLED.with(|u| u.set(None));
+                    WRITTEN_OUT.with(|u| u.set(None));
                     (r.read_ao().unwrap(), r.read_bent_normals().unwrap())
                 };
                 let (looped, written) = (render(false), render(true));

@@ -17,7 +17,7 @@ pub(crate) fn stage() -> Stage {
         schedule_entries: Vec::new(),
         own_source: false,
         constants: Vec::new(),
-        // Every sample count the estimators allow (schedules::unrolled_samples decides by row).
+        // Every sample count the estimators allow (schedules::writes_out_sample_loops decides by row).
         written_out_up_to: 32,
     }
 }
