@@ -9,11 +9,13 @@
 //! cameras keep +Y up (a roll of the camera is not followed).
 
 use glam::{Mat4, Quat, Vec3};
+use gltf::accessor::{DataType, Dimensions};
 use gltf::animation::util::ReadOutputs;
-use gltf::animation::{Interpolation, Property};
+use gltf::animation::{Channel, Interpolation, Property};
 use gltf::{buffer, Document, Node};
 
 use super::super::{CameraPath, Keyframe};
+use super::checks;
 
 /// Points evaluated between two keys of a CUBICSPLINE channel (besides the keys).
 const CUBIC_SUBSTEPS: usize = 3;
@@ -112,6 +114,25 @@ impl<T: Animated> Track<T> {
 
 /// The path of the camera on `node` (whose parent's world transform is `parent`), if some
 /// animation moves or turns that node; `Err` names what is wrong with its channels.
+/// A translation or rotation channel's key times and values have the types glTF 2.0 §3.11
+/// allows them (times float; translations float VEC3; rotations VEC4 of floats or normalized
+/// 8- or 16-bit integers) and lie in their buffer views.
+fn check_channel(channel: &Channel) -> Result<(), String> {
+    use DataType::{F32, I16, I8, U16, U8};
+    let sampler = channel.sampler();
+    checks::accessor(&sampler.input(), Dimensions::Scalar, &[F32], "key time")?;
+    let output = sampler.output();
+    match channel.target().property() {
+        Property::Translation => checks::accessor(&output, Dimensions::Vec3, &[F32], "translation"),
+        _ => checks::accessor(
+            &output,
+            Dimensions::Vec4,
+            &[F32, I8, U8, I16, U16],
+            "rotation",
+        ),
+    }
+}
+
 pub(super) fn camera_path(
     doc: &Document,
     buffers: &[buffer::Data],
@@ -131,6 +152,11 @@ pub(super) fn camera_path(
                 )
             {
                 continue;
+            }
+            // The `gltf` crate's readers trust the accessors' types (an unexpected rotation type
+            // panics inside it), so they are checked first, with the bytes they read.
+            if let Err(e) = check_channel(&channel) {
+                return Some(Err(e));
             }
             let reader = channel.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
             let (Some(inputs), Some(outputs)) = (reader.read_inputs(), reader.read_outputs())

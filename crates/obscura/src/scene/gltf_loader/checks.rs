@@ -42,8 +42,23 @@ pub(super) fn glb_header(bytes: &[u8]) -> Result<(), String> {
 }
 
 /// Indices that gltf-json's validation uses without checking them first (a primitive's POSITION
-/// accessor, read for its min/max).
+/// accessor, read for its min/max), or lets through to readers that unwrap them (an animation
+/// channel's target node: the camera paths read every channel's).
 pub(super) fn before_validation(json: &gltf::json::Root) -> Result<(), String> {
+    for (a, animation) in json.animations.iter().enumerate() {
+        for (c, channel) in animation.channels.iter().enumerate() {
+            let node = channel.target.node.value();
+            let sampler = channel.sampler.value();
+            if node >= json.nodes.len() || sampler >= animation.samplers.len() {
+                return Err(format!(
+                    "animation {a} channel {c} targets node {node} with sampler {sampler}, but \
+                     there are {} nodes and {} samplers",
+                    json.nodes.len(),
+                    animation.samplers.len()
+                ));
+            }
+        }
+    }
     use gltf::json::mesh::Semantic;
     use gltf::json::validation::Checked;
     for (m, mesh) in json.meshes.iter().enumerate() {

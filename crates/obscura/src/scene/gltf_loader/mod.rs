@@ -5,9 +5,12 @@
 //! cameras. `gltf::import` is used in its three steps (parse, buffers, images) so that the checks
 //! in [`checks`] can run between them: some malformed files otherwise panic inside the crate.
 
+mod attributes;
 mod camera_path;
 mod checks;
 mod materials;
+#[cfg(test)]
+mod quantization_tests;
 #[cfg(test)]
 mod tests;
 
@@ -20,6 +23,7 @@ use gltf::mesh::{Mode, Semantic};
 use gltf::{buffer, Document, Node};
 
 use super::{Camera, Material, NamedCamera, Scene, SceneError};
+use attributes::Attribute;
 
 /// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
 pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -42,8 +46,9 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     checks::glb_header(bytes)?;
     // Parse, check what gltf-json's validation itself would index blindly, then validate.
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
-    let json = gltf.document.into_json();
+    let mut json = gltf.document.into_json();
     checks::before_validation(&json)?;
+    let quantized = take_mesh_quantization(&mut json);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
     let base = path.parent().unwrap_or_else(|| Path::new("."));
@@ -63,6 +68,7 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         buffers: &buffers,
         doc: &doc,
         tex_coord_sets,
+        quantized,
         default_material: None,
         scene,
     };
@@ -76,6 +82,8 @@ struct Loader<'a> {
     doc: &'a Document,
     /// TEXCOORD set of each material's base-colour texture.
     tex_coord_sets: Vec<u32>,
+    /// The file uses `KHR_mesh_quantization` (integer vertex attributes; attributes.rs).
+    quantized: bool,
     /// Index of the appended default material, once a primitive without material needs it.
     default_material: Option<u32>,
     scene: Scene,
@@ -152,15 +160,9 @@ impl Loader<'_> {
         let pos_acc = prim
             .get(&Semantic::Positions)
             .ok_or("it has no POSITION attribute")?;
-        checks::accessor(&pos_acc, Dimensions::Vec3, &[DataType::F32], "POSITION")?;
-        let positions: Vec<[f32; 3]> = reader
-            .read_positions()
-            .ok_or("its POSITION data cannot be read")?
-            .collect();
+        let positions: Vec<[f32; 3]> =
+            attributes::read(&pos_acc, buffers, Attribute::Position, self.quantized)?;
         let n = positions.len();
-        if n != pos_acc.count() {
-            return Err(format!("read {n} of {} positions", pos_acc.count()));
-        }
 
         let material = match prim.material().index() {
             Some(i) if i < self.scene.materials.len() => i as u32,
@@ -174,21 +176,15 @@ impl Loader<'_> {
             .unwrap_or(0);
         let uvs: Vec<Vec2> = match prim.get(&Semantic::TexCoords(set)) {
             Some(acc) => {
-                let types = [DataType::F32, DataType::U8, DataType::U16];
-                checks::accessor(&acc, Dimensions::Vec2, &types, "TEXCOORD")?;
-                let uvs: Vec<Vec2> = reader
-                    .read_tex_coords(set)
-                    .ok_or("its TEXCOORD data cannot be read")?
-                    .into_f32()
-                    .map(Vec2::from)
-                    .collect();
+                let uvs: Vec<[f32; 2]> =
+                    attributes::read(&acc, buffers, Attribute::TexCoord, self.quantized)?;
                 if uvs.len() != n {
                     return Err(format!(
                         "it has {} TEXCOORD_{set} values for {n} positions",
                         uvs.len()
                     ));
                 }
-                uvs
+                uvs.into_iter().map(Vec2::from).collect()
             }
             None => vec![Vec2::ZERO; n],
         };
@@ -196,12 +192,8 @@ impl Loader<'_> {
         // Vertex normals (glTF: unit length, or absent: then flat shading, which is our default).
         let normals: Vec<Vec3> = match prim.get(&Semantic::Normals) {
             Some(acc) => {
-                checks::accessor(&acc, Dimensions::Vec3, &[DataType::F32], "NORMAL")?;
-                let normals: Vec<Vec3> = reader
-                    .read_normals()
-                    .ok_or("its NORMAL data cannot be read")?
-                    .map(Vec3::from)
-                    .collect();
+                let normals: Vec<[f32; 3]> =
+                    attributes::read(&acc, buffers, Attribute::Normal, self.quantized)?;
                 if normals.len() != n {
                     return Err(format!(
                         "it has {} NORMAL values for {n} positions",
@@ -214,7 +206,7 @@ impl Loader<'_> {
                 let to_world = glam::Mat3::from_mat4(world).inverse().transpose();
                 normals
                     .into_iter()
-                    .map(|v| (to_world * v).normalize_or_zero())
+                    .map(|v| (to_world * Vec3::from(v)).normalize_or_zero())
                     .collect()
             }
             None => vec![Vec3::ZERO; n],
@@ -310,6 +302,18 @@ impl Loader<'_> {
             None => {}
         }
     }
+}
+
+/// Whether the file uses `KHR_mesh_quantization`, which this loader implements (attributes.rs)
+/// and the `gltf` crate's validation does not know: removed from the file's extension lists
+/// before that validation, which refuses any required extension it does not know.
+fn take_mesh_quantization(json: &mut gltf::json::Root) -> bool {
+    const NAME: &str = "KHR_mesh_quantization";
+    let listed = json.extensions_used.iter().any(|e| e == NAME)
+        || json.extensions_required.iter().any(|e| e == NAME);
+    json.extensions_used.retain(|e| e != NAME);
+    json.extensions_required.retain(|e| e != NAME);
+    listed
 }
 
 /// Triangle corner indices for a triangle list, strip or fan (glTF 2.0 §3.7.2.1), keeping the

@@ -7,11 +7,11 @@ use glam::{Vec2, Vec3};
 use super::super::{load, AlphaMode, Scene, SceneError};
 
 /// A fresh, empty folder for one test.
-fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
+pub(super) fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
     crate::scene::test_dir::TestDir::new(&format!("gltf-{tag}"))
 }
 
-fn base64(data: &[u8]) -> String {
+pub(super) fn base64(data: &[u8]) -> String {
     const ABC: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for chunk in data.chunks(3) {
@@ -200,7 +200,7 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out
 }
 
-fn load_path(path: &Path) -> Result<Scene, SceneError> {
+pub(super) fn load_path(path: &Path) -> Result<Scene, SceneError> {
     load(path.to_str().unwrap())
 }
 
@@ -274,7 +274,7 @@ fn extension_is_case_insensitive() {
 }
 
 /// Loads `path`, expecting an error that names the path and contains `needle`.
-fn expect_error(path: &Path, needle: &str) -> String {
+pub(super) fn expect_error(path: &Path, needle: &str) -> String {
     let err = load_path(path).expect_err("bad input loaded").to_string();
     assert!(
         err.contains(&path.display().to_string()) || err.contains("scene '"),
@@ -486,10 +486,13 @@ fn fuzz_gltf_numbers() {
         let file = Asset::default().write(&dir, kind);
         fuzz_numbers(&file, 3000);
     }
+    let file = dir.join("animated.gltf");
+    std::fs::write(&file, animated_camera_gltf("CUBICSPLINE")).unwrap();
+    fuzz_numbers(&file, 3000);
 }
 
 /// Loads `rounds` variants of `file` (a .gltf, or a .glb whose JSON chunk is mutated).
-fn fuzz_numbers(file: &Path, rounds: usize) {
+pub(super) fn fuzz_numbers(file: &Path, rounds: usize) {
     let bytes = std::fs::read(file).unwrap();
     let is_glb = bytes.starts_with(b"glTF");
     let (good, bin) = if is_glb {
@@ -541,7 +544,11 @@ fn fuzz_numbers(file: &Path, rounds: usize) {
         }
         i += 1;
     }
-    assert!(numbers.len() > 50);
+    assert!(
+        numbers.len() > 20,
+        "too few numbers to fuzz: {}",
+        numbers.len()
+    );
     let mut rng = super::super::procedural::rng::Pcg32::new(5, 5);
     let path = file.with_file_name(if is_glb { "fuzz.glb" } else { "fuzz.gltf" });
     for round in 0..rounds {
@@ -718,4 +725,27 @@ fn animated_cameras_become_camera_paths() {
     assert_eq!(scene.cameras.len(), 1);
     assert!(scene.paths.is_empty());
     assert_eq!(scene.path_names(), vec!["orbit".to_string()]);
+}
+
+#[test]
+fn camera_animations_of_the_wrong_type_are_not_used_and_the_scene_loads() {
+    let dir = temp_dir("animated-camera-types");
+    let rotation = r#"{"bufferView": 4, "componentType": 5126, "count": 2, "type": "VEC4"}"#;
+    let times = r#"{"bufferView": 1, "componentType": 5126, "count": 3, "type": "SCALAR""#;
+    for (from, to) in [
+        // Rotations as unsigned ints (glTF allows floats and normalized 8- and 16-bit ones).
+        (rotation, rotation.replace("5126", "5125")),
+        // Rotations as three-component vectors.
+        (rotation, rotation.replace("VEC4", "VEC3")),
+        // Key times as integers.
+        (times, times.replace("5126", "5125")),
+    ] {
+        let file = dir.join("bad.gltf");
+        let json = animated_camera_gltf("LINEAR");
+        assert!(json.contains(from));
+        std::fs::write(&file, json.replacen(from, &to, 1)).unwrap();
+        let scene = load(file.to_str().unwrap()).unwrap_or_else(|e| panic!("{to}: {e}"));
+        assert_eq!(scene.cameras.len(), 1, "{to}");
+        assert!(scene.paths.is_empty(), "{to}");
+    }
 }
