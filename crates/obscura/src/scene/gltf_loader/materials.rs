@@ -1,5 +1,6 @@
 //! glTF materials and base-colour images → [`Material`]s and RGBA8 [`Texture`]s.
 
+use glam::{Mat3, Vec2};
 use gltf::image::Format;
 use gltf::material::AlphaMode as GltfAlpha;
 use gltf::Document;
@@ -8,21 +9,53 @@ use image::RgbaImage;
 use super::super::texture::texture_from_rgba;
 use super::super::{AlphaMode, Material, Scene};
 
+/// Where a material's base-colour texture is read: the TEXCOORD set, and the affine map of
+/// `KHR_texture_transform` applied to it (identity without the extension).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct BaseColorUv {
+    pub set: u32,
+    pub transform: Mat3,
+}
+
+impl Default for BaseColorUv {
+    fn default() -> Self {
+        BaseColorUv {
+            set: 0,
+            transform: Mat3::IDENTITY,
+        }
+    }
+}
+
+impl BaseColorUv {
+    pub fn apply(&self, uv: Vec2) -> Vec2 {
+        self.transform.transform_point2(uv)
+    }
+}
+
+/// `KHR_texture_transform`'s matrix (the extension's README): translation · rotation · scale,
+/// the rotation turning UVs by `rotation` radians counter-clockwise in UV space, i.e. the
+/// matrix rows (cos, sin) and (−sin, cos).
+fn texture_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> Mat3 {
+    let (sin, cos) = rotation.sin_cos();
+    let turn = Mat3::from_cols_array(&[cos, -sin, 0.0, sin, cos, 0.0, 0.0, 0.0, 1.0]);
+    Mat3::from_translation(Vec2::from(offset)) * turn * Mat3::from_scale(Vec2::from(scale))
+}
+
 /// Converts every glTF material (same order, so primitive material indices carry over) and the
-/// images used as base-colour textures. Returns, per material, the TEXCOORD set its base-colour
-/// texture reads.
+/// images used as base-colour textures. Returns, per material, where its base-colour texture
+/// is read.
 pub(super) fn convert(
     doc: &Document,
     images: &[gltf::image::Data],
     scene: &mut Scene,
-) -> Result<Vec<u32>, String> {
+) -> Result<Vec<BaseColorUv>, String> {
     // glTF image index -> our texture index; only images used as base colour are converted.
     let mut texture_of_image: Vec<Option<u32>> = vec![None; images.len()];
     let mut tex_coord_sets = Vec::new();
     for (i, m) in doc.materials().enumerate() {
         let pbr = m.pbr_metallic_roughness();
         let mut base_color_texture = None;
-        let mut set = 0;
+        let mut uv = BaseColorUv::default();
         if let Some(info) = pbr.base_color_texture() {
             let image = info.texture().source();
             let index = image.index();
@@ -44,7 +77,11 @@ pub(super) fn convert(
                 scene.textures.push(texture_from_rgba(name, rgba));
             }
             base_color_texture = texture_of_image[index];
-            set = info.tex_coord();
+            uv.set = info.tex_coord();
+            if let Some(t) = info.texture_transform() {
+                uv.set = t.tex_coord().unwrap_or(uv.set);
+                uv.transform = texture_transform(t.offset(), t.rotation(), t.scale());
+            }
         }
         let alpha_mode = match m.alpha_mode() {
             GltfAlpha::Opaque => AlphaMode::Opaque,
@@ -62,7 +99,7 @@ pub(super) fn convert(
             alpha_mode,
             double_sided: m.double_sided(),
         });
-        tex_coord_sets.push(set);
+        tex_coord_sets.push(uv);
     }
     Ok(tex_coord_sets)
 }

@@ -24,6 +24,7 @@ use gltf::{buffer, Document, Node};
 
 use super::{Camera, Material, NamedCamera, Scene, SceneError};
 use attributes::Attribute;
+use materials::BaseColorUv;
 
 /// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
 pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -62,12 +63,12 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         name: path.display().to_string(),
         ..Scene::default()
     };
-    let tex_coord_sets = materials::convert(&doc, &images, &mut scene)?;
+    let base_color_uvs = materials::convert(&doc, &images, &mut scene)?;
     let mut loader = Loader {
         path,
         buffers: &buffers,
         doc: &doc,
-        tex_coord_sets,
+        base_color_uvs,
         quantized,
         default_material: None,
         scene,
@@ -80,8 +81,8 @@ struct Loader<'a> {
     path: &'a Path,
     buffers: &'a [buffer::Data],
     doc: &'a Document,
-    /// TEXCOORD set of each material's base-colour texture.
-    tex_coord_sets: Vec<u32>,
+    /// Where each material's base-colour texture is read (set and texture transform).
+    base_color_uvs: Vec<BaseColorUv>,
     /// The file uses `KHR_mesh_quantization` (integer vertex attributes; attributes.rs).
     quantized: bool,
     /// Index of the appended default material, once a primitive without material needs it.
@@ -169,11 +170,12 @@ impl Loader<'_> {
             Some(i) => return Err(format!("it uses material {i}, which does not exist")),
             None => self.default_material(),
         };
-        let set = self
-            .tex_coord_sets
+        let uv_map = self
+            .base_color_uvs
             .get(material as usize)
             .copied()
-            .unwrap_or(0);
+            .unwrap_or_default();
+        let set = uv_map.set;
         let uvs: Vec<Vec2> = match prim.get(&Semantic::TexCoords(set)) {
             Some(acc) => {
                 let uvs: Vec<[f32; 2]> =
@@ -184,7 +186,9 @@ impl Loader<'_> {
                         uvs.len()
                     ));
                 }
-                uvs.into_iter().map(Vec2::from).collect()
+                uvs.into_iter()
+                    .map(|uv| uv_map.apply(Vec2::from(uv)))
+                    .collect()
             }
             None => vec![Vec2::ZERO; n],
         };
@@ -257,7 +261,7 @@ impl Loader<'_> {
     fn default_material(&mut self) -> u32 {
         *self.default_material.get_or_insert_with(|| {
             self.scene.materials.push(Material::default());
-            self.tex_coord_sets.push(0);
+            self.base_color_uvs.push(BaseColorUv::default());
             (self.scene.materials.len() - 1) as u32
         })
     }

@@ -749,3 +749,32 @@ fn camera_animations_of_the_wrong_type_are_not_used_and_the_scene_loads() {
         assert!(scene.paths.is_empty(), "{to}");
     }
 }
+
+#[test]
+fn texture_transforms_move_the_alpha_test_s_coordinates() {
+    let dir = temp_dir("texture-transform");
+    // The extension's own example: the lower left quadrant of the image, turned 90° clockwise.
+    let transform = r#""baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform":
+        {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}}}"#;
+    let asset = Asset {
+        patches: vec![
+            (r#""baseColorTexture": {"index": 0}"#, transform),
+            (
+                r#""scene": 0,"#,
+                r#""scene": 0, "extensionsUsed": ["KHR_texture_transform"],
+                "extensionsRequired": ["KHR_texture_transform"],"#,
+            ),
+        ],
+        ..Asset::default()
+    };
+    let scene = load_path(&asset.write(&dir, Kind::Embedded)).unwrap();
+    // The quad's uvs (0, 1), (1, 1), (1, 0), (0, 0) become (u', v') = (0.5 v, 1 − 0.5 u):
+    // u' in [0, 0.5] (left) and v' in [0.5, 1] (lower half, v down), v running along u'.
+    let expected = [(0.5, 1.0), (0.5, 0.5), (0.0, 0.5), (0.0, 1.0)];
+    for (uv, (u, v)) in scene.uvs.iter().zip(expected) {
+        assert!(
+            uv.abs_diff_eq(Vec2::new(u, v), 1e-6),
+            "{uv} against ({u}, {v})"
+        );
+    }
+}
