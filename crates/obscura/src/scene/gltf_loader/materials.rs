@@ -56,7 +56,16 @@ pub(super) fn convert(
         let pbr = m.pbr_metallic_roughness();
         let mut base_color_texture = None;
         let mut uv = BaseColorUv::default();
-        if let Some(info) = pbr.base_color_texture() {
+        // The specular-glossiness workflow (KHR_materials_pbrSpecularGlossiness, which older
+        // exporters wrote): where a material has it, its diffuse colour and texture are what
+        // the metallic-roughness base colour is otherwise, alpha included (the extension's
+        // README); the metallic-roughness values are then a fallback for readers without it.
+        let spec_gloss = m.pbr_specular_glossiness();
+        let (factor, texture_info) = match &spec_gloss {
+            Some(sg) => (sg.diffuse_factor(), sg.diffuse_texture()),
+            None => (pbr.base_color_factor(), pbr.base_color_texture()),
+        };
+        if let Some(info) = texture_info {
             let image = info.texture().source();
             let index = image.index();
             let data = images
@@ -94,7 +103,7 @@ pub(super) fn convert(
             name: m
                 .name()
                 .map_or_else(|| format!("material{i}"), str::to_string),
-            base_color: pbr.base_color_factor(),
+            base_color: factor,
             base_color_texture,
             alpha_mode,
             double_sided: m.double_sided(),

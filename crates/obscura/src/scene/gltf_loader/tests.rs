@@ -778,3 +778,32 @@ fn texture_transforms_move_the_alpha_test_s_coordinates() {
         );
     }
 }
+
+#[test]
+fn specular_glossiness_materials_alpha_test_their_diffuse_texture() {
+    let dir = temp_dir("spec-gloss");
+    // The leaf material in the specular-glossiness workflow: its diffuse texture and factor
+    // stand for the base colour (the metallic-roughness one, left plain, is the fallback).
+    let spec_gloss = r#""pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]},
+      "extensions": {"KHR_materials_pbrSpecularGlossiness":
+        {"diffuseFactor": [1, 1, 1, 0.5], "diffuseTexture": {"index": 0}}}"#;
+    let from = r#""pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "baseColorTexture": {"index": 0}}"#;
+    let asset = Asset {
+        patches: vec![(from, spec_gloss)],
+        ..Asset::default()
+    };
+    let scene = load_path(&asset.write(&dir, Kind::Embedded)).unwrap();
+    let leaf = &scene.materials[0];
+    assert_eq!(leaf.base_color, [1.0, 1.0, 1.0, 0.5]);
+    assert_eq!(leaf.base_color_texture, Some(0));
+    assert_eq!(leaf.alpha_mode, AlphaMode::Mask { cutoff: 0.6 });
+    // A diffuse texture that does not exist is an error, not a crash.
+    let asset = Asset {
+        patches: vec![(
+            from,
+            spec_gloss.replace("\"index\": 0", "\"index\": 7").leak(),
+        )],
+        ..Asset::default()
+    };
+    expect_error(&asset.write(&dir, Kind::Embedded), "diffuseTexture");
+}
