@@ -43,8 +43,27 @@ pub(super) fn glb_header(bytes: &[u8]) -> Result<(), String> {
 
 /// Indices that gltf-json's validation uses without checking them first (a primitive's POSITION
 /// accessor, read for its min/max), or lets through to readers that unwrap them (an animation
-/// channel's target node: the camera paths read every channel's).
+/// channel's target node: the camera paths read every channel's; a node's skin and a skin's
+/// joints: skinned meshes are placed by them).
 pub(super) fn before_validation(json: &gltf::json::Root) -> Result<(), String> {
+    for (n, node) in json.nodes.iter().enumerate() {
+        if let Some(skin) = node.skin.filter(|s| s.value() >= json.skins.len()) {
+            return Err(format!(
+                "node {n} uses skin {}, but there are only {}",
+                skin.value(),
+                json.skins.len()
+            ));
+        }
+    }
+    for (s, skin) in json.skins.iter().enumerate() {
+        if let Some(joint) = skin.joints.iter().find(|j| j.value() >= json.nodes.len()) {
+            return Err(format!(
+                "skin {s} uses node {} as a joint, but there are only {} nodes",
+                joint.value(),
+                json.nodes.len()
+            ));
+        }
+    }
     for (a, animation) in json.animations.iter().enumerate() {
         for (c, channel) in animation.channels.iter().enumerate() {
             let node = channel.target.node.value();

@@ -11,6 +11,9 @@ mod checks;
 mod materials;
 #[cfg(test)]
 mod quantization_tests;
+mod skinning;
+#[cfg(test)]
+mod skinning_tests;
 #[cfg(test)]
 mod tests;
 
@@ -25,6 +28,7 @@ use gltf::{buffer, Document, Node};
 use super::{Camera, Material, NamedCamera, Scene, SceneError};
 use attributes::Attribute;
 use materials::BaseColorUv;
+use skinning::VertexPlacement;
 
 /// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
 pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -104,6 +108,7 @@ impl Loader<'_> {
                 doc.nodes().filter(|n| !is_child[n.index()]).collect()
             }
         };
+        let worlds = node_worlds(doc);
         let mut visited = vec![false; doc.nodes().len()];
         let mut stack: Vec<(Node, Mat4)> = roots
             .into_iter()
@@ -123,6 +128,10 @@ impl Loader<'_> {
             }
             let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
             if let Some(mesh) = node.mesh() {
+                let joints = match node.skin() {
+                    Some(skin) => Some(skinning::joint_matrices(&skin, &worlds, self.buffers)?),
+                    None => None,
+                };
                 for prim in mesh.primitives() {
                     let context = format!(
                         "mesh {} ('{}') primitive {}",
@@ -130,7 +139,7 @@ impl Loader<'_> {
                         mesh.name().unwrap_or(""),
                         prim.index()
                     );
-                    self.add_primitive(&prim, world)
+                    self.add_primitive(&prim, world, joints.as_deref())
                         .map_err(|e| format!("{context}: {e}"))?;
                 }
             }
@@ -143,7 +152,14 @@ impl Loader<'_> {
         Ok(())
     }
 
-    fn add_primitive(&mut self, prim: &gltf::Primitive, world: Mat4) -> Result<(), String> {
+    /// Adds a primitive placed by its node's `world` transform, or by `joints` (the skin's joint
+    /// matrices) where its node has a skin (skinning.rs).
+    fn add_primitive(
+        &mut self,
+        prim: &gltf::Primitive,
+        world: Mat4,
+        joints: Option<&[Mat4]>,
+    ) -> Result<(), String> {
         let mode = prim.mode();
         if !matches!(
             mode,
@@ -164,6 +180,11 @@ impl Loader<'_> {
         let positions: Vec<[f32; 3]> =
             attributes::read(&pos_acc, buffers, Attribute::Position, self.quantized)?;
         let n = positions.len();
+        let skinned = match joints {
+            Some(joints) => skinning::vertex_matrices(prim, buffers, joints, n)?,
+            None => None,
+        };
+        let placement = skinned.map_or(VertexPlacement::Node(world), VertexPlacement::Skinned);
 
         let material = match prim.material().index() {
             Some(i) if i < self.scene.materials.len() => i as u32,
@@ -204,13 +225,10 @@ impl Loader<'_> {
                         normals.len()
                     ));
                 }
-                // Normals transform by the inverse transpose of the node's linear part; one
-                // that comes out non-finite or zero (a singular transform, a zero or NaN normal
-                // in the file) is "no normal" at that vertex.
-                let to_world = glam::Mat3::from_mat4(world).inverse().transpose();
                 normals
                     .into_iter()
-                    .map(|v| (to_world * Vec3::from(v)).normalize_or_zero())
+                    .enumerate()
+                    .map(|(v, n)| placement.normal(v, Vec3::from(n)))
                     .collect()
             }
             None => vec![Vec3::ZERO; n],
@@ -239,9 +257,9 @@ impl Loader<'_> {
             return Err("the scene has more than 2^32 vertices".into());
         }
         let base = base as u32;
-        // A mirroring transform turns counter-clockwise into clockwise: swap two corners back.
-        let flip = world.determinant() < 0.0;
         for tri in assemble(mode, &indices) {
+            // A mirroring transform turns counter-clockwise into clockwise: swap two corners back.
+            let flip = placement.mirrors(tri[0] as usize);
             let [a, b, c] = tri.map(|i| i + base);
             self.scene
                 .triangles
@@ -251,7 +269,8 @@ impl Loader<'_> {
         self.scene.positions.extend(
             positions
                 .iter()
-                .map(|&p| world.transform_point3(Vec3::from(p))),
+                .enumerate()
+                .map(|(v, &p)| placement.position(v, Vec3::from(p))),
         );
         self.scene.uvs.extend(uvs);
         self.scene.normals.extend(normals);
@@ -306,6 +325,44 @@ impl Loader<'_> {
             None => {}
         }
     }
+}
+
+/// Every node's world transform, through its parents whether or not a scene reaches it (a
+/// skin's joints are placed so); `None` for a node whose parent chain loops.
+fn node_worlds(doc: &Document) -> Vec<Option<Mat4>> {
+    let count = doc.nodes().len();
+    let mut parent = vec![None; count];
+    for node in doc.nodes() {
+        for child in node.children() {
+            parent[child.index()] = Some(node.index());
+        }
+    }
+    let locals: Vec<Mat4> = doc
+        .nodes()
+        .map(|n| Mat4::from_cols_array_2d(&n.transform().matrix()))
+        .collect();
+    // Each node's world once: walk up to a node already known (or a root), then down again.
+    let mut worlds: Vec<Option<Mat4>> = vec![None; count];
+    let mut known = vec![false; count];
+    for start in 0..count {
+        let mut chain = Vec::new();
+        let mut at = Some(start);
+        while let Some(n) = at.filter(|&n| !known[n]) {
+            if chain.len() > count {
+                break; // the parent chain loops: its nodes stay None
+            }
+            chain.push(n);
+            at = parent[n];
+        }
+        let looped = chain.len() > count;
+        let mut world = at.map_or(Some(Mat4::IDENTITY), |n| worlds[n]);
+        for &n in chain.iter().rev() {
+            world = world.filter(|_| !looped).map(|w| w * locals[n]);
+            worlds[n] = world;
+            known[n] = true;
+        }
+    }
+    worlds
 }
 
 /// Whether the file uses `KHR_mesh_quantization`, which this loader implements (attributes.rs)
