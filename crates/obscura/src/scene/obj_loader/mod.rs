@@ -12,16 +12,15 @@
 
 #[cfg(test)]
 mod tests;
+mod textures;
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::io::Cursor;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use super::texture::texture_from_rgba;
 use super::{AlphaMode, Material, Scene, SceneError};
 
 /// Largest absolute face index accepted (2^31): keeps `tobj`'s index arithmetic far from overflow.
@@ -63,7 +62,7 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     };
     let mtl_failed = RefCell::new(false);
     let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |mtl| {
-        let mtl_path = dir.join(mtl);
+        let mtl_path = textures::resolve(&dir, mtl.to_str().unwrap_or_default());
         let result = tobj::load_mtl(&mtl_path);
         if let Err(e) = &result {
             log::warn!(
@@ -91,20 +90,29 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         name: path.display().to_string(),
         ..Scene::default()
     };
-    let mut textures = HashMap::new();
+    let mut cache = textures::TextureCache::default();
     for m in &materials {
-        let texture = m
+        let color = m
             .diffuse_texture
             .as_ref()
-            .and_then(|t| load_texture(path, &dir.join(t), &mut textures, &mut scene));
+            .map(|t| textures::resolve(&dir, t));
+        let mask = m
+            .dissolve_texture
+            .as_ref()
+            .map(|t| textures::resolve(&dir, t));
+        let texture = cache.material_texture(path, color, mask, &mut scene);
         let alpha = m.dissolve.unwrap_or(1.0);
         let [r, g, b] = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
         scene.materials.push(Material {
             name: m.name.clone(),
             base_color: [r, g, b, alpha],
-            base_color_texture: texture,
-            // glTF's nearest equivalent of a dissolve below 1; AO treats it as opaque anyway.
-            alpha_mode: if alpha < 1.0 {
+            base_color_texture: texture.map(|t| t.index),
+            alpha_mode: if texture.is_some_and(|t| t.masked) {
+                // `map_d`: a cut-out (foliage, fences), tested at the usual half (as glTF's
+                // default cutoff); the dissolve `d` scales it as glTF's base colour alpha does.
+                AlphaMode::Mask { cutoff: 0.5 }
+            } else if alpha < 1.0 {
+                // glTF's nearest equivalent of a dissolve below 1; AO treats it as opaque.
                 AlphaMode::Blend
             } else {
                 AlphaMode::Opaque
@@ -183,35 +191,6 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         });
     }
     Ok(scene)
-}
-
-/// Loads `map_Kd` once per file; a failure is a warning and leaves the material untextured.
-fn load_texture(
-    obj: &Path,
-    file: &Path,
-    cache: &mut HashMap<PathBuf, Option<u32>>,
-    scene: &mut Scene,
-) -> Option<u32> {
-    if let Some(&index) = cache.get(file) {
-        return index;
-    }
-    let index = match image::open(file) {
-        Ok(img) => {
-            let name = file.display().to_string();
-            scene.textures.push(texture_from_rgba(name, img.to_rgba8()));
-            Some((scene.textures.len() - 1) as u32)
-        }
-        Err(e) => {
-            log::warn!(
-                "{}: texture '{}' cannot be loaded ({e}); the material stays untextured",
-                obj.display(),
-                file.display()
-            );
-            None
-        }
-    };
-    cache.insert(file.to_path_buf(), index);
-    index
 }
 
 /// Rejects face indices that `tobj` cannot handle safely: 0 (OBJ counts from 1), absolute indices

@@ -234,3 +234,49 @@ fn vertex_normals_are_read_where_every_vertex_has_one() {
     let without = write(&dir, "without.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     assert!(load_path(&without).unwrap().normals.is_empty());
 }
+
+/// `map_d` masks cut materials out as glTF's MASK does: the mask's grey level (or its alpha
+/// channel, where it has a varying one) becomes the texture's alpha, tested at 0.5, and texture
+/// names written with backslashes or with MTL options before them are found.
+#[test]
+fn map_d_masks_cut_materials_out() {
+    let dir = temp_dir("map-d");
+    std::fs::create_dir_all(dir.join("textures")).unwrap();
+    image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 255]))
+        .save(dir.join("textures/leaf.png"))
+        .unwrap();
+    // Grey mask: white top-left and bottom-right.
+    image::GrayImage::from_raw(2, 2, vec![255, 0, 0, 255])
+        .unwrap()
+        .save(dir.join("textures/leaf_mask.png"))
+        .unwrap();
+    // A mask with an alpha channel (its grey level all white): the alpha counts.
+    image::RgbaImage::from_raw(2, 1, vec![255, 255, 255, 0, 255, 255, 255, 200])
+        .unwrap()
+        .save(dir.join("fence.png"))
+        .unwrap();
+    let mtl = "newmtl red\nKd 1 0 0\nmap_Kd -s 1 1 1 textures/leaf.png\nmap_d textures\\leaf_mask.png\n\n\
+               newmtl blue\nKd 0 0 1\nmap_d fence.png\n\n\
+               newmtl missing\nmap_Kd textures/leaf.png\nmap_d nowhere.png\n";
+    write(&dir, "test.mtl", mtl.as_bytes());
+    let obj =
+        QUAD_AND_TRIANGLE.replace("usemtl blue", "usemtl blue\nf 5/1 6/2 7/3\nusemtl missing");
+    let s = load_path(&write(&dir, "scene.obj", obj.as_bytes())).unwrap();
+    let texture = |m: usize| &s.textures[s.materials[m].base_color_texture.unwrap() as usize];
+
+    let leaf = &s.materials[0];
+    assert_eq!(leaf.alpha_mode, AlphaMode::Mask { cutoff: 0.5 });
+    let t = texture(0);
+    assert_eq!((t.width, t.height), (2, 2), "the mask's resolution");
+    assert_eq!(
+        t.rgba8,
+        [10, 20, 30, 255, 10, 20, 30, 0, 10, 20, 30, 0, 10, 20, 30, 255]
+    );
+    let fence = &s.materials[1];
+    assert_eq!(fence.alpha_mode, AlphaMode::Mask { cutoff: 0.5 });
+    assert_eq!(texture(1).rgba8, [255, 255, 255, 0, 255, 255, 255, 200]);
+    // A mask that does not load leaves the material opaque, with its colour texture.
+    let missing = &s.materials[2];
+    assert_eq!(missing.alpha_mode, AlphaMode::Opaque);
+    assert_eq!(texture(2).rgba8, [10, 20, 30, 255]);
+}
