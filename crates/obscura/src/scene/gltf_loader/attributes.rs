@@ -22,6 +22,10 @@ pub(super) enum Attribute {
     Position,
     Normal,
     TexCoord,
+    /// `EXT_mesh_gpu_instancing`'s per-instance TRANSLATION, ROTATION and SCALE (instancing.rs).
+    InstanceTranslation,
+    InstanceRotation,
+    InstanceScale,
 }
 
 impl Attribute {
@@ -30,13 +34,18 @@ impl Attribute {
             Attribute::Position => "POSITION",
             Attribute::Normal => "NORMAL",
             Attribute::TexCoord => "TEXCOORD",
+            Attribute::InstanceTranslation => "instance TRANSLATION",
+            Attribute::InstanceRotation => "instance ROTATION",
+            Attribute::InstanceScale => "instance SCALE",
         }
     }
 
     fn dimensions(self) -> Dimensions {
         match self {
             Attribute::Position | Attribute::Normal => Dimensions::Vec3,
+            Attribute::InstanceTranslation | Attribute::InstanceScale => Dimensions::Vec3,
             Attribute::TexCoord => Dimensions::Vec2,
+            Attribute::InstanceRotation => Dimensions::Vec4,
         }
     }
 
@@ -50,6 +59,10 @@ impl Attribute {
                 (&[F32, I8, U8, I16, U16], false)
             }
             (Attribute::Normal, true) => (&[F32, I8, I16], true),
+            // EXT_mesh_gpu_instancing: translations and scales float, rotations (quaternions)
+            // float or normalized signed bytes and shorts, with or without quantization.
+            (Attribute::InstanceTranslation | Attribute::InstanceScale, _) => (&[F32], true),
+            (Attribute::InstanceRotation, _) => (&[F32, I8, I16], true),
         }
     }
 }

@@ -8,6 +8,9 @@
 mod attributes;
 mod camera_path;
 mod checks;
+mod instancing;
+#[cfg(test)]
+mod instancing_tests;
 mod materials;
 #[cfg(test)]
 mod quantization_tests;
@@ -53,7 +56,9 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
     let mut json = gltf.document.into_json();
     checks::before_validation(&json)?;
-    let quantized = take_mesh_quantization(&mut json);
+    let quantized = take_extension(&mut json, "KHR_mesh_quantization");
+    // Read by instancing.rs from each node's JSON.
+    take_extension(&mut json, instancing::NAME);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
     let base = path.parent().unwrap_or_else(|| Path::new("."));
@@ -132,15 +137,22 @@ impl Loader<'_> {
                     Some(skin) => Some(skinning::joint_matrices(&skin, &worlds, self.buffers)?),
                     None => None,
                 };
-                for prim in mesh.primitives() {
-                    let context = format!(
-                        "mesh {} ('{}') primitive {}",
-                        mesh.index(),
-                        mesh.name().unwrap_or(""),
-                        prim.index()
-                    );
-                    self.add_primitive(&prim, world, joints.as_deref())
-                        .map_err(|e| format!("{context}: {e}"))?;
+                let placements = instancing::instances(doc, &node, self.buffers)
+                    .map_err(|e| format!("node {}: {e}", node.index()))?
+                    .map_or(vec![world], |local| {
+                        local.iter().map(|&l| world * l).collect()
+                    });
+                for placement in placements {
+                    for prim in mesh.primitives() {
+                        let context = format!(
+                            "mesh {} ('{}') primitive {}",
+                            mesh.index(),
+                            mesh.name().unwrap_or(""),
+                            prim.index()
+                        );
+                        self.add_primitive(&prim, placement, joints.as_deref())
+                            .map_err(|e| format!("{context}: {e}"))?;
+                    }
                 }
             }
             if node.camera().is_some() {
@@ -365,15 +377,15 @@ fn node_worlds(doc: &Document) -> Vec<Option<Mat4>> {
     worlds
 }
 
-/// Whether the file uses `KHR_mesh_quantization`, which this loader implements (attributes.rs)
-/// and the `gltf` crate's validation does not know: removed from the file's extension lists
-/// before that validation, which refuses any required extension it does not know.
-fn take_mesh_quantization(json: &mut gltf::json::Root) -> bool {
-    const NAME: &str = "KHR_mesh_quantization";
-    let listed = json.extensions_used.iter().any(|e| e == NAME)
-        || json.extensions_required.iter().any(|e| e == NAME);
-    json.extensions_used.retain(|e| e != NAME);
-    json.extensions_required.retain(|e| e != NAME);
+/// Whether the file uses extension `name`, one that this loader implements and the `gltf`
+/// crate's validation does not know (`KHR_mesh_quantization`: attributes.rs;
+/// `EXT_mesh_gpu_instancing`: instancing.rs): removed from the file's extension lists before
+/// that validation, which refuses any required extension it does not know.
+fn take_extension(json: &mut gltf::json::Root, name: &str) -> bool {
+    let listed = json.extensions_used.iter().any(|e| e == name)
+        || json.extensions_required.iter().any(|e| e == name);
+    json.extensions_used.retain(|e| e != name);
+    json.extensions_required.retain(|e| e != name);
     listed
 }
 

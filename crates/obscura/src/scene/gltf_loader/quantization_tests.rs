@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
 
-use super::tests::{base64, expect_error, load_path, temp_dir};
+use super::tests::{base64, expect_error, load_path, temp_dir, write_file};
 
 /// One attribute's data: its glTF component type, whether normalized, its element size in
 /// bytes before padding, and the bytes of its three elements, each padded to 4 bytes (vertex
@@ -103,9 +103,7 @@ fn triangle(
         views.join(", "),
         accessors.join(", ")
     );
-    let path = dir.join(name);
-    std::fs::write(&path, json).unwrap();
-    path
+    write_file(dir, name, &json)
 }
 
 const QUANTIZATION: &str = r#""KHR_mesh_quantization""#;

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
 
-use super::tests::{base64, expect_error, load_path, temp_dir};
+use super::tests::{base64, expect_error, load_path, temp_dir, write_file};
 
 /// A skinned triangle: vertex 0 bound to joint 0, vertex 1 to joint 1, vertex 2 half to each.
 /// The mesh node is moved by (100, 0, 0), which glTF says a skinned mesh ignores; the two joints
@@ -66,9 +66,7 @@ fn skinned_triangle(
         len = b.len(),
         data = base64(&b),
     );
-    let path = dir.join(name);
-    std::fs::write(&path, json).unwrap();
-    path
+    write_file(dir, name, &json)
 }
 
 fn assert_positions(path: &Path, expected: [Vec3; 3]) {

@@ -11,6 +11,13 @@ pub(super) fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
     crate::scene::test_dir::TestDir::new(&format!("gltf-{tag}"))
 }
 
+/// Writes `text` to `dir/name` and returns the path.
+pub(super) fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 pub(super) fn base64(data: &[u8]) -> String {
     const ABC: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
