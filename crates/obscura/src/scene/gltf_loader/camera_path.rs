@@ -112,8 +112,6 @@ impl<T: Animated> Track<T> {
     }
 }
 
-/// The path of the camera on `node` (whose parent's world transform is `parent`), if some
-/// animation moves or turns that node; `Err` names what is wrong with its channels.
 /// A translation or rotation channel's key times and values have the types glTF 2.0 §3.11
 /// allows them (times float; translations float VEC3; rotations VEC4 of floats or normalized
 /// 8- or 16-bit integers) and lie in their buffer views.
@@ -133,6 +131,8 @@ fn check_channel(channel: &Channel) -> Result<(), String> {
     }
 }
 
+/// The path of the camera on `node` (whose parent's world transform is `parent`), if some
+/// animation moves or turns that node; `Err` names what is wrong with its channels.
 pub(super) fn camera_path(
     doc: &Document,
     buffers: &[buffer::Data],

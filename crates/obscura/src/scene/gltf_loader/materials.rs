@@ -51,7 +51,7 @@ pub(super) fn convert(
 ) -> Result<Vec<BaseColorUv>, String> {
     // glTF image index -> our texture index; only images used as base colour are converted.
     let mut texture_of_image: Vec<Option<u32>> = vec![None; images.len()];
-    let mut tex_coord_sets = Vec::new();
+    let mut uvs = Vec::new();
     for (i, m) in doc.materials().enumerate() {
         let pbr = m.pbr_metallic_roughness();
         let mut base_color_texture = None;
@@ -108,9 +108,9 @@ pub(super) fn convert(
             alpha_mode,
             double_sided: m.double_sided(),
         });
-        tex_coord_sets.push(uv);
+        uvs.push(uv);
     }
-    Ok(tex_coord_sets)
+    Ok(uvs)
 }
 
 /// Any decoded glTF image as RGBA8.

@@ -137,11 +137,16 @@ impl Loader<'_> {
                     Some(skin) => Some(skinning::joint_matrices(&skin, &worlds, self.buffers)?),
                     None => None,
                 };
-                let placements = instancing::instances(doc, &node, self.buffers)
-                    .map_err(|e| format!("node {}: {e}", node.index()))?
-                    .map_or(vec![world], |local| {
-                        local.iter().map(|&l| world * l).collect()
-                    });
+                // A skinned mesh stands where its joints put it, whatever its node's
+                // transform or instances (which would all coincide).
+                let instances = match joints {
+                    Some(_) => None,
+                    None => instancing::instances(doc, &node, self.buffers)
+                        .map_err(|e| format!("node {}: {e}", node.index()))?,
+                };
+                let placements = instances.map_or(vec![world], |local| {
+                    local.iter().map(|&l| world * l).collect()
+                });
                 for placement in placements {
                     for prim in mesh.primitives() {
                         let context = format!(

@@ -101,15 +101,21 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
             .as_ref()
             .map(|t| textures::resolve(&dir, t));
         let texture = cache.material_texture(path, color, mask, &mut scene);
-        let alpha = m.dissolve.unwrap_or(1.0);
+        let masked = texture.is_some_and(|t| t.masked);
+        // With a mask the mask alone cuts: exporters write any `d` beside it (some 0).
+        let alpha = if masked {
+            1.0
+        } else {
+            m.dissolve.unwrap_or(1.0)
+        };
         let [r, g, b] = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
         scene.materials.push(Material {
             name: m.name.clone(),
             base_color: [r, g, b, alpha],
             base_color_texture: texture.map(|t| t.index),
-            alpha_mode: if texture.is_some_and(|t| t.masked) {
-                // `map_d`: a cut-out (foliage, fences), tested at the usual half (as glTF's
-                // default cutoff); the dissolve `d` scales it as glTF's base colour alpha does.
+            alpha_mode: if masked {
+                // `map_d`: a cut-out (foliage, fences), tested at the usual half (glTF's
+                // default cutoff).
                 AlphaMode::Mask { cutoff: 0.5 }
             } else if alpha < 1.0 {
                 // glTF's nearest equivalent of a dissolve below 1; AO treats it as opaque.

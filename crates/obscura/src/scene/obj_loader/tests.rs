@@ -256,7 +256,7 @@ fn map_d_masks_cut_materials_out() {
         .save(dir.join("fence.png"))
         .unwrap();
     let mtl = "newmtl red\nKd 1 0 0\nmap_Kd -s 1 1 1 textures/leaf.png\nmap_d textures\\leaf_mask.png\n\n\
-               newmtl blue\nKd 0 0 1\nmap_d fence.png\n\n\
+               newmtl blue\nKd 0 0 1\nd 0\nmap_d fence.png\n\n\
                newmtl missing\nmap_Kd textures/leaf.png\nmap_d nowhere.png\n";
     write(&dir, "test.mtl", mtl.as_bytes());
     let obj =
@@ -274,6 +274,11 @@ fn map_d_masks_cut_materials_out() {
     );
     let fence = &s.materials[1];
     assert_eq!(fence.alpha_mode, AlphaMode::Mask { cutoff: 0.5 });
+    assert_eq!(
+        fence.base_color,
+        [0.0, 0.0, 1.0, 1.0],
+        "`d` does not cut with a mask"
+    );
     assert_eq!(texture(1).rgba8, [255, 255, 255, 0, 255, 255, 255, 200]);
     // A mask that does not load leaves the material opaque, with its colour texture.
     let missing = &s.materials[2];
