@@ -69,7 +69,7 @@ fn gltf_triangle(positions: [[f32; 3]; 3], third_index: u16) -> String {
         bin.extend_from_slice(&i.to_le_bytes());
     }
     bin.extend_from_slice(&[0, 0]);
-    let b64 = base64(&bin);
+    let b64 = base64::encode(&bin);
     format!(
         r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
         "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
@@ -79,24 +79,6 @@ fn gltf_triangle(positions: [[f32; 3]; 3], third_index: u16) -> String {
                      {{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}}]}}"#,
         len = bin.len()
     )
-}
-
-fn base64(bytes: &[u8]) -> String {
-    const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in bytes.chunks(3) {
-        let n = (u32::from(c[0]) << 16)
-            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
-            | u32::from(*c.get(2).unwrap_or(&0));
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(T[((n >> (18 - 6 * k)) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
 }
 
 #[test]

@@ -34,27 +34,6 @@ impl Rng {
     }
 }
 
-fn base64(data: &[u8]) -> String {
-    const ABC: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
-        for i in 0..4 {
-            out.push(if i <= chunk.len() {
-                ABC[(n >> (18 - 6 * i) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    out
-}
-
 fn png_4x4() -> Vec<u8> {
     let img = image::RgbaImage::from_fn(4, 4, |x, y| {
         image::Rgba([60 * x as u8, 60 * y as u8, 90, 80 * ((x + y) % 4) as u8])
@@ -149,8 +128,8 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     let png = png_4x4();
     let bin = seed_buffer();
     let embedded = seed_json(
-        serde_json::json!({"byteLength": bin.len(), "uri": format!("data:application/octet-stream;base64,{}", base64(&bin))}),
-        serde_json::json!({"uri": format!("data:image/png;base64,{}", base64(&png))}),
+        serde_json::json!({"byteLength": bin.len(), "uri": format!("data:application/octet-stream;base64,{}", base64::encode(&bin))}),
+        serde_json::json!({"uri": format!("data:image/png;base64,{}", base64::encode(&png))}),
     );
     // GLB: the image in a buffer view after the geometry.
     let mut glb_bin = bin.clone();

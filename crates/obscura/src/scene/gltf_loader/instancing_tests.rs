@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use super::tests::{base64, expect_error, load_path, temp_dir, write_file};
+use super::tests::{expect_error, load_path, temp_dir, write_file};
 
 /// A triangle on a node moved by (0, 0, −1) with two instances: the first where the node puts
 /// it, the second moved by (5, 0, 0), turned 90° about +Z and scaled by 2. `rotation_type`:
@@ -50,7 +50,7 @@ fn instanced_triangle(dir: &Path, name: &str, rotation_type: u32, scales: usize)
     {{"bufferView": 3, "componentType": {rotation_type}, "normalized": {normalized}, "count": 2, "type": "VEC4"}}
   ]}}"#,
         len = b.len(),
-        data = base64(&b),
+        data = base64::encode(&b),
     );
     write_file(dir, name, &json)
 }

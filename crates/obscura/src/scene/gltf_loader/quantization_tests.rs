@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
 
-use super::tests::{base64, expect_error, load_path, temp_dir, write_file};
+use super::tests::{expect_error, load_path, temp_dir, write_file};
 
 /// One attribute's data: its glTF component type, whether normalized, its element size in
 /// bytes before padding, and the bytes of its three elements, each padded to 4 bytes (vertex
@@ -99,7 +99,7 @@ fn triangle(
   "bufferViews": [{}],
   "accessors": [{}]}}"#,
         buffer.len(),
-        base64(&buffer),
+        base64::encode(&buffer),
         views.join(", "),
         accessors.join(", ")
     );

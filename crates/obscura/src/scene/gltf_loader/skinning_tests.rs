@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
 
-use super::tests::{base64, expect_error, load_path, temp_dir, write_file};
+use super::tests::{expect_error, load_path, temp_dir, write_file};
 
 /// A skinned triangle: vertex 0 bound to joint 0, vertex 1 to joint 1, vertex 2 half to each.
 /// The mesh node is moved by (100, 0, 0), which glTF says a skinned mesh ignores; the two joints
@@ -64,7 +64,7 @@ fn skinned_triangle(
     {{"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC4"}}{ibm_accessor}
   ]}}"#,
         len = b.len(),
-        data = base64(&b),
+        data = base64::encode(&b),
     );
     write_file(dir, name, &json)
 }

@@ -18,27 +18,6 @@ pub(super) fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     path
 }
 
-pub(super) fn base64(data: &[u8]) -> String {
-    const ABC: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = u32::from(b[0]) << 16 | u32::from(b[1]) << 8 | u32::from(b[2]);
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(ABC[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
-
 /// 2x2 RGBA texture: alpha 255, 0 (top row), 128, 200 (bottom row).
 fn png_2x2() -> Vec<u8> {
     let px = [
@@ -152,9 +131,12 @@ impl Asset {
             Kind::Embedded => {
                 let buffer = format!(
                     r#"{{"byteLength": 128, "uri": "data:application/octet-stream;base64,{}"}}"#,
-                    base64(&geometry)
+                    base64::encode(&geometry)
                 );
-                let image = format!(r#"{{"uri": "data:image/png;base64,{}"}}"#, base64(&png));
+                let image = format!(
+                    r#"{{"uri": "data:image/png;base64,{}"}}"#,
+                    base64::encode(&png)
+                );
                 let path = dir.join("embedded.gltf");
                 std::fs::write(&path, self.json(&buffer, &image, "")).unwrap();
                 path
@@ -598,7 +580,7 @@ fn triangle_with_normals(dir: &Path, normals: [[f32; 3]; 3], node: &str) -> Path
   "accessors": [
     {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
     {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"}}]}}"#,
-        base64(&bytes)
+        base64::encode(&bytes)
     );
     let path = dir.join("normals.gltf");
     std::fs::write(&path, json).unwrap();
@@ -690,7 +672,7 @@ fn animated_camera_gltf(interpolation: &str) -> String {
   ]
 }}"#,
         len = b.len(),
-        data = base64(&b),
+        data = base64::encode(&b),
         rot_times = 48 + translations,
         rots = 48 + translations + 8,
     )
