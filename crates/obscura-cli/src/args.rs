@@ -80,6 +80,10 @@ pub struct SceneArgs {
     /// Point looked at x,y,z (with --eye).
     #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
     pub target: Option<Vec3>,
+    /// The image's up direction x,y,z (with --eye; default +Y, or ∓Z looking straight down or
+    /// up): 0,0,1 for a scene modelled Z up, as CAD and 3ds Max exports are.
+    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
+    pub up: Option<Vec3>,
     /// Vertical field of view of the visible image in degrees (default: the camera's, or 60).
     #[arg(long, allow_hyphen_values = true)]
     pub fov: Option<f32>,
@@ -137,7 +141,11 @@ impl SceneArgs {
         scene.check_extent()?;
         let mut camera = match (&self.camera, self.eye, self.target) {
             (Some(name), _, _) => scene.camera(name)?,
-            (None, Some(eye), Some(target)) => Camera::new(eye, target, self.fov.unwrap_or(60.0))?,
+            (None, Some(eye), Some(target)) => {
+                let mut camera = Camera::new(eye, target, self.fov.unwrap_or(60.0))?;
+                camera.up = self.up.unwrap_or(camera.up);
+                camera
+            }
             _ => scene.default_camera(aspect),
         };
         if let Some(fov) = self.fov {
@@ -919,6 +927,27 @@ mod tests {
                 Some((format!("--{long}"), a.get_help()?.to_string()))
             })
             .collect()
+    }
+
+    #[derive(Parser)]
+    struct SceneCli {
+        #[command(flatten)]
+        scene: SceneArgs,
+    }
+
+    #[test]
+    fn up_sets_the_camera_s_up_direction() {
+        let camera = |args: &[&str]| {
+            let cli =
+                SceneCli::try_parse_from(std::iter::once("obscura").chain(args.iter().copied()))
+                    .unwrap_or_else(|e| panic!("{args:?}: {e}"));
+            let scene = obscura::scene::builtin("stairs").unwrap();
+            cli.scene.camera(&scene, 1.0).unwrap()
+        };
+        let view = ["--eye", "5,1,0", "--target", "0,1,0"];
+        assert_eq!(camera(&view).up, Vec3::Y);
+        let z_up = [&view[..], &["--up", "0,0,1"]].concat();
+        assert_eq!(camera(&z_up).up, Vec3::Z);
     }
 
     #[test]

@@ -253,6 +253,11 @@ fn bad_options_are_clear_errors() {
     );
     assert_render_fails(&["--eye", "1,1,1", "--target", "1,1,1"], &["eye"]);
     assert_render_fails(&["--eye", "1,x,1", "--target", "0,0,0"], &["x"]);
+    assert_render_fails(
+        &["--eye", "0,0,5", "--target", "0,0,0", "--up", "0,0,1"],
+        &["up"],
+    );
+    assert_render_fails(&["--up", "0,0,1"], &["--eye"]);
     assert_render_fails(&["--radius", "-0.5"], &["radius"]);
     assert_render_fails(&["--thickness", "-1"], &["thickness"]);
     assert_render_fails(&["--samples", "12"], &["sample"]);
