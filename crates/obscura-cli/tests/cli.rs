@@ -258,6 +258,11 @@ fn bad_options_are_clear_errors() {
         &["up"],
     );
     assert_render_fails(&["--up", "0,0,1"], &["--eye"]);
+    let view = [
+        "view", "--eye", "1,1,1", "--target", "0,0,0", "--up", "0,0,1",
+    ];
+    let o = obscura(&[&view[..], &["--offscreen-frames", "1"]].concat());
+    assert!(!o.status.success() && stderr(&o).contains("fly camera keeps +Y up"));
     assert_render_fails(&["--radius", "-0.5"], &["radius"]);
     assert_render_fails(&["--thickness", "-1"], &["thickness"]);
     assert_render_fails(&["--samples", "12"], &["sample"]);

@@ -78,6 +78,12 @@ pub fn run(options: &obscura::GpuOptions, args: &ViewArgs) -> Result<()> {
             .map_err(|e| crate::args::for_user(e.into()))
             .with_context(|| format!("--split {t}"))?;
     }
+    if args.scene.up.is_some() {
+        bail!(
+            "--up: the viewer's fly camera keeps +Y up (it turns about +Y); --up is for render, \
+             compare, reference and bench"
+        );
+    }
     let scene = Arc::new(args.scene.load()?);
     let aspect = args.size.map_or(16.0 / 9.0, |(w, h)| w as f32 / h as f32);
     let camera = args.scene.camera(&scene, aspect)?;
