@@ -81,12 +81,12 @@ impl TextureCache {
             )),
             (None, None) => None,
         };
-        let masked = mask_image.is_some();
+        let is_masked = mask_image.is_some();
         let entry = texture.map(|t| {
             scene.textures.push(t);
             MaterialTexture {
                 index: (scene.textures.len() - 1) as u32,
-                masked,
+                masked: is_masked,
             }
         });
         self.textures.insert(key, entry);
