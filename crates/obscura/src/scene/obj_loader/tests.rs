@@ -245,17 +245,17 @@ fn map_d_masks_cut_materials_out() {
     image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 255]))
         .save(dir.join("textures/leaf.png"))
         .unwrap();
-    // Grey mask: white top-left and bottom-right.
+    // Grey mask: white top-left and bottom-right; a TGA, as older scenes' masks are.
     image::GrayImage::from_raw(2, 2, vec![255, 0, 0, 255])
         .unwrap()
-        .save(dir.join("textures/leaf_mask.png"))
+        .save(dir.join("textures/leaf_mask.tga"))
         .unwrap();
     // A mask with an alpha channel (its grey level all white): the alpha counts.
     image::RgbaImage::from_raw(2, 1, vec![255, 255, 255, 0, 255, 255, 255, 200])
         .unwrap()
         .save(dir.join("fence.png"))
         .unwrap();
-    let mtl = "newmtl red\nKd 1 0 0\nmap_Kd -s 1 1 1 textures/leaf.png\nmap_d textures\\leaf_mask.png\n\n\
+    let mtl = "newmtl red\nKd 1 0 0\nmap_Kd -s 1 1 1 textures/leaf.png\nmap_d textures\\leaf_mask.tga\n\n\
                newmtl blue\nKd 0 0 1\nd 0\nmap_d fence.png\n\n\
                newmtl missing\nmap_Kd textures/leaf.png\nmap_d nowhere.png\n";
     write(&dir, "test.mtl", mtl.as_bytes());
