@@ -61,8 +61,16 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         ..Default::default()
     };
     let mtl_failed = RefCell::new(false);
+    // Where names are looked up: the OBJ's folder, then each material library's.
+    let dirs = RefCell::new(vec![dir.clone()]);
     let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |mtl| {
-        let mtl_path = textures::resolve(&dir, mtl.to_str().unwrap_or_default());
+        let mtl_path = textures::resolve(&dirs.borrow(), mtl.to_str().unwrap_or_default());
+        if let Some(folder) = mtl_path
+            .parent()
+            .filter(|f| !dirs.borrow().iter().any(|d| d == f))
+        {
+            dirs.borrow_mut().push(folder.to_path_buf());
+        }
         let result = tobj::load_mtl(&mtl_path);
         if let Err(e) = &result {
             log::warn!(
@@ -95,11 +103,11 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         let color = m
             .diffuse_texture
             .as_ref()
-            .map(|t| textures::resolve(&dir, t));
+            .map(|t| textures::resolve(&dirs.borrow(), t));
         let mask = m
             .dissolve_texture
             .as_ref()
-            .map(|t| textures::resolve(&dir, t));
+            .map(|t| textures::resolve(&dirs.borrow(), t));
         let texture = cache.material_texture(path, color, mask, &mut scene);
         let masked = texture.is_some_and(|t| t.masked);
         // With a mask the mask alone cuts: exporters write any `d` beside it (some 0).

@@ -285,3 +285,20 @@ fn map_d_masks_cut_materials_out() {
     assert_eq!(missing.alpha_mode, AlphaMode::Opaque);
     assert_eq!(texture(2).rgba8, [10, 20, 30, 255]);
 }
+
+/// A material library in a subfolder names its textures from there.
+#[test]
+fn textures_are_found_beside_a_material_library_in_a_subfolder() {
+    let dir = temp_dir("mtl-folder");
+    std::fs::create_dir_all(dir.join("materials")).unwrap();
+    image::GrayImage::from_raw(1, 2, vec![255, 0])
+        .unwrap()
+        .save(dir.join("materials/mask.png"))
+        .unwrap();
+    write(&dir, "materials/lib.mtl", b"newmtl red\nmap_d mask.png\n");
+    let obj = QUAD_AND_TRIANGLE.replace("mtllib test.mtl", "mtllib materials/lib.mtl");
+    let s = load_path(&write(&dir, "scene.obj", obj.as_bytes())).unwrap();
+    assert_eq!(s.materials[0].alpha_mode, AlphaMode::Mask { cutoff: 0.5 });
+    let t = &s.textures[s.materials[0].base_color_texture.unwrap() as usize];
+    assert_eq!(t.rgba8, [255, 255, 255, 255, 255, 255, 255, 0]);
+}

@@ -9,12 +9,14 @@ use image::{DynamicImage, GrayImage, RgbaImage};
 use super::super::texture::texture_from_rgba;
 use super::super::{Scene, Texture};
 
-/// The file a texture or material-library statement names, relative to `dir`. Files written on
-/// Windows name paths with backslashes, and `map_Kd -s 1 1 1 leaf.png`'s options come before
-/// the name (the MTL format's `-o`, `-s`, `-bm`, … options, which `tobj` keeps in the name): the
-/// name as given, then with `/` for `\`, then its last word, whichever exists first (else the
-/// name as given, for the error message).
-pub(super) fn resolve(dir: &Path, name: &str) -> PathBuf {
+/// The file a texture or material-library statement names, relative to the first of `dirs`
+/// that has it (the OBJ's folder, then each material library's: a library in a subfolder names
+/// its textures from there). Files written on Windows name paths with backslashes, and
+/// `map_Kd -s 1 1 1 leaf.png`'s options come before the name (the MTL format's `-o`, `-s`,
+/// `-bm`, … options, which `tobj` keeps in the name): the name as given, then with `/` for
+/// `\`, then its last word, whichever exists first (else the name as given in the first
+/// folder, for the error message).
+pub(super) fn resolve(dirs: &[PathBuf], name: &str) -> PathBuf {
     let name = name.trim();
     let last_word = name.split_whitespace().last().unwrap_or(name);
     let candidates = [
@@ -25,9 +27,12 @@ pub(super) fn resolve(dir: &Path, name: &str) -> PathBuf {
     ];
     candidates
         .iter()
-        .map(|c| dir.join(c))
+        .flat_map(|c| dirs.iter().map(move |d| d.join(c)))
         .find(|p| p.is_file())
-        .unwrap_or_else(|| dir.join(name))
+        .unwrap_or_else(|| {
+            dirs.first()
+                .map_or_else(|| PathBuf::from(name), |d| d.join(name))
+        })
 }
 
 /// The textures loaded so far, by file (or file pair), each once.
