@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use super::tests::{expect_error, load_path, temp_dir, write_file};
+use super::tests::{expect_error, load_path, push_floats, temp_dir, write_file};
 
 /// A triangle on a node moved by (0, 0, −1) with two instances: the first where the node puts
 /// it, the second moved by (5, 0, 0), turned 90° about +Z and scaled by 2. `rotation_type`:
@@ -12,13 +12,12 @@ use super::tests::{expect_error, load_path, temp_dir, write_file};
 /// scales the SCALE accessor claims (2, or another count to test the error).
 fn instanced_triangle(dir: &Path, name: &str, rotation_type: u32, scales: usize) -> PathBuf {
     let mut b: Vec<u8> = Vec::new();
-    let floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
-    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], &mut b); // positions @0, 36
-    floats(&[0.0, 0.0, 0.0, 5.0, 0.0, 0.0], &mut b); // translations @36, 24
-    floats(&[1.0, 1.0, 1.0, 2.0, 2.0, 2.0], &mut b); // scales @60, 24
+    push_floats(&mut b, &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]); // positions @0, 36
+    push_floats(&mut b, &[0.0, 0.0, 0.0, 5.0, 0.0, 0.0]); // translations @36, 24
+    push_floats(&mut b, &[1.0, 1.0, 1.0, 2.0, 2.0, 2.0]); // scales @60, 24
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let rotation_bytes = if rotation_type == 5126 {
-        floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s], &mut b); // rotations @84, 32
+        push_floats(&mut b, &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, s, s]); // rotations @84, 32
         32
     } else {
         let half = (s * 32767.0).round() as i16;

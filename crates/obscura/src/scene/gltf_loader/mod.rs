@@ -201,7 +201,8 @@ impl Loader<'_> {
             Some(joints) => skinning::vertex_matrices(prim, buffers, joints, n)?,
             None => None,
         };
-        let placement = skinned.map_or(VertexPlacement::Node(world), VertexPlacement::Skinned);
+        let placement =
+            skinned.map_or_else(|| VertexPlacement::node(world), VertexPlacement::Skinned);
 
         let material = match prim.material().index() {
             Some(i) if i < self.scene.materials.len() => i as u32,

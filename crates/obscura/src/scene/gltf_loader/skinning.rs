@@ -132,35 +132,53 @@ pub(super) fn vertex_matrices(
         .map(Some)
 }
 
-/// How a primitive's vertices reach world space: its node's transform, or one skinning matrix
-/// per vertex.
+/// How a primitive's vertices reach world space: its node's transform (with its normal matrix
+/// and handedness made once), or one skinning matrix per vertex.
 pub(super) enum VertexPlacement {
-    Node(Mat4),
+    Node {
+        matrix: Mat4,
+        normal_matrix: Mat3,
+        mirrors: bool,
+    },
     Skinned(Vec<Mat4>),
 }
 
+/// Normals transform by the inverse transpose of the linear part.
+fn normal_matrix(m: Mat4) -> Mat3 {
+    Mat3::from_mat4(m).inverse().transpose()
+}
+
 impl VertexPlacement {
-    fn matrix(&self, v: usize) -> Mat4 {
-        match self {
-            VertexPlacement::Node(m) => *m,
-            VertexPlacement::Skinned(ms) => ms[v],
+    pub fn node(matrix: Mat4) -> Self {
+        VertexPlacement::Node {
+            matrix,
+            normal_matrix: normal_matrix(matrix),
+            mirrors: matrix.determinant() < 0.0,
         }
     }
 
     pub fn position(&self, v: usize, p: Vec3) -> Vec3 {
-        self.matrix(v).transform_point3(p)
+        match self {
+            VertexPlacement::Node { matrix, .. } => matrix.transform_point3(p),
+            VertexPlacement::Skinned(ms) => ms[v].transform_point3(p),
+        }
     }
 
-    /// Normals transform by the inverse transpose of the linear part; one that comes out
-    /// non-finite or zero (a singular transform, a zero or NaN normal in the file) is "no
-    /// normal" at that vertex.
+    /// The normal at vertex `v` in world space; one that comes out non-finite or zero (a
+    /// singular transform, a zero or NaN normal in the file) is "no normal" there.
     pub fn normal(&self, v: usize, n: Vec3) -> Vec3 {
-        let to_world = Mat3::from_mat4(self.matrix(v)).inverse().transpose();
+        let to_world = match self {
+            VertexPlacement::Node { normal_matrix, .. } => *normal_matrix,
+            VertexPlacement::Skinned(ms) => normal_matrix(ms[v]),
+        };
         (to_world * n).normalize_or_zero()
     }
 
     /// Whether the transform at vertex `v` mirrors (turning counter-clockwise into clockwise).
     pub fn mirrors(&self, v: usize) -> bool {
-        self.matrix(v).determinant() < 0.0
+        match self {
+            VertexPlacement::Node { mirrors, .. } => *mirrors,
+            VertexPlacement::Skinned(ms) => ms[v].determinant() < 0.0,
+        }
     }
 }

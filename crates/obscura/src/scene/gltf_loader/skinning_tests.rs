@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
 
-use super::tests::{expect_error, load_path, temp_dir, write_file};
+use super::tests::{expect_error, load_path, push_floats, temp_dir, write_file};
 
 /// A skinned triangle: vertex 0 bound to joint 0, vertex 1 to joint 1, vertex 2 half to each.
 /// The mesh node is moved by (100, 0, 0), which glTF says a skinned mesh ignores; the two joints
@@ -18,18 +18,15 @@ fn skinned_triangle(
     joint_1: u8,
 ) -> PathBuf {
     let mut b: Vec<u8> = Vec::new();
-    let floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
-    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], &mut b); // positions @0, 36
-    floats(&[0.0, 0.0, 1.0].repeat(3), &mut b); // normals @36, 36
+    push_floats(&mut b, &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]); // positions @0, 36
+    push_floats(&mut b, &[0.0, 0.0, 1.0].repeat(3)); // normals @36, 36
     b.extend([0, 0, 0, 0, joint_1, 0, 0, 0, 0, 1, 0, 0]); // joints @72, 12
-    floats(
-        &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0],
-        &mut b,
-    ); // weights @84, 48
+    let weights = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0];
+    push_floats(&mut b, &weights); // weights @84, 48
     let (skin_ibm, ibm_accessor, ibm_view) = match inverse_bind {
         Some(ms) => {
             for m in ms {
-                floats(&m.to_cols_array(), &mut b); // @132, 128
+                push_floats(&mut b, &m.to_cols_array()); // @132, 128
             }
             (
                 r#", "inverseBindMatrices": 4"#,

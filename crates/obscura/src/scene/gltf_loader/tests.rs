@@ -11,6 +11,11 @@ pub(super) fn temp_dir(tag: &str) -> crate::scene::test_dir::TestDir {
     crate::scene::test_dir::TestDir::new(&format!("gltf-{tag}"))
 }
 
+/// Appends `values` to `bytes` as little-endian f32s (a glTF buffer's layout).
+pub(super) fn push_floats(bytes: &mut Vec<u8>, values: &[f32]) {
+    bytes.extend(values.iter().flat_map(|f| f.to_le_bytes()));
+}
+
 /// Writes `text` to `dir/name` and returns the path.
 pub(super) fn write_file(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
@@ -615,23 +620,22 @@ fn vertex_normals_follow_the_node_transform() {
 fn animated_camera_gltf(interpolation: &str) -> String {
     let cubic = interpolation == "CUBICSPLINE";
     let mut b: Vec<u8> = Vec::new();
-    let floats = |v: &[f32], b: &mut Vec<u8>| b.extend(v.iter().flat_map(|f| f.to_le_bytes()));
-    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], &mut b); // triangle @0, 36
-    floats(&[0.0, 1.0, 2.0], &mut b); // translation times @36, 12
+    push_floats(&mut b, &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]); // triangle @0, 36
+    push_floats(&mut b, &[0.0, 1.0, 2.0]); // translation times @36, 12
     let keys = [[0.0, 1.0, 5.0], [2.0, 1.0, 5.0], [4.0, 1.0, 3.0]];
     for k in keys {
         if cubic {
-            floats(&[0.0; 3], &mut b);
+            push_floats(&mut b, &[0.0; 3]);
         }
-        floats(&k, &mut b);
+        push_floats(&mut b, &k);
         if cubic {
-            floats(&[0.0; 3], &mut b);
+            push_floats(&mut b, &[0.0; 3]);
         }
     }
     let translations = b.len() - 48; // @48
-    floats(&[0.0, 2.0], &mut b); // rotation times
+    push_floats(&mut b, &[0.0, 2.0]); // rotation times
     let s = std::f32::consts::FRAC_1_SQRT_2;
-    floats(&[0.0, 0.0, 0.0, 1.0, 0.0, s, 0.0, s], &mut b); // rotations
+    push_floats(&mut b, &[0.0, 0.0, 0.0, 1.0, 0.0, s, 0.0, s]); // rotations
     let count = if cubic { 9 } else { 3 };
     format!(
         r#"{{
