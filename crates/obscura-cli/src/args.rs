@@ -1,6 +1,6 @@
 //! Parsers and shared option groups for the subcommands.
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::Vec3;
@@ -341,6 +341,12 @@ pub struct AoArgs {
     /// below override it.
     #[arg(long, value_name = "FILE")]
     pub settings: Option<PathBuf>,
+    /// One world radius R for every technique's estimator and for the ground truth (compare
+    /// techniques at the same distance, or against an outside renderer's AO of that distance);
+    /// each estimator reads R its own way (docs/SETTINGS.md). Applied over the preset and the
+    /// file; the per-technique radius flags (--radius, --hbao-radius, …) override it.
+    #[arg(long, allow_hyphen_values = true)]
+    pub ao_radius: Option<f32>,
     // Help texts name the defaults of AoSettings::default() (`help`).
     #[arg(long, allow_hyphen_values = true, help = help("VAO sphere radius R in world units.", "vao.radius"))]
     pub radius: Option<f32>,
@@ -674,6 +680,15 @@ impl AoArgs {
                 ));
                 s.technique = technique;
             }
+        }
+        if let Some(r) = self.ao_radius {
+            // Checked here: the fields it sets would name their own flags.
+            if !(r.is_finite() && r > 0.0) {
+                bail!(
+                    "invalid --ao-radius {r}: must be a positive number of world units, e.g. 0.5"
+                );
+            }
+            s.set_every_radius(r);
         }
         let v = &mut s.vao;
         set(&mut v.radius, self.radius);
@@ -1064,6 +1079,46 @@ mod tests {
             .settings(Technique::Vao)
             .unwrap();
         assert_eq!(s.technique, Technique::Vao);
+    }
+
+    #[test]
+    fn one_radius_for_every_estimator_under_the_per_technique_flags() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("s.toml");
+        std::fs::write(&file, "[vao]\nradius = 0.75\n[gtao]\nradius = 0.25\n").unwrap();
+        let f = file.to_str().unwrap();
+        // Over the preset and the file; under --hbao-radius.
+        let args = ao(&[
+            "--preset",
+            "high",
+            "--settings",
+            f,
+            "--ao-radius",
+            "2",
+            "--hbao-radius",
+            "3",
+        ]);
+        for t in Technique::all() {
+            let s = args.settings(t).unwrap();
+            let want = if t.estimator() == obscura::technique::Estimator::HbaoPlus {
+                3.0
+            } else {
+                2.0
+            };
+            assert_eq!(s.radius(), want, "{t}");
+            // The ground truth's radius (`reference` and `compare` take `vao.radius`).
+            assert_eq!(s.vao.radius, 2.0, "{t}");
+        }
+        for bad in ["0", "-1", "inf", "NaN"] {
+            let e = ao(&["--ao-radius", bad])
+                .settings(Technique::Gtao)
+                .unwrap_err();
+            let e = e.to_string();
+            assert!(
+                e.starts_with(&format!("invalid --ao-radius {bad}:")),
+                "{bad}: {e}"
+            );
+        }
     }
 
     #[test]

@@ -457,6 +457,8 @@ fn compare_writes_a_report_and_reuses_the_reference() {
         (Some(64), Some(48))
     );
     assert_eq!(v["reference"]["model"], "vao");
+    // The ground truth's R: VAO's radius, the default here.
+    assert_eq!(v["reference"]["radius"], 0.5);
     let results = v["results"].as_array().unwrap();
     assert_eq!(results.len(), 1);
     assert_eq!(results[0]["technique"], "vao");
@@ -1668,6 +1670,9 @@ fn compare_takes_an_outside_renderers_image_as_its_reference() {
     let b = report(&traced);
     assert_eq!(a["reference"]["model"], "image 'outside.exr'");
     assert_eq!(b["reference"]["model"], "hemisphere");
+    // An outside image's distance is not known here; the traced one's is VAO's radius.
+    assert!(a["reference"]["radius"].is_null());
+    assert_eq!(b["reference"]["radius"], 0.5);
     let rb = b["results"].as_array().unwrap();
     let same_numbers = |a: &serde_json::Value| {
         let ra = a["results"].as_array().unwrap();

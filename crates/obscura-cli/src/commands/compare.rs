@@ -182,9 +182,13 @@ pub fn compare(
     on_render: &mut dyn FnMut(obscura::Technique, &Renderer) -> Result<()>,
 ) -> Result<Report> {
     let reference_settings = reference.settings(model, ao)?;
-    let (model_name, spp) = match c.reference_image {
-        Some(image) => (image.name.as_str(), None),
-        None => (model.name(), reference_settings.reported_spp()),
+    let (model_name, spp, reference_radius) = match c.reference_image {
+        Some(image) => (image.name.as_str(), None, None),
+        None => (
+            model.name(),
+            reference_settings.reported_spp(),
+            Some(reference_settings.vao.radius),
+        ),
     };
     let mut images = Vec::new();
     let mut gbuffer = None;
@@ -243,6 +247,7 @@ pub fn compare(
         guard_band: c.guard_band,
         reference_model: model_name,
         spp,
+        reference_radius,
         reference: reference_image,
         depth: &depth,
         techniques: images
@@ -408,7 +413,8 @@ fn compare_path(gpu: &Gpu, job: &PathJob, timing_frames: u32, out: &Path) -> Res
         run.times[mid]
     );
     let (reference_args, model) = job.reference.context("the reference was asked for")?;
-    let spp = reference_args.settings(model, job.ao)?.reported_spp();
+    let reference_settings = reference_args.settings(model, job.ao)?;
+    let spp = reference_settings.reported_spp();
     let input = ReportInput {
         scene: &job.scene.name,
         camera: &camera,
@@ -418,6 +424,7 @@ fn compare_path(gpu: &Gpu, job: &PathJob, timing_frames: u32, out: &Path) -> Res
         guard_band: job.guard_band,
         reference_model: model.name(),
         spp,
+        reference_radius: Some(reference_settings.vao.radius),
         reference: &reference[mid],
         depth: &run.depths[mid],
         techniques: run

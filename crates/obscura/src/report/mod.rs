@@ -113,6 +113,10 @@ pub struct ReportInput<'a> {
     /// Hemisphere rays per pixel; `Some` exactly when `reference_model` is
     /// `"hemisphere"`, `None` for the `"vao"` and `"vao-mean"` models and an image.
     pub spp: Option<u32>,
+    /// The ground truth's radius R in world units (the vao models' sphere, the hemisphere
+    /// model's ray length), printed beside the model so that every technique's radius
+    /// (its settings) can be held against it; `None` where not known (an outside image).
+    pub reference_radius: Option<f32>,
     /// Reference AO, the ground truth every technique is compared against.
     pub reference: &'a [f32],
     /// Linear view depth of the visible image (≤ 0 or non-finite:
@@ -177,6 +181,10 @@ pub struct ReferenceInfo {
     pub model: String,
     /// Hemisphere rays per pixel (`None` for the vao models).
     pub spp: Option<u32>,
+    /// The ground truth's radius R in world units (`None` where not known: an outside image,
+    /// or a report written before it was recorded).
+    #[serde(default)]
+    pub radius: Option<f32>,
 }
 
 /// A whole comparison: what was rendered and every technique's metrics.
@@ -303,6 +311,7 @@ pub fn build_report(input: &ReportInput) -> Result<Report, ReportError> {
         reference: ReferenceInfo {
             model: input.reference_model.to_owned(),
             spp: input.spp,
+            radius: input.reference_radius,
         },
         adapter: input.adapter.to_owned(),
         software_adapter: input.software_adapter,
@@ -544,6 +553,16 @@ fn validate(input: &ReportInput) -> Result<(), ReportError> {
         }
     }
 
+    if let Some(r) = input
+        .reference_radius
+        .filter(|r| !(r.is_finite() && *r > 0.0))
+    {
+        return Err(ReportError::Input(format!(
+            "reference_radius is Some({r}): pass the ground truth's radius in world units (> 0), \
+             or None where it is not known"
+        )));
+    }
+
     if input.techniques.is_empty() {
         return Err(ReportError::Input(
             "no techniques: a report compares at least one technique against the reference"
@@ -696,12 +715,16 @@ pub const METRIC_HEADERS: [&str; 7] = [
     "GPU ms",
 ];
 
-/// `"vao"` or `"hemisphere, 256 rays per pixel"`.
+/// `"vao, R = 0.5"` or `"hemisphere, R = 1, 256 rays per pixel"`.
 fn reference_description(info: &ReferenceInfo) -> String {
-    match info.spp {
-        Some(spp) => format!("{}, {spp} rays per pixel", info.model),
-        None => info.model.clone(),
+    let mut out = info.model.clone();
+    if let Some(r) = info.radius {
+        out += &format!(", R = {r}");
     }
+    if let Some(spp) = info.spp {
+        out += &format!(", {spp} rays per pixel");
+    }
+    out
 }
 
 /// The heat map scale as printed in legends: `0.05`, `1`, or `2e30` for

@@ -349,6 +349,7 @@ mod tests {
             guard_band: 0,
             reference_model: "vao",
             spp: None,
+            reference_radius: None,
             reference: &reference[1],
             depth: &depth,
             techniques: ["flicker", "exact"]

@@ -65,6 +65,7 @@ impl Fixture {
             guard_band: 8,
             reference_model: "vao",
             spp: None,
+            reference_radius: None,
             reference: &self.reference,
             depth: &self.depth,
             techniques: vec![
@@ -214,7 +215,8 @@ fn build_report_metrics_match_hand_arithmetic() {
         report.reference,
         ReferenceInfo {
             model: "vao".into(),
-            spp: None
+            spp: None,
+            radius: None,
         }
     );
     let order: Vec<_> = report
@@ -415,13 +417,14 @@ fn report_md_has_header_and_one_row_per_technique() {
     let mut input = f.input();
     input.reference_model = "hemisphere";
     input.spp = Some(256);
+    input.reference_radius = Some(0.75);
     write_report(dir.path(), &input).unwrap();
     let md = fs::read_to_string(dir.path().join("report.md")).unwrap();
     let lines: Vec<&str> = md.lines().collect();
     assert_eq!(
         lines[0],
-        "# AO report: scene cornell box, camera front, 32×24, reference hemisphere, 256 rays \
-         per pixel"
+        "# AO report: scene cornell box, camera front, 32×24, reference hemisphere, R = 0.75, \
+         256 rays per pixel"
     );
     assert_eq!(
         lines[2],
@@ -436,6 +439,7 @@ fn report_md_has_header_and_one_row_per_technique() {
     let json: Report =
         serde_json::from_str(&fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
     assert_eq!(json.reference.spp, Some(256));
+    assert_eq!(json.reference.radius, Some(0.75));
 }
 
 #[test]
@@ -728,6 +732,12 @@ fn inconsistent_reference_model_and_spp_are_rejected() {
         input.spp = spp;
         let m = input_message(write_fails(&input));
         assert!(m.contains(expect), "{model} {spp:?}: {m}");
+    }
+    for radius in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        let mut input = f.input();
+        input.reference_radius = Some(radius);
+        let m = input_message(write_fails(&input));
+        assert!(m.contains("reference_radius"), "{radius}: {m}");
     }
 }
 

@@ -248,6 +248,21 @@ fn the_radius_is_the_estimators() {
 }
 
 #[test]
+fn every_radius_is_set_at_once() {
+    for technique in Technique::all() {
+        let mut s = AoSettings::preset(technique, Preset::High);
+        s.set_every_radius(2.25);
+        assert_eq!(s.radius(), 2.25, "{technique}");
+        // The ground truth reads the VAO radius whatever the technique.
+        assert_eq!(s.vao.radius, 2.25, "{technique}");
+        // All eight estimators' radius fields, and nothing else.
+        let json = serde_json::to_string(&s).unwrap();
+        assert_eq!(json.matches(":2.25").count(), 8, "{technique}: {json}");
+        assert!(s.validate().is_ok(), "{technique}");
+    }
+}
+
+#[test]
 fn blur_sigma_is_a_natural_gaussian() {
     let mut b = BlurSettings {
         sigma: Some(1.5),

@@ -417,6 +417,25 @@ impl AoSettings {
         }
     }
 
+    /// Sets the world radius R of every estimator (`vao.radius`, `hbao.radius`, … all eight),
+    /// whichever the technique runs: techniques compared side by side then reach as far, and so
+    /// does the ground truth, which takes `vao.radius`. Each estimator still reads R its own way
+    /// (docs/SETTINGS.md: e.g. GTAO's samples reach 1.457 R, HBAO+ fades by 1 − d²/R²).
+    pub fn set_every_radius(&mut self, radius: f32) {
+        for r in [
+            &mut self.vao.radius,
+            &mut self.hbao.radius,
+            &mut self.hbao_plus.radius,
+            &mut self.gtao.radius,
+            &mut self.gtao_vb.radius,
+            &mut self.ssao.radius,
+            &mut self.sao.radius,
+            &mut self.pyramid_hbao.radius,
+        ] {
+            *r = radius;
+        }
+    }
+
     /// The settings field that holds [`Self::radius`] (`vao.radius`, `hbao.radius`, …).
     pub fn radius_field(&self) -> &'static str {
         match self.technique.estimator() {
