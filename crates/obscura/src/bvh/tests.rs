@@ -1,7 +1,8 @@
 //! BVH tests: traversal against brute force over random soups, the triangle test against an f64
 //! Möller–Trumbore, watertightness on a shared-edge mesh, the scene's back-face and alpha rules,
 //! bad input, and (ignored by default) a throughput measurement:
-//! `cargo test --release -- --ignored --nocapture bvh_throughput`.
+//! `cargo test --release -- --ignored --nocapture bvh_throughput` (`OBSCURA_BVH_BENCH_CELLS`
+//! scales its scene).
 
 use glam::{vec2, vec3, Vec2, Vec3, Vec3A};
 
@@ -846,11 +847,17 @@ fn the_wide_tree_holds_the_bvh2_leaves_and_boxes() {
     assert!((0..4).all(|k| empty[0].bounds[0][k] > empty[0].bounds[1][k]));
 }
 
-/// A ~250k-triangle synthetic scene (Y up): a 256×256-cell heightfield plus 10k rotated boxes.
+/// A ~250k-triangle synthetic scene (Y up): a 256×256-cell heightfield plus 10k rotated boxes;
+/// `OBSCURA_BVH_BENCH_CELLS=N` makes the heightfield N×N cells (2N² triangles: 1024 gives a
+/// scene of 2.2 million triangles, for the build's time at the size of large outside scenes).
 fn benchmark_scene() -> Scene {
     let mut rng = Pcg::new(2024);
     let mut scene = empty_test_scene("benchmark");
-    let (n, size) = (256u32, 100.0f32);
+    let cells = std::env::var("OBSCURA_BVH_BENCH_CELLS").ok();
+    let n = cells.map_or(256, |c| {
+        c.parse::<u32>().expect("OBSCURA_BVH_BENCH_CELLS: a count")
+    });
+    let size = 100.0f32;
     let height = |x: f32, z: f32| {
         2.0 * (x * 0.11).sin() * (z * 0.07).cos() + 0.5 * (x * 0.5 + z * 0.3).sin()
     };
@@ -936,14 +943,15 @@ fn bvh_throughput() {
     use std::time::Instant;
 
     let scene = benchmark_scene();
-    let t = Instant::now();
+    let (t, cpu) = (Instant::now(), process_cpu_seconds());
     let bvh = Bvh::build(&scene);
     println!(
-        "build: {} triangles, {} nodes, depth {}, {:.2} s",
+        "build: {} triangles, {} nodes, depth {}, {:.2} s wall ({:.2} CPU-seconds)",
         bvh.triangle_count(),
         bvh.nodes().len(),
         bvh.max_depth(),
-        t.elapsed().as_secs_f64()
+        t.elapsed().as_secs_f64(),
+        process_cpu_seconds() - cpu
     );
 
     let (w, hgt) = (1280usize, 720usize);
@@ -1137,4 +1145,28 @@ fn ordinary_scenes_keep_their_sah_tree() {
     assert_eq!(bounded.max_depth(), unbounded.max_depth());
     assert!(bounded.max_depth() <= super::build::MAX_DEPTH);
     assert_eq!(bounded.nodes(), unbounded.nodes());
+}
+
+/// The build runs on rayon's threads (obvhs's `parallel` feature): its tree must not depend on
+/// how many there are, so that a scene's BVH, and every image traced through it, is the same on
+/// any machine.
+#[test]
+fn the_tree_does_not_depend_on_the_number_of_threads() {
+    let scene = benchmark_scene();
+    let build = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Bvh::build(&scene))
+    };
+    let one = build(1);
+    for threads in [2, 3, 8] {
+        let other = build(threads);
+        assert_eq!(one.nodes(), other.nodes(), "{threads} threads");
+        assert_eq!(
+            one.primitive_indices, other.primitive_indices,
+            "{threads} threads"
+        );
+    }
 }
