@@ -9,8 +9,10 @@ if [ -d /usr/local/nvidia ]; then
 fi
 export OBSCURA_BACKEND=vulkan
 bin=${OBSCURA_BIN:-./.devbin/obscura}
-if ! $bin info >/dev/null 2>&1 || ! $bin info | grep -qi nvidia; then
-  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+# Only where that ICD exists, so that a dry run here keeps lavapipe.
+nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -f $nvidia_icd ] && { ! $bin info >/dev/null 2>&1 || ! $bin info | grep -qi nvidia; }; then
+  export VK_DRIVER_FILES=$nvidia_icd
 fi
 out=${OUT:-/tmp/out}
 mkdir -p "$out"

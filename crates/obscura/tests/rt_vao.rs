@@ -167,3 +167,32 @@ fn rt_vao_equals_vao_on_a_height_field() {
     let worst = max_abs_diff(&vao, &rt);
     assert!(worst <= 1e-5, "max |vao - rt-vao| {worst}");
 }
+
+#[test]
+fn renderers_sharing_a_bvh_cache_build_it_once_and_render_the_same() {
+    // compare, path, bench and the viewer make one renderer per technique through one cache.
+    let gpu = gpu();
+    let scene = scene::builtin("stairs").unwrap();
+    let camera = scene.cameras[0].camera;
+    let cache = obscura::bvh::BvhCache::new();
+    let render = |technique: Technique, cache: Option<&obscura::bvh::BvhCache>| {
+        let settings = AoSettings {
+            technique,
+            ..Default::default()
+        };
+        let mut r = match cache {
+            Some(c) => Renderer::with_bvh_cache(&gpu, &scene, &settings, 80, 48, 8, c),
+            None => Renderer::new(&gpu, &scene, &settings, 80, 48, 8),
+        }
+        .unwrap();
+        r.render(&camera, None).unwrap();
+        r.read_ao().unwrap()
+    };
+    let rt_vao = render(Technique::RtVao, Some(&cache));
+    // A technique without rays leaves the cache alone.
+    render(Technique::Vao, Some(&cache));
+    let rt_svao = render(Technique::RtSvao, Some(&cache));
+    assert_eq!(cache.builds(), 1);
+    assert_eq!(rt_vao, render(Technique::RtVao, None));
+    assert_eq!(rt_svao, render(Technique::RtSvao, None));
+}

@@ -5,6 +5,7 @@ use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, Technique
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
+use obscura::bvh::BvhCache;
 use obscura::technique::Source;
 use obscura::{output, AoSettings, PassProfiler, Renderer};
 use std::collections::BTreeMap;
@@ -177,9 +178,11 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         );
     }
     let mut results = Vec::new();
+    let bvh = BvhCache::new();
     for technique in techniques {
         let settings = args.ao.settings(technique)?;
-        let mut renderer = Renderer::new(&gpu, &scene, &settings, width, height, guard_band)?;
+        let mut renderer =
+            Renderer::with_bvh_cache(&gpu, &scene, &settings, width, height, guard_band, &bvh)?;
         let mut profiler = PassProfiler::new(&gpu, args.frames)?;
         let progress = bar(u64::from(args.warmup + args.frames), technique.name());
         for _ in 0..args.warmup {

@@ -5,6 +5,7 @@ use super::reference::{as_compared, compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
+use obscura::bvh::BvhCache;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::{write_report, Report, ReportInput, TechniqueImage, TemporalInput};
 use obscura::scene::Scene;
@@ -192,9 +193,19 @@ pub fn compare(
     };
     let mut images = Vec::new();
     let mut gbuffer = None;
+    // One BVH for every ray-traced row and the reference.
+    let bvh = BvhCache::new();
     for &technique in techniques {
         let settings = ao.settings(technique)?;
-        let mut renderer = Renderer::new(gpu, c.scene, &settings, c.width, c.height, c.guard_band)?;
+        let mut renderer = Renderer::with_bvh_cache(
+            gpu,
+            c.scene,
+            &settings,
+            c.width,
+            c.height,
+            c.guard_band,
+            &bvh,
+        )?;
         renderer.render(&c.camera, None)?;
         let ms = gpu_ms(gpu, &mut renderer, &c.camera, c.timing_frames)?;
         images.push((
@@ -227,6 +238,7 @@ pub fn compare(
             let image = compute_or_load(
                 reference.tracer(Some(gpu)),
                 c.scene,
+                &bvh,
                 view,
                 &reference_settings,
                 !reference.no_cache,
@@ -346,6 +358,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
             techniques: &techniques,
             ao: &args.ao,
             reference: Some((&args.reference, args.reference_model)),
+            bvh: BvhCache::new(),
         };
         compare_path(&gpu, &job, args.timing.timing_frames, &args.out)?;
         return print_report(&args.out, techniques.len());

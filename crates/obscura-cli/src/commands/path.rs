@@ -7,6 +7,7 @@ use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, Technique
 use crate::progress::bar;
 use anyhow::{bail, Context, Result};
 use clap::Args;
+use obscura::bvh::BvhCache;
 use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
 use obscura::metrics::{self, Image};
 use obscura::reference::cpu_vao::GBufferImage;
@@ -127,19 +128,22 @@ pub struct PathJob<'a> {
     pub techniques: &'a [Technique],
     pub ao: &'a AoArgs,
     pub reference: Option<(&'a ReferenceArgs, ReferenceModel)>,
+    /// The scene's BVH, built once for every ray-traced technique and every frame's reference.
+    pub bvh: BvhCache,
 }
 
 impl PathJob<'_> {
     /// A renderer of `technique` at the job's size, with its settings.
     pub fn renderer(&self, gpu: &Gpu, technique: Technique) -> Result<(Renderer, AoSettings)> {
         let settings = self.ao.settings(technique)?;
-        let renderer = Renderer::new(
+        let renderer = Renderer::with_bvh_cache(
             gpu,
             self.scene,
             &settings,
             self.width,
             self.height,
             self.guard_band,
+            &self.bvh,
         )?;
         Ok((renderer, settings))
     }
@@ -192,7 +196,14 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
             let mut frames = Vec::with_capacity(views.len());
             for (k, (view, gbuffer)) in views.iter().zip(&gbuffers).enumerate() {
                 eprintln!("reference: frame {} of {}", k + 1, views.len());
-                let image = compute_or_load(tracer, job.scene, *view, &settings, !args.no_cache)?;
+                let image = compute_or_load(
+                    tracer,
+                    job.scene,
+                    &job.bvh,
+                    *view,
+                    &settings,
+                    !args.no_cache,
+                )?;
                 frames.push(as_compared(image, model, &blur, gbuffer, view));
             }
             Some(frames)
@@ -294,6 +305,7 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
         reference: args
             .with_reference
             .then_some((&args.reference, args.reference_model)),
+        bvh: BvhCache::new(),
     };
     let run = render_path(&gpu, &job)?;
     let scores = run.scores()?;

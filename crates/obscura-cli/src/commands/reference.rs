@@ -4,7 +4,7 @@ use crate::args::{parse_size, AoArgs, SceneArgs};
 use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
-use obscura::bvh::Bvh;
+use obscura::bvh::BvhCache;
 use obscura::reference::cache;
 use obscura::reference::gpu::render_reference_gpu;
 use obscura::reference::ground_truth::{
@@ -102,10 +102,12 @@ pub struct ReferenceCmdArgs {
 }
 
 /// The reference for `view`, from the cache when it has it; traced on `gpu` when given, else on
-/// the CPU; reports rays/s when computed.
+/// the CPU, over the scene's BVH from `bvh` (built there on first use); reports rays/s when
+/// computed.
 pub fn compute_or_load(
     gpu: Option<&obscura::Gpu>,
     scene: &Scene,
+    bvh: &BvhCache,
     view: FrameView,
     settings: &ReferenceSettings,
     use_cache: bool,
@@ -120,14 +122,19 @@ pub fn compute_or_load(
         }
     }
     let start = Instant::now();
-    let bvh = Bvh::build(scene);
-    let build = start.elapsed().as_secs_f64();
+    let builds = bvh.builds();
+    let tree = bvh.get(scene);
+    let build = if bvh.builds() > builds {
+        format!("BVH build {:.2} s", start.elapsed().as_secs_f64())
+    } else {
+        "BVH reused".to_string()
+    };
     let trace_start = Instant::now();
     let (image, rays, device) = match gpu {
         Some(gpu) => {
             let progress = bar(1, &format!("{} reference", settings.model));
             let (image, rays) =
-                render_reference_gpu(gpu, scene, &bvh, view, settings, &|done, total| {
+                render_reference_gpu(gpu, scene, &tree, view, settings, &|done, total| {
                     progress.set_length(u64::from(total));
                     progress.set_position(u64::from(done));
                 })?;
@@ -145,7 +152,7 @@ pub fn compute_or_load(
                 &format!("{} reference", settings.model),
             );
             let (image, rays) =
-                render_reference_counted(scene, &bvh, view, settings, &|_| progress.inc(1));
+                render_reference_counted(scene, &tree, view, settings, &|_| progress.inc(1));
             progress.finish_and_clear();
             (
                 image,
@@ -156,7 +163,7 @@ pub fn compute_or_load(
     };
     let seconds = trace_start.elapsed().as_secs_f64();
     eprintln!(
-        "reference: {} model on {device} {rays} rays in {seconds:.2} s = {:.2} M rays/s (BVH build {build:.2} s)",
+        "reference: {} model on {device} {rays} rays in {seconds:.2} s = {:.2} M rays/s ({build})",
         settings.model,
         rays as f64 / seconds / 1e6,
     );
@@ -216,6 +223,7 @@ pub fn run(gpu_options: &obscura::GpuOptions, args: &ReferenceCmdArgs) -> Result
     let image = compute_or_load(
         args.reference.tracer(gpu.as_ref()),
         &scene,
+        &BvhCache::new(),
         view,
         &settings,
         !args.reference.no_cache,

@@ -1,7 +1,7 @@
 //! Our own frame: a loaded scene rasterised into a G-buffer, then [`AmbientOcclusion`].
 
 use super::{AmbientOcclusion, FrameTextures};
-use crate::bvh::{gpu::GpuBvh, Bvh};
+use crate::bvh::{gpu::GpuBvh, BvhCache};
 use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
 use crate::reference::cpu_vao::GBufferImage;
@@ -66,6 +66,8 @@ pub struct Renderer {
 
 impl Renderer {
     /// Upload `scene` and allocate targets for a visible `width`×`height` plus `guard_band`.
+    /// Builds the scene's BVH when the technique traces rays; to build it once for several
+    /// renderers of one scene, use [`Renderer::with_bvh_cache`].
     pub fn new(
         gpu: &Gpu,
         scene: &Scene,
@@ -73,6 +75,28 @@ impl Renderer {
         width: u32,
         height: u32,
         guard_band: u32,
+    ) -> Result<Self, Error> {
+        Self::with_bvh_cache(
+            gpu,
+            scene,
+            settings,
+            width,
+            height,
+            guard_band,
+            &BvhCache::new(),
+        )
+    }
+
+    /// [`Renderer::new`] taking the scene's BVH from `bvh` (built there on first use): renderers
+    /// of several techniques, or made again after a settings change, then share one build.
+    pub fn with_bvh_cache(
+        gpu: &Gpu,
+        scene: &Scene,
+        settings: &AoSettings,
+        width: u32,
+        height: u32,
+        guard_band: u32,
+        bvh: &BvhCache,
     ) -> Result<Self, Error> {
         settings.validate()?;
         gpu.check_backend()?;
@@ -110,7 +134,7 @@ impl Renderer {
         let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel, &gpu_scene);
         let bvh = needs
             .bvh
-            .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
+            .then(|| GpuBvh::new(&gpu.device, &bvh.get(scene), scene));
         gpu.check_errors()?;
         // The rasteriser named, so that `settings()` says which one `auto` chose (for the
         // larger need, a map limited to requested pixels: one setting for every row).

@@ -262,6 +262,7 @@ impl ViewerApp {
         let Some(frame) = &self.frame else { return };
         self.reference.start(
             frame.scene.clone(),
+            frame.bvh.clone(),
             self.camera,
             (frame.width, frame.height, frame.guard_band),
             self.settings.vao,

@@ -4,6 +4,7 @@
 
 use super::display::{Display, DisplayInputs, GpuMode};
 use anyhow::{anyhow, Result};
+use obscura::bvh::BvhCache;
 use obscura::scene::{Camera, Scene};
 use obscura::technique::Source;
 use obscura::{AoSettings, Gpu, PassProfiler, Renderer, Technique};
@@ -98,6 +99,8 @@ pub type PaneTimings = Vec<BTreeMap<String, f64>>;
 pub struct Frame {
     pub gpu: Gpu,
     pub scene: Arc<Scene>,
+    /// The scene's BVH, built once for every pane, every settings change and the reference.
+    pub bvh: BvhCache,
     pub width: u32,
     pub height: u32,
     pub guard_band: u32,
@@ -116,10 +119,11 @@ pub struct Frame {
 fn make_pane(
     gpu: &Gpu,
     scene: &Scene,
+    bvh: &BvhCache,
     settings: AoSettings,
     (width, height, guard_band): (u32, u32, u32),
 ) -> Pane {
-    match Renderer::new(gpu, scene, &settings, width, height, guard_band) {
+    match Renderer::with_bvh_cache(gpu, scene, &settings, width, height, guard_band, bvh) {
         Ok(r) => Pane {
             settings,
             renderer: Some(r),
@@ -143,13 +147,15 @@ impl Frame {
         camera: Camera,
     ) -> Self {
         let size = (width, height, guard_band);
-        let a = make_pane(&gpu, &scene, settings, size);
-        let b = split.map(|t| make_pane(&gpu, &scene, with_technique(&settings, t), size));
+        let bvh = BvhCache::new();
+        let a = make_pane(&gpu, &scene, &bvh, settings, size);
+        let b = split.map(|t| make_pane(&gpu, &scene, &bvh, with_technique(&settings, t), size));
         let display = Display::new(&gpu, width, height);
         let timings = gpu.summary.timestamp_queries.then(Vec::new);
         Self {
             gpu,
             scene,
+            bvh,
             width,
             height,
             guard_band,
@@ -175,13 +181,15 @@ impl Frame {
             (width, height, guard_band) != (self.width, self.height, self.guard_band);
         let size = (width, height, guard_band);
         if size_changed || settings != self.a.settings {
-            self.a = make_pane(&self.gpu, &self.scene, settings, size);
+            self.a = make_pane(&self.gpu, &self.scene, &self.bvh, settings, size);
         }
         let b_settings = split.map(|t| with_technique(&settings, t));
         match (b_settings, &self.b) {
             (None, _) => self.b = None,
             (Some(s), Some(b)) if !size_changed && b.settings == s => {}
-            (Some(s), _) => self.b = Some(make_pane(&self.gpu, &self.scene, s, size)),
+            (Some(s), _) => {
+                self.b = Some(make_pane(&self.gpu, &self.scene, &self.bvh, s, size));
+            }
         }
         (self.width, self.height, self.guard_band) = size;
         self.display.resize(&self.gpu, width, height)

@@ -4,7 +4,7 @@
 //! compete with the viewer for the queue, and on a software adapter it is the faster of the two
 //! (see `reference --gpu`). Images are reused from and stored in the same cache as `reference`.
 
-use obscura::bvh::Bvh;
+use obscura::bvh::BvhCache;
 use obscura::reference::cache;
 use obscura::reference::ground_truth::{
     render_reference_counted, ReferenceModel, ReferenceSettings,
@@ -44,6 +44,7 @@ impl ReferenceJob {
     pub fn start(
         &mut self,
         scene: Arc<Scene>,
+        bvh: BvhCache,
         camera: Camera,
         (width, height, guard_band): (u32, u32, u32),
         vao: obscura::settings::VaoSettings,
@@ -71,7 +72,7 @@ impl ReferenceJob {
             let image = match cache::load(&dir, &key, pixels) {
                 Some(image) => image,
                 None => {
-                    let bvh = Bvh::build(&scene);
+                    let bvh = bvh.get(&scene);
                     let (image, _rays) =
                         render_reference_counted(&scene, &bvh, view, &settings, &|_| {
                             counter.fetch_add(1, Ordering::Relaxed);
