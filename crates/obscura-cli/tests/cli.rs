@@ -502,6 +502,34 @@ fn compare_writes_a_report_and_reuses_the_reference() {
 }
 
 #[test]
+fn compare_builds_the_bvh_once_for_its_rows_and_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let o = obscura_cached(
+        &[
+            "compare",
+            "--scene",
+            "cornell",
+            "--size",
+            "64x48",
+            "--techniques",
+            "rt-vao,vao,rt-svao",
+            "--reference-model",
+            "vao",
+            "--no-cache",
+            "--timing-frames",
+            "0",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &dir.path().join("cache"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The reference traces the tree the first ray-traced row built.
+    assert!(stderr(&o).contains("(BVH reused)"), "{}", stderr(&o));
+}
+
+#[test]
 fn reference_writes_a_float_image() {
     let dir = tempfile::tempdir().unwrap();
     let exr = dir.path().join("ref.exr");
