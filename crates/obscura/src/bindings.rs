@@ -8,7 +8,7 @@
 
 /// Bind group indices, one per axis.
 pub const GROUP_FRAME: u32 = 0;
-/// Group 1: the estimator's parameters (GTAO-VB, HBAO+ or VAO uniform).
+/// Group 1: the estimator's parameters (its uniform, and a table for some).
 pub const GROUP_ESTIMATOR: u32 = 1;
 /// Group 2: the hidden-depth source's resources (second depth layer, BVH, stochastic depth maps).
 pub const GROUP_SOURCE: u32 = 2;
@@ -31,6 +31,11 @@ pub const FRAME_BENT_OUT: u32 = 4;
 
 /// Group 1, the estimator's parameters.
 pub const ESTIMATOR_PARAMS: u32 = 0;
+/// A table the estimator reads per pixel, where it has one (`estimators::layout_entries`): a
+/// one-row `Rg32Float` texture (GTAO-VB: its sectors' summed directions per byte of a mask). A
+/// texture rather than a buffer: the ray-traced sources use the eight storage buffers WebGPU
+/// allows a stage, and a uniform array indexed per pixel is slow on NVIDIA.
+pub const ESTIMATOR_TABLE: u32 = 1;
 
 /// Group 2, the source. Each source uses its own bindings; a layout holds only one source's.
 pub const SOURCE_SECOND_DEPTH: u32 = 0;
@@ -90,6 +95,7 @@ const NAMED: &[(&str, u32)] = &[
     ("FRAME_AO_OUT", FRAME_AO_OUT),
     ("FRAME_BENT_OUT", FRAME_BENT_OUT),
     ("ESTIMATOR_PARAMS", ESTIMATOR_PARAMS),
+    ("ESTIMATOR_TABLE", ESTIMATOR_TABLE),
     ("SOURCE_SECOND_DEPTH", SOURCE_SECOND_DEPTH),
     ("SOURCE_RAY_CAMERA", SOURCE_RAY_CAMERA),
     ("SOURCE_STACK_OVERFLOWS", SOURCE_STACK_OVERFLOWS),

@@ -312,8 +312,47 @@ fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
 // cosine with `cosine_weighted`), summed over slices against the whole hemispheres' and made
 // exact on unoccluded planes by common/bent.wgsl's bent_from_sums; view space. Sector
 // boundary k lies at θ = γ + x, x = π(k/32 − 1/2): (sin x, cos x) = (−cos πk/32, sin πk/32),
-// turned by γ. The uniform weight is linear in those pairs, so a slice's runs are summed before
-// the one turn; the open hemisphere's vector is (2 sin γ, 2 cos γ).
+// turned by γ. The uniform weight is linear in those pairs, so a slice's free sectors are summed
+// before the one turn, from the table of marked_sector_sum; the open hemisphere's vector is
+// (2 sin γ, 2 cos γ).
+
+// GTAO-VB's table (bindings.rs, ESTIMATOR_TABLE; estimators/gtao_vb.rs makes it): per byte of a
+// mask, 2 sin(π/64) Σ (cos φ_j, sin φ_j) over its set bits j, φ_j = (j + ½)π/32.
+@group(GROUP_ESTIMATOR) @binding(ESTIMATOR_TABLE) var sector_directions: texture_2d<f32>;
+
+// 2 sin(π/64) Σ (cos φ_k, sin φ_k) over the sectors k `mask` marks, φ_k = (k + ½)π/32: the four
+// bytes' table entries, byte b's turned by bπ/4 (its first sector's offset). One sector's ∫ω in
+// the local (sin x, cos x) frame is the pair of boundaries' difference, 2 sin(π/64) (cos φ_k,
+// −sin φ_k) (the sum-to-product identities), and all 32 sum to (0, 2), so the free sectors'
+// ∫ω is (m.x, 2 − m.y) for m this sum: the same as a loop over the runs of free sectors, with
+// four loads instead of a loop as long as the warp's most broken mask.
+fn marked_sector_sum(mask: u32) -> vec2<f32> {
+    let t0 = textureLoad(sector_directions, vec2<u32>(mask & 255u, 0u), 0).xy;
+    let t1 = textureLoad(sector_directions, vec2<u32>((mask >> 8u) & 255u, 0u), 0).xy;
+    let t2 = textureLoad(sector_directions, vec2<u32>((mask >> 16u) & 255u, 0u), 0).xy;
+    let t3 = textureLoad(sector_directions, vec2<u32>(mask >> 24u, 0u), 0).xy;
+    let h = 0.7071067811865476;
+    return t0 + h * vec2<f32>(t1.x - t1.y, t1.x + t1.y) + vec2<f32>(-t2.y, t2.x)
+        + h * vec2<f32>(-t3.x - t3.y, t3.x - t3.y);
+}
+
+// The cosine-weighted bent vector of a slice's free sectors in its (tangent, V) frame, one run of
+// free sectors at a time (the cosine weight turns with γ, so no table serves it).
+fn cosine_weighted_free_bent(mask: u32, g: vec2<f32>) -> vec2<f32> {
+    let step = 3.141592653589793 / 32.0;
+    let turn = mat2x2<f32>(g.y, -g.x, g.x, g.y);
+    var free = ~mask;
+    var sum = vec2<f32>(0.0);
+    while (free != 0u) {
+        let start = countTrailingZeros(free);
+        let end = start + countTrailingZeros(~(free >> start));
+        let a = vec2<f32>(-cos(step * f32(start)), sin(step * f32(start)));
+        let b = vec2<f32>(-cos(step * f32(end)), sin(step * f32(end)));
+        sum += span_bent(turn * a, turn * b, g);
+        free &= select(0xffffffffu << end, 0u, end >= 32u);
+    }
+    return sum;
+}
 
 fn estimator_bent_normal(
     p: EstimatorPixel,
@@ -321,33 +360,18 @@ fn estimator_bent_normal(
     sample_visible: vec3<f32>,
     sample_open: vec3<f32>,
 ) -> vec3<f32> {
-    let step = 3.141592653589793 / 32.0;
     var visible = vec3<f32>(0.0);
     var open = vec3<f32>(0.0);
     for (var j = 0u; j < SLICES; j++) {
         let g = vec2<f32>(sin(p.normal_angles[j]), cos(p.normal_angles[j]));
-        var free = ~acc.masks[j];
-        var local = vec2<f32>(0.0);
-        var cosine = vec2<f32>(0.0);
-        while (free != 0u) {
-            let start = countTrailingZeros(free);
-            let end = start + countTrailingZeros(~(free >> start));
-            let a = vec2<f32>(-cos(step * f32(start)), sin(step * f32(start)));
-            let b = vec2<f32>(-cos(step * f32(end)), sin(step * f32(end)));
-            if (COSINE_WEIGHTED) {
-                let turn = mat2x2<f32>(g.y, -g.x, g.x, g.y);
-                cosine += span_bent(turn * a, turn * b, g);
-            } else {
-                local += span_direction(a, b);
-            }
-            free &= select(0xffffffffu << end, 0u, end >= 32u);
-        }
         var sum: vec2<f32>;
         var whole: vec2<f32>;
         if (COSINE_WEIGHTED) {
-            sum = p.projected_lengths[j] * cosine;
+            sum = p.projected_lengths[j] * cosine_weighted_free_bent(acc.masks[j], g);
             whole = p.projected_lengths[j] * open_slice_bent(g);
         } else {
+            let m = marked_sector_sum(acc.masks[j]);
+            let local = vec2<f32>(m.x, 2.0 - m.y);
             // ∫ω over θ = γ + x: the local (t, v) sums turned by γ.
             sum = vec2<f32>(g.y * local.x + g.x * local.y, g.y * local.y - g.x * local.x);
             whole = 2.0 * g;

@@ -15,7 +15,7 @@ pub mod sao;
 pub mod ssao;
 pub mod vao;
 
-use crate::bindings::{self, entry, ESTIMATOR_PARAMS};
+use crate::bindings::{self, entry, ESTIMATOR_PARAMS, ESTIMATOR_TABLE};
 use crate::settings::AoSettings;
 use crate::technique::Estimator;
 use wgpu::util::DeviceExt;
@@ -29,38 +29,11 @@ pub(crate) struct EstimatorPass {
 }
 
 impl EstimatorPass {
-    /// An estimator whose group 1 is one uniform buffer of `params`.
-    pub fn new(
-        device: &wgpu::Device,
-        name: &'static str,
-        params: &[u8],
-        wgsl: &'static str,
-        constants: Vec<(&'static str, f64)>,
-    ) -> Self {
-        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(name),
-            contents: params,
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let layout = bindings::layout(device, name, &[entry::uniform(ESTIMATOR_PARAMS)]);
-        let group = bindings::group(
-            device,
-            name,
-            &layout,
-            &[(ESTIMATOR_PARAMS, buffer.as_entire_binding())],
-        );
-        Self {
-            wgsl,
-            constants,
-            layout,
-            group,
-        }
-    }
-
     /// The estimator of a technique row with its settings; `max_radius_px` caps its radius on
     /// screen (0: no cap; [`AoSettings::max_radius_px`], which the ground truth leaves out).
     pub fn for_row(
         device: &wgpu::Device,
+        queue: &wgpu::Queue,
         estimator: Estimator,
         settings: &AoSettings,
         max_radius_px: f32,
@@ -72,7 +45,63 @@ impl EstimatorPass {
         if max_radius_px > 0.0 {
             constants.push(("MAX_RADIUS_PX", f64::from(max_radius_px)));
         }
-        Self::new(device, estimator.name(), &params, wgsl, constants)
+        let name = estimator.name();
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(name),
+            contents: &params,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let table = table(estimator).map(|texels| {
+            let texture = device.create_texture_with_data(
+                queue,
+                &wgpu::TextureDescriptor {
+                    label: Some(name),
+                    size: wgpu::Extent3d {
+                        width: texels.len() as u32,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Rg32Float,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                },
+                wgpu::util::TextureDataOrder::LayerMajor,
+                bytemuck::cast_slice(&texels),
+            );
+            texture.create_view(&Default::default())
+        });
+        let layout = bindings::layout(device, name, &layout_entries(estimator));
+        let mut resources = vec![(ESTIMATOR_PARAMS, buffer.as_entire_binding())];
+        if let Some(view) = &table {
+            resources.push((ESTIMATOR_TABLE, wgpu::BindingResource::TextureView(view)));
+        }
+        let group = bindings::group(device, name, &layout, &resources);
+        Self {
+            wgsl,
+            constants,
+            layout,
+            group,
+        }
+    }
+}
+
+/// Group 1 of `estimator`: its uniform parameters, and the table of those that read one.
+pub(crate) fn layout_entries(estimator: Estimator) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut entries = vec![entry::uniform(ESTIMATOR_PARAMS)];
+    if table(estimator).is_some() {
+        entries.push(entry::texture(ESTIMATOR_TABLE));
+    }
+    entries
+}
+
+/// The texels (`Rg32Float`, one row) of the table `estimator` reads at `ESTIMATOR_TABLE`, if any.
+fn table(estimator: Estimator) -> Option<Vec<[f32; 2]>> {
+    match estimator {
+        Estimator::GtaoVb => Some(gtao_vb::sector_direction_table()),
+        _ => None,
     }
 }
 

@@ -136,6 +136,7 @@ impl AmbientOcclusion {
         let frame_layout = bindings::frame_layout(device, true);
         let estimator = EstimatorPass::for_row(
             device,
+            &gpu.queue,
             row.estimator,
             settings,
             // Output pixels: at half resolution, half as many of the working image's.

@@ -180,6 +180,7 @@ fn sd_layouts(source: Source) -> Vec<SdLayout> {
 fn check_stage(
     label: &str,
     (estimator, constants): (&str, &[&str]),
+    estimator_entries: &[wgpu::BindGroupLayoutEntry],
     source: Source,
     sd: SdLayout,
     stage: schedules::Stage,
@@ -209,10 +210,7 @@ fn check_stage(
         &wgsl,
         &[
             (GROUP_FRAME, frame_entries()),
-            (
-                GROUP_ESTIMATOR,
-                vec![entry::uniform(bindings::ESTIMATOR_PARAMS)],
-            ),
+            (GROUP_ESTIMATOR, estimator_entries.to_vec()),
             (GROUP_SOURCE, source_entries),
             (GROUP_SCHEDULE, stage.schedule_entries),
         ],
@@ -225,6 +223,7 @@ fn check_stage(
 fn check_all_schedules(
     label: &str,
     estimator: (&str, &[&str]),
+    estimator_entries: &[wgpu::BindGroupLayoutEntry],
     source: Source,
     order_independent: bool,
 ) {
@@ -239,7 +238,7 @@ fn check_all_schedules(
                 continue;
             }
             for stage in schedules::stages(schedule) {
-                check_stage(label, estimator, source, sd, stage);
+                check_stage(label, estimator, estimator_entries, source, sd, stage);
             }
         }
     }
@@ -251,7 +250,8 @@ fn every_row_composes_and_validates() {
         for sd in sd_layouts(row.source) {
             for stage in schedules::stages(row.schedule) {
                 let estimator = crate::estimators::wgsl(row.estimator);
-                check_stage(row.name, estimator, row.source, sd, stage);
+                let entries = crate::estimators::layout_entries(row.estimator);
+                check_stage(row.name, estimator, &entries, row.source, sd, stage);
             }
         }
     }
@@ -273,6 +273,7 @@ fn every_estimator_runs_over_every_source_it_supports() {
                 check_all_schedules(
                     estimator.name(),
                     crate::estimators::wgsl(estimator),
+                    &crate::estimators::layout_entries(estimator),
                     source,
                     estimator.order_independent(),
                 );
@@ -289,7 +290,14 @@ fn a_new_estimator_needs_no_source_or_schedule_edit() {
         Source::StochasticDepth,
         Source::RayStochasticDepth,
     ] {
-        check_all_schedules("stub estimator", (STUB, &["SAMPLE_COUNT"]), source, true);
+        let entries = [entry::uniform(bindings::ESTIMATOR_PARAMS)];
+        check_all_schedules(
+            "stub estimator",
+            (STUB, &["SAMPLE_COUNT"]),
+            &entries,
+            source,
+            true,
+        );
     }
 }
 

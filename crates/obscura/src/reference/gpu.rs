@@ -39,6 +39,7 @@ pub fn render_reference_gpu(
     // The VAO estimator through the single-pass loop over the all-layers source (reference.wgsl).
     let estimator = crate::estimators::EstimatorPass::for_row(
         device,
+        &gpu.queue,
         crate::technique::Estimator::Vao,
         &crate::AoSettings {
             vao: settings.vao,
