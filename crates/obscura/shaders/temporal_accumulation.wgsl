@@ -11,8 +11,8 @@
 // Pixels with no matching history (disocclusion, off screen, first frame) restart at n = 1.
 //
 // History (rg32uint, visible size, ping-pong; 8 bytes, as the pass is bound by memory traffic):
-// x = AO as 24-bit fixed point << 8 | n (n ≤ 255); y = linear depth as f16 (low half; 0.05 %
-// precision against a 3 % tolerance) | the world normal, octahedral, two snorm bytes (high half).
+// x = AO as 24-bit fixed point << 8 | n (n ≤ 255); y = linear depth in 16 bits (low half, see
+// `pack_history_depth`) | the world normal, octahedral, two snorm bytes (high half).
 //
 // Needs common/view.wgsl and common/vertex_normal.wgsl in front.
 
@@ -23,6 +23,21 @@ const GAMMA: f32 = 1.0;
 const SNAP: f32 = 0.01;
 // The history's AO in 24-bit fixed point.
 const AO_SCALE: f32 = 16777215.0;
+// The history's depth keeps f32's exponent less this bias in 7 bits (depths 2^-64 to 2^64).
+const DEPTH_EXPONENT_BIAS: u32 = 63u;
+
+// Linear depth `z` > 0 in 16 bits: a float of 7 exponent and 9 mantissa bits, rounded (relative
+// error ≤ 2^-10 ≈ 0.1 %, against a tolerance of at least 0.2 %: settings/validate.rs). An f16
+// held 0.05 % but overflowed at 65,504 world units (a large scene in millimetres lost its whole
+// history) and lost precision below 6e-5; 9 bits of mantissa cover every depth a scene may have.
+fn pack_history_depth(z: f32) -> u32 {
+    let code = i32((bitcast<u32>(z) + 0x2000u) >> 14u) - i32(DEPTH_EXPONENT_BIAS << 9u);
+    return u32(clamp(code, 0, 65535));
+}
+
+fn unpack_history_depth(code: u32) -> f32 {
+    return bitcast<f32>(((code & 0xffffu) + (DEPTH_EXPONENT_BIAS << 9u)) << 14u);
+}
 
 struct TemporalParams {
     // View space of this frame to view space of the previous frame.
@@ -71,7 +86,7 @@ fn read_history(q_in: vec2<f32>, z: f32, n: vec3<f32>) -> vec2<f32> {
         }
         let h = textureLoad(history_in, texel, 0).xy;
         let h_count = h.x & 255u;
-        let h_depth = unpack2x16float(h.y).x;
+        let h_depth = unpack_history_depth(h.y);
         if (h_count == 0u || abs(h_depth - z) > params.depth_tolerance * z) {
             continue;
         }
@@ -141,7 +156,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let ao = select(current, mix(past, current, 1.0 / n), history.y > 0.0);
     textureStore(ao_out, id, vec4<f32>(ao));
     let packed_ao = (u32(round(saturate(ao) * AO_SCALE)) << 8u) | u32(n);
-    let packed_surface = (pack2x16float(vec2<f32>(z, 0.0)) & 0xffffu)
+    let packed_surface = pack_history_depth(z)
         | (pack4x8snorm(vec4<f32>(encode_octahedral(n_world), 0.0, 0.0)) << 16u);
     textureStore(history_out, id, vec4<u32>(packed_ao, packed_surface, 0u, 0u));
 }

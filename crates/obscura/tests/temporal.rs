@@ -456,3 +456,59 @@ fn the_stochastic_maps_change_per_frame_only_under_accumulation() {
         }
     }
 }
+
+#[test]
+fn the_history_keeps_its_surface_at_any_scene_scale() {
+    // A still camera over `stairs` scaled by 1e-5 to 1e6 (depths of about 1e-4 to 1e7 world
+    // units: a large scene in millimetres is past 65,504, where an f16 depth overflowed and every
+    // pixel restarted): every visible pixel's history must match its own surface again each
+    // frame, so after 4 frames it holds 4, at the G-buffer's depth within the history's 16-bit
+    // rounding (2^-10 relative).
+    let gpu = common::gpu();
+    for scale in [1e-5f32, 1.0, 1e3, 1e6] {
+        let mut scene = scene::builtin("stairs").unwrap();
+        for p in &mut scene.positions {
+            *p *= scale;
+        }
+        let mut camera = scene.cameras[0].camera;
+        camera.eye *= scale;
+        camera.target *= scale;
+        let mut settings = temporal_settings(Technique::Vao, false);
+        settings.vao.radius *= scale;
+        let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
+        for _ in 0..4 {
+            r.render(&camera, None).unwrap();
+        }
+        let depth = r.read_gbuffer().unwrap().visible_depth(GUARD);
+        let history = r
+            .ambient_occlusion()
+            .unwrap()
+            .read_temporal_history()
+            .unwrap()
+            .unwrap();
+        let (mut visible, mut short, mut worst) = (0, 0, 0.0f32);
+        for (h, &z) in history.iter().zip(&depth) {
+            if z <= 0.0 {
+                assert_eq!(h.frames, 0, "scale {scale}: background keeps no history");
+                continue;
+            }
+            visible += 1;
+            if h.frames != 4 {
+                short += 1;
+            }
+            worst = worst.max((h.depth - z).abs() / z);
+        }
+        assert!(
+            visible > (W * H / 2) as usize,
+            "scale {scale}: {visible} visible"
+        );
+        assert_eq!(
+            short, 0,
+            "scale {scale}: {short} of {visible} pixels restarted"
+        );
+        assert!(
+            worst <= 1.0 / 1024.0,
+            "scale {scale}: history depth {worst} from the G-buffer's"
+        );
+    }
+}

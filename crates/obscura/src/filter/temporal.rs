@@ -19,6 +19,10 @@ use glam::Mat4;
 /// The 16 entries of the estimators' 4×4 pattern (`common/pattern.wgsl`).
 pub const PATTERN_PERIOD: u32 = 16;
 
+/// The history's depth keeps f32's exponent less this in 7 bits: depths from 2^-64 to 2^64
+/// (`DEPTH_EXPONENT_BIAS` of the shader).
+const HISTORY_DEPTH_EXPONENT_BIAS: u32 = 63;
+
 /// One texel of the history ([`crate::AmbientOcclusion::read_temporal_history`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HistoryTexel {
@@ -33,12 +37,13 @@ pub struct HistoryTexel {
 
 impl HistoryTexel {
     /// One texel as `temporal_accumulation.wgsl` packs it: AO in 24-bit fixed point above the
-    /// frame count in the low byte; the depth as f16 in the low half of the second word.
+    /// frame count in the low byte; the depth in the low half of the second word, as the shader's
+    /// `pack_history_depth` writes it (7 exponent and 9 mantissa bits, relative error ≤ 2^-10).
     pub fn unpack(words: [u32; 2]) -> Self {
         Self {
             ao: (words[0] >> 8) as f32 / 16_777_215.0,
             frames: words[0] & 255,
-            depth: half::f16::from_bits((words[1] & 0xffff) as u16).to_f32(),
+            depth: f32::from_bits(((words[1] & 0xffff) + (HISTORY_DEPTH_EXPONENT_BIAS << 9)) << 14),
         }
     }
 }

@@ -213,7 +213,8 @@ pub struct TemporalSettings {
     /// The most frames averaged: a running mean up to this many, then an exponential blend with
     /// weight 1/frames. 16 covers the pattern's 16 rotations once.
     pub frames: u32,
-    /// Relative depth difference within which the history holds the same surface.
+    /// Relative depth difference within which the history holds the same surface, at least
+    /// 0.002 (the history keeps depth to 0.1 %, at any scene scale).
     pub depth_tolerance: f32,
     /// Degrees between normals within which the history holds the same surface.
     pub normal_tolerance_deg: f32,
@@ -222,6 +223,10 @@ pub struct TemporalSettings {
     /// without the clamp that change lags `frames` frames behind.
     pub clamp: bool,
 }
+
+/// The smallest `temporal.depth_tolerance` accepted: about twice the rounding of the history's
+/// 16-bit depth (`shaders/temporal_accumulation.wgsl`, `pack_history_depth`: 2^-10 relative).
+pub const MIN_TEMPORAL_DEPTH_TOLERANCE: f32 = 0.002;
 
 impl Default for TemporalSettings {
     fn default() -> Self {

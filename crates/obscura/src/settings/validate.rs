@@ -362,11 +362,14 @@ impl AoSettings {
                 "must be between 1 and 255, e.g. 16",
             ));
         }
-        if !(t.depth_tolerance > 0.0 && t.depth_tolerance < 1.0) {
+        let min_tolerance = super::MIN_TEMPORAL_DEPTH_TOLERANCE;
+        if !(t.depth_tolerance >= min_tolerance && t.depth_tolerance < 1.0) {
             return Err(invalid(
                 "temporal.depth_tolerance",
                 t.depth_tolerance,
-                "must be a fraction of the depth in (0, 1), e.g. 0.03",
+                // The literal is MIN_TEMPORAL_DEPTH_TOLERANCE (settings/tests.rs checks the two agree).
+                "must be a fraction of the depth in [0.002, 1) (the history keeps depth to 0.1 %), \
+                 e.g. 0.03",
             ));
         }
         if !(t.normal_tolerance_deg > 0.0 && t.normal_tolerance_deg <= 180.0) {
