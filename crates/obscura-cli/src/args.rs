@@ -347,6 +347,14 @@ pub struct AoArgs {
     /// file; the per-technique radius flags (--radius, --hbao-radius, …) override it.
     #[arg(long, allow_hyphen_values = true)]
     pub ao_radius: Option<f32>,
+    /// The length of one world unit of the scene: metres as a number (0.0254 for inches), or
+    /// m, cm, mm, km, in, ft. The defaults and presets assume metres (glTF's unit); with
+    /// `--units cm` every one of their world lengths (the radii, thicknesses, SAO's bias and
+    /// intensity; the blur's sharpness per world unit) is converted, so an outside scene in
+    /// centimetres gets the same AO as in metres (`AoSettings::scaled`). A settings file and
+    /// the flags below are read in the scene's own units, over the converted defaults.
+    #[arg(long, value_name = "UNIT", allow_hyphen_values = true)]
+    pub units: Option<String>,
     // Help texts name the defaults of AoSettings::default() (`help`).
     #[arg(long, allow_hyphen_values = true, help = help("VAO sphere radius R in world units.", "vao.radius"))]
     pub radius: Option<f32>,
@@ -657,6 +665,28 @@ pub struct AoArgs {
     pub guard_band: Option<u32>,
 }
 
+/// `--units`: world units per metre, from one unit's length in metres or the unit's name
+/// (in f64, so that `0.001` gives exactly 1000).
+fn units_per_metre(units: &str) -> Result<f32> {
+    let metres: f64 = match units.trim() {
+        "m" => 1.0,
+        "cm" => 0.01,
+        "mm" => 0.001,
+        "km" => 1000.0,
+        "in" => 0.0254,
+        "ft" => 0.3048,
+        number => number.parse().unwrap_or(f64::NAN),
+    };
+    let per_metre = (1.0 / metres) as f32;
+    if !(metres > 0.0 && per_metre.is_finite() && per_metre > 0.0) {
+        bail!(
+            "invalid --units {units}: give one world unit's length in metres (e.g. 0.01) or one \
+             of m, cm, mm, km, in, ft"
+        );
+    }
+    Ok(per_metre)
+}
+
 impl AoArgs {
     /// The settings of `technique`: its preset (or the defaults), the settings file over it,
     /// then the flags given; validated, errors naming the flag (or the file's field).
@@ -668,6 +698,9 @@ impl AoArgs {
                 ..AoSettings::default()
             },
         };
+        if let Some(units) = &self.units {
+            s = s.scaled(units_per_metre(units)?);
+        }
         if let Some(path) = &self.settings {
             s = s.with_file(path)?;
             if s.technique != technique {
@@ -963,6 +996,33 @@ mod tests {
         assert_eq!(camera(&view).up, Vec3::Y);
         let z_up = [&view[..], &["--up", "0,0,1"]].concat();
         assert_eq!(camera(&z_up).up, Vec3::Z);
+    }
+
+    #[test]
+    fn units_convert_the_defaults_world_lengths_and_flags_stay_in_scene_units() {
+        let settings = |args: &[&str]| ao(args).settings(Technique::Vao).unwrap();
+        let metres = settings(&[]);
+        let cm = settings(&["--units", "cm"]);
+        assert_eq!(cm, metres.scaled(100.0));
+        assert!((cm.vao.radius - 50.0).abs() < 1e-4, "{}", cm.vao.radius);
+        assert!((cm.sao.intensity - 100.0).abs() < 1e-3);
+        assert!((cm.blur.sharpness - metres.blur.sharpness / 100.0).abs() < 1e-9);
+        assert_eq!(settings(&["--units", "0.001"]), metres.scaled(1000.0));
+        assert_eq!(settings(&["--units", "m"]), metres);
+        // A radius flag is in the scene's units, over the converted defaults.
+        let flagged = settings(&["--units", "cm", "--radius", "20"]);
+        assert_eq!(flagged.vao.radius, 20.0);
+        assert_eq!(flagged.gtao.radius, cm.gtao.radius);
+        for bad in ["0", "-1", "furlong", "inf", ""] {
+            let err = ao(&["--units", bad])
+                .settings(Technique::Vao)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.contains("--units") && err.contains("metres"),
+                "{bad}: {err}"
+            );
+        }
     }
 
     #[test]

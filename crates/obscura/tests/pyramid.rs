@@ -158,7 +158,7 @@ fn sao_step_closed_form(d: f32, h: f32, s: &SaoSettings, pixel: UVec2) -> f32 {
             }
             let vv = (alpha * r).powi(2) + h * h;
             let f = (r * r - vv).max(0.0);
-            f * f * f * ((h - s.bias) / (0.01 + vv)).max(0.0)
+            f * f * f * ((h - s.bias) / (sao_epsilon(s.radius) + vv)).max(0.0)
         })
         .sum();
     (1.0 - s.intensity / r.powi(6) * 5.0 / n * sum).max(0.0)
@@ -343,7 +343,10 @@ fn cpu_sao(l: &Levels, s: &SaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>) {
                     let v = q - pos;
                     let vv = v.dot(v);
                     let f = (s.radius * s.radius - vv).max(0.0);
-                    sum += f * f * f * ((v.dot(normal) - s.bias) / (0.01 + vv)).max(0.0);
+                    sum += f
+                        * f
+                        * f
+                        * ((v.dot(normal) - s.bias) / (sao_epsilon(s.radius) + vv)).max(0.0);
                 }
             }
             ao.push((1.0 - sum * s.intensity / s.radius.powi(6) * 5.0 / n).max(0.0));
@@ -465,7 +468,7 @@ fn sao_at_an_inside_corner_matches_its_model_with_exact_geometry() {
                 let v = q - p;
                 let vv = v.dot(v);
                 let f = (sa.radius * sa.radius - vv).max(0.0);
-                sum += f * f * f * ((v.dot(n) - sa.bias) / (0.01 + vv)).max(0.0);
+                sum += f * f * f * ((v.dot(n) - sa.bias) / (sao_epsilon(sa.radius) + vv)).max(0.0);
             }
         }
         (1.0 - sum * sa.intensity / sa.radius.powi(6) * 5.0 / taps).max(0.0)
@@ -524,4 +527,9 @@ fn debug_images_show_the_levels_read() {
     println!("pyramid-hbao levels: plane {on_plane:.4}, step {at_step:.4}");
     assert_eq!(on_plane, 0.0);
     assert!(at_step > 0.05, "{at_step}");
+}
+
+/// SAO's ε for radius R: its code's 0.01 at R = 0.5, proportional to R².
+fn sao_epsilon(radius: f32) -> f32 {
+    (obscura::estimators::sao::EPSILON_PER_RADIUS * radius).powi(2)
 }

@@ -66,7 +66,7 @@ fn cpu_ssao(g: &GBufferImage, screen: &ScreenGeometry, s: &SsaoSettings) -> (Vec
                 let v = screen.pixel_to_view(cell.as_vec2() + 0.5, zq) - pos;
                 let vv = v.dot(v);
                 if vv < s.radius * s.radius {
-                    sum += (v.dot(n) + pos.z * s.bias).max(0.0) / (vv + 1e-4);
+                    sum += (v.dot(n) + pos.z * s.bias).max(0.0) / (vv + ssao_epsilon(s.radius));
                 }
             }
             ao.push(
@@ -121,7 +121,7 @@ fn ssao_step_closed_form(d: f32, h: f32, s: &SsaoSettings, pixel: UVec2) -> f32 
         if angle.cos() * u <= d || vv >= s.radius * s.radius {
             continue;
         }
-        sum += (h - 20.0 * s.bias).max(0.0) / (vv + 1e-4);
+        sum += (h - 20.0 * s.bias).max(0.0) / (vv + ssao_epsilon(s.radius));
     }
     let u = FALLOFF_U * s.radius;
     (1.0 - 2.0 * s.intensity * u / n * sum)
@@ -185,7 +185,7 @@ fn at_an_inside_corner_matches_its_model_with_exact_geometry() {
                 let v = q - p;
                 let vv = v.dot(v);
                 if vv < ss.radius * ss.radius {
-                    sum += (v.dot(n) + p.z * ss.bias).max(0.0) / (vv + 1e-4);
+                    sum += (v.dot(n) + p.z * ss.bias).max(0.0) / (vv + ssao_epsilon(ss.radius));
                 }
             }
         }
@@ -222,4 +222,9 @@ fn debug_image_counts_the_occluding_samples() {
     println!("ssao occluding samples: plane {plane:.4}, step {step:.4}");
     assert_eq!(plane, 0.0);
     assert!(step > 0.02, "{step}");
+}
+
+/// Alchemy AO's ε for radius R: the paper's 10⁻⁴ at R = 0.5, proportional to R².
+fn ssao_epsilon(radius: f32) -> f32 {
+    (obscura::estimators::ssao::EPSILON_PER_RADIUS * radius).powi(2)
 }

@@ -5,6 +5,7 @@
 mod common;
 
 use obscura::bvh::Bvh;
+use obscura::filter::temporal::HistoryTexel;
 use obscura::metrics::temporal::{path_metrics, PathFrame, Reprojection};
 use obscura::reference::cpu_blur::cpu_blur;
 use obscura::reference::cpu_vao::cpu_vao_turned;
@@ -24,6 +25,15 @@ fn temporal_settings(technique: Technique, blur: bool) -> AoSettings {
 
 fn raw(renderer: &Renderer) -> Vec<f32> {
     renderer.read_raw_ao().unwrap()
+}
+
+fn history(renderer: &Renderer) -> Vec<HistoryTexel> {
+    renderer
+        .ambient_occlusion()
+        .unwrap()
+        .read_temporal_history()
+        .unwrap()
+        .unwrap()
 }
 
 #[test]
@@ -178,12 +188,7 @@ fn disocclusions_restart_their_history() {
         r.render(camera, None).unwrap();
         let view = FrameView::new(*camera, W, H, GUARD, near);
         let depth = r.read_gbuffer().unwrap().visible_depth(GUARD);
-        let history = r
-            .ambient_occlusion()
-            .unwrap()
-            .read_temporal_history()
-            .unwrap()
-            .unwrap();
+        let history = history(&r);
         let out = r.read_ao().unwrap();
         let current = raw(&r);
         if let Some((prev_view, prev_depth)) = &previous {
@@ -480,12 +485,7 @@ fn the_history_keeps_its_surface_at_any_scene_scale() {
             r.render(&camera, None).unwrap();
         }
         let depth = r.read_gbuffer().unwrap().visible_depth(GUARD);
-        let history = r
-            .ambient_occlusion()
-            .unwrap()
-            .read_temporal_history()
-            .unwrap()
-            .unwrap();
+        let history = history(&r);
         let (mut visible, mut short, mut worst) = (0, 0, 0.0f32);
         for (h, &z) in history.iter().zip(&depth) {
             if z <= 0.0 {

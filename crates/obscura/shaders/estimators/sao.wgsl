@@ -4,8 +4,9 @@
 // distance calls for, m = ⌊log_K(α_i r' / q)⌋ clamped to the pyramid (q = 8 px: McGuire's
 // LOG_MAX_OFFSET 3 with K = 2, taps within q texels of the pixel read its level), so distant taps
 // read coarse, cache-friendly depths (§3). Every tap adds the Alchemy AO term with SAO's falloff,
-//     (R² − v·v)³ · max(0, (v·n − β)/(v·v + ε)),    ε = 0.01 (SAO's code),
-// and A = max(0, 1 − intensity/R⁶ · (5/N) · Σ) (the shipped normalisation).
+//     (R² − v·v)³ · max(0, (v·n − β)/(v·v + ε)),    ε = (0.2 R)² (SAO's code: 0.01, in metres),
+// and A = max(0, 1 − intensity/R⁶ · (5/N) · Σ) (the shipped normalisation: the sum has the
+// dimension of an inverse length, so `intensity` is a length; AoSettings::scaled scales it).
 //
 // Estimator contract (docs/ARCHITECTURE.md): a tap's value is its term, several depths combine by
 // the maximum, the accumulator sums; order-independent. Level reads: sources/depth_pyramid.wgsl.
@@ -24,7 +25,8 @@ struct SaoParams {
     // 1 / ln K and ln q: the level of a tap at d px is ⌊(ln d − ln q) / ln K⌋.
     inv_log_factor: f32,
     log_q: f32,
-    _pad0: f32,
+    // ε against division by zero, (0.2 R)² (src/estimators/sao.rs).
+    epsilon: f32,
     // Index x % 4 + 4 * (y % 4): x the rotation φ in radians.
     pattern: array<vec4<f32>, 16>,
 }
@@ -79,7 +81,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let vv = dot(v, v);
     let f = max(p.radius2 - vv, 0.0);
     var o: Occluder;
-    o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (0.01 + vv), 0.0);
+    o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (params.epsilon + vv), 0.0);
     o.hidden = false;
     return o;
 }

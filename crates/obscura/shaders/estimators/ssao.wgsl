@@ -16,7 +16,8 @@
 //
 // Ours, where the paper leaves it to the implementation: the samples lie on SAO's spiral (7
 // turns, tap i at (i + 0.5)/N of the radius) turned by the pixel's 4×4 Bayer rotation, rather
-// than the paper's per-pixel random disc. β = 10⁻⁴ and ε = 10⁻⁴ are the paper's values.
+// than the paper's per-pixel random disc. β = 10⁻⁴ is the paper's value; ε = (0.02 R)², the
+// paper's 10⁻⁴ at our default R = 0.5, proportional to R² so that the units do not matter.
 
 // `stochastic_depth.query = "first-layer"`: read the map wherever the first surface does not
 // occlude, as seed 001 §3.3 words it, without the exact test below that skips samples no deeper

@@ -33,7 +33,7 @@ fn source_lookup(p: VaoPixel, s: VaoSample) -> DepthLookup {
     // is occluded — beyond the constant area (in it the visibility is already 0). Where the
     // tangent-plane correction makes the height rise with depth, any first surface may hide a
     // lower visibility, so the ray is traced.
-    let rising = column_height(f, c, pixel_to_view(view, l.px, 1.0)) > column_height(f, c, vec3<f32>(0.0));
+    let rising = column_height_slope(f, pixel_to_view(view, l.px, 1.0)) > 0.0;
     l.trace = l.value > 0.0 && (rising || height > halo_start(f));
     // Past the depth-buffer hit (relative slack, as the authors' 0.01 R offset).
     l.t_after = z * (1.0 + 1e-5);

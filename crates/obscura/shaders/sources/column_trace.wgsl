@@ -49,7 +49,7 @@ fn trace_column_visibility(f: VaoFrame, c: VaoColumn, px: vec2<f32>, t_after: f3
     // Along the ray the view-space point is t * dir_view, so the column height is affine in t:
     // only heights in (end, halo end) can lower the visibility; that bounds the interval.
     let a = column_height(f, c, vec3<f32>(0.0));
-    let b = column_height(f, c, dir_view) - a;
+    let b = column_height_slope(f, dir_view);
     let halo_end = halo_start(f) + (c.start - c.end);
     var t_min = max(ray_camera.near, t_after);
     var t_max = 3.4e38;

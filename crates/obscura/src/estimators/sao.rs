@@ -21,6 +21,12 @@ pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "LEVELS"];
 /// Taps within this many texels of the pixel read its level (SAO's LOG_MAX_OFFSET 3: 2³).
 pub const LEVEL_OFFSET_PX: f32 = 8.0;
 
+/// ε = (0.2 R)²: SAO's code adds ε = 0.01 to v·v against division by zero, a squared length in
+/// the metres it was written for; held at its value for our default R = 0.5 but made
+/// proportional to R², so that a scene in other units gives the same image (with
+/// `AoSettings::scaled`; tests/scale_invariance.rs).
+pub const EPSILON_PER_RADIUS: f32 = 0.2;
+
 /// GPU mirror of `SaoParams` in the WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -32,7 +38,7 @@ struct SaoParams {
     spiral_turns: f32,
     inv_log_factor: f32,
     log_q: f32,
-    _pad: f32,
+    epsilon: f32,
     pattern: [[f32; 4]; 16],
 }
 
@@ -47,7 +53,7 @@ pub(crate) fn params(s: &SaoSettings, pyramid: &PyramidSettings) -> (Vec<u8>, Ve
         spiral_turns: s.spiral_turns,
         inv_log_factor: 1.0 / (pyramid.factor as f32).ln(),
         log_q: LEVEL_OFFSET_PX.ln(),
-        _pad: 0.0,
+        epsilon: (EPSILON_PER_RADIUS * s.radius).powi(2),
         pattern,
     };
     (

@@ -26,6 +26,12 @@ pub const SPIRAL_TURNS: f32 = 7.0;
 /// (v·n)/(v·v), an inverse length, into a dimensionless obscurance.
 pub const FALLOFF_U: f32 = 0.1;
 
+/// ε = (0.02 R)²: Alchemy AO's ε = 10⁻⁴ against division by zero is a squared length in the
+/// paper's metres; held at that value for our default R = 0.5 but made proportional to R², so
+/// that a scene in other units gives the same image (with `AoSettings::scaled`;
+/// tests/scale_invariance.rs).
+pub const EPSILON_PER_RADIUS: f32 = 0.02;
+
 /// GPU mirror of `SsaoParams` in the WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -50,7 +56,7 @@ pub(crate) fn params(s: &SsaoSettings, query: SdQuery) -> (Vec<u8>, Vec<f64>) {
         scale: 2.0 * s.intensity * FALLOFF_U * s.radius / s.samples as f32,
         bias: s.bias,
         contrast: s.contrast,
-        epsilon: 1e-4,
+        epsilon: (EPSILON_PER_RADIUS * s.radius).powi(2),
         spiral_turns: SPIRAL_TURNS,
         _pad: 0.0,
         pattern,

@@ -31,7 +31,8 @@ pub fn radius_scale_warning(settings: &AoSettings, scene: &Scene) -> Option<Stri
             "the AO radius {field} = {radius} is {:.3} % of scene '{name}''s extent ({diagonal:.0} \
              units corner to corner): if the scene is in centimetres or millimetres, the AO will \
              only darken thin creases; set {field} in the scene's units (e.g. {} for {radius} m \
-             in centimetres)",
+             in centimetres), or convert every length of the settings with AoSettings::scaled \
+             (the command line's --units cm)",
             100.0 * radius / diagonal,
             radius * 100.0,
         ))

@@ -257,7 +257,7 @@ fn min_visibility_along(
     // visibility; elsewhere it is full. That bounds the interval to trace.
     let dir_view = t.view.screen().pixel_to_view(px, 1.0);
     let a = frame.height(column, Vec3::ZERO);
-    let b = frame.height(column, dir_view) - a;
+    let b = frame.height_slope(dir_view);
     let halo_end = (1.0 + s.thickness) * s.radius + full;
     let (mut t_min, mut t_max) = (t.view.near, f32::INFINITY);
     if b.abs() > 1e-12 {

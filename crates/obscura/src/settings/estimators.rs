@@ -188,7 +188,9 @@ pub struct SaoSettings {
     pub spiral_turns: f32,
     /// β, world units a tap must rise above the tangent plane before it occludes.
     pub bias: f32,
-    /// Scale of the summed obscurance.
+    /// Scale of the summed obscurance, in world units: under SAO's shipped normalisation
+    /// intensity/R⁶ · 5/N the sum has the dimension of an inverse length, which the intensity
+    /// cancels ([`crate::AoSettings::scaled`] scales it with the radii).
     pub intensity: f32,
 }
 

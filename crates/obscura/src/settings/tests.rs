@@ -413,3 +413,51 @@ fn the_depth_tolerance_stays_above_the_historys_rounding() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
+    // Every row of docs/SETTINGS.md's field table whose range names world units, and no other,
+    // is in WORLD_UNIT_FIELDS, with the power its range says.
+    let docs = include_str!("../../../../docs/SETTINGS.md");
+    let mut documented = Vec::new();
+    for line in docs.lines().filter(|l| l.starts_with("| `")) {
+        let cells: Vec<&str> = line.split(" | ").collect();
+        let field = cells[0].trim_start_matches("| `").trim_end_matches('`');
+        let range = cells.get(2).copied().unwrap_or("");
+        if range.contains("per world unit") {
+            documented.push((field.to_string(), -1));
+        } else if range.contains("world units") {
+            documented.push((field.to_string(), 1));
+        }
+    }
+    let mut listed: Vec<(String, i32)> = AoSettings::WORLD_UNIT_FIELDS
+        .iter()
+        .map(|&(f, p)| (f.to_string(), p))
+        .collect();
+    documented.sort();
+    listed.sort();
+    assert_eq!(documented, listed);
+    // And scaled() changes exactly those fields, by that power.
+    let mut s = AoSettings::default();
+    s.multiview.focus = Some(3.0);
+    let scaled = s.scaled(4.0);
+    let before = serde_json::to_value(s).unwrap();
+    let after = serde_json::to_value(scaled).unwrap();
+    for path in AoSettings::field_paths() {
+        let pointer = format!("/{}", path.replace('.', "/"));
+        let (b, a) = (&before.pointer(&pointer), &after.pointer(&pointer));
+        match AoSettings::WORLD_UNIT_FIELDS
+            .iter()
+            .find(|(f, _)| *f == path)
+        {
+            Some(&(_, power)) => {
+                let (b, a) = (b.unwrap().as_f64().unwrap(), a.unwrap().as_f64().unwrap());
+                assert!(
+                    (a - b * 4f64.powi(power)).abs() <= 1e-6 * a.abs(),
+                    "{path}: {b} -> {a}"
+                );
+            }
+            None => assert_eq!(b, a, "{path} changed"),
+        }
+    }
+}

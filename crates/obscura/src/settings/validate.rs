@@ -439,6 +439,60 @@ impl AoSettings {
         }
     }
 
+    /// The settings for the same scene in other units: every field in world units
+    /// ([`Self::WORLD_UNIT_FIELDS`]: the radii, GTAO-VB's thickness, SAO's bias and intensity, …)
+    /// multiplied by `factor` and every one per world unit (`blur.sharpness`) divided by it;
+    /// pixels, angles and fractions unchanged. A scene in centimetres with settings made for
+    /// metres takes `settings.scaled(100.0)`; every technique then gives the same image
+    /// (tests/scale_invariance.rs renders them all both ways).
+    pub fn scaled(&self, factor: f32) -> Self {
+        let mut s = *self;
+        for (field, power) in Self::WORLD_UNIT_FIELDS {
+            let value = match field {
+                "vao.radius" => &mut s.vao.radius,
+                "hbao.radius" => &mut s.hbao.radius,
+                "hbao_plus.radius" => &mut s.hbao_plus.radius,
+                "gtao.radius" => &mut s.gtao.radius,
+                "gtao_vb.radius" => &mut s.gtao_vb.radius,
+                "gtao_vb.thickness" => &mut s.gtao_vb.thickness,
+                "ssao.radius" => &mut s.ssao.radius,
+                "sao.radius" => &mut s.sao.radius,
+                "sao.bias" => &mut s.sao.bias,
+                "sao.intensity" => &mut s.sao.intensity,
+                "pyramid_hbao.radius" => &mut s.pyramid_hbao.radius,
+                "peel_separation" => &mut s.peel_separation,
+                "blur.sharpness" => &mut s.blur.sharpness,
+                "multiview.focus" => match &mut s.multiview.focus {
+                    Some(focus) => focus,
+                    None => continue,
+                },
+                _ => unreachable!("WORLD_UNIT_FIELDS names {field}, which scaled() lacks"),
+            };
+            *value *= factor.powi(power);
+        }
+        s
+    }
+
+    /// The fields that depend on the scene's units, with the power of the world unit they carry
+    /// (1: a length, −1: per length); docs/SETTINGS.md says "world units" or "per world unit"
+    /// for exactly these (tested).
+    pub const WORLD_UNIT_FIELDS: [(&'static str, i32); 14] = [
+        ("vao.radius", 1),
+        ("hbao.radius", 1),
+        ("hbao_plus.radius", 1),
+        ("gtao.radius", 1),
+        ("gtao_vb.radius", 1),
+        ("gtao_vb.thickness", 1),
+        ("ssao.radius", 1),
+        ("sao.radius", 1),
+        ("sao.bias", 1),
+        ("sao.intensity", 1),
+        ("pyramid_hbao.radius", 1),
+        ("peel_separation", 1),
+        ("multiview.focus", 1),
+        ("blur.sharpness", -1),
+    ];
+
     /// The settings field that holds [`Self::radius`] (`vao.radius`, `hbao.radius`, …).
     pub fn radius_field(&self) -> &'static str {
         match self.technique.estimator() {
