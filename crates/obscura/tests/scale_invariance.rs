@@ -10,6 +10,7 @@ mod common;
 use obscura::bvh::Bvh;
 use obscura::reference::ground_truth::{render_reference, ReferenceModel, ReferenceSettings};
 use obscura::scene::{self, Scene};
+use obscura::settings::Resolution;
 use obscura::{AoSettings, FrameView, Renderer, Technique};
 
 const W: u32 = 80;
@@ -57,7 +58,7 @@ fn every_technique_gives_the_same_ao_in_any_units() {
     for technique in Technique::all() {
         let settings = common::technique_settings(technique, true);
         let base = render(&gpu, "stairs", &settings, 1.0);
-        for k in [1.0 / 1024.0, 4096.0] {
+        for k in [1.0 / 1048576.0, 1.0 / 1024.0, 4096.0] {
             let other = render(&gpu, "stairs", &settings, k);
             let (worst, mae, differ) = difference(&base, &other);
             println!("{technique} ×{k}: max {worst:.2e}, MAE {mae:.2e}, {differ} pixels > 1e-3");
@@ -93,6 +94,65 @@ fn the_ground_truths_are_the_same_in_any_units() {
             assert!(
                 worst <= 5e-5 && differ == 0,
                 "{model:?} ×{k}: max {worst}, MAE {mae}, {differ} pixels"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_pipeline_options_give_the_same_output_in_any_units() {
+    // Half resolution (its depth-aware upsample), bent normals, missing-occlusion compensation,
+    // and temporal accumulation along a moving camera (reprojection, the history's depth test).
+    let gpu = common::gpu();
+    type Tweak = fn(&mut AoSettings);
+    let options: [(&str, Technique, Tweak); 5] = [
+        ("half resolution", Technique::Vao, |s| {
+            s.resolution = Resolution::Half
+        }),
+        ("half resolution", Technique::HbaoPlus, |s| {
+            s.resolution = Resolution::Half
+        }),
+        ("bent normals", Technique::Gtao, |s| s.bent_normals = true),
+        ("compensation", Technique::SdVao, |s| {
+            s.stochastic_depth.compensation = 2.0
+        }),
+        ("temporal", Technique::Vao, |s| s.temporal.enabled = true),
+    ];
+    for (option, technique, tweak) in options {
+        let mut settings = common::technique_settings(technique, true);
+        tweak(&mut settings);
+        let run = |k: f32| {
+            let (scene, camera) = scaled_scene("stairs", k);
+            let mut r = Renderer::new(&gpu, &scene, &settings.scaled(k), W, H, GUARD).unwrap();
+            // Three frames, the camera stepping sideways (a still camera for the others).
+            for step in 0..3 {
+                let mut c = camera;
+                let shift = glam::Vec3::new(0.05 * step as f32, 0.0, 0.0) * k;
+                c.eye += shift;
+                c.target += shift;
+                r.render(&c, None).unwrap();
+            }
+            let bent: Vec<f32> = r
+                .read_bent_normals()
+                .unwrap()
+                .map(|b| b.iter().flat_map(|t| t[..3].to_vec()).collect())
+                .unwrap_or_default();
+            (r.read_ao().unwrap(), bent)
+        };
+        let (base, base_bent) = run(1.0);
+        for k in [1.0 / 1024.0, 4096.0] {
+            let (ao, bent) = run(k);
+            let (worst, mae, differ) = difference(&base, &ao);
+            println!("{option} {technique} ×{k}: max {worst:.2e}, MAE {mae:.2e}");
+            assert!(
+                worst <= 5e-5 && differ == 0,
+                "{option} {technique} ×{k}: max {worst}, MAE {mae}, {differ} pixels"
+            );
+            let (worst, ..) = difference(&base_bent, &bent);
+            // Bent normals are stored as f16 (a step of 4.9e-4 near 1).
+            assert!(
+                worst <= 1e-3,
+                "{option} {technique} ×{k}: bent normals {worst} apart"
             );
         }
     }
