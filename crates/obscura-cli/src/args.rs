@@ -688,6 +688,11 @@ fn units_per_metre(units: &str) -> Result<f32> {
 }
 
 impl AoArgs {
+    /// `--units` as world units per metre; 1 without it.
+    pub fn units_per_metre(&self) -> Result<f32> {
+        self.units.as_deref().map_or(Ok(1.0), units_per_metre)
+    }
+
     /// The settings of `technique`: its preset (or the defaults), the settings file over it,
     /// then the flags given; validated, errors naming the flag (or the file's field).
     pub fn settings(&self, technique: Technique) -> Result<AoSettings> {
@@ -698,8 +703,8 @@ impl AoArgs {
                 ..AoSettings::default()
             },
         };
-        if let Some(units) = &self.units {
-            s = s.scaled(units_per_metre(units)?);
+        if self.units.is_some() {
+            s = s.scaled(self.units_per_metre()?);
         }
         if let Some(path) = &self.settings {
             s = s.with_file(path)?;

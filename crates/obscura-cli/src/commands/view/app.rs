@@ -333,7 +333,7 @@ impl ViewerApp {
             ui.heading("technique");
             controls::technique_combo(ui, "A", &mut self.settings.technique);
             ui.label(self.settings.technique.row().summary);
-            controls::presets(ui, &mut self.settings);
+            controls::presets(ui, &mut self.settings, self.start.units_per_metre);
             let scale = self.start.scene.bounds().diagonal();
             controls::parameters(ui, &mut self.settings, scale);
             let default_guard = self

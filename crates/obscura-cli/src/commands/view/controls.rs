@@ -21,12 +21,13 @@ pub fn technique_combo(ui: &mut egui::Ui, label: &str, technique: &mut Technique
         });
 }
 
-/// Preset buttons: the whole settings of the technique at that level.
-pub fn presets(ui: &mut egui::Ui, settings: &mut AoSettings) {
+/// Preset buttons: the whole settings of the technique at that level, in the scene's units
+/// (`units_per_metre`: `--units`, as the command line converted the starting settings).
+pub fn presets(ui: &mut egui::Ui, settings: &mut AoSettings, units_per_metre: f32) {
     ui.horizontal(|ui| {
         ui.label("preset");
         for p in Preset::ALL {
-            let preset = AoSettings::preset(settings.technique, p);
+            let preset = AoSettings::preset(settings.technique, p).scaled(units_per_metre);
             if ui
                 .selectable_label(*settings == preset, p.name())
                 .on_hover_text("docs/SETTINGS.md lists what each preset sets")

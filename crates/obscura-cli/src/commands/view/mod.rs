@@ -91,6 +91,7 @@ pub fn run(options: &obscura::GpuOptions, args: &ViewArgs) -> Result<()> {
         scene,
         camera,
         settings,
+        units_per_metre: args.ao.units_per_metre()?,
         split: args.split,
         view: args.debug_view,
         size: args.size,
@@ -109,6 +110,8 @@ pub struct StartState {
     pub scene: Arc<obscura::scene::Scene>,
     pub camera: obscura::scene::Camera,
     pub settings: obscura::AoSettings,
+    /// `--units` as world units per metre (1 without it): the preset buttons convert with it.
+    pub units_per_metre: f32,
     pub split: Option<Technique>,
     pub view: DebugView,
     pub size: Option<(u32, u32)>,
