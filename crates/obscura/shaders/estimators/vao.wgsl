@@ -123,8 +123,8 @@ fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {
 // How fast column_height grows along view-space direction `d`: its linear part. Along a camera
 // ray the height is column_height at the camera plus this times the depth; taking the slope as
 // the difference of two heights instead loses it to rounding wherever the heights are large next
-// to it (a scene far from the camera in world units: at 4096 times the built-ins' scale it was
-// off by 1e-3, enough to move the ray-traced occlusion; tests/scale_invariance.rs).
+// to it (a scene far from the camera in world units: at 4096 times the built-ins' scale the
+// ray-traced AO moved by up to 4e-3; tests/scale_invariance.rs).
 fn column_height_slope(f: VaoFrame, d: vec3<f32>) -> f32 {
     return dot(d, f.plane);
 }
@@ -339,8 +339,8 @@ fn estimator_combine(a: f32, b: f32) -> f32 {
 // end and for heights at or above the halo's end, (1 + thickness) R + the column length, so only
 // heights strictly between matter. The height of a point is affine in its position
 // (column_height), and a point of the ray is affine in its depth, so the height along the ray is
-// h(depth) = h0 + depth (h1 − h0); the interval is where it lies in (end, halo end), widened by
-// a relative 1e-3 for rounding.
+// h(depth) = h0 + depth · slope (h0 at the camera, slope column_height_slope's); the interval is
+// where it lies in (end, halo end), widened by a relative 1e-3 for rounding.
 fn estimator_depth_interval(p: VaoPixel, s: VaoSample, px: vec2<f32>) -> vec2<f32> {
     let h0 = column_height(p.frame, s.column, vec3<f32>(0.0));
     let slope = column_height_slope(p.frame, pixel_to_view(view, px, 1.0));
