@@ -436,7 +436,7 @@ pub struct AoArgs {
     pub sao_turns: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help("SAO bias β in world units.", "sao.bias"))]
     pub sao_bias: Option<f32>,
-    #[arg(long, allow_hyphen_values = true, help = help("SAO intensity (scale of the obscurance).", "sao.intensity"))]
+    #[arg(long, allow_hyphen_values = true, help = help("SAO intensity (scale of the obscurance), in world units as SAO's normalisation has it.", "sao.intensity"))]
     pub sao_intensity: Option<f32>,
     #[arg(long, allow_hyphen_values = true, help = help("GTAO-VB search radius R in world units.", "gtao_vb.radius"))]
     pub vb_radius: Option<f32>,
