@@ -50,7 +50,7 @@ fn difference(a: &[f32], b: &[f32]) -> (f32, f64, usize) {
 // Where the scales part, float rounding alone: f32 keeps 24 bits, and the worst pixel at the
 // built-ins' scale was 7e-6 apart (SAO, ×1/1024). Before the fixes this test came with, `sao`
 // was 0.96 apart, `ssao` 0.10 (both had ε in world units), `rt-vao` 4e-3 (its rays' interval
-// slope taken as a difference of large heights) and the CPU ground truth 1.6e-2.
+// slope taken as a difference of large heights) and the CPU ground truth at least 3.3e-2.
 #[test]
 fn every_technique_gives_the_same_ao_in_any_units() {
     let gpu = common::gpu();
