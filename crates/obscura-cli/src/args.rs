@@ -667,7 +667,7 @@ pub struct AoArgs {
 
 /// `--units`: world units per metre, from one unit's length in metres or the unit's name
 /// (in f64, so that `0.001` gives exactly 1000).
-fn units_per_metre(units: &str) -> Result<f32> {
+fn parse_units(units: &str) -> Result<f32> {
     let metres: f64 = match units.trim() {
         "m" => 1.0,
         "cm" => 0.01,
@@ -690,7 +690,7 @@ fn units_per_metre(units: &str) -> Result<f32> {
 impl AoArgs {
     /// `--units` as world units per metre; 1 without it.
     pub fn units_per_metre(&self) -> Result<f32> {
-        self.units.as_deref().map_or(Ok(1.0), units_per_metre)
+        self.units.as_deref().map_or(Ok(1.0), parse_units)
     }
 
     /// The settings of `technique`: its preset (or the defaults), the settings file over it,

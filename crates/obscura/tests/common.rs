@@ -74,6 +74,19 @@ pub fn camera(eye: Vec3, target: Vec3, fov_y_deg: f32) -> Camera {
     }
 }
 
+/// Built-in scene `name` and its first camera, both scaled by `k` about the origin (the same
+/// scene in other units).
+pub fn scaled_builtin(name: &str, k: f32) -> (Scene, Camera) {
+    let mut scene = obscura::scene::builtin(name).unwrap();
+    for p in &mut scene.positions {
+        *p *= k;
+    }
+    let mut camera = scene.cameras[0].camera;
+    camera.eye *= k;
+    camera.target *= k;
+    (scene, camera)
+}
+
 /// `technique` with default settings, its bilateral blur on or off.
 pub fn technique_settings(technique: Technique, blur: bool) -> AoSettings {
     let mut s = AoSettings {

@@ -9,7 +9,6 @@ mod common;
 
 use obscura::bvh::Bvh;
 use obscura::reference::ground_truth::{render_reference, ReferenceModel, ReferenceSettings};
-use obscura::scene::{self, Scene};
 use obscura::settings::Resolution;
 use obscura::{AoSettings, FrameView, Renderer, Technique};
 
@@ -17,19 +16,8 @@ const W: u32 = 80;
 const H: u32 = 48;
 const GUARD: u32 = 12;
 
-fn scaled_scene(name: &str, k: f32) -> (Scene, obscura::scene::Camera) {
-    let mut scene = scene::builtin(name).unwrap();
-    for p in &mut scene.positions {
-        *p *= k;
-    }
-    let mut camera = scene.cameras[0].camera;
-    camera.eye *= k;
-    camera.target *= k;
-    (scene, camera)
-}
-
 fn render(gpu: &obscura::Gpu, name: &str, settings: &AoSettings, k: f32) -> Vec<f32> {
-    let (scene, camera) = scaled_scene(name, k);
+    let (scene, camera) = common::scaled_builtin(name, k);
     let mut r = Renderer::new(gpu, &scene, &settings.scaled(k), W, H, GUARD).unwrap();
     r.render(&camera, None).unwrap();
     r.read_ao().unwrap()
@@ -76,7 +64,7 @@ fn every_technique_gives_the_same_ao_in_any_units() {
 fn the_ground_truths_are_the_same_in_any_units() {
     for model in [ReferenceModel::Vao, ReferenceModel::Hemisphere] {
         let reference = |k: f32| {
-            let (scene, camera) = scaled_scene("stairs", k);
+            let (scene, camera) = common::scaled_builtin("stairs", k);
             let bvh = Bvh::build(&scene);
             let view = FrameView::new(camera, W, H, GUARD, obscura::near_plane(&scene));
             let settings = ReferenceSettings {
@@ -122,9 +110,10 @@ fn the_pipeline_options_give_the_same_output_in_any_units() {
         let mut settings = common::technique_settings(technique, true);
         tweak(&mut settings);
         let run = |k: f32| {
-            let (scene, camera) = scaled_scene("stairs", k);
+            let (scene, camera) = common::scaled_builtin("stairs", k);
             let mut r = Renderer::new(&gpu, &scene, &settings.scaled(k), W, H, GUARD).unwrap();
-            // Three frames, the camera stepping sideways (a still camera for the others).
+            // Three frames, the camera stepping sideways between them (what temporal
+            // accumulation reprojects; the other options only show in each frame).
             for step in 0..3 {
                 let mut c = camera;
                 let shift = glam::Vec3::new(0.05 * step as f32, 0.0, 0.0) * k;
@@ -135,7 +124,7 @@ fn the_pipeline_options_give_the_same_output_in_any_units() {
             let bent: Vec<f32> = r
                 .read_bent_normals()
                 .unwrap()
-                .map(|b| b.iter().flat_map(|t| t[..3].to_vec()).collect())
+                .map(|b| b.iter().flat_map(|t| t[..3].iter().copied()).collect())
                 .unwrap_or_default();
             (r.read_ao().unwrap(), bent)
         };

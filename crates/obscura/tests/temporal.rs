@@ -471,15 +471,8 @@ fn the_history_keeps_its_surface_at_any_scene_scale() {
     // rounding (2^-10 relative).
     let gpu = common::gpu();
     for scale in [1e-5f32, 1.0, 1e3, 1e6] {
-        let mut scene = scene::builtin("stairs").unwrap();
-        for p in &mut scene.positions {
-            *p *= scale;
-        }
-        let mut camera = scene.cameras[0].camera;
-        camera.eye *= scale;
-        camera.target *= scale;
-        let mut settings = temporal_settings(Technique::Vao, false);
-        settings.vao.radius *= scale;
+        let (scene, camera) = common::scaled_builtin("stairs", scale);
+        let settings = temporal_settings(Technique::Vao, false).scaled(scale);
         let mut r = Renderer::new(&gpu, &scene, &settings, W, H, GUARD).unwrap();
         for _ in 0..4 {
             r.render(&camera, None).unwrap();

@@ -393,20 +393,20 @@ fn validation_names_fields_that_exist_and_no_flags() {
 
 #[test]
 fn the_depth_tolerance_stays_above_the_historys_rounding() {
-    use super::MIN_TEMPORAL_DEPTH_TOLERANCE as MIN_DEPTH_TOLERANCE;
+    use super::MIN_TEMPORAL_DEPTH_TOLERANCE;
     let with = |tolerance: f32| {
         let mut s = AoSettings::default();
         s.temporal.depth_tolerance = tolerance;
         s.validate()
     };
-    assert!(with(MIN_DEPTH_TOLERANCE).is_ok());
+    assert!(with(MIN_TEMPORAL_DEPTH_TOLERANCE).is_ok());
     assert!(with(0.03).is_ok());
-    match with(MIN_DEPTH_TOLERANCE * 0.99) {
+    match with(MIN_TEMPORAL_DEPTH_TOLERANCE * 0.99) {
         Err(SettingsError::Invalid { field, rule, .. }) => {
             assert_eq!(field, "temporal.depth_tolerance");
             // The rule's literal names the same bound as the constant.
             assert!(
-                rule.contains(&format!("[{MIN_DEPTH_TOLERANCE}, 1)")),
+                rule.contains(&format!("[{MIN_TEMPORAL_DEPTH_TOLERANCE}, 1)")),
                 "{rule}"
             );
         }
