@@ -26,6 +26,7 @@ pub mod filter;
 pub mod frame;
 pub mod gpu;
 pub mod hash;
+pub mod knob;
 pub mod metrics;
 pub mod output;
 pub mod pipeline;

@@ -489,80 +489,163 @@ pub struct Needs {
     pub stochastic_depth_map: bool,
 }
 
+/// What the rest of the library needs to know of a hidden-depth source: one literal per source
+/// ([`Source::caps`]), every field required, so that a new source answers every question.
+#[derive(Clone, Copy, Debug)]
+pub struct SourceCaps {
+    /// Its name in the README's table and help texts (`first layer`, `column rays`, …).
+    pub name: &'static str,
+    /// Its settings section (`stochastic_depth`), empty where it has none: the viewer shows
+    /// that section's knobs for its rows.
+    pub section: &'static str,
+    /// What it needs from the caller beyond depth and normals.
+    pub needs: Needs,
+    /// A stochastic depth map, rasterised or ray-traced (read by
+    /// `shaders/sources/stochastic_depth/samples.wgsl`; `render --debug-out` shows it).
+    pub maps_hidden_depth: bool,
+    /// Resolving one flagged sample costs much more than looking at the first layer: a map's S
+    /// depths, or a ray through the BVH. Not the second depth layer (one more read), which a
+    /// deferred resolve made slower (docs/lab).
+    pub costly_resolve: bool,
+    /// It reads this estimator's own model and serves it alone (column rays: VAO's columns).
+    pub only_for: Option<Estimator>,
+    /// It serves pyramid levels: the estimators that read levels, and only those.
+    pub serves_levels: bool,
+    /// What presets change in its section: a field's value at low, medium, high, ultra.
+    pub presets: &'static [(&'static str, [f64; 4])],
+}
+
 impl Source {
-    /// Whether it is a stochastic depth map, rasterised or ray-traced (read by
-    /// `shaders/sources/stochastic_depth/samples.wgsl`).
-    pub fn maps_hidden_depth(self) -> bool {
-        matches!(self, Source::StochasticDepth | Source::RayStochasticDepth)
+    /// Everything the library asks of the source.
+    pub const fn caps(self) -> &'static SourceCaps {
+        const NONE: Needs = Needs {
+            triangles: false,
+            bvh: false,
+            second_layer: false,
+            stochastic_depth_map: false,
+        };
+        match self {
+            Source::FirstLayer => &SourceCaps {
+                name: "first layer",
+                section: "",
+                needs: NONE,
+                maps_hidden_depth: false,
+                costly_resolve: false,
+                only_for: None,
+                serves_levels: false,
+                presets: &[],
+            },
+            Source::DualDepth => &SourceCaps {
+                name: "dual depth",
+                section: "",
+                needs: Needs {
+                    second_layer: true,
+                    ..NONE
+                },
+                maps_hidden_depth: false,
+                costly_resolve: false,
+                only_for: None,
+                serves_levels: false,
+                presets: &[],
+            },
+            Source::ColumnRays => &SourceCaps {
+                name: "column rays",
+                section: "",
+                needs: Needs {
+                    triangles: true,
+                    bvh: true,
+                    ..NONE
+                },
+                maps_hidden_depth: false,
+                costly_resolve: true,
+                only_for: Some(Estimator::Vao),
+                serves_levels: false,
+                presets: &[],
+            },
+            Source::StochasticDepth => &SourceCaps {
+                name: "stochastic depth",
+                section: "stochastic_depth",
+                needs: Needs {
+                    triangles: true,
+                    stochastic_depth_map: true,
+                    ..NONE
+                },
+                maps_hidden_depth: true,
+                costly_resolve: true,
+                only_for: None,
+                serves_levels: false,
+                // One sample at low: every adapter with the map's format rasterises it (WebGPU
+                // guarantees 1× and 4× only). α stays 1.5/S throughout.
+                presets: &[("stochastic_depth.samples", [1.0, 4.0, 4.0, 8.0])],
+            },
+            Source::RayStochasticDepth => &SourceCaps {
+                name: "ray stochastic depth",
+                section: "ray_sd",
+                needs: Needs {
+                    triangles: true,
+                    bvh: true,
+                    ..NONE
+                },
+                maps_hidden_depth: true,
+                costly_resolve: true,
+                only_for: None,
+                serves_levels: false,
+                presets: &[],
+            },
+            Source::DepthPyramid => &SourceCaps {
+                name: "depth pyramid",
+                section: "pyramid",
+                needs: NONE,
+                maps_hidden_depth: false,
+                costly_resolve: false,
+                only_for: None,
+                serves_levels: true,
+                presets: &[],
+            },
+        }
     }
 
-    /// Whether resolving one flagged sample costs much more than looking at the first layer: a
-    /// map's S depths, or a ray through the BVH. Not the second depth layer (one more read),
-    /// which a deferred resolve made slower (BENCHMARKS.md).
+    /// Whether it is a stochastic depth map ([`SourceCaps::maps_hidden_depth`]).
+    pub fn maps_hidden_depth(self) -> bool {
+        self.caps().maps_hidden_depth
+    }
+
+    /// Whether resolving a flagged sample is costly ([`SourceCaps::costly_resolve`]).
     pub fn costly_resolve(self) -> bool {
-        matches!(
-            self,
-            Source::ColumnRays | Source::StochasticDepth | Source::RayStochasticDepth
-        )
+        self.caps().costly_resolve
     }
 
     /// What this source needs from the caller beyond depth and normals.
     pub fn needs(self) -> Needs {
-        match self {
-            Source::FirstLayer => Needs::default(),
-            Source::DualDepth => Needs {
-                second_layer: true,
-                ..Needs::default()
-            },
-            Source::ColumnRays => Needs {
-                triangles: true,
-                bvh: true,
-                ..Needs::default()
-            },
-            Source::StochasticDepth => Needs {
-                triangles: true,
-                stochastic_depth_map: true,
-                ..Needs::default()
-            },
-            Source::RayStochasticDepth => Needs {
-                triangles: true,
-                bvh: true,
-                ..Needs::default()
-            },
-            Source::DepthPyramid => Needs::default(),
-        }
+        self.caps().needs
     }
 
     /// The estimators this source can answer for: column rays read the VAO columns; the depth
     /// pyramid serves, and alone serves, the estimators that read levels.
     pub fn supports(self, estimator: Estimator) -> bool {
-        match self {
-            Source::ColumnRays => estimator == Estimator::Vao,
-            Source::DepthPyramid => estimator.reads_levels(),
-            Source::FirstLayer
-            | Source::DualDepth
-            | Source::StochasticDepth
-            | Source::RayStochasticDepth => !estimator.reads_levels(),
-        }
+        let caps = self.caps();
+        caps.only_for.is_none_or(|only| only == estimator)
+            && caps.serves_levels == estimator.reads_levels()
     }
 
     /// Its name in the README's table and help texts (`first layer`, `column rays`, …).
     pub fn name(self) -> &'static str {
-        match self {
-            Source::FirstLayer => "first layer",
-            Source::DualDepth => "dual depth",
-            Source::ColumnRays => "column rays",
-            Source::StochasticDepth => "stochastic depth",
-            Source::RayStochasticDepth => "ray stochastic depth",
-            Source::DepthPyramid => "depth pyramid",
-        }
+        self.caps().name
+    }
+
+    /// Its settings section ([`SourceCaps::section`]).
+    pub fn section(self) -> &'static str {
+        self.caps().section
     }
 }
 
 impl Schedule {
     /// Whether this is a two-phase schedule (work list or dense).
     pub fn two_phase(self) -> bool {
-        matches!(self, Schedule::TwoPhase | Schedule::TwoPhaseDense)
+        match self {
+            Schedule::TwoPhase | Schedule::TwoPhaseDense => true,
+            Schedule::Single | Schedule::Interleaved | Schedule::Multiview => false,
+        }
     }
 
     /// Whether this schedule can run `estimator`: a two-phase schedule adds phase 2's samples
@@ -603,129 +686,292 @@ impl Schedule {
     }
 }
 
-impl Estimator {
-    /// Its name in the README's table (`vao`, `hbao`, `hbao+`, `gtao`, `gtao-vb`, …).
-    pub fn name(self) -> &'static str {
-        match self {
-            Estimator::Vao => "vao",
-            Estimator::Hbao => "hbao",
-            Estimator::HbaoPlus => "hbao+",
-            Estimator::Gtao => "gtao",
-            Estimator::Ssao => "ssao",
-            Estimator::Sao => "sao",
-            Estimator::PyramidHbao => "pyramid-hbao",
-            Estimator::GtaoVb => "gtao-vb",
-        }
-    }
-
+/// What the rest of the library needs to know of an estimator: one literal per estimator
+/// ([`Estimator::caps`]), every field required, so that a new estimator answers every question
+/// where it is added, with no list elsewhere left to miss it.
+#[derive(Clone, Copy, Debug)]
+pub struct EstimatorCaps {
+    /// Its name in the README's table (`vao`, `hbao+`, `gtao-vb`, …).
+    pub name: &'static str,
+    /// Its settings section (`gtao_vb`: the fields `gtao_vb.*` and their knobs).
+    pub section: &'static str,
+    /// The field of its world radius R (`gtao_vb.radius`).
+    pub radius: &'static str,
     /// Its `render --debug-out` image over the single-pass and interleaved schedules
-    /// (`estimator_debug` in its WGSL): the file name and what it shows, or None where it has
-    /// none.
-    pub fn debug_image(self) -> Option<(&'static str, &'static str)> {
-        match self {
-            Estimator::Hbao => Some((
-                "horizon.png",
-                "the mean final horizon elevation over the directions, -90° black to +90° white",
-            )),
-            Estimator::Gtao => Some((
-                "horizon.png",
-                "the mean angle between each slice's two horizons, 0° black to 180° (open) white",
-            )),
-            Estimator::GtaoVb => Some((
-                "sectors.png",
-                "the bitmask occupancy, occupied sectors of all slices, none black to all white",
-            )),
-            Estimator::HbaoPlus => Some((
-                "occlusion.png",
-                "the mean per-sample occlusion before 1 - 2 mean and the exponent, 0 black to 1 white",
-            )),
-            Estimator::Sao => Some((
-                "levels.png",
-                "the mean pyramid level the taps read, level 0 black to the top level white",
-            )),
-            Estimator::Ssao => Some((
-                "occluders.png",
-                "the fraction of the samples that occlude, none black to all white",
-            )),
-            Estimator::PyramidHbao => Some((
-                "levels.png",
-                "the mean pyramid level of each direction's largest contribution, 0 black to the top white",
-            )),
-            Estimator::Vao => None,
-        }
-    }
-
-    /// Whether its samples read levels of the depth pyramid (`estimator_sample_level`).
-    pub fn reads_levels(self) -> bool {
-        matches!(self, Estimator::Sao | Estimator::PyramidHbao)
-    }
-
-    /// Whether the single pass resolves this estimator's flagged samples after all the others,
-    /// making each again from its index (single.wgsl's `DEFERRED_RESOLVE`), over a source whose
-    /// resolve is costly ([`Source::costly_resolve`]). It pays where a sample is cheap to make
-    /// again: VAO (a kernel entry turned by the pixel's rotation) and SSAO (a spiral tap). HBAO+
-    /// and GTAO-VB were measured 11 % slower that way on an H200 (BENCHMARKS.md).
-    pub fn defers_resolves(self) -> bool {
-        self.order_independent() && matches!(self, Estimator::Vao | Estimator::Ssao)
-    }
-
-    /// Whether a sample that reads the raster stochastic depth map makes a value of each distinct
-    /// depth of the pixel once, nearest first, instead of one per stored sample
-    /// (stochastic_depth/samples.wgsl's `SD_DISTINCT`; S = 4), stopping where the estimator's
-    /// `hidden` is exact ([`Estimator::exact_hidden`]). Measured on an H200 (BENCHMARKS.md,
-    /// 2026-12-04, four views): GTAO-VB's pass 13–17 % faster and HBAO's 2–8 %, whose values
-    /// cost many instructions; VAO's cheap values 5–9 % slower even with the stop, HBAO+'s and
-    /// SSAO's from 6 % faster to 1 % slower by view.
-    pub fn resolves_distinct_depths(self) -> bool {
-        matches!(self, Estimator::GtaoVb | Estimator::Hbao)
-    }
-
-    /// Whether its occluders' `hidden` is exact: false only where no deeper surface at the
-    /// sample's pixel can change the sample's value, so that a sample reading its pixel's depths
-    /// nearest first may stop there (samples.wgsl's `SD_SETTLED_STOPS`). GTAO-VB's is (a front
-    /// face below the tangent plane, or a back face at the hemisphere's edge with its sector
-    /// marked: every deeper point of the pixel's ray lies lower still). VAO's is not: a depth's
-    /// column height along one pixel's ray rises with depth where the tangent-plane correction
-    /// for the pixel's offset outweighs the view axis (tilted planes seen at a slant), so a
-    /// deeper depth can lower the value (stopping changed `ray-sd-vao` on `stairs`). HBAO's,
+    /// (`estimator_debug` in its WGSL): the file name and what it shows.
+    pub debug_image: Option<(&'static str, &'static str)>,
+    /// Its samples read levels of the depth pyramid (`estimator_sample_level`).
+    pub reads_levels: bool,
+    /// Its result is independent of the order its samples arrive in, as a two-phase schedule
+    /// needs (phase 2 adds the flagged samples after all others). HBAO and GTAO walk each
+    /// direction outwards, carrying a running horizon: single pass only.
+    pub order_independent: bool,
+    /// The single pass resolves its flagged samples after all the others, making each again
+    /// from its index (single.wgsl's `DEFERRED_RESOLVE`), over a source whose resolve is
+    /// costly. It pays where a sample is cheap to make again: VAO (a kernel entry turned by the
+    /// pixel's rotation) and SSAO (a spiral tap). HBAO+ and GTAO-VB were measured 11 % slower
+    /// that way on an H200 (docs/lab). Only order-independent estimators can.
+    pub defers_resolves: bool,
+    /// A sample that reads the raster stochastic depth map makes a value of each distinct depth
+    /// of the pixel once, nearest first, instead of one per stored sample
+    /// (stochastic_depth/samples.wgsl's `SD_DISTINCT`; S = 4), stopping where `hidden` is
+    /// exact. Measured on an H200 (docs/lab, 2026-12-04, four views): GTAO-VB's pass 13–17 %
+    /// faster and HBAO's 2–8 %, whose values cost many instructions; VAO's cheap values 5–9 %
+    /// slower even with the stop, HBAO+'s and SSAO's from 6 % faster to 1 % slower by view.
+    pub resolves_distinct_depths: bool,
+    /// Its occluders' `hidden` is exact: false only where no deeper surface at the sample's
+    /// pixel can change the sample's value, so that a sample reading its pixel's depths nearest
+    /// first may stop there (samples.wgsl's `SD_SETTLED_STOPS`). GTAO-VB's is (a front face
+    /// below the tangent plane, or a back face at the hemisphere's edge with its sector marked:
+    /// every deeper point of the pixel's ray lies lower still). VAO's is not: a depth's column
+    /// height along one pixel's ray rises with depth where the tangent-plane correction for the
+    /// pixel's offset outweighs the view axis, so a deeper depth can lower the value. HBAO's,
     /// HBAO+'s and SSAO's follow seed 001 §3.3's heuristic (a sample that is not occluded reads
     /// no hidden depth), which a deeper surface can contradict.
-    pub fn exact_hidden(self) -> bool {
-        matches!(self, Estimator::GtaoVb)
-    }
+    pub exact_hidden: bool,
+    /// With bent normals, the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a
+    /// sample's depth only after testing whether the sample falls on the shading pixel. Measured
+    /// on an H200 (docs/lab, 2026-12-04): with bent normals the early load made VAO's pass 7 %
+    /// and GTAO's 10 % slower, while HBAO+'s and GTAO-VB's were 1 % faster with it; without bent
+    /// normals it is faster for all.
+    pub late_load_with_bent_normals: bool,
+    /// It reports a bent normal with its AO (`bent_normals`, seed 001 §4): the slice estimators,
+    /// whose visible directions are known per slice, VAO, whose free column parts locate the
+    /// free volume, and HBAO+, whose per-sample occlusion reads as a horizon elevation.
+    pub bent_normals: bool,
+    /// What presets change: a field's value at low, medium, high, ultra (medium is always the
+    /// default), fields of its own section or the blur's.
+    pub presets: &'static [(&'static str, [f64; 4])],
+}
 
-    /// Whether the first-layer lookup (frame.wgsl's `FIRST_LAYER_LOAD_LATE`) loads a sample's depth
-    /// only after testing whether the sample falls on the shading pixel, rather than before it as
-    /// every other pass does. Measured on an H200 (BENCHMARKS.md, 2026-12-04): with bent normals
-    /// the early load made VAO's pass 7 % and GTAO's 10 % slower, while HBAO+'s and GTAO-VB's were
-    /// 1 % faster with it; without bent normals it is faster for all.
-    pub fn late_first_layer_load(self, bent_normals: bool) -> bool {
-        bent_normals && matches!(self, Estimator::Vao | Estimator::Gtao)
-    }
+impl Estimator {
+    /// Every estimator, in the README's order.
+    pub const ALL: [Estimator; 8] = [
+        Estimator::Vao,
+        Estimator::Hbao,
+        Estimator::HbaoPlus,
+        Estimator::Gtao,
+        Estimator::Ssao,
+        Estimator::Sao,
+        Estimator::PyramidHbao,
+        Estimator::GtaoVb,
+    ];
 
-    /// Whether the estimator's result is independent of the order its samples arrive in, as a
-    /// two-phase schedule needs (phase 2 adds the flagged samples after all others). HBAO and
-    /// GTAO walk each direction outwards, carrying a running horizon: single pass only.
-    pub fn order_independent(self) -> bool {
+    /// Everything the library asks of the estimator.
+    pub const fn caps(self) -> &'static EstimatorCaps {
         match self {
-            Estimator::Vao
-            | Estimator::HbaoPlus
-            | Estimator::GtaoVb
-            | Estimator::Sao
-            | Estimator::Ssao => true,
-            Estimator::Hbao | Estimator::Gtao | Estimator::PyramidHbao => false,
+            Estimator::Vao => &EstimatorCaps {
+                name: "vao",
+                section: "vao",
+                radius: "vao.radius",
+                debug_image: None,
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: true,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: true,
+                bent_normals: true,
+                presets: &[
+                    ("vao.samples", [8.0, 8.0, 16.0, 32.0]),
+                    ("blur.radius", [2.0, 4.0, 4.0, 6.0]),
+                ],
+            },
+            // Seed 001 Tab. 1's 8 × 4 as the default, seed 004's smallest grid (8 × 10) as high.
+            Estimator::Hbao => &EstimatorCaps {
+                name: "hbao",
+                section: "hbao",
+                radius: "hbao.radius",
+                debug_image: Some((
+                    "horizon.png",
+                    "the mean final horizon elevation over the directions, -90° black to +90° white",
+                )),
+                reads_levels: false,
+                order_independent: false,
+                defers_resolves: false,
+                resolves_distinct_depths: true,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[
+                    ("hbao.directions", [4.0, 8.0, 8.0, 16.0]),
+                    ("hbao.steps", [4.0, 4.0, 10.0, 20.0]),
+                ],
+            },
+            // 8 × 4 = 32 samples is already the most the two-phase mask holds.
+            Estimator::HbaoPlus => &EstimatorCaps {
+                name: "hbao+",
+                section: "hbao_plus",
+                radius: "hbao_plus.radius",
+                debug_image: Some((
+                    "occlusion.png",
+                    "the mean per-sample occlusion before 1 - 2 mean and the exponent, 0 black to 1 white",
+                )),
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: false,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: true,
+                presets: &[
+                    ("hbao_plus.directions", [4.0, 8.0, 8.0, 8.0]),
+                    ("blur.radius", [2.0, 4.0, 4.0, 6.0]),
+                ],
+            },
+            // The common XeGTAO-style grid, slices × steps 1×2, 2×2, 3×3, 9×3.
+            Estimator::Gtao => &EstimatorCaps {
+                name: "gtao",
+                section: "gtao",
+                radius: "gtao.radius",
+                debug_image: Some((
+                    "horizon.png",
+                    "the mean angle between each slice's two horizons, 0° black to 180° (open) white",
+                )),
+                reads_levels: false,
+                order_independent: false,
+                defers_resolves: false,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: true,
+                bent_normals: true,
+                presets: &[
+                    ("gtao.slices", [1.0, 2.0, 3.0, 9.0]),
+                    ("gtao.steps", [2.0, 2.0, 3.0, 3.0]),
+                ],
+            },
+            // Seed 001 Tab. 1's 32 as the default, the most the two-phase mask holds.
+            Estimator::Ssao => &EstimatorCaps {
+                name: "ssao",
+                section: "ssao",
+                radius: "ssao.radius",
+                debug_image: Some((
+                    "occluders.png",
+                    "the fraction of the samples that occlude, none black to all white",
+                )),
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: true,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[("ssao.samples", [8.0, 32.0, 32.0, 32.0])],
+            },
+            // SAO's published code ships 11 taps; fewer and more around it.
+            Estimator::Sao => &EstimatorCaps {
+                name: "sao",
+                section: "sao",
+                radius: "sao.radius",
+                debug_image: Some((
+                    "levels.png",
+                    "the mean pyramid level the taps read, level 0 black to the top level white",
+                )),
+                reads_levels: true,
+                order_independent: true,
+                defers_resolves: false,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[("sao.samples", [7.0, 11.0, 16.0, 32.0])],
+            },
+            // Seed 004's 8 directions as the default; the steps per level are ours.
+            Estimator::PyramidHbao => &EstimatorCaps {
+                name: "pyramid-hbao",
+                section: "pyramid_hbao",
+                radius: "pyramid_hbao.radius",
+                debug_image: Some((
+                    "levels.png",
+                    "the mean pyramid level of each direction's largest contribution, 0 black to the top white",
+                )),
+                reads_levels: true,
+                order_independent: false,
+                defers_resolves: false,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[
+                    ("pyramid_hbao.directions", [4.0, 8.0, 8.0, 16.0]),
+                    ("pyramid_hbao.steps", [3.0, 4.0, 6.0, 6.0]),
+                ],
+            },
+            // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
+            // samples allow: ultra is 3 × 5 instead of 9 × 3.
+            Estimator::GtaoVb => &EstimatorCaps {
+                name: "gtao-vb",
+                section: "gtao_vb",
+                radius: "gtao_vb.radius",
+                debug_image: Some((
+                    "sectors.png",
+                    "the bitmask occupancy, occupied sectors of all slices, none black to all white",
+                )),
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: false,
+                resolves_distinct_depths: true,
+                exact_hidden: true,
+                late_load_with_bent_normals: false,
+                bent_normals: true,
+                presets: &[
+                    ("gtao_vb.slices", [1.0, 2.0, 3.0, 3.0]),
+                    ("gtao_vb.steps", [2.0, 2.0, 3.0, 5.0]),
+                ],
+            },
         }
     }
 
-    /// Whether the estimator reports a bent normal with its AO (`bent_normals`, seed 001 §4):
-    /// the slice estimators, whose visible directions are known per slice, VAO, whose free
-    /// column parts locate the free volume, and HBAO+, whose per-sample occlusion reads as a
-    /// horizon elevation per direction.
+    /// Its name in the README's table (`vao`, `hbao`, `hbao+`, `gtao`, `gtao-vb`, …).
+    pub fn name(self) -> &'static str {
+        self.caps().name
+    }
+
+    /// Its settings section ([`EstimatorCaps::section`]).
+    pub fn section(self) -> &'static str {
+        self.caps().section
+    }
+
+    /// Its `render --debug-out` image ([`EstimatorCaps::debug_image`]).
+    pub fn debug_image(self) -> Option<(&'static str, &'static str)> {
+        self.caps().debug_image
+    }
+
+    /// Whether its samples read pyramid levels ([`EstimatorCaps::reads_levels`]).
+    pub fn reads_levels(self) -> bool {
+        self.caps().reads_levels
+    }
+
+    /// Whether the single pass defers its costly resolves ([`EstimatorCaps::defers_resolves`]).
+    pub fn defers_resolves(self) -> bool {
+        self.caps().defers_resolves
+    }
+
+    /// Whether it reads each distinct depth of a map once
+    /// ([`EstimatorCaps::resolves_distinct_depths`]).
+    pub fn resolves_distinct_depths(self) -> bool {
+        self.caps().resolves_distinct_depths
+    }
+
+    /// Whether its `hidden` is exact ([`EstimatorCaps::exact_hidden`]).
+    pub fn exact_hidden(self) -> bool {
+        self.caps().exact_hidden
+    }
+
+    /// Whether the first-layer lookup loads late
+    /// ([`EstimatorCaps::late_load_with_bent_normals`]).
+    pub fn late_first_layer_load(self, bent_normals: bool) -> bool {
+        bent_normals && self.caps().late_load_with_bent_normals
+    }
+
+    /// Whether a two-phase schedule can run it ([`EstimatorCaps::order_independent`]).
+    pub fn order_independent(self) -> bool {
+        self.caps().order_independent
+    }
+
+    /// Whether it reports a bent normal ([`EstimatorCaps::bent_normals`]).
     pub fn bent_normals(self) -> bool {
-        matches!(
-            self,
-            Estimator::Gtao | Estimator::GtaoVb | Estimator::Vao | Estimator::HbaoPlus
-        )
+        self.caps().bent_normals
     }
 }
 
@@ -740,10 +986,7 @@ impl TechniqueRow {
     /// image ([`Estimator::debug_image`]).
     pub fn has_debug_output(&self) -> bool {
         self.schedule.two_phase()
-            || matches!(
-                self.source,
-                Source::StochasticDepth | Source::RayStochasticDepth
-            )
+            || self.source.maps_hidden_depth()
             || self.estimator_debug_image().is_some()
     }
 

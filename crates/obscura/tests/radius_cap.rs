@@ -76,17 +76,17 @@ fn raw_ao(gpu: &obscura::Gpu, settings: &AoSettings) -> (Vec<f32>, Vec<bool>, f3
 /// samples reach `reach` R): the images must agree, and differ from the uncapped R.
 fn assert_cap_is_the_smaller_radius(gpu: &obscura::Gpu, s: &AoSettings, reach: f32, label: &str) {
     let mut s = *s;
-    *s.radius_mut() = RADIUS;
+    s.set_radius(RADIUS);
     s.max_radius_px = CAP_PX;
     let (capped, wall, per_unit) = raw_ao(gpu, &s);
     assert!(
         RADIUS * reach * per_unit > 2.0 * CAP_PX,
         "the cap must bind on the wall"
     );
-    *s.radius_mut() = CAP_PX / per_unit / reach;
+    s.set_radius(CAP_PX / per_unit / reach);
     s.max_radius_px = 0.0;
     let smaller = raw_ao(gpu, &s).0;
-    *s.radius_mut() = RADIUS;
+    s.set_radius(RADIUS);
     let uncapped = raw_ao(gpu, &s).0;
 
     let wall: Vec<usize> = (0..wall.len()).filter(|&i| wall[i]).collect();

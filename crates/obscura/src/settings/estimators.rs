@@ -2,6 +2,7 @@
 //! HBAO+, GTAO-VB) and the bilateral blur's.
 
 use super::*;
+use crate::knob::{Kind, Knob, Widget};
 
 /// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, seed-code-notes §1.2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -380,4 +381,406 @@ impl fmt::Display for Normalization {
             Normalization::Clipped => "clipped",
         })
     }
+}
+
+/// The viewer's radius slider: 1/1000 of the scene's size to all of it, logarithmic.
+const RADIUS_SLIDER: Widget = Widget::Slider {
+    min: 1e-3,
+    max: 1.0,
+    log: true,
+};
+
+impl VaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "vao.radius",
+            "--vao-radius",
+            "VAO sphere radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--radius"])
+        .length()
+        .doc("VAO sphere radius R")
+        .widget(RADIUS_SLIDER),
+        Knob::new(
+            "vao.thickness",
+            "--vao-thickness",
+            "VAO thickness τ (constant occluded area above the column, in units of R).",
+            Kind::NON_NEGATIVE,
+        )
+        .aliases(&["--thickness"])
+        .units("units of R")
+        .doc("thickness τ of the fully occluding area above the sample column")
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 2.0,
+            log: false,
+        }),
+        Knob::new(
+            "vao.exponent",
+            "--vao-exponent",
+            "VAO power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--exponent"]),
+        Knob::new(
+            "vao.samples",
+            "--vao-samples",
+            "VAO line samples per pixel.",
+            Kind::OneOf(&[8, 16, 32]),
+        )
+        .aliases(&["--samples"])
+        .widget(Widget::Buttons),
+        Knob::new(
+            "vao.normalization",
+            "--vao-normalization",
+            "VAO normalisation: clipped (exact 1 on planes) or hemisphere (the paper's 2/N).",
+            Kind::Choice(&["clipped", "hemisphere"]),
+        )
+        .aliases(&["--normalization"])
+        .doc("clipped: exactly 1 on every unoccluded plane; hemisphere: the paper's 2/N"),
+    ];
+}
+
+impl HbaoSettings {
+    // Classic HBAO's flags are `--horizon-*`: `--hbao-*` named HBAO+'s first and stays its alias.
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "hbao.radius",
+            "--horizon-radius",
+            "HBAO (hbao, hbao-dual) radius R in world units; attenuation 1 − r/R.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("HBAO radius R (samples up to R on screen, attenuation W(r) = 1 − r/R)")
+        .widget(RADIUS_SLIDER),
+        Knob::new(
+            "hbao.angle_bias",
+            "--horizon-bias",
+            "HBAO angle bias in radians, added to the tangent elevation each direction starts from.",
+            Kind::number(0.0, std::f64::consts::FRAC_PI_2, false, true),
+        )
+        .units("radians")
+        .doc("added to the tangent's elevation where each direction's horizon starts"),
+        Knob::new("hbao.exponent", "--horizon-exponent", "HBAO power applied to the final AO.", Kind::POSITIVE),
+        Knob::new(
+            "hbao.directions",
+            "--horizon-directions",
+            "HBAO directions per pixel, D.",
+            Kind::int(1, HBAO_MAX_DIRECTIONS),
+        )
+        .widget(Widget::Range),
+        Knob::new(
+            "hbao.steps",
+            "--horizon-steps",
+            "HBAO steps per direction, r'/(S + 1) pixels apart.",
+            Kind::int(1, 128),
+        )
+        .widget(Widget::Range),
+    ];
+}
+
+impl GtaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new("gtao.radius", "--gtao-radius", "GTAO radius R in world units.", Kind::POSITIVE)
+            .length()
+            .doc(
+                "GTAO radius R (as XeGTAO: samples reach 1.457·R, full weight up to 0.56·R, none \
+                 beyond 1.457·R)",
+            )
+            .widget(RADIUS_SLIDER),
+        Knob::new(
+            "gtao.thickness_blend",
+            "--gtao-thickness-blend",
+            "GTAO thickness heuristic β: how far a lower sample pulls the horizon down.",
+            Kind::number(0.0, 1.0, false, false),
+        )
+        .doc("thickness heuristic β: a sample below the horizon pulls it down by β (0: the maximum horizon)"),
+        Knob::new("gtao.exponent", "--gtao-exponent", "GTAO power applied to the final AO.", Kind::POSITIVE),
+        Knob::new("gtao.slices", "--gtao-slices", "GTAO slices per pixel.", Kind::int(1, GTAO_MAX_SLICES))
+            .widget(Widget::Range),
+        Knob::new("gtao.steps", "--gtao-steps", "GTAO steps on each side of a slice.", Kind::int(1, 32))
+            .widget(Widget::Range),
+    ];
+}
+
+impl PyramidSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "pyramid.levels",
+            "--pyramid-levels",
+            "Depth pyramid levels L, the depth buffer included: sao, pyramid-hbao.",
+            Kind::int(1, 8),
+        )
+        .doc(
+            "L, levels of the depth pyramid, the depth buffer (level 0) included (seed 004: 1 … 5); \
+             `pyramid-hbao` walks every level, so more levels reach farther",
+        ),
+        Knob::new(
+            "pyramid.factor",
+            "--pyramid-factor",
+            "Depth pyramid factor K: each texel the mean of K × K below.",
+            Kind::int(2, 4),
+        )
+        .doc("K: each texel of a level the mean of K × K texels below (seed 004: 3)"),
+    ];
+}
+
+impl PyramidHbaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "pyramid_hbao.radius",
+            "--pyramid-hbao-radius",
+            "Pyramid HBAO radius R in world units; attenuation 1 − r/R.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--phbao-radius"])
+        .length()
+        .doc("Pyramid HBAO radius R (attenuation W(r) = 1 − r/R, seed 004 Eq. 7)")
+        .widget(RADIUS_SLIDER),
+        Knob::new(
+            "pyramid_hbao.exponent",
+            "--pyramid-hbao-exponent",
+            "Pyramid HBAO power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--phbao-exponent"]),
+        Knob::new(
+            "pyramid_hbao.directions",
+            "--pyramid-hbao-directions",
+            "Pyramid HBAO directions per pixel, D (seed 004: 8).",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--phbao-directions"])
+        .widget(Widget::Range),
+        Knob::new(
+            "pyramid_hbao.steps",
+            "--pyramid-hbao-steps",
+            "Pyramid HBAO steps on every pyramid level along each direction (K^l px apart on level l).",
+            Kind::int(1, 16),
+        )
+        .aliases(&["--phbao-steps"])
+        .widget(Widget::Range),
+    ];
+}
+
+impl SaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new("sao.radius", "--sao-radius", "SAO radius R in world units.", Kind::POSITIVE)
+            .length()
+            .doc("SAO radius R (taps up to R on screen, falloff (R² − d²)³)")
+            .widget(RADIUS_SLIDER),
+        Knob::new("sao.samples", "--sao-samples", "SAO spiral taps per pixel, N (SAO's code: 11).", Kind::int(1, 64))
+            .widget(Widget::Range),
+        Knob::new(
+            "sao.spiral_turns",
+            "--sao-spiral-turns",
+            "SAO turns of the tap spiral, τ (SAO's code: 7).",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--sao-turns"]),
+        Knob::new(
+            "sao.bias",
+            "--sao-bias",
+            "SAO bias β: how far a tap must rise above the tangent plane to occlude.",
+            Kind::NON_NEGATIVE,
+        )
+        .length(),
+        Knob::new(
+            "sao.intensity",
+            "--sao-intensity",
+            "SAO intensity (scale of the obscurance), in world units as SAO's normalisation has it.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc(
+            "scale of the summed obscurance (A = 1 − intensity/R⁶ · 5/N · Σ, SAO's shipped \
+             normalisation, whose sum has the dimension of an inverse length: the intensity is a \
+             length, scaled with the radii)",
+        ),
+    ];
+}
+
+impl SsaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "ssao.radius",
+            "--ssao-radius",
+            "SSAO (Alchemy) radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("SSAO (Alchemy AO, seed 001's SSAO) radius R: samples within R count")
+        .widget(RADIUS_SLIDER),
+        Knob::new(
+            "ssao.samples",
+            "--ssao-samples",
+            "SSAO samples per pixel, N (seed 001 Tab. 1: 32).",
+            Kind::int(1, 32),
+        )
+        .note("one bit per sample")
+        .widget(Widget::Range),
+        Knob::new(
+            "ssao.intensity",
+            "--ssao-intensity",
+            "SSAO intensity σ.",
+            Kind::POSITIVE,
+        )
+        .doc("σ: A = max(0, 1 − 2σ·u/N · Σ)^k, u = 0.1 R (ours: the paper folds u into σ)"),
+        Knob::new(
+            "ssao.bias",
+            "--ssao-bias",
+            "SSAO bias β per world unit of depth.",
+            Kind::NON_NEGATIVE,
+        )
+        .doc("β, bias per world unit of depth (McGuire et al. 2011: 10⁻⁴)"),
+        Knob::new(
+            "ssao.contrast",
+            "--ssao-contrast",
+            "SSAO contrast k (power of the final AO).",
+            Kind::POSITIVE,
+        ),
+    ];
+}
+
+impl HbaoPlusSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "hbao_plus.radius",
+            "--hbao-plus-radius",
+            "HBAO+ radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--hbao-radius"])
+        .length()
+        .doc("HBAO+ radius R (samples up to R on screen, falloff 1 − d²/R²)")
+        .widget(RADIUS_SLIDER),
+        Knob::new(
+            "hbao_plus.bias",
+            "--hbao-plus-bias",
+            "HBAO+ angle bias: a sample occludes by saturate(N·V/|V| − bias).",
+            Kind::number(0.0, 1.0, false, true),
+        )
+        .aliases(&["--hbao-bias"]),
+        Knob::new(
+            "hbao_plus.exponent",
+            "--hbao-plus-exponent",
+            "HBAO+ power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--hbao-exponent"]),
+        Knob::new(
+            "hbao_plus.directions",
+            "--hbao-plus-directions",
+            "HBAO+ directions per pixel (directions × steps ≤ 32).",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--hbao-directions"])
+        .widget(Widget::Range),
+        Knob::new(
+            "hbao_plus.steps",
+            "--hbao-plus-steps",
+            "HBAO+ steps per direction.",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--hbao-steps"])
+        .note("directions × steps ≤ 32: one bit per sample")
+        .widget(Widget::Range),
+    ];
+}
+
+impl GtaoVbSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new("gtao_vb.radius", "--gtao-vb-radius", "GTAO-VB search radius R in world units.", Kind::POSITIVE)
+            .aliases(&["--vb-radius"])
+            .length()
+            .widget(RADIUS_SLIDER),
+        Knob::new(
+            "gtao_vb.thickness",
+            "--gtao-vb-thickness",
+            "GTAO-VB constant thickness behind every depth sample, world units.",
+            Kind::NON_NEGATIVE,
+        )
+        .aliases(&["--vb-thickness"])
+        .length()
+        .doc("constant thickness behind every depth sample (light passes behind it)")
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 1.0,
+            log: false,
+        }),
+        Knob::new("gtao_vb.exponent", "--gtao-vb-exponent", "GTAO-VB power applied to the final AO.", Kind::POSITIVE)
+            .aliases(&["--vb-exponent"]),
+        Knob::new("gtao_vb.slices", "--gtao-vb-slices", "GTAO-VB slices per pixel.", Kind::int(1, 3))
+            .aliases(&["--vb-slices"])
+            .note("one 32-bit mask each")
+            .widget(Widget::Range),
+        Knob::new("gtao_vb.steps", "--gtao-vb-steps", "GTAO-VB steps on each side of a slice.", Kind::int(1, 16))
+            .aliases(&["--vb-steps"])
+            .note("slices × 2 × steps ≤ 32: one bit per sample")
+            .widget(Widget::Range),
+        Knob::new(
+            "gtao_vb.activation",
+            "--gtao-vb-activation",
+            "GTAO-VB sector activation: ceil (touched), round (half covered) or floor (covered).",
+            Kind::Choice(&["ceil", "round", "floor"]),
+        )
+        .aliases(&["--vb-activation"])
+        .doc("a sector is occluded when a sample's span touches it, covers half of it, or covers it whole (seed 003)"),
+        Knob::new(
+            "gtao_vb.cosine_weighted",
+            "--gtao-vb-cosine",
+            "GTAO-VB: weigh free sectors by the cosine to the normal, GTAO's integral (our \
+             extension; seed 003 counts sectors alike).",
+            Kind::Switch { flag_sets: true },
+        )
+        .aliases(&["--vb-cosine"]),
+    ];
+}
+
+impl BlurSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "blur.enabled",
+            "--no-blur",
+            "Skip the bilateral blur (blurred by default).",
+            Kind::Switch { flag_sets: false },
+        )
+        .doc("the depth-aware bilateral blur")
+        .widget(Widget::Checkbox),
+        Knob::new("blur.radius", "--blur-radius", "Bilateral blur taps on each side.", Kind::int(1, 16))
+            .widget(Widget::Range),
+        Knob::new(
+            "blur.sharpness",
+            "--blur-sharpness",
+            "Bilateral blur depth sharpness (per world unit of depth difference).",
+            Kind::NON_NEGATIVE,
+        )
+        .per_length()
+        .doc("blur depth-weight sharpness"),
+        Knob::new(
+            "blur.sigma",
+            "--blur-sigma",
+            "σ in pixels of a natural Gaussian spatial weight; seed 004's filter is --blur-radius 2 \
+             --blur-sharpness 0 --blur-sigma 1.5.",
+            Kind::POSITIVE,
+        )
+        .units("pixels")
+        .auto("HBAO+'s weights")
+        .doc(
+            "σ of a natural Gaussian spatial weight; left out (the default), HBAO+'s weights with \
+             σ' = (radius + 1)/2 in exp2 units. Seed 004's Gaussian for Pyramid HBAO: \
+             `--blur-radius 2 --blur-sharpness 0 --blur-sigma 1.5`",
+        ),
+    ];
 }

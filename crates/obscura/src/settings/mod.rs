@@ -2,7 +2,8 @@
 //! authors'; [`Preset`]s are per technique; settings files are JSON or TOML
 //! ([`AoSettings::from_file`]); `docs/SETTINGS.md` documents every field.
 
-use crate::technique::{Estimator, Source};
+use crate::knob::{Kind, Knob, Widget};
+use crate::technique::Estimator;
 pub use crate::technique::{Technique, UnknownTechnique};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -11,6 +12,7 @@ use std::str::FromStr;
 
 mod estimators;
 mod files;
+mod knobs;
 mod presets;
 mod stochastic_depth;
 #[cfg(test)]
@@ -40,7 +42,7 @@ pub enum SettingsError {
         /// The rejected value, as given.
         value: String,
         /// What a valid value is, with an example; no command-line flags.
-        rule: &'static str,
+        rule: String,
     },
     /// A valid value the adapter cannot do (e.g. a stochastic depth sample count it cannot
     /// rasterise), with what it can do.
@@ -222,6 +224,161 @@ pub struct TemporalSettings {
     /// engines' TAA does): screen-space AO changes with the view (halos move with parallax), and
     /// without the clamp that change lags `frames` frames behind.
     pub clamp: bool,
+}
+
+impl TemporalSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "temporal.enabled",
+            "--temporal",
+            "Temporal accumulation: each pixel's AO averaged with its history over frames, \
+             reprojected by the camera motion and rejected where the surface differs; the \
+             estimators turn their 4×4 pattern per frame (docs/PATHS.md). For paths and the viewer.",
+            Kind::Switch { flag_sets: true },
+        )
+        .doc(
+            "temporal accumulation before the blur: each pixel averaged with its reprojected \
+             history; the estimators' 4×4 pattern turned by one entry per frame, and the \
+             stochastic depth maps' seeds (and the ray-traced map's jitter) changed per frame \
+             (docs/PATHS.md)",
+        )
+        .widget(Widget::Checkbox),
+        Knob::new(
+            "temporal.frames",
+            "--temporal-frames",
+            "--temporal: the most frames averaged.",
+            Kind::int(1, 255),
+        )
+        .doc(
+            "the most frames averaged: a running mean up to this many, then an exponential blend \
+             with weight 1/frames",
+        ),
+        Knob::new(
+            "temporal.depth_tolerance",
+            "--temporal-depth-tolerance",
+            "--temporal: relative depth difference within which the history is the same surface.",
+            Kind::number(MIN_TEMPORAL_DEPTH_TOLERANCE as f64, 1.0, false, true),
+        )
+        .note("a fraction of the depth: the history keeps depth to 0.1 %")
+        .doc(
+            "relative depth difference within which the history is the same surface (else \
+             rejected: disocclusion); the history keeps depth in 16 bits to 0.1 % at any depth \
+             from 2⁻⁶⁴ to 2⁶⁴ world units, hence the lower bound",
+        ),
+        Knob::new(
+            "temporal.normal_tolerance_deg",
+            "--temporal-normal-tolerance",
+            "--temporal: degrees between normals within which the history is the same surface.",
+            Kind::number(0.0, 180.0, true, false),
+        )
+        .units("degrees"),
+        Knob::new(
+            "temporal.clamp",
+            "--temporal-no-clamp",
+            "--temporal: keep the history unclipped (by default it is clipped to the spread of this \
+             frame's AO around the pixel, which stops view-dependent occlusion from lagging).",
+            Kind::Switch { flag_sets: false },
+        )
+        .doc(
+            "clip the history to mean ± σ of this frame's AO at the pixel and its four neighbours \
+             (variance clipping), so view-dependent occlusion (halos moving with parallax) does \
+             not lag behind",
+        ),
+    ];
+}
+
+impl MultiviewSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "multiview.angle",
+            "--mv-angle",
+            "sd-hbao+-multiview: degrees the second view is swung about the camera's up axis \
+             around the focus point (seed 001 §3.4).",
+            Kind::number(0.0, 60.0, true, false),
+        )
+        .units("degrees"),
+        Knob::new(
+            "multiview.focus",
+            "--mv-focus",
+            "sd-hbao+-multiview: distance from the camera to the point both views look at.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .auto("the distance along the view axis to the scene's bounding-box centre"),
+        Knob::new(
+            "multiview.resolution",
+            "--mv-resolution",
+            "sd-hbao+-multiview: the second view's map and pass at 'full' or 'half' resolution \
+             (seed 001 Tab. 3).",
+            Kind::Choice(&["full", "half"]),
+        ),
+    ];
+}
+
+impl AoSettings {
+    /// The knobs of the fields at the top level of a settings file (the technique is chosen
+    /// apart; crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "peel_separation",
+            "--peel-separation",
+            "vao-dual and the stochastic depth maps: hidden layers start this many world units \
+             behind the first.",
+            Kind::NON_NEGATIVE,
+        )
+        .length()
+        .doc(
+            "how far behind the first layer the second layer (`vao-dual`) and the stochastic depth \
+             map's fragments start",
+        ),
+        Knob::new(
+            "resolution",
+            "--resolution",
+            "Run the technique at 'full' resolution or at 'half' (a quarter of the pixels, seed 001 \
+             Tab. 1-2) with a depth-aware upsample; half needs an even size and guard band.",
+            Kind::Choice(&["full", "half"]),
+        )
+        .widget(Widget::Buttons),
+        Knob::new(
+            "max_radius_px",
+            "--max-radius-px",
+            "Cap the AO radius on screen at this many output pixels: a surface closer to the \
+             camera runs with the radius that covers exactly that many (seed 002 §3.5; the authors \
+             used 512 at 1080p with a 512 px ray-traced map guard band).",
+            Kind::number(1.0, 1e6, false, false).or_zero("no cap"),
+        )
+        .units("pixels")
+        .note("the authors used 512 at 1080p")
+        .doc(
+            "the AO radius's cap on screen (seed 002 §3.5, the authors' `ssMaxRadius`), in output \
+             pixels: a shading point whose radius would cover more (a surface close to the camera) \
+             runs with the radius that covers exactly that many, so the kernel keeps its shape and \
+             every world-radius term follows; for GTAO it binds the samples' reach, 1.457 R; the \
+             ground truths are never capped. The authors paired 512 px with their map's 512 px \
+             `ray_sd.guard_band` at 1080p, so that no sample falls beyond the map",
+        )
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 2048.0,
+            log: false,
+        }),
+        Knob::new(
+            "bent_normals",
+            "--bent-normals",
+            "Also compute the bent normal (seed 001 §4) for the single-pass GTAO, GTAO-VB, VAO and \
+             HBAO+ rows; `render` writes it next to the AO as NAME.bent.png (view space, RGB = \
+             0.5 n + 0.5) or NAME.bent.exr.",
+            Kind::Switch { flag_sets: true },
+        )
+        .doc(
+            "also write the bent normal, the weighted mean unoccluded direction (seed 001 §4), for \
+             the single-pass GTAO, GTAO-VB, VAO and HBAO+ rows (and their dual and stochastic-depth \
+             twins) at full resolution: view space, unit length (`AmbientOcclusion::bent_normals`; \
+             `render` writes `NAME.bent.png` with RGB = 0.5·n + 0.5, or `.exr` with raw xyz)",
+        ),
+    ];
 }
 
 /// The smallest `temporal.depth_tolerance` accepted: about twice the rounding of the history's

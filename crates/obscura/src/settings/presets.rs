@@ -1,6 +1,7 @@
 //! Quality levels per technique ([`Preset`], [`AoSettings::preset`]).
 
 use super::*;
+use crate::knob::{Kind, Value};
 
 /// A quality level: [`AoSettings::preset`] says per technique what each sets.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -76,106 +77,19 @@ impl AoSettings {
             technique,
             ..AoSettings::default()
         };
-        match row.estimator {
-            Estimator::Vao => match preset {
-                Preset::Low => {
-                    s.vao.samples = 8;
-                    s.blur.radius = 2;
-                }
-                Preset::Medium => {}
-                Preset::High => s.vao.samples = 16,
-                Preset::Ultra => {
-                    s.vao.samples = 32;
-                    s.blur.radius = 6;
-                }
-            },
-            // 8 × 4 = 32 samples is already the most the two-phase mask holds.
-            Estimator::HbaoPlus => match preset {
-                Preset::Low => {
-                    s.hbao_plus.directions = 4;
-                    s.blur.radius = 2;
-                }
-                Preset::Medium | Preset::High => {}
-                Preset::Ultra => s.blur.radius = 6,
-            },
-            // Seed 001 Tab. 1's 8 × 4 as the default, seed 004's smallest grid (8 × 10) as high.
-            Estimator::Hbao => {
-                let (directions, steps) = match preset {
-                    Preset::Low => (4, 4),
-                    Preset::Medium => (8, 4),
-                    Preset::High => (8, 10),
-                    Preset::Ultra => (16, 20),
-                };
-                s.hbao.directions = directions;
-                s.hbao.steps = steps;
-            }
-            // The common XeGTAO-style grid, slices × steps 1×2, 2×2, 3×3, 9×3.
-            Estimator::Gtao => {
-                let (slices, steps) = match preset {
-                    Preset::Low => (1, 2),
-                    Preset::Medium => (2, 2),
-                    Preset::High => (3, 3),
-                    Preset::Ultra => (9, 3),
-                };
-                s.gtao.slices = slices;
-                s.gtao.steps = steps;
-            }
-            // Seed 004's 8 directions as the default; the steps per level are ours.
-            Estimator::PyramidHbao => {
-                let (directions, steps) = match preset {
-                    Preset::Low => (4, 3),
-                    Preset::Medium => (8, 4),
-                    Preset::High => (8, 6),
-                    Preset::Ultra => (16, 6),
-                };
-                s.pyramid_hbao.directions = directions;
-                s.pyramid_hbao.steps = steps;
-            }
-            // Seed 001 Tab. 1's 32 as the default, the most the two-phase mask holds.
-            Estimator::Ssao => {
-                s.ssao.samples = match preset {
-                    Preset::Low => 8,
-                    Preset::Medium | Preset::High | Preset::Ultra => 32,
-                };
-            }
-            // SAO's published code ships 11 taps; fewer and more around it.
-            Estimator::Sao => {
-                s.sao.samples = match preset {
-                    Preset::Low => 7,
-                    Preset::Medium => 11,
-                    Preset::High => 16,
-                    Preset::Ultra => 32,
-                };
-            }
-            // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
-            // samples allow: ultra is 3 × 5 instead of 9 × 3.
-            Estimator::GtaoVb => {
-                let (slices, steps) = match preset {
-                    Preset::Low => (1, 2),
-                    Preset::Medium => (2, 2),
-                    Preset::High => (3, 3),
-                    Preset::Ultra => (3, 5),
-                };
-                s.gtao_vb.slices = slices;
-                s.gtao_vb.steps = steps;
-            }
-        }
-        match row.source {
-            Source::StochasticDepth => {
-                let sd = &mut s.stochastic_depth;
-                match preset {
-                    // One sample: every adapter with the format rasterises it (WebGPU
-                    // guarantees 1× and 4× only). α stays 1.5/S throughout.
-                    Preset::Low => sd.samples = 1,
-                    Preset::Medium | Preset::High => {}
-                    Preset::Ultra => sd.samples = 8,
-                }
-            }
-            Source::FirstLayer
-            | Source::DualDepth
-            | Source::ColumnRays
-            | Source::RayStochasticDepth
-            | Source::DepthPyramid => {}
+        let level = Preset::ALL
+            .iter()
+            .position(|p| *p == preset)
+            .expect("a preset");
+        let tables = row.estimator.caps().presets.iter();
+        for (path, values) in tables.chain(row.source.caps().presets) {
+            let knob = AoSettings::knob(path).expect("a preset names a settings field");
+            let value = match knob.kind {
+                Kind::Number { int: false, .. } => Value::Float(values[level]),
+                _ => Value::Integer(values[level] as i64),
+            };
+            s.set_field(knob, Some(value))
+                .expect("a preset's value is valid");
         }
         s
     }

@@ -2,6 +2,7 @@
 //! and the ray-traced one (seed 002).
 
 use super::*;
+use crate::knob::{Kind, Knob, Widget};
 
 /// The stratified stochastic depth map (seed 001 §3.1, Alg. 1).
 ///
@@ -305,44 +306,14 @@ impl Default for RaySdSettings {
 }
 
 impl RaySdSettings {
-    /// Checks the ranges above.
+    /// Checks these fields alone (their knobs and the rules between them), for a source given
+    /// them without the rest of [`AoSettings`].
     pub fn validate(&self) -> Result<(), SettingsError> {
-        if !(1..=8).contains(&self.reservoir) {
-            return Err(invalid(
-                "ray_sd.reservoir",
-                self.reservoir,
-                "must be in [1, 8] depth slots per pixel, e.g. 4",
-            ));
+        AoSettings {
+            ray_sd: *self,
+            ..AoSettings::default()
         }
-        if !(self.reservoir..=64).contains(&self.max_count) {
-            return Err(invalid(
-                "ray_sd.max_count",
-                self.max_count,
-                "must be at least ray_sd.reservoir and at most 64, e.g. 8",
-            ));
-        }
-        if ![1, 2, 4].contains(&self.resolution) {
-            return Err(invalid(
-                "ray_sd.resolution",
-                self.resolution,
-                "must be 1, 2 or 4 (the map's resolution divisor)",
-            ));
-        }
-        if !(self.radius_cutoff.is_finite() && self.radius_cutoff >= 0.0) {
-            return Err(invalid(
-                "ray_sd.radius_cutoff",
-                self.radius_cutoff,
-                "must be zero (off) or a positive number of pixels, e.g. 6",
-            ));
-        }
-        if let Some(band) = self.guard_band.filter(|&b| b > MAX_SD_GUARD_BAND) {
-            return Err(invalid(
-                "ray_sd.guard_band",
-                band,
-                "must be at most 2048 pixels beyond the framebuffer, e.g. 512 (seed 002 §3.5) or 0 (off)",
-            ));
-        }
-        Ok(())
+        .validate()
     }
 
     /// The map's guard band in pixels for a `visible_height` image, on a two-phase schedule or
@@ -364,3 +335,198 @@ impl RaySdSettings {
 
 /// The widest map guard band `ray_sd.guard_band` accepts (four times the authors' 512).
 pub(super) const MAX_SD_GUARD_BAND: u32 = 2048;
+
+impl StochasticDepthSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "stochastic_depth.samples",
+            "--sd-samples",
+            "Stochastic depth samples per pixel, S.",
+            Kind::OneOf(&SD_SAMPLE_COUNTS),
+        )
+        .doc("S, depth samples per pixel of the stochastic depth map (every adapter)")
+        .widget(Widget::Buttons),
+        Knob::new(
+            "stochastic_depth.alpha",
+            "--sd-alpha",
+            "Global transparency α: a hidden fragment is kept in ⌊αS + ξ⌋ samples; 0.2 is the \
+             authors' 2022 value, auto = 1.5/S their 2024 rule.",
+            Kind::number(0.0, 1.0, true, false),
+        )
+        .auto("1.5/S")
+        .doc("α: a hidden fragment is kept in ⌊αS + ξ⌋ of its pixel's S samples"),
+        Knob::new(
+            "stochastic_depth.seed",
+            "--sd-seed",
+            "Seed of the stochastic depth map's hash.",
+            Kind::int(0, u32::MAX),
+        ),
+        Knob::new(
+            "stochastic_depth.mask",
+            "--sd-mask",
+            "sd-svao: limit the map to the requested pixels by 'depth' (the far plane written into \
+             the map's depth test where nobody asked), 'stencil' (the paper's full-screen copy \
+             into the stencil, then the stencil test) or 'discard' (the map's fragment shader \
+             reads the request mask).",
+            Kind::Choice(&["depth", "stencil", "discard"]),
+        )
+        .doc(
+            "how `sd-svao` limits the map to the requested pixels: the far plane in the map's depth \
+             test where nobody asked (default), the paper's stencil, or the map's shader skipping \
+             them (the same image)",
+        ),
+        Knob::new(
+            "stochastic_depth.query",
+            "--sd-query",
+            "Read the map only where the first layer cannot decide ('needed', seed 001 §3.3; SSAO \
+             and GTAO-VB also skip samples no deeper surface can change), as the paper words it \
+             ('first-layer': the same image, more reads) or for every sample ('always').",
+            Kind::Choice(&["needed", "first-layer", "always"]),
+        )
+        .doc(
+            "when a sample reads the map: where the first layer cannot decide (the default, seed \
+             001 §3.3's heuristic; for SSAO also only where a deeper surface on the sample's camera \
+             ray could occlude at all, for GTAO-VB only where one could mark a sector still free \
+             (without compensation): exact tests), `first-layer` as the paper words it without \
+             those tests (the same image, more reads), or for every sample that finds a surface",
+        ),
+        Knob::new(
+            "stochastic_depth.compensation",
+            "--sd-compensation",
+            "Multiply the occlusion of stochastic samples by this factor (missing-occlusion \
+             compensation, seed 001 §4; 1 = off, the paper used 2).",
+            Kind::number(1.0, 8.0, false, false),
+        )
+        .widget(Widget::Range),
+        Knob::new(
+            "stochastic_depth.selection",
+            "--sd-selection",
+            "Which hidden fragments each pixel of the raster map keeps: 'stochastic' (seed 001 \
+             Alg. 1: a hashed subset) or 'nearest' (ours: the S nearest layers behind the first, \
+             steady in motion).",
+            Kind::Choice(&["stochastic", "nearest"]),
+        )
+        .aliases(&["--sd-select"])
+        .doc(
+            "which hidden fragments each pixel of the raster map keeps in its S depths: a hashed \
+             subset, each fragment in ⌊αS + ξ⌋ samples and each sample the nearest that chose it \
+             (the default, seed 001 Alg. 1: every hidden layer has a chance, with noise), or the S \
+             nearest distinct depths behind the first layer (ours: a k-buffer of `atomicMax` \
+             chains, no hash and no α; exact and steady in motion where a pixel hides at most S \
+             layers, but the deepest are always lost where it hides more). The ray-traced map \
+             keeps its reservoir",
+        ),
+        Knob::new(
+            "stochastic_depth.guard_band",
+            "--sd-map-guard-band",
+            "Rasterise the raster map this many pixels beyond the framebuffer on every side (0 = \
+             off), so samples off the framebuffer read it; the ray-traced map's band is \
+             --ray-sd-guard-band.",
+            Kind::int(0, MAX_SD_GUARD_BAND),
+        )
+        .units("pixels")
+        .doc(
+            "the raster map's own guard band (ours, after seed 002 §3.5's for the ray-traced map): \
+             the map is rasterised this far beyond the framebuffer on every side, every layer \
+             there, so samples that fall off the framebuffer read it instead of the framebuffer's \
+             edge; two-phase rows request its pixels as they do the others; 0 (the default) is off",
+        ),
+        Knob::new(
+            "stochastic_depth.rasterizer",
+            "--sd-rasterizer",
+            "What rasterises the raster map: 'auto' ('compute' where the GPU binds its buffers and \
+             is not a CPU adapter, else 'hardware'), 'hardware' (the GPU's rasteriser) or 'compute' \
+             (ours: compute passes clip, bin and rasterise the triangles; the same map up to \
+             rounding).",
+            Kind::Choice(&["auto", "hardware", "compute"]),
+        )
+        .doc(
+            "what rasterises the raster map: `auto` (the default) takes the compute passes wherever \
+             the device binds their storage buffers (12 per shader stage) and is not a CPU adapter, \
+             else the hardware; a renderer reports the one it chose (`Renderer::settings`, \
+             `bench`'s JSON). `hardware`: the GPU's rasteriser; `compute`: our compute passes \
+             (`compute_raster.wgsl`), the same map up to rounding, for GPUs whose raster units are \
+             slow next to their compute (BENCHMARKS.md has the timings)",
+        )
+        .widget(Widget::Buttons),
+    ];
+}
+
+impl RaySdSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "ray_sd.reservoir",
+            "--ray-sd-reservoir",
+            "Depth slots per pixel of the ray-traced stochastic depth map, N (seed 002 §3.1, \
+             reservoir sampling).",
+            Kind::int(1, 8),
+        )
+        .aliases(&["--reservoir"])
+        .doc(
+            "depth slots per pixel of the ray-traced stochastic depth map, N (seed 002 §3.1: the \
+             first N distinct depths behind the first layer fill them, each later hit takes one \
+             with probability N/count)",
+        )
+        .widget(Widget::Range),
+        Knob::new(
+            "ray_sd.max_count",
+            "--ray-sd-max-count",
+            "Hits a ray of the ray-traced map handles before it stops (MAX_COUNT, seed 002 §3.1).",
+            Kind::int(1, 64),
+        )
+        .aliases(&["--max-count"])
+        .note("at least ray_sd.reservoir"),
+        Knob::new(
+            "ray_sd.z_cull",
+            "--ray-sd-no-z-cull",
+            "Plain reservoir sampling (every hit kept with probability N/count) instead of the \
+             paper's z-culling, which overwrites a slot only with a nearer depth.",
+            Kind::Switch { flag_sets: false },
+        )
+        .aliases(&["--no-z-cull"]),
+        Knob::new(
+            "ray_sd.seed",
+            "--ray-sd-seed",
+            "Seed of the ray-traced map's reservoir hash.",
+            Kind::int(0, u32::MAX),
+        ),
+        Knob::new(
+            "ray_sd.resolution",
+            "--ray-sd-resolution",
+            "Resolution divisor of the ray-traced map: a ray per 1, 4 or 16 pixels through a \
+             jittered point of its block (seed 002 §3.3).",
+            Kind::OneOf(&[1, 2, 4]),
+        )
+        .aliases(&["--ray-sd-res"])
+        .widget(Widget::Buttons),
+        Knob::new(
+            "ray_sd.radius_cutoff",
+            "--ray-sd-radius-cutoff",
+            "Samples nearer than this many pixels to their pixel keep the first layer's answer and \
+             never request the ray-traced map (seed 002 §3.4 used 6; 0 = off).",
+            Kind::NON_NEGATIVE,
+        )
+        .aliases(&["--radius-cutoff"])
+        .units("pixels"),
+        Knob::new(
+            "ray_sd.intervals",
+            "--ray-sd-no-intervals",
+            "Trace each ray of the ray-traced map from the first layer to the scene's end instead \
+             of over the depths phase 1's samples need (seed 002 §3.2's ray intervals).",
+            Kind::Switch { flag_sets: false },
+        )
+        .aliases(&["--no-intervals"]),
+        Knob::new(
+            "ray_sd.guard_band",
+            "--ray-sd-guard-band",
+            "The ray-traced map's own guard band in pixels beyond the framebuffer (seed 002 §3.5), \
+             0 = off.",
+            Kind::int(0, MAX_SD_GUARD_BAND),
+        )
+        .aliases(&["--sd-guard-band"])
+        .units("pixels")
+        .auto("512 px at 1080p scaled with the height on two-phase rows, off on one-pass rows"),
+    ];
+}

@@ -236,7 +236,7 @@ fn a_radius_cap_is_none_or_at_least_a_pixel() {
 fn the_radius_is_the_estimators() {
     for technique in Technique::all() {
         let mut s = AoSettings::preset(technique, Preset::Medium);
-        *s.radius_mut() = 1.75;
+        s.set_radius(1.75);
         assert_eq!(s.radius(), 1.75, "{technique}");
         let json = serde_json::to_string(&s).unwrap();
         assert_eq!(
@@ -417,7 +417,7 @@ fn the_depth_tolerance_stays_above_the_historys_rounding() {
 #[test]
 fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
     // Every row of docs/SETTINGS.md's field table whose range names world units, and no other,
-    // is in WORLD_UNIT_FIELDS, with the power its range says.
+    // is in world_unit_fields(), with the power its range says.
     let docs = include_str!("../../../../docs/SETTINGS.md");
     let mut documented = Vec::new();
     for line in docs.lines().filter(|l| l.starts_with("| `")) {
@@ -430,7 +430,7 @@ fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
             documented.push((field.to_string(), 1));
         }
     }
-    let mut listed: Vec<(String, i32)> = AoSettings::WORLD_UNIT_FIELDS
+    let mut listed: Vec<(String, i32)> = AoSettings::world_unit_fields()
         .iter()
         .map(|&(f, p)| (f.to_string(), p))
         .collect();
@@ -446,7 +446,7 @@ fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
     for path in AoSettings::field_paths() {
         let pointer = format!("/{}", path.replace('.', "/"));
         let (b, a) = (&before.pointer(&pointer), &after.pointer(&pointer));
-        match AoSettings::WORLD_UNIT_FIELDS
+        match AoSettings::world_unit_fields()
             .iter()
             .find(|(f, _)| *f == path)
         {
@@ -458,6 +458,61 @@ fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
                 );
             }
             None => assert_eq!(b, a, "{path} changed"),
+        }
+    }
+}
+
+#[test]
+fn docs_settings_md_holds_the_field_table_the_knobs_make() {
+    let docs = include_str!("../../../../docs/SETTINGS.md");
+    let table = AoSettings::fields_markdown();
+    assert!(
+        docs.contains(&table),
+        "docs/SETTINGS.md must hold this table (AoSettings::fields_markdown):\n{table}"
+    );
+}
+
+#[test]
+fn every_field_has_one_knob_and_every_knob_a_field() {
+    let paths = AoSettings::field_paths();
+    for path in paths.iter().filter(|p| *p != "technique") {
+        let n = AoSettings::knobs().filter(|k| k.path == path).count();
+        assert_eq!(n, 1, "{path}: {n} knobs");
+    }
+    let mut flags = std::collections::BTreeSet::new();
+    for knob in AoSettings::knobs() {
+        assert!(
+            paths.iter().any(|p| p == knob.path),
+            "{}: no field",
+            knob.path
+        );
+        for flag in knob.flags() {
+            assert!(flag.starts_with("--"), "{flag}");
+            assert!(flags.insert(flag), "{flag} names two knobs");
+        }
+        // Every default satisfies its own knob.
+        let default = AoSettings::default().to_tree();
+        assert!(
+            knob.accepts(crate::knob::get(&default, knob.path)),
+            "{}",
+            knob.path
+        );
+    }
+}
+
+#[test]
+fn presets_name_fields_and_medium_is_the_default() {
+    for technique in Technique::all() {
+        assert_eq!(
+            AoSettings::preset(technique, Preset::Medium),
+            AoSettings {
+                technique,
+                ..AoSettings::default()
+            },
+            "{technique}"
+        );
+        for preset in Preset::ALL {
+            AoSettings::preset(technique, preset).validate().unwrap();
         }
     }
 }

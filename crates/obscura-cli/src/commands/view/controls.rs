@@ -1,11 +1,11 @@
-//! The settings panel's widgets: technique (from the technique table), presets, and the main
-//! parameters of the technique's estimator, source and filter. They edit a copy of `AoSettings`;
+//! The settings panel's widgets: technique (from the technique table), presets, and the
+//! parameters of the technique's estimator, source and filter (from the settings' knobs). They edit a copy of `AoSettings`;
 //! the viewer rebuilds the renderer when it differs (a renderer's settings are fixed at creation),
 //! and an invalid combination is reported by `Renderer::new`'s validation in the panel, not here.
 
 use eframe::egui;
-use obscura::settings::{Preset, Resolution, SdRasterizer, SD_SAMPLE_COUNTS};
-use obscura::technique::{Estimator, Source};
+use obscura::knob::{self, Kind, Knob, Value, Widget};
+use obscura::settings::Preset;
 use obscura::{AoSettings, Technique};
 
 /// A combo box over every row of the technique table.
@@ -39,118 +39,95 @@ pub fn presets(ui: &mut egui::Ui, settings: &mut AoSettings, units_per_metre: f3
     });
 }
 
-fn radius(ui: &mut egui::Ui, r: &mut f32, scale: f32) {
-    ui.add(
-        egui::Slider::new(r, (scale * 1e-3).max(1e-4)..=scale.max(1e-3))
-            .logarithmic(true)
-            .text("radius"),
-    );
-}
-
-fn count(ui: &mut egui::Ui, v: &mut u32, range: std::ops::RangeInclusive<u32>, text: &str) {
-    ui.add(egui::Slider::new(v, range).text(text));
-}
-
-/// The main parameters of `settings.technique`; `scene_scale` bounds the radius sliders (the
-/// scene's diagonal).
+/// The panel's widgets for `settings.technique`: every knob with a widget (obscura::knob) of
+/// the row's estimator and source and of the settings every row has (blur, resolution, radius
+/// cap), labelled by its field path, its help on hover. `scene_scale` (the scene's diagonal)
+/// scales the sliders of world lengths.
 pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32) {
     let row = settings.technique.row();
-    radius(ui, settings.radius_mut(), scene_scale);
-    // Seed 002 §3.5's cap on the radius in pixels; whole pixels, so never in (0, 1).
-    ui.add(
-        egui::Slider::new(&mut settings.max_radius_px, 0.0..=2048.0)
-            .step_by(1.0)
-            .text("max radius px (0: none)"),
-    );
-    match row.estimator {
-        Estimator::Vao => {
-            let v = &mut settings.vao;
-            ui.horizontal(|ui| {
-                ui.label("samples");
-                for n in [8, 16, 32] {
-                    ui.selectable_value(&mut v.samples, n, n.to_string());
-                }
-            });
-            ui.add(egui::Slider::new(&mut v.thickness, 0.0..=2.0).text("thickness τ"));
-        }
-        Estimator::Hbao => {
-            let h = &mut settings.hbao;
-            count(ui, &mut h.directions, 1..=64, "directions");
-            count(ui, &mut h.steps, 1..=128, "steps");
-        }
-        Estimator::HbaoPlus => {
-            let h = &mut settings.hbao_plus;
-            count(ui, &mut h.directions, 1..=32, "directions");
-            count(ui, &mut h.steps, 1..=32, "steps (directions × steps ≤ 32)");
-        }
-        Estimator::Gtao => {
-            let g = &mut settings.gtao;
-            count(ui, &mut g.slices, 1..=16, "slices");
-            count(ui, &mut g.steps, 1..=32, "steps");
-        }
-        Estimator::Ssao => {
-            let s = &mut settings.ssao;
-            count(ui, &mut s.samples, 1..=32, "samples");
-        }
-        Estimator::Sao => {
-            let s = &mut settings.sao;
-            count(ui, &mut s.samples, 1..=64, "taps");
-        }
-        Estimator::PyramidHbao => {
-            let p = &mut settings.pyramid_hbao;
-            count(ui, &mut p.directions, 1..=32, "directions");
-            count(ui, &mut p.steps, 1..=16, "steps");
-        }
-        Estimator::GtaoVb => {
-            let g = &mut settings.gtao_vb;
-            count(ui, &mut g.slices, 1..=3, "slices");
-            count(ui, &mut g.steps, 1..=16, "steps (slices × 2 × steps ≤ 32)");
-            ui.add(
-                egui::Slider::new(&mut g.thickness, 0.0..=scene_scale.max(1e-3)).text("thickness"),
-            );
+    let sections = ["", "blur", row.estimator.section(), row.source.section()];
+    for knob in AoSettings::knobs() {
+        if knob.widget != Widget::Hidden && sections.contains(&knob.section()) {
+            knob_widget(ui, settings, knob, scene_scale);
         }
     }
-    match row.source {
-        Source::StochasticDepth => {
-            let sd = &mut settings.stochastic_depth;
-            ui.horizontal(|ui| {
-                ui.label("S (samples of the map)");
-                for n in SD_SAMPLE_COUNTS {
-                    ui.selectable_value(&mut sd.samples, n, n.to_string());
-                }
-            });
-            ui.add(egui::Slider::new(&mut sd.compensation, 1.0..=8.0).text("compensation"));
-            ui.horizontal(|ui| {
-                ui.label("map rasteriser");
-                for r in [
-                    SdRasterizer::Auto,
-                    SdRasterizer::Hardware,
-                    SdRasterizer::Compute,
-                ] {
-                    ui.selectable_value(&mut sd.rasterizer, r, r.to_string());
-                }
-            });
+}
+
+fn knob_widget(ui: &mut egui::Ui, settings: &mut AoSettings, knob: &'static Knob, scale: f32) {
+    let tree = settings.to_tree();
+    let Some(value) = knob::get(&tree, knob.path).cloned() else {
+        return; // an optional field left out: files and flags only
+    };
+    let mut new = value.clone();
+    let response = ui.horizontal(|ui| match (knob.widget, knob.kind) {
+        (Widget::Checkbox, _) => {
+            if let Value::Boolean(b) = &mut new {
+                ui.checkbox(b, knob.path);
+            }
         }
-        Source::RayStochasticDepth => {
-            let r = &mut settings.ray_sd;
-            count(ui, &mut r.reservoir, 1..=8, "reservoir N");
-            ui.horizontal(|ui| {
-                ui.label("map resolution 1/");
-                for n in [1, 2, 4] {
-                    ui.selectable_value(&mut r.resolution, n, n.to_string());
+        (Widget::Buttons, Kind::OneOf(values)) => {
+            ui.label(knob.path);
+            for v in values {
+                if ui
+                    .selectable_label(value.as_integer() == Some(i64::from(*v)), v.to_string())
+                    .clicked()
+                {
+                    new = Value::Integer(i64::from(*v));
                 }
-            });
+            }
+        }
+        (Widget::Buttons, Kind::Choice(names)) => {
+            ui.label(knob.path);
+            for name in names {
+                if ui
+                    .selectable_label(value.as_str() == Some(name), *name)
+                    .clicked()
+                {
+                    new = Value::String(name.to_string());
+                }
+            }
+        }
+        (
+            widget,
+            Kind::Number {
+                min,
+                max,
+                int,
+                zero,
+                ..
+            },
+        ) => {
+            let (mut lo, mut hi, log) = match widget {
+                Widget::Slider { min, max, log } => (min, max, log),
+                _ => (min, max, false),
+            };
+            if knob.scale == 1 {
+                let s = f64::from(scale).max(1e-3);
+                (lo, hi) = ((lo * s).max(1e-4), hi * s);
+            }
+            let mut x = value
+                .as_float()
+                .or(value.as_integer().map(|i| i as f64))
+                .unwrap_or(lo);
+            let mut slider = egui::Slider::new(&mut x, lo..=hi)
+                .logarithmic(log)
+                .text(knob.path);
+            // Whole numbers, and whole pixels where 0 means off (never in (0, 1)).
+            if int || zero.is_some() {
+                slider = slider.step_by(1.0);
+            }
+            ui.add(slider);
+            new = if int {
+                Value::Integer(x.round() as i64)
+            } else {
+                Value::Float(x)
+            };
         }
         _ => {}
-    }
-    let b = &mut settings.blur;
-    ui.checkbox(&mut b.enabled, "bilateral blur");
-    if b.enabled {
-        count(ui, &mut b.radius, 1..=16, "blur radius");
-    }
-    ui.horizontal(|ui| {
-        ui.label("resolution");
-        ui.selectable_value(&mut settings.resolution, Resolution::Full, "full");
-        ui.selectable_value(&mut settings.resolution, Resolution::Half, "half");
     });
+    response.response.on_hover_text(knob.help);
+    if new != value {
+        // Out of range: the slider springs back (the knob's own check, as flags get).
+        let _ = settings.set_field(knob, Some(new));
+    }
 }

@@ -326,7 +326,7 @@ impl StochasticDepthMap {
             SdLayout::plan(settings.samples).ok_or_else(|| crate::SettingsError::Invalid {
                 field: "stochastic_depth.samples",
                 value: settings.samples.to_string(),
-                rule: "must be 1, 2, 4, 8 or 16",
+                rule: "must be 1, 2, 4, 8 or 16".into(),
             })?;
         // `AoSettings::validate` checked α already; this guards direct use of the map.
         let alpha = settings.alpha();
@@ -334,7 +334,7 @@ impl StochasticDepthMap {
             return Err(crate::SettingsError::Invalid {
                 field: "stochastic_depth.alpha",
                 value: alpha.to_string(),
-                rule: "must be in (0, 1], e.g. 0.2",
+                rule: "must be in (0, 1], e.g. 0.2".into(),
             }
             .into());
         }
