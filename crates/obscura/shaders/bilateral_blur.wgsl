@@ -1,7 +1,8 @@
 // Separable depth-aware (cross) bilateral blur of the AO image, as HBAO+ and the seed 000 §3.4
-// use it (seed-code-notes §1.8): radius 4, Gaussian spatial weight with sigma = (radius + 1) / 2,
-// and a depth weight exp2(-(dz * sharpness)^2) on the linear depth difference in world units,
-// after removing the local depth slope so that tilted planes blur like flat ones.
+// use it (docs/AUTHORS_CODE.md §1.8): radius 4, Gaussian spatial weight with
+// sigma = (radius + 1) / 2, and a depth weight exp2(-(dz * sharpness)^2) on the linear depth
+// difference in world units, after removing the local depth slope so that tilted planes blur like
+// flat ones.
 // Only visible pixels are read: the AO image has no guard band, so taps outside it are skipped.
 // Mirrored on the CPU by src/reference/cpu_blur.rs.
 //

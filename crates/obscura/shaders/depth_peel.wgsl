@@ -1,4 +1,4 @@
-// Depth peeling (seed 000 §2.1; seed-code-notes §2.1): the scene again, keeping per pixel the
+// Depth peeling (seed 000 §2.1; docs/AUTHORS_CODE.md §2.1): the scene again, keeping per pixel the
 // nearest surface that lies more than `separation` behind the first layer (linear depth compare, as
 // the authors' 2024 code). Appended to gbuffer.wgsl: same vertices, alpha test and culling. Like
 // the G-buffer it stores the triangle only (a visibility buffer); depth_peel_resolve.wgsl computes

@@ -1,10 +1,10 @@
 // G-buffer (raster): linear view depth and camera-facing normals in view space for the
 // guard-banded framebuffer, and base colour on request. Vertices are pulled from storage buffers so
 // the face normal comes from the triangle itself (the authors' AO uses face normals,
-// seed-code-notes §1.1) and the same buffers serve ray tracing. With SHADING_NORMALS the vertex
-// normals are interpolated instead (common/vertex_normal.wgsl), turned to the face normal's side.
-// Alpha test: `material_passes_alpha` (common/material.wgsl), the lookup the ray tracer and the
-// CPU use too.
+// docs/AUTHORS_CODE.md §1.1) and the same buffers serve ray tracing. With SHADING_NORMALS the
+// vertex normals are interpolated instead (common/vertex_normal.wgsl), turned to the face normal's
+// side. Alpha test: `material_passes_alpha` (common/material.wgsl), the lookup the ray tracer and
+// the CPU use too.
 //
 // The G-buffer itself is a visibility buffer (Burns and Hunt, "The Visibility Buffer: A
 // Cache-Friendly Approach to Deferred Shading", JCGT 2(2), 2013): the raster pass stores only
@@ -106,7 +106,7 @@ fn gbuffer_out(view_pos: vec3<f32>, face: vec3<f32>, shading: vec3<f32>) -> GBuf
     var n = face;
     let len = length(n);
     n = select(-normalize(view_pos), n / len, len > 0.0);
-    // Face the camera (seed-code-notes §1.1: flipped when dot(posV, n) > 0).
+    // Face the camera (docs/AUTHORS_CODE.md §1.1: flipped when dot(posV, n) > 0).
     if (dot(view_pos, n) > 0.0) {
         n = -n;
     }

@@ -1,5 +1,5 @@
 //! The technique table: every technique is one row naming its estimator, hidden-depth source and
-//! schedule (DESIGN.md "a technique is estimator × hidden-depth source × schedule").
+//! schedule (docs/ARCHITECTURE.md, "The three axes").
 //!
 //! This is the only place that matches on [`Technique`]. Everything else (pipeline assembly, the
 //! CLI's help and lists, validation messages, `--debug-out` support, reports, the README table,
@@ -112,7 +112,7 @@ pub enum Estimator {
     /// Horizon-based AO, seed 001 §3.2 Algorithm 2, seed 004 §2.2.1.
     Hbao,
     /// NVIDIA-style per-sample horizon AO, the seed authors' baseline (seed 000 §2.1,
-    /// seed-code-notes §1.7).
+    /// docs/AUTHORS_CODE.md §1.7).
     HbaoPlus,
     /// Ground-truth-based AO (Jimenez et al. 2016), the baseline of seed 003.
     Gtao,
@@ -157,7 +157,7 @@ pub enum Schedule {
     /// Two phases, phase 2 walking every pixel and returning at once where nothing is flagged.
     TwoPhaseDense,
     /// The depth split into 16 quarter-resolution layers (one per pixel residue mod 4), each
-    /// pixel's samples read from its own layer (seed-code-notes §1.7, the authors' HBAO+).
+    /// pixel's samples read from its own layer (docs/AUTHORS_CODE.md §1.7, the authors' HBAO+).
     Interleaved,
     /// The single pass in the camera's view, then the estimator again in a second view beside it
     /// over a second stochastic depth map that keeps every layer; each pixel keeps the larger
@@ -174,7 +174,7 @@ pub struct TechniqueRow {
     pub name: &'static str,
     /// One line for help texts and the README.
     pub summary: &'static str,
-    /// Paper (DESIGN.md numbering) and section.
+    /// Paper (README.md "Papers" numbering) and section.
     pub paper: &'static str,
     /// What turns the depth samples into occlusion.
     pub estimator: Estimator,
@@ -199,7 +199,7 @@ pub const TABLE: &[TechniqueRow] = &[
         technique: Technique::VaoInterleaved,
         name: "vao-interleaved",
         summary: "VAO over 16 quarter-resolution depth layers (samples snap to their layer)",
-        paper: "seed 000 §3.1–3.5, seed-code-notes §1.7",
+        paper: "seed 000 §3.1–3.5, authors' code §1.7 (docs/AUTHORS_CODE.md)",
         estimator: Estimator::Vao,
         source: Source::FirstLayer,
         schedule: Schedule::Interleaved,
@@ -289,7 +289,7 @@ pub const TABLE: &[TechniqueRow] = &[
         technique: Technique::HbaoInterleaved,
         name: "hbao-interleaved",
         summary: "HBAO over 16 quarter-resolution depth layers (samples snap to their layer)",
-        paper: "seed 001 §3.2, seed-code-notes §1.7",
+        paper: "seed 001 §3.2, authors' code §1.7 (docs/AUTHORS_CODE.md)",
         estimator: Estimator::Hbao,
         source: Source::FirstLayer,
         schedule: Schedule::Interleaved,
@@ -334,7 +334,7 @@ pub const TABLE: &[TechniqueRow] = &[
         technique: Technique::HbaoPlusInterleaved,
         name: "hbao+-interleaved",
         summary: "HBAO+ over 16 quarter-resolution depth layers, as the authors ran it",
-        paper: "seed 000 §2.1, seed-code-notes §1.7",
+        paper: "seed 000 §2.1, authors' code §1.7 (docs/AUTHORS_CODE.md)",
         estimator: Estimator::HbaoPlus,
         source: Source::FirstLayer,
         schedule: Schedule::Interleaved,
@@ -352,7 +352,7 @@ pub const TABLE: &[TechniqueRow] = &[
         technique: Technique::SdHbaoPlus,
         name: "sd-hbao+",
         summary: "HBAO+; samples in front but beyond R also read the stochastic depth map",
-        paper: "seed 001 §3.2, seed-code-notes §1.7",
+        paper: "seed 001 §3.2, authors' code §1.7 (docs/AUTHORS_CODE.md)",
         estimator: Estimator::HbaoPlus,
         source: Source::StochasticDepth,
         schedule: Schedule::Single,

@@ -3,14 +3,15 @@
 //! A guard band of `g` pixels is rendered around the visible `W×H` image so that AO samples that
 //! leave the visible frame still find depth. The framebuffer is `(W+2g)×(H+2g)` and the vertical
 //! field of view is widened so the visible part keeps the requested framing (seed 002 §3.5,
-//! seed-code-notes §2.1: `fov' = 2·atan(tan(fov/2)·(H/2+g)/(H/2))`). Pixels keep a square
+//! docs/AUTHORS_CODE.md §2.1: `fov' = 2·atan(tan(fov/2)·(H/2+g)/(H/2))`). Pixels keep a square
 //! footprint, so the horizontal widening follows from the aspect ratio.
 
 use crate::scene::Camera;
 use glam::{Mat4, Vec2, Vec3};
 
 /// Default guard band for a visible height: 64 px at 1080p scaled with the height and rounded up
-/// to a multiple of 16 (64 at 1080p, 96 at 1440p, 128 at 4K; DESIGN.md conventions).
+/// to a multiple of 16 (64 at 1080p, 96 at 1440p, 128 at 4K; docs/ARCHITECTURE.md
+/// "Conventions").
 pub fn default_guard_band(height: u32) -> u32 {
     let scaled = 64.0 * f64::from(height) / 1080.0;
     ((scaled / 16.0).ceil() as u32).max(1) * 16

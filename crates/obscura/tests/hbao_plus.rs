@@ -1,4 +1,4 @@
-//! HBAO+ (the seed authors' baseline, seed-code-notes §1.7) against values derived without the
+//! HBAO+ (the seed authors' baseline, docs/AUTHORS_CODE.md §1.7) against values derived without the
 //! GPU kernel: an unoccluded plane, a plain CPU implementation of the same estimator on a
 //! read-back G-buffer (single pass and interleaved), its model's closed form for a step seen from
 //! above, and its model over exact geometry at an inside corner (its dual-depth row:

@@ -1,7 +1,7 @@
-//! The interleaved schedule (seed-code-notes §1.7) with the VAO estimator, whose per-pixel sample
-//! pattern is finer than HBAO+'s: unoccluded planes stay at 1, and snapping every sample to the
-//! nearest pixel of its residue class mod 4 changes the image only a little. (HBAO+ and HBAO over
-//! this schedule match CPU implementations exactly: tests/hbao_plus.rs, tests/horizon.rs.)
+//! The interleaved schedule (docs/AUTHORS_CODE.md §1.7) with the VAO estimator, whose per-pixel
+//! sample pattern is finer than HBAO+'s: unoccluded planes stay at 1, and snapping every sample to
+//! the nearest pixel of its residue class mod 4 changes the image only a little. (HBAO+ and HBAO
+//! over this schedule match CPU implementations exactly: tests/hbao_plus.rs, tests/horizon.rs.)
 
 mod common;
 use common::*;

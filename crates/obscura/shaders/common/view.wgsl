@@ -1,5 +1,6 @@
 // Pixel <-> view-space conversion for the guard-banded framebuffer (mirrors src/view.rs).
-// View space is right-handed, the camera looks down -Z, linear depth = -z (DESIGN.md).
+// View space is right-handed, the camera looks down -Z, linear depth = -z (docs/ARCHITECTURE.md,
+// "Conventions").
 // The reciprocals are precomputed on the CPU: these run per AO sample, where divisions dominated.
 
 struct View {
@@ -52,7 +53,7 @@ override MAX_RADIUS_PX: f32 = 0.0;
 
 // The world radius a shading point at linear depth `z` uses: `radius`, or where it would cover
 // more than MAX_RADIUS_PX pixels, the radius that covers exactly that many (the authors shrink
-// the world radius rather than clamp samples, so the kernel keeps its shape; seed-code-notes
+// the world radius rather than clamp samples, so the kernel keeps its shape; docs/AUTHORS_CODE.md
 // §2.2: radiusInPixels > ssMaxRadius). Uncapped, it is `radius` itself, bit for bit.
 fn capped_radius(v: View, radius: f32, z: f32) -> f32 {
     if (MAX_RADIUS_PX > 0.0) {

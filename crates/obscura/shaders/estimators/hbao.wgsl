@@ -28,8 +28,8 @@
 //   differs from its tangent's in the slice: without the rule every tilted unoccluded plane
 //   occluded itself by up to 0.12 (measured on tests/common.rs's tilted floor);
 // - the start jitter and the 1-pixel minimum first step of our
-//   HBAO+ (the authors' HBAO+ placement, seed-code-notes §1.7), and the 4×4 Bayer rotation/jitter
-//   pattern of every screen-space estimator here (src/estimators/mod.rs).
+//   HBAO+ (the authors' HBAO+ placement, docs/AUTHORS_CODE.md §1.7), and the 4×4 Bayer
+//   rotation/jitter pattern of every screen-space estimator here (src/estimators/mod.rs).
 
 struct HbaoParams {
     radius: f32,

@@ -1,5 +1,5 @@
 // HBAO+ estimator: NVIDIA-style per-sample horizon AO, as the seed authors ran it for their
-// baseline (seed 000 §2.1; their shader as recorded in seed-code-notes §1.7): D directions in
+// baseline (seed 000 §2.1; their shader: docs/AUTHORS_CODE.md §1.7): D directions in
 // screen space, S steps each, every sample occluding by
 //     saturate(N·V/|V| − bias) · saturate(1 − |V|²/R²)
 // (V from the shading point to the sample's surface), AO = saturate(1 − 2·mean)^exponent. Steps
@@ -7,7 +7,7 @@
 // radius covers less than one pixel is unoccluded. Implements the estimator contract
 // (docs/ARCHITECTURE.md): a sample's value is its occlusion, several depths for one sample combine
 // by the maximum (seed 001 §3.2), and a depth can hide more when the sample lies in the positive
-// hemisphere but beyond R (the authors' SD rule, seed-code-notes §1.7).
+// hemisphere but beyond R (the authors' SD rule, docs/AUTHORS_CODE.md §1.7).
 //
 // Ours: the per-pixel direction rotation and start jitter come from the 4×4 Bayer matrix (rotation
 // 2π·B/16/D, jitter from the transposed matrix) instead of the authors' 16 random vectors of the

@@ -1,5 +1,5 @@
 // Volumetric Ambient Occlusion (VAO), seed 000 (Brüll, Kern, Grosch 2022) §3.1–3.5, following the
-// authors' 2022 shader as recorded in seed-code-notes §1.2. Mirrored on the CPU by
+// authors' 2022 shader (docs/AUTHORS_CODE.md §1.2). Mirrored on the CPU by
 // src/reference/cpu_vao.rs (the tests hold the two within 1/255).
 //
 // Per pixel: a disc of radius R perpendicular to the view ray, N line samples on it (radii

@@ -1,4 +1,4 @@
-// Schedule "interleaved" (seed-code-notes §1.7, the authors' HBAO+: NVIDIA's interleaved
+// Schedule "interleaved" (docs/AUTHORS_CODE.md §1.7, the authors' HBAO+: NVIDIA's interleaved
 // rendering): the AO runs layer by layer over the 16 quarter-resolution depth layers of
 // interleaved_split.wgsl. A pixel's samples read only its own layer, the framebuffer pixels of its
 // residue class (x % 4, y % 4): each sample takes the class's pixel nearest to where the estimator

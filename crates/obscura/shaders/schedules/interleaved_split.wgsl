@@ -1,9 +1,10 @@
-// The interleaved schedule's first pass (seed-code-notes §1.7: the authors' HBAO+ "DeinterleaveTexture"):
-// the framebuffer's linear depth split into 16 quarter-resolution layers, layer x % 4 + 4 (y % 4)
-// holding the pixels (4u + x % 4, 4v + y % 4). A layer texel past the framebuffer is background.
-// One invocation per layer texel position (u, v): it reads the 4×4 block at (4u, 4v), 16 bytes per
-// row, and writes one texel of every layer, so reads and writes stay coalesced across a warp (one
-// invocation per layer texel, reading with a stride of 4, took 0.031 ms at 1080p + 64 on an H200).
+// The interleaved schedule's first pass (docs/AUTHORS_CODE.md §1.7: the authors' HBAO+
+// "DeinterleaveTexture"): the framebuffer's linear depth split into 16 quarter-resolution layers,
+// layer x % 4 + 4 (y % 4) holding the pixels (4u + x % 4, 4v + y % 4). A layer texel past the
+// framebuffer is background. One invocation per layer texel position (u, v): it reads the 4×4 block
+// at (4u, 4v), 16 bytes per row, and writes one texel of every layer, so reads and writes stay
+// coalesced across a warp (one invocation per layer texel, reading with a stride of 4, took
+// 0.031 ms at 1080p + 64 on an H200).
 
 @group(0) @binding(0) var depth: texture_2d<f32>;
 @group(0) @binding(1) var layers: texture_storage_2d_array<r32float, write>;

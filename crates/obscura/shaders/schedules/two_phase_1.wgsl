@@ -1,8 +1,8 @@
-// Two-phase schedule, phase 1 (seed 000 §3.8, §3.9; seed-code-notes §1.3, §2.2): every sample from
-// the first look of the source only. Samples the source still has to resolve (source_lookup(...)
-// .trace) are flagged in a per-pixel bit mask and left out of the estimator's partial state, and
-// the source is told (`source_request`: SD-SVAO marks the sample's pixel for the stochastic depth
-// map); a pixel without flags is finished here.
+// Two-phase schedule, phase 1 (seed 000 §3.8, §3.9; docs/AUTHORS_CODE.md §1.3, §2.2): every sample
+// from the first look of the source only. Samples the source still has to resolve
+// (source_lookup(...) .trace) are flagged in a per-pixel bit mask and left out of the estimator's
+// partial state, and the source is told (`source_request`: SD-SVAO marks the sample's pixel for the
+// stochastic depth map); a pixel without flags is finished here.
 // The partial state stays in 32-bit floats for phase 2 (no 8-bit quantisation between phases), and
 // flagged pixels are appended to a work list (when COMPACT) for an indirect phase 2.
 

@@ -1,4 +1,4 @@
-// Column rays (RT-VAO, seed 000 §3.6 and Fig. 6; seed-code-notes §1.6), the tracing half: when
+// Column rays (RT-VAO, seed 000 §3.6 and Fig. 6; docs/AUTHORS_CODE.md §1.6), the tracing half: when
 // the depth buffer says a sample is occluded (its first surface lies beyond the constant area,
 // i.e. in the falloff or above it; or anywhere, where the tangent-plane height correction makes
 // deeper surfaces rise — see depth_lookup), or the sample falls outside the framebuffer, the camera ray

@@ -1,4 +1,4 @@
-// Hidden-depth source "dual depth" (`vao-dual`, seed 000 §2.1 / seed-code-notes §1.2): as
+// Hidden-depth source "dual depth" (`vao-dual`, seed 000 §2.1 / docs/AUTHORS_CODE.md §1.2): as
 // first_layer.wgsl, but a sample whose first surface may hide more (the estimator's verdict) also
 // reads the second depth layer from depth peeling and combines the two values.
 

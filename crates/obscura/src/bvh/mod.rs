@@ -1,5 +1,5 @@
 //! CPU bounding volume hierarchy over a [`Scene`]: the ray-tracing oracle that the GPU traversal is
-//! held to (DESIGN.md, "Reference, metrics, evidence"), and the flat BVH2 that is uploaded to it.
+//! held to (docs/ARCHITECTURE.md, "Conventions"), and the flat BVH2 that is uploaded to it.
 //!
 //! # What is where
 //! - `build.rs`: SAH-quality build with obvhs (PLOC + reinsertion + SAH leaf collapse), then our

@@ -1,6 +1,6 @@
 //! The HBAO+ estimator (`shaders/estimators/hbao_plus.wgsl`): NVIDIA-style per-sample horizon AO
-//! as the seed authors' baseline (seed 000 §2.1, seed-code-notes §1.7). Its per-pixel pattern is
-//! here so the CPU mirror in the tests uses the same numbers.
+//! as the seed authors' baseline (seed 000 §2.1, docs/AUTHORS_CODE.md §1.7). Its per-pixel pattern
+//! is here so the CPU mirror in the tests uses the same numbers.
 
 use crate::settings::HbaoPlusSettings;
 use std::f32::consts::TAU;

@@ -23,7 +23,7 @@ pub fn kernel_sample(i: u32, n: u32) -> (Vec2, f32) {
 
 /// 4×4 ordered-dither (Bayer) matrix, row-major; pixel (x, y) rotates its samples by
 /// 2π·BAYER[x%4 + 4(y%4)]/16 (the 4×4 pattern of seed 000 §3.1; the values of the authors' 2024
-/// code, seed-code-notes §2.2).
+/// code, docs/AUTHORS_CODE.md §2.2).
 pub const BAYER_4X4: [u32; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
 
 /// (cos, sin) of the rotation of pixel (x, y) of the visible image.
@@ -119,7 +119,7 @@ mod tests {
 
     #[test]
     fn radii_match_the_authors_table() {
-        // seed-code-notes §1.3: sampleRadius[8] of the 2022 SVAO shader.
+        // docs/AUTHORS_CODE.md §1.3: sampleRadius[8] of the 2022 SVAO shader.
         let table = [
             0.917883, 0.564429, 0.734504, 0.359545, 0.820004, 0.470149, 0.650919, 0.205215,
         ];
@@ -127,7 +127,7 @@ mod tests {
             let (_, r) = kernel_sample(i as u32, 8);
             assert!((r - expected).abs() < 1e-5, "sample {i}: {r} vs {expected}");
         }
-        // 16 and 32 samples start at 0.949098… and 0.968246… (seed-code-notes §2.2).
+        // 16 and 32 samples start at 0.949098… and 0.968246… (docs/AUTHORS_CODE.md §2.2).
         assert!((kernel_sample(0, 16).1 - 0.949098).abs() < 1e-5);
         assert!((kernel_sample(0, 32).1 - 0.968246).abs() < 1e-5);
     }

@@ -3,11 +3,11 @@
 //!
 //! Two models:
 //! - [`ReferenceModel::Vao`]: the quantity VAO estimates with nothing hidden (seed 000 §3.6,
-//!   Fig. 6; seed-code-notes §1.6). The same kernel, rotation pattern, R/τ/exponent as the `vao`
-//!   technique, but each sample's occluder is every surface the camera ray through the sample's
-//!   pixel crosses, not only the first: the sample's visibility is the minimum of the per-hit
-//!   visibilities. Heights are measured exactly as the kernel measures them, so on a scene with a
-//!   single depth layer the technique and this reference agree.
+//!   Fig. 6; docs/AUTHORS_CODE.md §1.6). The same kernel, rotation pattern, R/τ/exponent as the
+//!   `vao` technique, but each sample's occluder is every surface the camera ray through the
+//!   sample's pixel crosses, not only the first: the sample's visibility is the minimum of the
+//!   per-hit visibilities. Heights are measured exactly as the kernel measures them, so on a scene
+//!   with a single depth layer the technique and this reference agree.
 //! - [`ReferenceModel::VaoMean`]: the `vao` model averaged over all 16 rotations of the 4×4
 //!   pattern: what a VAO technique converges to when its pattern turns every frame (temporal
 //!   accumulation, issue 13), free of the pattern's per-pixel noise. 16 times the `vao` model's

@@ -86,8 +86,9 @@ impl Camera {
         Ok(())
     }
 
-    /// World-to-view matrix (right-handed, looking down -Z; DESIGN.md conventions): glam's
-    /// right-handed `look_at` (glam 0.34 moved `Mat4::look_at_rh` into `glam::camera`).
+    /// World-to-view matrix (right-handed, looking down -Z; docs/ARCHITECTURE.md
+    /// "Conventions"): glam's right-handed `look_at` (glam 0.34 moved `Mat4::look_at_rh` into
+    /// `glam::camera`).
     pub fn view_matrix(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.up.normalize_or_zero())
     }

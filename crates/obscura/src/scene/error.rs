@@ -1,7 +1,7 @@
 //! Errors of the scene module.
 //!
 //! Every message names the offending input (path, scene, camera, value) and says what to do,
-//! because these strings reach the command line unchanged (DESIGN.md "Errors and bad input").
+//! because these strings reach the command line unchanged (docs/ARCHITECTURE.md, "Conventions").
 
 use std::path::PathBuf;
 

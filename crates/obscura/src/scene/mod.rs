@@ -1,6 +1,6 @@
 //! Scenes: one flat, world-space triangle soup with materials, textures and named cameras.
 //!
-//! Sources: the built-in procedural scenes ([`builtin`], DESIGN.md "Procedural scenes"), glTF 2.0
+//! Sources: the built-in procedural scenes ([`builtin`], README.md "Scenes"), glTF 2.0
 //! (`.gltf`, `.glb`) and Wavefront OBJ files; [`load`] takes either a built-in name or a path.
 //! Whatever the source, the result passes [`Scene::validate`], so downstream code (G-buffer,
 //! BVH, AO kernels) may index every array without checks. No user input makes this module panic:

@@ -1,7 +1,8 @@
 //! Scene data shared by every loader, the G-buffer rasteriser and the CPU BVH.
 //!
 //! One flat triangle soup in world space: loaders apply node transforms, so nothing downstream
-//! needs a scene graph. Conventions (DESIGN.md): right-handed, +Y up, metres for built-in scenes.
+//! needs a scene graph. Conventions (docs/ARCHITECTURE.md): right-handed, +Y up, metres for
+//! built-in scenes.
 
 use glam::{Vec2, Vec3};
 
@@ -50,7 +51,8 @@ pub enum Sidedness {
     /// Every material double-sided.
     DoubleSided,
     /// Back faces culled on every material that is not alpha-tested (alpha-tested materials keep
-    /// them, as in the authors' code, seed-code-notes §1.6: a foliage card is seen from both sides).
+    /// them, as in the authors' code, docs/AUTHORS_CODE.md §1.6: a foliage card is seen from both
+    /// sides).
     CullBackFaces,
 }
 
@@ -235,7 +237,7 @@ impl Material {
     }
 
     /// Back faces count (rasteriser does not cull them, rays hit them): double-sided or
-    /// alpha-tested materials, as in the authors' code (seed-code-notes §1.6).
+    /// alpha-tested materials, as in the authors' code (docs/AUTHORS_CODE.md §1.6).
     pub fn keeps_back_faces(&self) -> bool {
         self.double_sided || self.is_alpha_tested()
     }

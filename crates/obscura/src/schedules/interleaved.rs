@@ -1,7 +1,7 @@
-//! Schedule "interleaved" (`shaders/schedules/interleaved*.wgsl`; seed-code-notes §1.7, the seed
-//! authors' HBAO+): the depth split into 16 quarter-resolution layers, then the AO of each layer's
-//! pixels from that layer alone, written back to the full-resolution image. Any estimator that does
-//! not read pyramid levels; the first depth layer is its only source.
+//! Schedule "interleaved" (`shaders/schedules/interleaved*.wgsl`; docs/AUTHORS_CODE.md §1.7, the
+//! seed authors' HBAO+): the depth split into 16 quarter-resolution layers, then the AO of each
+//! layer's pixels from that layer alone, written back to the full-resolution image. Any estimator
+//! that does not read pyramid levels; the first depth layer is its only source.
 
 use super::{FrameContext, FrameGroups, SourceGroup, Stage};
 use crate::bindings::{self, entry, SCHEDULE_DEPTH_LAYERS};

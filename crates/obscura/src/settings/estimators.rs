@@ -4,7 +4,8 @@
 use super::*;
 use crate::knob::{Kind, Knob, Widget};
 
-/// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, seed-code-notes §1.2).
+/// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, docs/AUTHORS_CODE.md
+/// §1.2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct VaoSettings {
@@ -238,7 +239,7 @@ impl Default for SsaoSettings {
 }
 
 /// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
-/// (seed-code-notes §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
+/// (docs/AUTHORS_CODE.md §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct HbaoPlusSettings {
@@ -344,8 +345,8 @@ pub struct BlurSettings {
     /// Depth weight sharpness per world unit of depth difference (0: a plain Gaussian).
     pub sharpness: f32,
     /// σ in pixels of a natural Gaussian spatial weight, exp(−d²/2σ²); left out (the default),
-    /// HBAO+'s weight exp2(−d²/2σ'²) with σ' = (radius + 1)/2 (seed-code-notes §1.8). Seed 004's
-    /// filter for Pyramid HBAO is `radius = 2, sharpness = 0, sigma = 1.5`.
+    /// HBAO+'s weight exp2(−d²/2σ'²) with σ' = (radius + 1)/2 (docs/AUTHORS_CODE.md §1.8). Seed
+    /// 004's filter for Pyramid HBAO is `radius = 2, sharpness = 0, sigma = 1.5`.
     pub sigma: Option<f32>,
 }
 

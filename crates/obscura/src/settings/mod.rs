@@ -156,7 +156,7 @@ pub struct AoSettings {
     /// The bilateral blur that filters every technique's raw AO.
     pub blur: BlurSettings,
     /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
-    /// the first (the authors' `minSeparationDistance`, seed-code-notes §2.1).
+    /// the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
     /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
     /// depth map (`sd-vao`, `sd-svao`).
     pub peel_separation: f32,

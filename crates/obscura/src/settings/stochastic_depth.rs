@@ -6,11 +6,11 @@ use crate::knob::{Kind, Knob, Widget};
 
 /// The stratified stochastic depth map (seed 001 §3.1, Alg. 1).
 ///
-/// Defaults: S = 4 and α = 1.5/S (0.375 at S = 4), the authors' 2024 rule (seed-code-notes
-/// §2.2; DESIGN.md). Held against an outside renderer's ground truth, α = 1.5/S gave a lower MSE
-/// than the authors' 2022 α = 0.2 on every view tried (1.04× to 7.6×), and 0.2 lost to depth
-/// peeling on one; 0.2 stays reachable (`alpha = 0.2`, `--sd-alpha 0.2`) to reproduce the 2022
-/// tables.
+/// Defaults: S = 4 and α = 1.5/S (0.375 at S = 4), the authors' 2024 rule
+/// (docs/AUTHORS_CODE.md §2.2, §2.4). Held against an outside renderer's ground truth, α = 1.5/S
+/// gave a lower MSE than the authors' 2022 α = 0.2 on every view tried (1.04× to 7.6×), and 0.2
+/// lost to depth peeling on one; 0.2 stays reachable (`alpha = 0.2`, `--sd-alpha 0.2`) to reproduce
+/// the 2022 tables.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StochasticDepthSettings {
@@ -243,8 +243,8 @@ impl Default for StochasticDepthSettings {
     }
 }
 
-/// α of the authors' 2024 code (seed-code-notes §2.2): 1.5/S, so that a hidden fragment is kept
-/// in 1.5 of its pixel's S samples on average whatever S is (at most 1).
+/// α of the authors' 2024 code (docs/AUTHORS_CODE.md §2.2): 1.5/S, so that a hidden fragment is
+/// kept in 1.5 of its pixel's S samples on average whatever S is (at most 1).
 pub fn sd_alpha_2024(samples: u32) -> f32 {
     (1.5 / samples as f32).min(1.0)
 }

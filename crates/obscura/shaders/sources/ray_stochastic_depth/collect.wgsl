@@ -1,5 +1,5 @@
-// Ray-traced stochastic depth map, collection by ray (seed 002 §3.1, Listing 1; the authors' code
-// as recorded in seed-code-notes §2.3): one camera ray per map texel through our BVH
+// Ray-traced stochastic depth map, collection by ray (seed 002 §3.1, Listing 1; the authors' code,
+// docs/AUTHORS_CODE.md §2.3): one camera ray per map texel through our BVH
 // (common/bvh.wgsl) in compute, every hit behind the first visible layer handled as the paper's
 // any-hit shader handles it. Reservoir sampling (Vitter 1985): the first N distinct depths fill
 // the N slots, each further hit takes a slot with probability N/count; with z-culling (the

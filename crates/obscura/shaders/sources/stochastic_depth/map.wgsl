@@ -1,5 +1,5 @@
-// Stratified stochastic depth map (seed 001 §3.1, Alg. 1; the authors' raster pass as recorded in
-// seed-code-notes §1.5). Appended to gbuffer.wgsl (same vertices, alpha test and culling) and
+// Stratified stochastic depth map (seed 001 §3.1, Alg. 1; the authors' raster pass,
+// docs/AUTHORS_CODE.md §1.5). Appended to gbuffer.wgsl (same vertices, alpha test and culling) and
 // common/hash.wgsl; reset.wgsl follows it.
 //
 // The map is a storage buffer of S depths per pixel (`sd_depths`, pixel-major, the layout the
@@ -17,8 +17,8 @@
 // nearest hidden depths, by a k-buffer of atomics (sd_store_nearest): no hash, no α.
 //
 // Depth: the fragment's linear depth at the pixel centre (so the map stores positions, as the
-// authors' code does, seed-code-notes §1.5), encoded as reversed-Z near / depth: float precision
-// at any distance, no far plane needed, 0 = empty.
+// authors' code does, docs/AUTHORS_CODE.md §1.5), encoded as reversed-Z near / depth: float
+// precision at any distance, no far plane needed, 0 = empty.
 //
 // Why not the multisampled depth target the paper draws into (our first map, BENCHMARKS.md,
 // issue 16): a shader that writes depth and `sample_mask` is never depth- or stencil-tested before
@@ -72,7 +72,7 @@ fn sd_base(pixel: vec2<u32>) -> u32 {
 
 // The fragment's hash: its pixel pair and triangle, and the map's seed. Seed 001 §3.1 hashes "the
 // pixel location, sample index, and sample depth", and the authors' code the world position
-// (seed-code-notes §1.5): both change with every move of the camera, so every hidden fragment
+// (docs/AUTHORS_CODE.md §1.5): both change with every move of the camera, so every hidden fragment
 // drew new samples each frame and the map flickered in motion (BENCHMARKS.md, issue 13). The
 // triangle tells the fragments of one pixel apart as the depth did (one fragment per triangle
 // and pixel; instances have their own triangles), and it stays the same while a surface slides

@@ -1,5 +1,5 @@
-// Hidden-depth source "stochastic depth" (SD-VAO, seed 000 §3.7; seed-code-notes §1.2/1.3): as
-// dual_depth.wgsl, but a sample whose first surface may hide more reads every sample of the
+// Hidden-depth source "stochastic depth" (SD-VAO, seed 000 §3.7; docs/AUTHORS_CODE.md §1.2, §1.3):
+// as dual_depth.wgsl, but a sample whose first surface may hide more reads every sample of the
 // stochastic depth map at the sample's pixel (seed 001 §3.1; made by stochastic_depth/map.wgsl) and
 // combines all of their values (VAO: the lowest visibility).
 //

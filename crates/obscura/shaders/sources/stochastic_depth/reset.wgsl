@@ -7,10 +7,11 @@
 //   only fragments behind it are shaded (0 where the pixel shows no surface: nothing is stored
 //   there). `fs_reset_requested` (SD-SVAO with the stencil, seed 000 §3.9) writes it, and the
 //   frame's stencil value, only at the pixels phase 1 requested, as the authors copy the request
-//   mask into the stencil with a full-screen pass (seed-code-notes §1.5). `fs_reset_requested_by_depth`
-//   (`--sd-mask depth`) puts the mask into the depth instead: the far plane where nobody requested
-//   the pixel, so the same early test that skips the first layer skips those pixels, with no
-//   stencil and no `discard` (a shader that may discard writes its depth late, and costs more).
+//   mask into the stencil with a full-screen pass (docs/AUTHORS_CODE.md §1.5).
+//   `fs_reset_requested_by_depth` (`--sd-mask depth`) puts the mask into the depth instead: the far
+//   plane where nobody requested the pixel, so the same early test that skips the first layer skips
+//   those pixels, with no stencil and no `discard` (a shader that may discard writes its depth
+//   late, and costs more).
 // A map that keeps every layer needs no depth: its pass clears the target to 1 (all pass).
 // Emptying the map in the fragment pass too measured 1.0 ms on the H200 at 1080p + 64 px
 // (BENCHMARKS.md, issue 16); compute does it in a fraction.

@@ -1,4 +1,4 @@
-//! Built-in procedural scenes (DESIGN.md "Procedural scenes"), the embedded default.
+//! Built-in procedural scenes, the embedded default.
 //!
 //! Each is deterministic, in metres with +Y up, small enough to rasterise on a CPU Vulkan driver,
 //! and built to provoke one artifact the AO papers fix. Each has at least two named cameras: first

@@ -2,9 +2,9 @@
 //!
 //! Hand-written rather than taken from `rand`: a dozen lines give bit-identical scenes on every
 //! platform and forever, while `rand`'s generators and distributions may change between releases
-//! (DESIGN.md: every random choice comes from a seeded, documented source). Algorithm: M. E.
-//! O'Neill, "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms for Random
-//! Number Generation", 2014 (reference `pcg32_random_r`).
+//! (docs/ARCHITECTURE.md "Conventions": every random choice comes from a seeded source). Algorithm:
+//! M. E. O'Neill, "PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms for
+//! Random Number Generation", 2014 (reference `pcg32_random_r`).
 
 pub(crate) struct Pcg32 {
     state: u64,
