@@ -10,7 +10,7 @@
 #    filters its maps but leaves the filter out of its times).
 # SKIP_BENCH=1 runs part 2 only, SKIP_TAB1=1 part 1 only.
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
-# (../shared/tools/prepare-device.sh crytek-sponza); results go to $OUT.
+# (the device preparation, scenes: crytek-sponza); results go to $OUT.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 $bin info | tee "$out/info.txt"

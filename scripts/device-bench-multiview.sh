@@ -4,7 +4,7 @@
 # sd-hbao+-multiview at full resolution, at half resolution (--resolution half) and with only the
 # second view at half (--mv-resolution half).
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
-# (../shared/tools/prepare-device.sh sibenik); results go to $OUT;
+# (the device preparation, scenes: sibenik); results go to $OUT;
 # scripts/bench-seed001-summary.py $OUT makes the table.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"

@@ -4,7 +4,7 @@
 # Tab. 2 (VAO, VAO-dual, SD-VAO, SD-SVAO at S = 4: SD map / AO / total / speed-up) and Tab. 3
 # (SD-VAO and SD-SVAO at 1440p and 4K) for crytek-sponza, colonnade, grass and tower.
 # Same set-up as scripts/device-bench.sh: run from the repo root on the device machine with .devbin/
-# (release binary + scenes, from ../shared/tools/prepare-device.sh crytek-sponza) and .gl/ carried.
+# (release binary + scenes, from the device preparation, scene crytek-sponza) and .gl/ carried.
 # Results go to $OUT: info.txt, sd-bench.txt (the bench output), sd-bench.json (every run's JSON
 # report by name, and the runs that failed) and sd-tables.md (the tables). The device tool returns
 # at most 8 files, so the per-run JSON files stay in a scratch folder and are merged.

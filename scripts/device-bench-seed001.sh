@@ -7,7 +7,7 @@
 # 3. bent normals: gtao, gtao-vb, sd-gtao-vb with and without --bent-normals on Sponza;
 # 4. compensation: sd-hbao+ and sd-vao with --sd-compensation 2 against 1 on Sponza (its cost).
 # Run from the repo root on the device machine with .devbin/ and .gl/ carried
-# (../shared/tools/prepare-device.sh crytek-sponza sibenik); results go to $OUT;
+# (the device preparation, scenes: crytek-sponza sibenik); results go to $OUT;
 # scripts/bench-seed001-summary.py $OUT makes the tables.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"

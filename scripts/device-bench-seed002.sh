@@ -8,7 +8,7 @@
 # - §3.5 / Fig. 14: the map's own guard band (on by default, 512 px at 1080p) against none
 #   (`--sd-guard-band 0`) at 1/1 and 1/4.
 # Medians of 100 frames after 20 warm-up frames (`obscura bench --json`). Writes $OUT/summary.md
-# and $OUT/runs.tar.gz. Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza) and .gl.
+# and $OUT/runs.tar.gz. Carry .devbin (the device preparation, scenes: crytek-sponza) and .gl.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 runs=$out/runs

@@ -10,7 +10,7 @@
 #    ray-sd-vao, and for vao with --temporal; against the vao model; and against the vao model
 #    averaged over its pattern's 16 turns (vao-mean), all four with and without --temporal.
 # Writes $OUT/results.tar.gz (everything) and $OUT/summary.txt.
-# Carry .devbin (../shared/tools/prepare-device.sh crytek-sponza) and .gl.
+# Carry .devbin (the device preparation, scenes: crytek-sponza) and .gl.
 set -uo pipefail
 source "$(dirname "$0")/device-env.sh"
 runs=$out/runs

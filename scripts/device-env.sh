@@ -1,6 +1,7 @@
 # Sourced by the device scripts (scripts/device-bench*.sh): the Vulkan loader carried in .gl/
 # unpacked, the Vulkan backend, the NVIDIA driver's ICD where the loader does not find it, and
-# $bin, $out (created), $sponza and $sibenik (the views of BENCHMARKS.md) and scene_args.
+# $bin, $out (created), $sponza and $sibenik (the views of BENCHMARKS.md) and scene_args (the
+# views by name that scripts/device-bench.sh's VIEWS takes).
 # The loader only on the device (its NVIDIA driver is mounted there), never over a local system
 # where a script runs as a dry run.
 if [ -d /usr/local/nvidia ]; then
@@ -18,13 +19,20 @@ out=${OUT:-/tmp/out}
 mkdir -p "$out"
 sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
 sibenik=(--scene .devbin/scenes/sibenik/sibenik.obj --eye=-17,-9,0 --target=0,-10,0 --fov 60)
-# Sets `args` to the arguments of the raster benchmarks' scene $1: sponza, sponza0 (guard band 0),
-# colonnade (its close-up) or sibenik; fails when that scene was not carried.
+# Sets `args` to the `bench` arguments of the view $1: sponza, sponza0 (guard band 0),
+# sponza-walk (scripts/sponza-walk.json, a 5 m walk from the sponza view), colonnade (its
+# close-up), sibenik, stairs-dolly (the built-in stairs along its `dolly` path), or any other name
+# as a built-in scene at its first camera (stairs, tower, grass, ...); fails when the scene's
+# files were not carried.
 scene_args() {
   case $1 in
     sponza) args=("${sponza[@]}") ;;
     sponza0) args=("${sponza[@]}" --guard-band 0) ;;
+    sponza-walk) args=("${sponza[0]}" "${sponza[1]}" --path scripts/sponza-walk.json) ;;
     colonnade) args=(--scene colonnade --camera closeup) ;;
     sibenik) [ -d .devbin/scenes/sibenik ] || return 1; args=("${sibenik[@]}") ;;
+    stairs-dolly) args=(--scene stairs --path dolly) ;;
+    *) args=(--scene "$1") ;;
   esac
+  case $1 in sponza*) [ -f "${sponza[1]}" ] || return 1 ;; esac
 }
