@@ -648,6 +648,15 @@ impl Schedule {
         }
     }
 
+    /// Whether its AO pass is the single pass (the multi-view schedule runs it, then a second
+    /// view): where the single pass's own choices apply (deferred resolves).
+    pub fn runs_single_pass(self) -> bool {
+        match self {
+            Schedule::Single | Schedule::Multiview => true,
+            Schedule::TwoPhase | Schedule::TwoPhaseDense | Schedule::Interleaved => false,
+        }
+    }
+
     /// Whether this schedule can run `estimator`: a two-phase schedule adds phase 2's samples
     /// after all others and holds one bit per sample (at most 32), so it needs an
     /// [`Estimator::order_independent`] estimator.

@@ -6,7 +6,6 @@ use crate::progress::bar;
 use anyhow::{bail, Result};
 use clap::Args;
 use obscura::bvh::BvhCache;
-use obscura::technique::Source;
 use obscura::{output, AoSettings, PassProfiler, Renderer};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -297,7 +296,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
                     String::new()
                 };
                 // The raster map's rasteriser (`auto` resolved by the renderer).
-                let rasterizer = if r.settings.technique.source() == Source::StochasticDepth {
+                let rasterizer = if r.settings.technique.needs().stochastic_depth_map {
                     format!(", {} rasteriser", sd.rasterizer)
                 } else {
                     String::new()

@@ -2,7 +2,6 @@ use crate::args::{parse_size, parse_technique, AoArgs, SceneArgs};
 use crate::progress::spinner;
 use anyhow::Result;
 use clap::Args;
-use obscura::technique::Source;
 use obscura::{output, Renderer, Technique};
 use std::path::PathBuf;
 
@@ -94,7 +93,7 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
             .map(|ao| ao.work_screen())
             .ok_or_else(|| anyhow::anyhow!("nothing rendered"))?;
         let (w, h, g) = (work.width, work.height, work.guard_band);
-        if row.needs().stochastic_depth_map || row.source == Source::RayStochasticDepth {
+        if row.source.maps_hidden_depth() {
             write_sd_debug(dir, &renderer, &settings, (w, h), g)?
         } else if row.schedule.two_phase() {
             let samples = obscura::estimators::samples_per_pixel(row.estimator, &settings);
@@ -286,7 +285,9 @@ fn write_sd_debug(
     let stored_samples: u64 = counts.iter().map(|&c| u64::from(c)).sum();
     let all_samples = texels as u64 * layers.len() as u64;
     let stored_fraction = stored_samples as f64 / all_samples.max(1) as f64;
-    let ray = settings.technique.row().source == Source::RayStochasticDepth;
+    // The ray-traced map (its own statistics), not the raster one.
+    let ray = settings.technique.source().maps_hidden_depth()
+        && !settings.technique.needs().stochastic_depth_map;
     let mut stats = if ray {
         let r = settings.ray_sd;
         serde_json::json!({

@@ -13,7 +13,7 @@ use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
-use crate::technique::{Schedule, Source, TechniqueRow};
+use crate::technique::{Schedule, TechniqueRow};
 use crate::view::ScreenGeometry;
 use crate::Error;
 
@@ -228,7 +228,7 @@ pub(crate) struct ScheduleInputs<'a> {
 /// Whether the single pass of `row` resolves its flagged samples after the others
 /// (single.wgsl's DEFERRED_RESOLVE; measured in BENCHMARKS.md, "Flagged samples resolved last").
 fn deferred_resolve(row: &TechniqueRow) -> bool {
-    matches!(row.schedule, Schedule::Single | Schedule::Multiview)
+    row.schedule.runs_single_pass()
         && row.estimator.defers_resolves()
         && row.source.costly_resolve()
 }
@@ -275,9 +275,9 @@ thread_local! {
 fn distinct_depths(row: &TechniqueRow) -> bool {
     #[cfg(test)]
     if let Some(on) = DISTINCT_DEPTHS.with(|d| d.get()) {
-        return row.source == Source::StochasticDepth && on;
+        return row.needs().stochastic_depth_map && on;
     }
-    row.source == Source::StochasticDepth && row.estimator.resolves_distinct_depths()
+    row.needs().stochastic_depth_map && row.estimator.resolves_distinct_depths()
 }
 
 /// Whether `row`'s samples that read a map's depths nearest first stop at the first depth

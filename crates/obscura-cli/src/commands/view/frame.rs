@@ -6,7 +6,6 @@ use super::display::{Display, DisplayInputs, GpuMode};
 use anyhow::{anyhow, Result};
 use obscura::bvh::BvhCache;
 use obscura::scene::{Camera, Scene};
-use obscura::technique::Source;
 use obscura::{AoSettings, Gpu, PassProfiler, Renderer, Technique};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -66,7 +65,7 @@ impl DebugView {
     /// Whether `technique` has this view (the reference always: it does not depend on it).
     pub fn available(self, technique: Technique) -> bool {
         let row = technique.row();
-        let sd = row.needs().stochastic_depth_map || row.source == Source::RayStochasticDepth;
+        let sd = row.source.maps_hidden_depth();
         match self {
             DebugView::SdLayer => sd,
             DebugView::SampleMasks => row.schedule.two_phase(),
