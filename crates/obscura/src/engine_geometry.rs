@@ -9,12 +9,12 @@
 //! offered yet.
 
 use crate::bvh::{gpu::GpuBvh, Bvh};
+use crate::error::Error;
 use crate::gpu::Gpu;
 use crate::raster::gpu_scene::GpuScene;
 use crate::scene::{AlphaMode, Material, Scene, Texture};
 use crate::sources::SceneResources;
 use crate::technique::Needs;
-use crate::Error;
 use glam::{Mat4, Vec2, Vec3};
 
 /// One vertex attribute in an engine's vertex buffer: `format` at `offset` bytes into each

@@ -15,11 +15,11 @@
 //! with. Without normals they are reconstructed from the depth (see `normals.wgsl`).
 
 use crate::bindings::{self, entry};
+use crate::error::Error;
 use crate::frame::{check_float_texture, check_texture};
 use crate::gpu::Gpu;
 use crate::pipeline::FrameTextures;
 use crate::view::ScreenGeometry;
-use crate::Error;
 use glam::Mat4;
 use wgpu::util::DeviceExt;
 

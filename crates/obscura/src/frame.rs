@@ -2,8 +2,8 @@
 //! and its screen geometry, bound as group 0 (`shaders/frame/frame.wgsl`) with the AO output.
 
 use crate::bindings::{self, FRAME_AO_OUT, FRAME_BENT_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_VIEW};
+use crate::error::Error;
 use crate::view::ScreenGeometry;
-use crate::Error;
 
 /// The frame inputs of one encode. Textures cover the whole guard-banded framebuffer.
 pub struct FrameInputs<'a> {

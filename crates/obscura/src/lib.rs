@@ -21,6 +21,7 @@ pub mod bindings;
 pub mod bvh;
 pub mod engine_geometry;
 pub mod engine_input;
+pub mod error;
 pub mod estimators;
 pub mod filter;
 pub mod frame;
@@ -43,36 +44,9 @@ pub mod view;
 
 pub use engine_geometry::{AlphaMask, EngineGeometry, EngineMesh, IndexData, VertexAttribute};
 pub use engine_input::{EngineFrame, EngineInput, EngineNormals, NormalEncoding};
+pub use error::{Error, SettingsError};
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};
 pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};
-pub use settings::{
-    AoSettings, BlurSettings, Normalization, SettingsError, Technique, VaoSettings,
-};
+pub use settings::{AoSettings, BlurSettings, Normalization, Technique, VaoSettings};
 pub use sources::SceneResources;
 pub use view::{default_guard_band, near_plane, FrameView, ScreenGeometry};
-
-use std::path::PathBuf;
-
-/// Everything that can go wrong, each with a message that names the input and the fix.
-#[derive(Debug, thiserror::Error)]
-pub enum Error {
-    /// The GPU failed: no adapter, no device, a validation error or an adapter limit.
-    #[error(transparent)]
-    Gpu(#[from] GpuError),
-    /// The AO settings are invalid (an out-of-range value, a technique's missing requirement).
-    #[error(transparent)]
-    Settings(#[from] SettingsError),
-    /// An input the caller passed is unusable (a texture of the wrong size or format, a bad
-    /// projection matrix, an unreadable image, an output path without a known extension); the
-    /// message says which and how to fix it.
-    #[error("{0}")]
-    Input(String),
-    /// Writing an output file failed; nothing half-written is left at `path`.
-    #[error("could not write '{path}': {message}")]
-    Output {
-        /// The file that was being written.
-        path: PathBuf,
-        /// Why it failed (the encoder's or the file system's error).
-        message: String,
-    },
-}

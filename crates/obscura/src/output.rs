@@ -1,7 +1,7 @@
 //! Writing images. Every file is written to a temporary sibling and renamed into place, so an
 //! error (or Ctrl-C) never leaves a half-written output and never damages an existing file.
 
-use crate::Error;
+use crate::error::Error;
 use std::path::{Path, PathBuf};
 
 /// Output formats, chosen by the file extension.

@@ -75,8 +75,8 @@ impl FrameView {
         view: Mat4,
         screen: ScreenGeometry,
         near: f32,
-    ) -> Result<Self, crate::Error> {
-        let bad = |why: String| Err(crate::Error::Input(why));
+    ) -> Result<Self, crate::error::Error> {
+        let bad = |why: String| Err(crate::error::Error::Input(why));
         if screen.orthographic {
             return bad(
                 "an orthographic screen has no camera position: the hidden-depth sources need a \
@@ -247,10 +247,10 @@ impl ScreenGeometry {
         width: u32,
         height: u32,
         guard_band: u32,
-    ) -> Result<Self, crate::Error> {
+    ) -> Result<Self, crate::error::Error> {
         let p = projection;
         let bad = |why: &str| {
-            Err(crate::Error::Input(format!(
+            Err(crate::error::Error::Input(format!(
                 "projection matrix {p:?} {why}: pass the camera's projection (clip from view \
                  space, the camera looking down -Z)"
             )))
@@ -306,12 +306,12 @@ impl ScreenGeometry {
     /// The same frustum at half the resolution (`resolution = "half"`): every half-resolution
     /// pixel covers 2×2 pixels of this one exactly, so the visible size and the guard band must
     /// be even (an error naming them otherwise).
-    pub fn half(&self) -> Result<Self, crate::Error> {
+    pub fn half(&self) -> Result<Self, crate::error::Error> {
         if ![self.width, self.height, self.guard_band]
             .iter()
             .all(|v| v.is_multiple_of(2))
         {
-            return Err(crate::Error::Input(format!(
+            return Err(crate::error::Error::Input(format!(
                 "resolution 'half' needs an even visible size and guard band (each half pixel \
                  covers 2x2 pixels), got {}x{} with a {} px guard band: use e.g. {}x{} and {}",
                 self.width,

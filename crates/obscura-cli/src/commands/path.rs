@@ -10,7 +10,7 @@ use clap::Args;
 use obscura::bvh::BvhCache;
 use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
 use obscura::metrics::{self, Image};
-use obscura::reference::cpu_vao::GBufferImage;
+use obscura::raster::GBufferImage;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::temporal::frame_delay_ms;
 use obscura::scene::{CameraPath, Scene};

@@ -182,7 +182,7 @@ pub fn as_compared(
     image: Vec<f32>,
     model: ReferenceModel,
     blur: &obscura::BlurSettings,
-    gbuffer: &obscura::reference::cpu_vao::GBufferImage,
+    gbuffer: &obscura::raster::GBufferImage,
     view: &FrameView,
 ) -> Vec<f32> {
     if model != ReferenceModel::Hemisphere && blur.enabled {

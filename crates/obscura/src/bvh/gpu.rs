@@ -157,12 +157,12 @@ pub enum QueryMode {
 /// Trace `rays` through the GPU BVH: the traversal every GPU ray-tracing pass uses, exposed for
 /// checking it against the CPU oracle.
 pub fn trace_batch(
-    gpu: &crate::Gpu,
+    gpu: &crate::gpu::Gpu,
     scene: &GpuScene,
     bvh: &GpuBvh,
     rays: &[QueryRay],
     mode: QueryMode,
-) -> Result<Vec<QueryResult>, crate::GpuError> {
+) -> Result<Vec<QueryResult>, crate::gpu::GpuError> {
     let device = &gpu.device;
     let source = crate::shaders::with_common(
         &[crate::shaders::MATERIAL, crate::shaders::BVH],

@@ -8,11 +8,11 @@
 //! (`shaders/half_resolution/upsample.wgsl`). How the paper made its half-resolution inputs and
 //! upsampled is not said; both rules are ours and documented in the shaders.
 
+use crate::error::Error;
 use crate::frame::{workgroups_32x8, FrameInputs};
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::view::ScreenGeometry;
-use crate::Error;
 use wgpu::util::DeviceExt;
 
 /// The half-resolution frame (depth, normals, second layer and their view) and the passes that

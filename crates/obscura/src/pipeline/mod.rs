@@ -14,6 +14,7 @@ pub mod renderer;
 mod shader_check;
 
 use crate::bindings;
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::filter::{
     bilateral::BilateralBlur,
@@ -29,7 +30,6 @@ use crate::sources::ray_stochastic_depth::RaySdMapSize;
 use crate::sources::stochastic_depth::{SdLayout, StochasticDepthMap};
 use crate::sources::{SceneResources, SourcePass};
 use crate::view::{FrameView, ScreenGeometry};
-use crate::Error;
 use wgpu::util::DeviceExt;
 
 /// The textures of one frame, as the engine has them. All cover the guard-banded framebuffer:

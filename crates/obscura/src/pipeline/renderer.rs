@@ -2,14 +2,14 @@
 
 use super::{AmbientOcclusion, FrameTextures};
 use crate::bvh::{gpu::GpuBvh, BvhCache};
+use crate::error::Error;
 use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
+use crate::raster::GBufferImage;
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
-use crate::reference::cpu_vao::GBufferImage;
 use crate::scene::{Camera, Scene};
 use crate::settings::AoSettings;
 use crate::sources::SceneResources;
 use crate::view::FrameView;
-use crate::Error;
 use glam::Vec3;
 
 /// A warning where the technique's AO radius (world units, as the papers and engines take it:
@@ -473,7 +473,7 @@ mod tests {
     use super::radius_scale_warning;
     use crate::scene;
     use crate::settings::AoSettings;
-    use crate::Technique;
+    use crate::technique::Technique;
 
     /// The built-in scenes (metres) at every technique's default radius draw no warning; the
     /// same scene in centimetres or at a hundredth of its size does, naming the technique's

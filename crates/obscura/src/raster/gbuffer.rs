@@ -389,7 +389,7 @@ impl GBuffer {
     /// Triangles the last frame's culling was given, and kept by each phase of the visibility
     /// pass (tests; waits for the GPU).
     #[cfg(test)]
-    pub(crate) fn cull_counts(&self, gpu: &crate::Gpu) -> (u32, Vec<u32>) {
+    pub(crate) fn cull_counts(&self, gpu: &crate::gpu::Gpu) -> (u32, Vec<u32>) {
         self.cull.counts(gpu)
     }
 
@@ -894,8 +894,11 @@ mod tests {
     use super::{
         visibility_words_available, visibility_words_fit, PEEL_Z_OVERRIDE, VISIBILITY_TARGET_ONLY,
     };
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::{gpu, moved};
-    use crate::{scene, AoSettings, Renderer, Technique};
+    use crate::scene;
+    use crate::settings::AoSettings;
+    use crate::technique::Technique;
 
     /// Words only where 8 bytes a pixel fit one storage binding and one buffer.
     #[test]
@@ -988,7 +991,7 @@ mod tests {
         let (mut pixels, mut differ) = (0usize, 0usize);
         for name in scene::builtin_names() {
             let scene = scene::builtin(name).unwrap();
-            let near = f64::from(crate::near_plane(&scene));
+            let near = f64::from(crate::view::near_plane(&scene));
             for named in &scene.cameras {
                 let render = |format: Option<wgpu::TextureFormat>| {
                     PEEL_Z_OVERRIDE.with(|f| f.set(format));

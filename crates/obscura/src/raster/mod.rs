@@ -3,15 +3,18 @@
 
 pub mod chunks;
 pub mod gbuffer;
+pub mod gbuffer_image;
 pub mod gpu_scene;
 pub(crate) mod occlusion_pyramid;
 pub(crate) mod triangle_cull;
 
+pub use gbuffer_image::GBufferImage;
+
 /// What the raster passes' in-crate tests share: the adapter, and a second view of a scene.
 #[cfg(test)]
 pub(crate) mod test_support {
+    use crate::gpu::{Gpu, GpuOptions};
     use crate::scene::{Camera, Scene};
-    use crate::{Gpu, GpuOptions};
 
     /// The test adapter (lavapipe in CI).
     pub fn gpu() -> Gpu {

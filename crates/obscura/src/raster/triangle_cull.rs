@@ -370,7 +370,7 @@ impl TriangleCull {
 impl TriangleCull {
     /// Triangles submitted and kept by the last frame (waits for the GPU): kept in
     /// [`CullList::All`], or with occlusion culling in each phase's list.
-    pub fn counts(&self, gpu: &crate::Gpu) -> (u32, Vec<u32>) {
+    pub fn counts(&self, gpu: &crate::gpu::Gpu) -> (u32, Vec<u32>) {
         let draws = self.draws.lock().unwrap().clone();
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.args).unwrap();
         let args: &[[u32; 4]] = bytemuck::cast_slice(&bytes);
@@ -396,8 +396,11 @@ impl TriangleCull {
 #[cfg(test)]
 mod tests {
     use super::KEEP_EVERY_TRIANGLE;
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::{gpu, moved};
-    use crate::{scene, AoSettings, Renderer, Technique};
+    use crate::scene;
+    use crate::settings::AoSettings;
+    use crate::technique::Technique;
 
     /// Every built-in scene and camera, culled and not: the G-buffer, the peeled layer and the
     /// stochastic depth maps (full and limited to requested pixels) are bit-identical, and the

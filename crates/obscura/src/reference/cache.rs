@@ -65,8 +65,8 @@ pub fn load(dir: &Path, key: &str, pixels: usize) -> Option<Vec<f32>> {
 }
 
 /// Store `image` under `key` (atomically; a failure only costs a recomputation next time).
-pub fn store(dir: &Path, key: &str, image: &[f32]) -> Result<(), crate::Error> {
-    std::fs::create_dir_all(dir).map_err(|e| crate::Error::Output {
+pub fn store(dir: &Path, key: &str, image: &[f32]) -> Result<(), crate::error::Error> {
+    std::fs::create_dir_all(dir).map_err(|e| crate::error::Error::Output {
         path: dir.to_path_buf(),
         message: e.to_string(),
     })?;

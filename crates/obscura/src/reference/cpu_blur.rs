@@ -1,6 +1,6 @@
 //! The bilateral blur of `shaders/bilateral_blur.wgsl` on the CPU: a test oracle.
 
-use super::cpu_vao::GBufferImage;
+use crate::raster::GBufferImage;
 use crate::settings::BlurSettings;
 use crate::view::ScreenGeometry;
 

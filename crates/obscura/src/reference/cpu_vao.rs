@@ -2,37 +2,11 @@
 //! GPU pass on a read-back G-buffer (seed 000 §3.1–3.5).
 
 use super::vao_model::{column_visibility, kernel, snap, Accumulator, PixelFrame};
+// The read-back G-buffer the CPU mirrors take lives in `raster` (re-exported at its old path).
+pub use crate::raster::GBufferImage;
 use crate::settings::VaoSettings;
 use crate::view::ScreenGeometry;
-use glam::{UVec2, Vec3};
-
-/// A G-buffer read back to the CPU (whole framebuffer, guard band included, row-major).
-pub struct GBufferImage {
-    /// Framebuffer width in pixels, guard band included.
-    pub width: u32,
-    /// Framebuffer height in pixels, guard band included.
-    pub height: u32,
-    /// Linear depth, 0 = background.
-    pub depth: Vec<f32>,
-    /// View-space camera-facing normals.
-    pub normals: Vec<Vec3>,
-}
-
-impl GBufferImage {
-    /// Linear depth at framebuffer pixel `p` (0 = background).
-    pub fn depth_at(&self, p: UVec2) -> f32 {
-        self.depth[(p.y * self.width + p.x) as usize]
-    }
-
-    /// Linear depth of the visible region (guard band cropped), row-major.
-    pub fn visible_depth(&self, guard_band: u32) -> Vec<f32> {
-        let (w, h) = (self.width - 2 * guard_band, self.height - 2 * guard_band);
-        (0..h)
-            .flat_map(|y| (0..w).map(move |x| UVec2::new(x, y) + guard_band))
-            .map(|p| self.depth_at(p))
-            .collect()
-    }
-}
+use glam::UVec2;
 
 /// CPU VAO for every visible pixel (before blur).
 pub struct CpuVao {

@@ -8,13 +8,13 @@ use crate::bindings::{
 };
 use crate::bvh::gpu::GpuBvh;
 use crate::bvh::Bvh;
+use crate::error::Error;
 use crate::gpu::Gpu;
 use crate::raster::gpu_scene::GpuScene;
 use crate::scene::Scene;
 use crate::shaders;
 use crate::sources::column_rays::{self, ColumnRays};
 use crate::view::FrameView;
-use crate::Error;
 use wgpu::util::DeviceExt;
 
 /// Hemisphere rays per pixel in one dispatch (progress is reported between batches, and no
@@ -41,7 +41,7 @@ pub fn render_reference_gpu(
         device,
         &gpu.queue,
         crate::technique::Estimator::Vao,
-        &crate::AoSettings {
+        &crate::settings::AoSettings {
             vao: settings.vao,
             ..Default::default()
         },

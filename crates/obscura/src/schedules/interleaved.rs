@@ -5,12 +5,12 @@
 
 use super::{FrameContext, FrameGroups, SourceGroup, Stage};
 use crate::bindings::{self, entry, SCHEDULE_DEPTH_LAYERS};
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
 use crate::view::ScreenGeometry;
-use crate::Error;
 
 pub(crate) fn stage() -> Stage {
     Stage {

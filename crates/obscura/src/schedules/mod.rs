@@ -8,6 +8,7 @@ pub mod single;
 pub mod two_phase;
 
 use crate::bindings::{self, GROUP_ESTIMATOR, GROUP_FRAME, GROUP_SCHEDULE, GROUP_SOURCE};
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
@@ -15,7 +16,6 @@ use crate::shaders;
 use crate::sources::SourcePass;
 use crate::technique::{Schedule, TechniqueRow};
 use crate::view::ScreenGeometry;
-use crate::Error;
 
 /// Which of the source's two group-2 layouts a pipeline binds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -428,9 +428,12 @@ impl SchedulePass {
 #[cfg(test)]
 mod tests {
     use super::{DISTINCT_DEPTHS, WRITTEN_OUT};
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::gpu;
+    use crate::scene;
+    use crate::settings::AoSettings;
     use crate::settings::{Preset, SdSelection};
-    use crate::{scene, AoSettings, Renderer, Technique};
+    use crate::technique::Technique;
 
     /// Resolving each distinct depth of a map pixel once, nearest first, gives the same AO as
     /// resolving every stored sample in turn, for every estimator over the raster map (each

@@ -11,6 +11,7 @@
 
 use super::{single, FrameContext, Stage};
 use crate::bindings::{self, entry, GROUP_ESTIMATOR, GROUP_FRAME, GROUP_SCHEDULE, GROUP_SOURCE};
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::frame::{workgroups_32x8, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
@@ -20,7 +21,6 @@ use crate::shaders;
 use crate::sources::stochastic_depth::{bindings_wgsl, read_layout_entries, StochasticDepthMap};
 use crate::sources::SourcePass;
 use crate::view::{FrameView, ScreenGeometry};
-use crate::Error;
 use glam::{Mat4, Quat, Vec3};
 
 /// `MultiviewFrame` of `shaders/schedules/multiview/point.wgsl`.

@@ -2,12 +2,12 @@
 //! pixel in one invocation, the source consulted inline; the source prepares before the pass.
 
 use super::{FrameContext, FrameGroups, SourceGroup, Stage};
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::frame::workgroups_32x8;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
-use crate::Error;
 
 pub(crate) fn stage() -> Stage {
     Stage {

@@ -13,13 +13,13 @@ use crate::bindings::{
     self, entry, GROUP_SCHEDULE, INDIRECT_DISPATCH, INDIRECT_WORK_LIST, SCHEDULE_PIXELS,
     SCHEDULE_WORK_LIST,
 };
+use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::frame::workgroups_32x8;
 use crate::gpu::PassProfiler;
 use crate::shaders;
 use crate::sources::SourcePass;
 use crate::view::ScreenGeometry;
-use crate::Error;
 
 /// Bytes per visible pixel of phase 1's results (`TwoPhasePixel` in the WGSL: the mask and the
 /// estimator's three-word partial state).

@@ -2,12 +2,13 @@
 //! authors'; [`Preset`]s are per technique; settings files are JSON or TOML
 //! ([`AoSettings::from_file`]); `docs/SETTINGS.md` documents every field.
 
+pub use crate::error::SettingsError;
 use crate::knob::{Kind, Knob, Widget};
 use crate::technique::Estimator;
 pub use crate::technique::{Technique, UnknownTechnique};
 use serde::{Deserialize, Serialize};
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::str::FromStr;
 
 mod estimators;
@@ -24,95 +25,6 @@ pub use files::*;
 pub use presets::*;
 pub use stochastic_depth::*;
 use validate::*;
-
-/// What can be wrong with settings. Messages name settings *fields* by their path in a settings
-/// file (`vao.radius`, `stochastic_depth.alpha`), never a command-line flag: the CLI maps fields
-/// to its flags itself.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum SettingsError {
-    /// A `technique` name that is not a row of the technique table.
-    #[error(transparent)]
-    UnknownTechnique(#[from] UnknownTechnique),
-    /// A value no kernel can use.
-    #[error("invalid {field} {value}: {rule}")]
-    Invalid {
-        /// The field's path, as in a settings file: `vao.radius`, `blur.radius`,
-        /// `stochastic_depth.alpha`, `peel_separation`, … (one of [`AoSettings::field_paths`]).
-        field: &'static str,
-        /// The rejected value, as given.
-        value: String,
-        /// What a valid value is, with an example; no command-line flags.
-        rule: String,
-    },
-    /// A valid value the adapter cannot do (e.g. a stochastic depth sample count it cannot
-    /// rasterise), with what it can do.
-    #[error("{field} {value} is not supported on adapter '{adapter}': {reason}")]
-    Unsupported {
-        /// The field's path, as for [`SettingsError::Invalid`].
-        field: &'static str,
-        /// The value asked for, as given.
-        value: String,
-        /// The adapter's name.
-        adapter: String,
-        /// Why, and the values that work here.
-        reason: String,
-    },
-    /// A preset name that is not one of [`Preset::ALL`].
-    #[error("unknown preset '{0}': use low, medium, high or ultra")]
-    UnknownPreset(String),
-    /// A settings file whose extension says neither JSON nor TOML.
-    #[error(
-        "settings file '{}' is neither .json nor .toml: name it *.toml or *.json (the format is \
-         chosen by the extension)",
-        path.display()
-    )]
-    UnknownFormat {
-        /// The settings file.
-        path: PathBuf,
-    },
-    /// A settings file that cannot be read.
-    #[error("cannot read settings file '{}': {message}: check the path", path.display())]
-    Read {
-        /// The settings file.
-        path: PathBuf,
-        /// The operating system's error.
-        message: String,
-    },
-    /// A settings file that is not valid JSON/TOML, has a value of the wrong type or names a
-    /// field that does not exist (`line`/`column` where the parser says, 1-based).
-    #[error(
-        "settings file '{}'{}: {message} (fix the file; its fields are listed in docs/SETTINGS.md)",
-        path.display(),
-        at(*line, *column)
-    )]
-    Parse {
-        /// The settings file.
-        path: PathBuf,
-        /// The line the parser points at, 1-based; `None` where it cannot tell.
-        line: Option<usize>,
-        /// The column on that line, 1-based; `None` where the parser cannot tell.
-        column: Option<usize>,
-        /// The parser's message, without the position (`line`, `column` give it).
-        message: String,
-    },
-    /// A settings file that parses but whose values do not validate.
-    #[error("settings file '{}': {source}", path.display())]
-    InFile {
-        /// The settings file.
-        path: PathBuf,
-        /// What [`AoSettings::validate`] rejected in the file's values.
-        source: Box<SettingsError>,
-    },
-}
-
-/// Where in a settings file a parse error lies, for its message (empty where unknown).
-pub(super) fn at(line: Option<usize>, column: Option<usize>) -> String {
-    match (line, column) {
-        (Some(l), Some(c)) => format!(", line {l}, column {c}"),
-        (Some(l), None) => format!(", line {l}"),
-        _ => String::new(),
-    }
-}
 
 impl AoSettings {
     /// These settings with every rule-derived value written out (α = 1.5/S as a number), for

@@ -1,4 +1,5 @@
 use super::*;
+use std::path::PathBuf;
 
 fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);

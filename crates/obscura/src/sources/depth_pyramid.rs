@@ -217,7 +217,7 @@ impl DepthPyramid {
 
     /// Levels 1 … L − 1 of the last frame, each row-major over its own size ([`level_size`]).
     /// Waits for the GPU.
-    pub fn read_levels(&self, gpu: &crate::Gpu) -> Result<Vec<Vec<f32>>, crate::Error> {
+    pub fn read_levels(&self, gpu: &crate::gpu::Gpu) -> Result<Vec<Vec<f32>>, crate::error::Error> {
         let width = self.texture.width() as usize;
         (1..self.levels)
             .map(|level| {

@@ -16,6 +16,7 @@ pub mod stochastic_depth;
 
 use crate::bindings::{self, entry, SOURCE_SD_INTERVAL, SOURCE_SD_REQUEST, SOURCE_SECOND_DEPTH};
 use crate::bvh::gpu::GpuBvh;
+use crate::error::Error;
 use crate::frame::FrameInputs;
 use crate::gpu::zero_fill::{zero_fill_size, ZeroFill};
 use crate::gpu::{Gpu, PassProfiler};
@@ -24,7 +25,6 @@ use crate::settings::AoSettings;
 use crate::shaders;
 use crate::technique::{Schedule, Source};
 use crate::view::{FrameView, ScreenGeometry};
-use crate::Error;
 use column_rays::ColumnRays;
 use depth_pyramid::DepthPyramid;
 use ray_stochastic_depth::{RayMapLayout, RayStochasticDepthMap};

@@ -20,11 +20,12 @@
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
 use crate::bvh::gpu::GpuBvh;
+use crate::error::Error;
 use crate::gpu::PassProfiler;
 use crate::raster::gpu_scene::GpuScene;
 use crate::settings::RaySdSettings;
+use crate::shaders;
 use crate::view::FrameView;
-use crate::{shaders, Error};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::OnceLock;
 
@@ -407,7 +408,7 @@ impl RayStochasticDepthMap {
     /// The map read back as `reservoir` framebuffer-sized layers of linear depth, 0 = empty
     /// (slot `s` in layer `s`, as the raster map's sample layers): each pixel shows its texel's
     /// slots, which is what the AO passes read there.
-    pub fn read_layers(&self, gpu: &crate::Gpu) -> Result<Vec<Vec<f32>>, Error> {
+    pub fn read_layers(&self, gpu: &crate::gpu::Gpu) -> Result<Vec<Vec<f32>>, Error> {
         let near = f32::from_bits(self.near.load(Ordering::Relaxed));
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.depths)?;
         let slots: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
@@ -431,7 +432,7 @@ impl RayStochasticDepthMap {
     /// The hits each texel's ray handled in the last frame (at most `max_count`; 0 where
     /// nothing was traced), map-sized ([`Self::map_size`], guard band included): the debug
     /// output "hits per ray" (seed 002).
-    pub fn read_hits(&self, gpu: &crate::Gpu) -> Result<Vec<u32>, Error> {
+    pub fn read_hits(&self, gpu: &crate::gpu::Gpu) -> Result<Vec<u32>, Error> {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.depths)?;
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
         let (w, h) = self.map_size();

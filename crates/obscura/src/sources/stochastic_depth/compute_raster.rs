@@ -95,12 +95,12 @@ impl ComputeRaster {
         map_size: (u32, u32),
         map_bindings: &[(wgpu::ShaderStages, wgpu::BindingType)],
         requested: bool,
-    ) -> Result<Self, crate::Error> {
+    ) -> Result<Self, crate::error::Error> {
         use crate::bindings::entry;
         if !available(device, requested) {
             let needed = storage_buffers_needed(requested);
             let allowed = device.limits().max_storage_buffers_per_shader_stage;
-            return Err(crate::SettingsError::Unsupported {
+            return Err(crate::error::SettingsError::Unsupported {
                 field: "stochastic_depth.rasterizer",
                 value: "compute".into(),
                 adapter: adapter.get_info().name,
@@ -317,7 +317,10 @@ impl ComputeRaster {
     /// or item runs that did not fit, fragments shaded by the bin and the tile pass). Waits for
     /// the GPU.
     #[cfg(test)]
-    pub fn read_counts(&self, gpu: &crate::Gpu) -> Result<[u32; COUNTERS], crate::Error> {
+    pub fn read_counts(
+        &self,
+        gpu: &crate::gpu::Gpu,
+    ) -> Result<[u32; COUNTERS], crate::error::Error> {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.counts)?;
         let v: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
         Ok(std::array::from_fn(|i| v[i]))

@@ -28,6 +28,7 @@ mod compute_raster;
 mod reset;
 
 use crate::bindings::{entry, SOURCE_SD_MAPS, SOURCE_SD_NEAR};
+use crate::error::Error;
 use crate::gpu::PassProfiler;
 use crate::raster::gbuffer::{
     behind_first_layer_entries, scene_layout, scene_resources, visibility_draws, CameraUniform,
@@ -38,8 +39,8 @@ use crate::raster::triangle_cull::{CullList, TriangleCull};
 use crate::settings::{
     SdMask, SdRasterizer, SdSelection, StochasticDepthSettings, SD_SAMPLE_COUNTS,
 };
+use crate::shaders;
 use crate::view::FrameView;
-use crate::{shaders, Error};
 use reset::{ResetScope, SdReset};
 use std::sync::atomic::{AtomicU32, Ordering};
 use wgpu::util::DeviceExt;
@@ -322,16 +323,17 @@ impl StochasticDepthMap {
             resolve_rasterizer(adapter, device, settings.rasterizer, requested.is_some());
         let compute_raster = rasterizer == SdRasterizer::Compute;
         let stenciled = requested == Some(SdMask::Stencil) && !compute_raster;
-        let layout =
-            SdLayout::plan(settings.samples).ok_or_else(|| crate::SettingsError::Invalid {
+        let layout = SdLayout::plan(settings.samples).ok_or_else(|| {
+            crate::error::SettingsError::Invalid {
                 field: "stochastic_depth.samples",
                 value: settings.samples.to_string(),
                 rule: "must be 1, 2, 4, 8 or 16".into(),
-            })?;
+            }
+        })?;
         // `AoSettings::validate` checked α already; this guards direct use of the map.
         let alpha = settings.alpha();
         if !(alpha > 0.0 && alpha <= 1.0) {
-            return Err(crate::SettingsError::Invalid {
+            return Err(crate::error::SettingsError::Invalid {
                 field: "stochastic_depth.alpha",
                 value: alpha.to_string(),
                 rule: "must be in (0, 1], e.g. 0.2".into(),
@@ -347,7 +349,7 @@ impl StochasticDepthMap {
         );
         let max = device.limits().max_storage_buffer_binding_size;
         if bytes > max {
-            return Err(crate::SettingsError::Unsupported {
+            return Err(crate::error::SettingsError::Unsupported {
                 field: "stochastic_depth.samples",
                 value: samples.to_string(),
                 adapter: adapter.get_info().name,
@@ -749,7 +751,7 @@ impl StochasticDepthMap {
     /// records, triangles left to the hardware, records or item runs that did not fit,
     /// fragments shaded by the bin and the tile pass).
     #[cfg(test)]
-    pub(crate) fn compute_counts(&self, gpu: &crate::Gpu) -> Option<[u32; 6]> {
+    pub(crate) fn compute_counts(&self, gpu: &crate::gpu::Gpu) -> Option<[u32; 6]> {
         self.compute.as_ref().map(|c| c.read_counts(gpu).unwrap())
     }
 
@@ -765,7 +767,7 @@ impl StochasticDepthMap {
 
     /// Every sample layer of the last map rendered, as linear depth (0 = empty), framebuffer-sized
     /// (its own band left out) and row-major: `layers[s]` is sample `s`. Waits for the GPU.
-    pub fn read_layers(&self, gpu: &crate::Gpu) -> Result<Vec<Vec<f32>>, Error> {
+    pub fn read_layers(&self, gpu: &crate::gpu::Gpu) -> Result<Vec<Vec<f32>>, Error> {
         let near = f32::from_bits(self.near.load(Ordering::Relaxed));
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.depths)?;
         let values: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
@@ -816,9 +818,11 @@ pub(crate) fn begin<'e>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::{gpu, moved};
+    use crate::scene;
     use crate::settings::AoSettings;
-    use crate::{scene, Renderer, Technique};
+    use crate::technique::Technique;
 
     /// The whole map tested against the G-buffer's depth buffer holds the same depths as its
     /// twin tested against its reset's, on every built-in scene and camera, frame after frame

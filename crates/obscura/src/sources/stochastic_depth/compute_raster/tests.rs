@@ -1,10 +1,11 @@
 //! The compute-rasterised map against the hardware's: the same fragments, up to rounding.
 
 use super::{ITEM_CAPACITY, OWN_ITEMS, TILE_TESTS};
+use crate::pipeline::renderer::Renderer;
 use crate::raster::test_support::{gpu, moved};
 use crate::scene::{self, AlphaMode, Camera, Material, Scene, Texture};
 use crate::settings::{AoSettings, SdMask, SdRasterizer, SdSelection};
-use crate::{Renderer, Technique};
+use crate::technique::Technique;
 use glam::{Vec2, Vec3};
 
 const SIZE: (u32, u32, u32) = (96, 64, 8);
