@@ -99,6 +99,15 @@ pub enum Widget {
     Checkbox,
 }
 
+impl Widget {
+    /// An estimator's radius: a logarithmic slider from 1/1000 of the scene's size to all of it.
+    pub const RADIUS: Widget = Widget::Slider {
+        min: 1e-3,
+        max: 1.0,
+        log: true,
+    };
+}
+
 impl Kind {
     /// A finite number > 0.
     pub const POSITIVE: Kind = Kind::number(0.0, f64::INFINITY, true, false);

@@ -7,6 +7,7 @@
 //! variant and one row of [`TABLE`] here, plus at most one estimator `.rs`/`.wgsl` pair
 //! (`docs/ARCHITECTURE.md`, "Adding a technique").
 
+use crate::estimators::{self, EstimatorModule};
 use std::fmt;
 use std::str::FromStr;
 
@@ -751,6 +752,8 @@ pub struct EstimatorCaps {
     /// What presets change: a field's value at low, medium, high, ultra (medium is always the
     /// default), fields of its own section or the blur's.
     pub presets: &'static [(&'static str, [f64; 4])],
+    /// Its module: WGSL, constants, settings knobs, parameter packing (`src/estimators/`).
+    pub module: &'static EstimatorModule,
 }
 
 impl Estimator {
@@ -785,6 +788,7 @@ impl Estimator {
                     ("vao.samples", [8.0, 8.0, 16.0, 32.0]),
                     ("blur.radius", [2.0, 4.0, 4.0, 6.0]),
                 ],
+                module: &estimators::vao::MODULE,
             },
             // Seed 001 Tab. 1's 8 × 4 as the default, seed 004's smallest grid (8 × 10) as high.
             Estimator::Hbao => &EstimatorCaps {
@@ -806,6 +810,7 @@ impl Estimator {
                     ("hbao.directions", [4.0, 8.0, 8.0, 16.0]),
                     ("hbao.steps", [4.0, 4.0, 10.0, 20.0]),
                 ],
+                module: &estimators::hbao::MODULE,
             },
             // 8 × 4 = 32 samples is already the most the two-phase mask holds.
             Estimator::HbaoPlus => &EstimatorCaps {
@@ -827,6 +832,7 @@ impl Estimator {
                     ("hbao_plus.directions", [4.0, 8.0, 8.0, 8.0]),
                     ("blur.radius", [2.0, 4.0, 4.0, 6.0]),
                 ],
+                module: &estimators::hbao_plus::MODULE,
             },
             // The common XeGTAO-style grid, slices × steps 1×2, 2×2, 3×3, 9×3.
             Estimator::Gtao => &EstimatorCaps {
@@ -848,6 +854,7 @@ impl Estimator {
                     ("gtao.slices", [1.0, 2.0, 3.0, 9.0]),
                     ("gtao.steps", [2.0, 2.0, 3.0, 3.0]),
                 ],
+                module: &estimators::gtao::MODULE,
             },
             // Seed 001 Tab. 1's 32 as the default, the most the two-phase mask holds.
             Estimator::Ssao => &EstimatorCaps {
@@ -866,6 +873,7 @@ impl Estimator {
                 late_load_with_bent_normals: false,
                 bent_normals: false,
                 presets: &[("ssao.samples", [8.0, 32.0, 32.0, 32.0])],
+                module: &estimators::ssao::MODULE,
             },
             // SAO's published code ships 11 taps; fewer and more around it.
             Estimator::Sao => &EstimatorCaps {
@@ -884,6 +892,7 @@ impl Estimator {
                 late_load_with_bent_normals: false,
                 bent_normals: false,
                 presets: &[("sao.samples", [7.0, 11.0, 16.0, 32.0])],
+                module: &estimators::sao::MODULE,
             },
             // Seed 004's 8 directions as the default; the steps per level are ours.
             Estimator::PyramidHbao => &EstimatorCaps {
@@ -905,6 +914,7 @@ impl Estimator {
                     ("pyramid_hbao.directions", [4.0, 8.0, 8.0, 16.0]),
                     ("pyramid_hbao.steps", [3.0, 4.0, 6.0, 6.0]),
                 ],
+                module: &estimators::pyramid_hbao::MODULE,
             },
             // The common GTAO grid (slices × steps 1×2, 2×2, 3×3) as far as three slices and 32
             // samples allow: ultra is 3 × 5 instead of 9 × 3.
@@ -927,6 +937,7 @@ impl Estimator {
                     ("gtao_vb.slices", [1.0, 2.0, 3.0, 3.0]),
                     ("gtao_vb.steps", [2.0, 2.0, 3.0, 5.0]),
                 ],
+                module: &estimators::gtao_vb::MODULE,
             },
         }
     }

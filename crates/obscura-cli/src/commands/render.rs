@@ -96,7 +96,7 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
         if row.source.maps_hidden_depth() {
             write_sd_debug(dir, &renderer, &settings, (w, h), g)?
         } else if row.schedule.two_phase() {
-            let samples = obscura::estimators::samples_per_pixel(row.estimator, &settings);
+            let samples = settings.samples_per_pixel();
             write_debug(dir, &renderer, w, h, samples)?
         }
         if let Some((name, what)) = row.estimator_debug_image() {
@@ -427,9 +427,7 @@ fn write_sd_debug(
         let masks = renderer
             .read_sample_masks()?
             .ok_or_else(|| anyhow::anyhow!("the two-phase schedule returned no sample masks"))?;
-        let per_pixel =
-            obscura::estimators::samples_per_pixel(settings.technique.row().estimator, settings)
-                as f32;
+        let per_pixel = settings.samples_per_pixel() as f32;
         let flagged_image: Vec<f32> = masks
             .iter()
             .map(|m| m.count_ones() as f32 / per_pixel)

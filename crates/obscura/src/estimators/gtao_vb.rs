@@ -1,8 +1,128 @@
 //! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
 //! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
 
-use crate::settings::{GtaoVbSettings, SdQuery, SectorActivation, StochasticDepthSettings};
+use crate::error::SettingsError;
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::PI;
+use std::str::FromStr;
+
+/// How a sample's angular span turns into sectors of the visibility bitmask (seed 003).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SectorActivation {
+    /// A sector the span touches.
+    #[default]
+    Ceil,
+    /// A sector the span covers at least half of.
+    Round,
+    /// A sector the span covers whole.
+    Floor,
+}
+
+impl FromStr for SectorActivation {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "ceil" => Ok(SectorActivation::Ceil),
+            "round" => Ok(SectorActivation::Round),
+            "floor" => Ok(SectorActivation::Floor),
+            _ => Err(SettingsError::Invalid {
+                field: "gtao_vb.activation",
+                value: s.to_string(),
+                rule: "must be 'ceil' (default), 'round' or 'floor'".into(),
+            }),
+        }
+    }
+}
+
+/// GTAO with visibility bitmasks (seed 003): slices × steps per side, 32 sectors per slice,
+/// constant thickness, no falloff.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GtaoVbSettings {
+    /// Screen-space search radius R in world units.
+    pub radius: f32,
+    /// Constant thickness of every surface behind its depth sample, world units (the default
+    /// is VAO's default thickness τ·R = 0.25: the same physical assumption).
+    pub thickness: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Slices (1 to 3: one 32-bit mask each in the estimator's three-word state).
+    pub slices: u32,
+    /// Steps on each side of a slice; slices × 2 × steps ≤ 32.
+    pub steps: u32,
+    /// Which sectors a sample's angular span sets (default [`SectorActivation::Ceil`]).
+    pub activation: SectorActivation,
+    /// Weigh each free sector by its cosine-weighted share of the slice, GTAO's integral (our
+    /// extension: the ground truth's cosine-weighted AO); default `false`, seed 003's uniform
+    /// count of free sectors.
+    pub cosine_weighted: bool,
+}
+
+impl Default for GtaoVbSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            thickness: 0.25,
+            exponent: 1.0,
+            slices: 2,
+            steps: 2,
+            activation: SectorActivation::Ceil,
+            cosine_weighted: false,
+        }
+    }
+}
+
+impl GtaoVbSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new("gtao_vb.radius", "--gtao-vb-radius", "GTAO-VB search radius R in world units.", Kind::POSITIVE)
+            .aliases(&["--vb-radius"])
+            .length()
+            .widget(Widget::RADIUS),
+        Knob::new(
+            "gtao_vb.thickness",
+            "--gtao-vb-thickness",
+            "GTAO-VB constant thickness behind every depth sample, world units.",
+            Kind::NON_NEGATIVE,
+        )
+        .aliases(&["--vb-thickness"])
+        .length()
+        .doc("constant thickness behind every depth sample (light passes behind it)")
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 1.0,
+            log: false,
+        }),
+        Knob::new("gtao_vb.exponent", "--gtao-vb-exponent", "GTAO-VB power applied to the final AO.", Kind::POSITIVE)
+            .aliases(&["--vb-exponent"]),
+        Knob::new("gtao_vb.slices", "--gtao-vb-slices", "GTAO-VB slices per pixel.", Kind::int(1, 3))
+            .aliases(&["--vb-slices"])
+            .note("one 32-bit mask each")
+            .widget(Widget::Range),
+        Knob::new("gtao_vb.steps", "--gtao-vb-steps", "GTAO-VB steps on each side of a slice.", Kind::int(1, 16))
+            .aliases(&["--vb-steps"])
+            .note("slices × 2 × steps ≤ 32: one bit per sample")
+            .widget(Widget::Range),
+        Knob::new(
+            "gtao_vb.activation",
+            "--gtao-vb-activation",
+            "GTAO-VB sector activation: ceil (touched), round (half covered) or floor (covered).",
+            Kind::Choice(&["ceil", "round", "floor"]),
+        )
+        .aliases(&["--vb-activation"])
+        .doc("a sector is occluded when a sample's span touches it, covers half of it, or covers it whole (seed 003)"),
+        Knob::new(
+            "gtao_vb.cosine_weighted",
+            "--gtao-vb-cosine",
+            "GTAO-VB: weigh free sectors by the cosine to the normal, GTAO's integral (our \
+             extension; seed 003 counts sectors alike).",
+            Kind::Switch { flag_sets: true },
+        )
+        .aliases(&["--vb-cosine"]),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -15,15 +135,8 @@ pub(crate) const WGSL: &str = concat!(
 );
 /// Its `override` constants: the sample count, slices × 2 × steps; whether sectors are
 /// cosine-weighted (1) or counted alike (0, seed 003); whether hidden depth is skipped where
-/// no deeper surface can mark a free sector ([`exact_query`]); and the steps per slice side.
+/// no deeper surface can mark a free sector ([`super::SourceInputs::exact_query`]); and the steps per slice side.
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "COSINE_WEIGHTED", "EXACT_QUERY", "STEPS"];
-
-/// Whether a sample skips the hidden depth where every sector a deeper surface could mark is
-/// marked already (gtao_vb.wgsl): with the default query, and only without compensation, which
-/// widens a stochastic sample's run beyond the sectors the test counts on.
-pub fn exact_query(sd: &StochasticDepthSettings) -> bool {
-    sd.query != SdQuery::FirstLayer && sd.compensation == 1.0
-}
 
 /// Pixel (x, y) of the visible image: (cos, sin) of its slice rotation, π·B/16/slices with B the
 /// Bayer value of (x % 4, y % 4), and its step jitter in [0, 1) ([`super::bayer_pattern`]).
@@ -79,8 +192,17 @@ struct GtaoVbParams {
     samples: [[f32; 4]; 32],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: GtaoVbSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: Some(sector_direction_table),
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &GtaoVbSettings, sd: &StochasticDepthSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &GtaoVbSettings, inputs: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(PI / s.slices as f32);
     let count = s.slices * 2 * s.steps;
     let mut samples = [[0.0; 4]; 32];
@@ -108,7 +230,7 @@ pub(crate) fn params(s: &GtaoVbSettings, sd: &StochasticDepthSettings) -> (Vec<u
         vec![
             f64::from(count),
             f64::from(u8::from(s.cosine_weighted)),
-            f64::from(u8::from(exact_query(sd))),
+            f64::from(u8::from(inputs.exact_query())),
             f64::from(s.steps),
         ],
     )

@@ -2,8 +2,82 @@
 //! Algorithm 2 and seed 004 §2.2.1 state it. Its direction table and per-pixel pattern are here so
 //! the CPU mirror in the tests uses the same numbers.
 
-use crate::settings::{HbaoSettings, HBAO_MAX_DIRECTIONS as MAX_DIRECTIONS};
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
+
+/// The most `hbao.directions` (the parameter block's direction table; seed 004's largest grid is
+/// 64 × 80).
+pub const HBAO_MAX_DIRECTIONS: u32 = 64;
+
+/// Classic HBAO parameters (seed 001 §3.2 Algorithm 2, seed 004 §2.2.1): D directions × S steps,
+/// defaults 8 × 4 as seed 001 Tab. 1; seed 004's grid 8 × 10 … 64 × 80 is within range.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HbaoSettings {
+    /// Radius R in world units: samples up to R on screen, attenuation W(r) = 1 − r/R.
+    pub radius: f32,
+    /// Angle added to the tangent's elevation to start each direction's horizon, in radians
+    /// (absorbs tessellation creases; the papers give no value, ours is 0.1 ≈ 5.7°).
+    pub angle_bias: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Directions per pixel, 1 to 64.
+    pub directions: u32,
+    /// Steps per direction, 1 to 128.
+    pub steps: u32,
+}
+
+impl Default for HbaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            angle_bias: 0.1,
+            exponent: 1.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
+impl HbaoSettings {
+    // Classic HBAO's flags are `--horizon-*`: `--hbao-*` named HBAO+'s first and stays its alias.
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "hbao.radius",
+            "--horizon-radius",
+            "HBAO (hbao, hbao-dual) radius R in world units; attenuation 1 − r/R.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("HBAO radius R (samples up to R on screen, attenuation W(r) = 1 − r/R)")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "hbao.angle_bias",
+            "--horizon-bias",
+            "HBAO angle bias in radians, added to the tangent elevation each direction starts from.",
+            Kind::number(0.0, std::f64::consts::FRAC_PI_2, false, true),
+        )
+        .units("radians")
+        .doc("added to the tangent's elevation where each direction's horizon starts"),
+        Knob::new("hbao.exponent", "--horizon-exponent", "HBAO power applied to the final AO.", Kind::POSITIVE),
+        Knob::new(
+            "hbao.directions",
+            "--horizon-directions",
+            "HBAO directions per pixel, D.",
+            Kind::int(1, HBAO_MAX_DIRECTIONS),
+        )
+        .widget(Widget::Range),
+        Knob::new(
+            "hbao.steps",
+            "--horizon-steps",
+            "HBAO steps per direction, r'/(S + 1) pixels apart.",
+            Kind::int(1, 128),
+        )
+        .widget(Widget::Range),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -43,12 +117,21 @@ struct HbaoParams {
     steps: u32,
     _pad: u32,
     pattern: [[f32; 4]; 16],
-    direction_table: [[f32; 4]; MAX_DIRECTIONS as usize],
+    direction_table: [[f32; 4]; HBAO_MAX_DIRECTIONS as usize],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: HbaoSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &HbaoSettings) -> (Vec<u8>, Vec<f64>) {
-    let mut direction_table = [[0.0; 4]; MAX_DIRECTIONS as usize];
+pub(crate) fn params(s: &HbaoSettings, _: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
+    let mut direction_table = [[0.0; 4]; HBAO_MAX_DIRECTIONS as usize];
     for (d, k) in direction_table
         .iter_mut()
         .enumerate()

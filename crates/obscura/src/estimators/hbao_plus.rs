@@ -2,8 +2,85 @@
 //! as the seed authors' baseline (seed 000 §2.1, docs/AUTHORS_CODE.md §1.7). Its per-pixel pattern
 //! is here so the CPU mirror in the tests uses the same numbers.
 
-use crate::settings::HbaoPlusSettings;
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
+
+/// HBAO+ parameters: NVIDIA-style per-sample horizon AO as the seed authors ran it as their baseline
+/// (docs/AUTHORS_CODE.md §1.7: 8 directions × 4 steps, R 1.0, NdotV bias 0.1, exponent 2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HbaoPlusSettings {
+    /// Radius R in world units: samples up to R on screen, falloff 1 − d²/R².
+    pub radius: f32,
+    /// Angle bias: a sample occludes by `saturate(N·V/|V| − bias)`.
+    pub bias: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Directions per pixel.
+    pub directions: u32,
+    /// Steps per direction; directions × steps ≤ 32 (one bit each in the two-phase mask).
+    pub steps: u32,
+}
+
+impl Default for HbaoPlusSettings {
+    fn default() -> Self {
+        Self {
+            radius: 1.0,
+            bias: 0.1,
+            exponent: 2.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
+impl HbaoPlusSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "hbao_plus.radius",
+            "--hbao-plus-radius",
+            "HBAO+ radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--hbao-radius"])
+        .length()
+        .doc("HBAO+ radius R (samples up to R on screen, falloff 1 − d²/R²)")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "hbao_plus.bias",
+            "--hbao-plus-bias",
+            "HBAO+ angle bias: a sample occludes by saturate(N·V/|V| − bias).",
+            Kind::number(0.0, 1.0, false, true),
+        )
+        .aliases(&["--hbao-bias"]),
+        Knob::new(
+            "hbao_plus.exponent",
+            "--hbao-plus-exponent",
+            "HBAO+ power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--hbao-exponent"]),
+        Knob::new(
+            "hbao_plus.directions",
+            "--hbao-plus-directions",
+            "HBAO+ directions per pixel (directions × steps ≤ 32).",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--hbao-directions"])
+        .widget(Widget::Range),
+        Knob::new(
+            "hbao_plus.steps",
+            "--hbao-plus-steps",
+            "HBAO+ steps per direction.",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--hbao-steps"])
+        .note("directions × steps ≤ 32: one bit per sample")
+        .widget(Widget::Range),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -43,8 +120,17 @@ struct HbaoPlusParams {
     samples: [[f32; 4]; 32],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: HbaoPlusSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &HbaoPlusSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &HbaoPlusSettings, _: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(TAU / s.directions as f32);
     let mut samples = [[0.0; 4]; 32];
     for (i, k) in samples

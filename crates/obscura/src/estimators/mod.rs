@@ -3,8 +3,10 @@
 //! An estimator is a WGSL file in `shaders/estimators/` implementing the estimator contract
 //! (docs/ARCHITECTURE.md: per-pixel setup, samples, the value of one sample against one depth, how
 //! values of several depths combine, "needs hidden depth?", the accumulated state and the finish)
-//! plus a Rust module here that makes its parameters (bind group 1) and pipeline constants. The
-//! schedules own the loops; the sources consult the estimator for each depth they find.
+//! plus a Rust module here that holds everything else of it: its settings struct and their knobs,
+//! its parameter packing (bind group 1) and pipeline constants, as one [`EstimatorModule`]. The
+//! schedules own the loops; the sources consult the estimator for each depth they find. Nothing
+//! here knows the technique table or the settings of the whole.
 
 pub mod gtao;
 pub mod gtao_vb;
@@ -16,9 +18,61 @@ pub mod ssao;
 pub mod vao;
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS, ESTIMATOR_TABLE};
-use crate::settings::AoSettings;
-use crate::technique::Estimator;
+use crate::knob::{Knob, Value};
 use wgpu::util::DeviceExt;
+
+/// One estimator, described once in its module (`estimators/<name>.rs`, `MODULE`): its WGSL and
+/// pipeline constants, its settings' knobs, how its parameter block is packed and the table it
+/// reads, if any. The technique table points at it (`EstimatorCaps::module`).
+#[derive(Clone, Copy, Debug)]
+pub struct EstimatorModule {
+    /// Its WGSL (the estimator contract, docs/ARCHITECTURE.md).
+    pub wgsl: &'static str,
+    /// The names of its `override` constants, `SAMPLE_COUNT` first.
+    pub constants: &'static [&'static str],
+    /// Its settings section's knobs (`VaoSettings::KNOBS`).
+    pub knobs: &'static [Knob],
+    /// Its uniform bytes and its constants' values from its settings section (serde form, as a
+    /// settings file holds it) and what its source decides.
+    pub params: PackParams,
+    /// The texels (`Rg32Float`, one row) of the table it reads at `ESTIMATOR_TABLE`, if any.
+    pub table: Option<fn() -> Vec<[f32; 2]>>,
+}
+
+/// How an estimator packs its parameters: its uniform bytes and its constants' values (in the
+/// order of its `constants`) from its settings section and its source's inputs.
+pub type PackParams = fn(&Value, &SourceInputs) -> (Vec<u8>, Vec<f64>);
+
+/// What an estimator's parameters take from its hidden-depth source's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SourceInputs {
+    /// The stochastic depth map is read where the first surface does not occlude even if no
+    /// deeper surface can (`stochastic_depth.query = "first-layer"`).
+    pub literal_query: bool,
+    /// The stochastic samples' missing-occlusion compensation (`stochastic_depth.compensation`).
+    pub compensation: f32,
+    /// The depth pyramid's levels L (`pyramid.levels`).
+    pub pyramid_levels: u32,
+    /// The depth pyramid's factor K (`pyramid.factor`).
+    pub pyramid_factor: u32,
+}
+
+impl SourceInputs {
+    /// Whether GTAO-VB's samples skip the hidden depth where every sector a deeper surface could
+    /// mark is marked already (gtao_vb.wgsl): with the default query, and only without
+    /// compensation, which widens a stochastic sample's run beyond the sectors the test counts on.
+    pub fn exact_query(&self) -> bool {
+        !self.literal_query && self.compensation == 1.0
+    }
+}
+
+/// An estimator's settings section in its struct (the section comes from valid settings).
+pub(crate) fn section<T: serde::de::DeserializeOwned>(section: &Value) -> T {
+    section
+        .clone()
+        .try_into()
+        .expect("an estimator's settings section reads back")
+}
 
 /// An estimator as a pipeline sees it: its shader, its `override` constants and group 1.
 pub(crate) struct EstimatorPass {
@@ -29,29 +83,29 @@ pub(crate) struct EstimatorPass {
 }
 
 impl EstimatorPass {
-    /// The estimator of a technique row with its settings; `max_radius_px` caps its radius on
-    /// screen (0: no cap; [`AoSettings::max_radius_px`], which the ground truth leaves out).
-    pub fn for_row(
+    /// Estimator `module` (labelled `name`) with its settings section and its source's inputs;
+    /// `max_radius_px` caps its radius on screen (0: no cap; `AoSettings::max_radius_px`, which
+    /// the ground truth leaves out).
+    pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        estimator: Estimator,
-        settings: &AoSettings,
+        (name, module): (&str, &EstimatorModule),
+        (section, inputs): (&Value, &SourceInputs),
         max_radius_px: f32,
     ) -> Self {
-        let (wgsl, names) = wgsl(estimator);
-        let (params, values) = params(estimator, settings);
-        let mut constants: Vec<_> = names.iter().copied().zip(values).collect();
+        let (params, values) = (module.params)(section, inputs);
+        let mut constants: Vec<_> = module.constants.iter().copied().zip(values).collect();
         // common/view.wgsl's cap, set only where there is one (0 is the shader's default).
         if max_radius_px > 0.0 {
             constants.push(("MAX_RADIUS_PX", f64::from(max_radius_px)));
         }
-        let name = estimator.name();
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(name),
             contents: &params,
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let table = table(estimator).map(|texels| {
+        let table = module.table.map(|table| {
+            let texels = table();
             let texture = device.create_texture_with_data(
                 queue,
                 &wgpu::TextureDescriptor {
@@ -73,14 +127,14 @@ impl EstimatorPass {
             );
             texture.create_view(&Default::default())
         });
-        let layout = bindings::layout(device, name, &layout_entries(estimator));
+        let layout = bindings::layout(device, name, &layout_entries(module));
         let mut resources = vec![(ESTIMATOR_PARAMS, buffer.as_entire_binding())];
         if let Some(view) = &table {
             resources.push((ESTIMATOR_TABLE, wgpu::BindingResource::TextureView(view)));
         }
         let group = bindings::group(device, name, &layout, &resources);
         Self {
-            wgsl,
+            wgsl: module.wgsl,
             constants,
             layout,
             group,
@@ -88,42 +142,13 @@ impl EstimatorPass {
     }
 }
 
-/// Group 1 of `estimator`: its uniform parameters, and the table of those that read one.
-pub(crate) fn layout_entries(estimator: Estimator) -> Vec<wgpu::BindGroupLayoutEntry> {
+/// Group 1 of an estimator: its uniform parameters, and the table of those that read one.
+pub(crate) fn layout_entries(module: &EstimatorModule) -> Vec<wgpu::BindGroupLayoutEntry> {
     let mut entries = vec![entry::uniform(ESTIMATOR_PARAMS)];
-    if table(estimator).is_some() {
+    if module.table.is_some() {
         entries.push(entry::texture(ESTIMATOR_TABLE));
     }
     entries
-}
-
-/// The texels (`Rg32Float`, one row) of the table `estimator` reads at `ESTIMATOR_TABLE`, if any.
-fn table(estimator: Estimator) -> Option<Vec<[f32; 2]>> {
-    match estimator {
-        Estimator::GtaoVb => Some(gtao_vb::sector_direction_table()),
-        _ => None,
-    }
-}
-
-/// The estimator's uniform bytes and its `override` constants' values (in the order of its
-/// `CONSTANTS`, `SAMPLE_COUNT` first) under `settings`.
-fn params(estimator: Estimator, settings: &AoSettings) -> (Vec<u8>, Vec<f64>) {
-    match estimator {
-        Estimator::Vao => vao::params(&settings.vao),
-        Estimator::Hbao => hbao::params(&settings.hbao),
-        Estimator::HbaoPlus => hbao_plus::params(&settings.hbao_plus),
-        Estimator::Gtao => gtao::params(&settings.gtao),
-        Estimator::Sao => sao::params(&settings.sao, &settings.pyramid),
-        Estimator::Ssao => ssao::params(&settings.ssao, settings.stochastic_depth.query),
-        Estimator::PyramidHbao => pyramid_hbao::params(&settings.pyramid_hbao, &settings.pyramid),
-        Estimator::GtaoVb => gtao_vb::params(&settings.gtao_vb, &settings.stochastic_depth),
-    }
-}
-
-/// Samples per pixel of `estimator` under `settings`: its `SAMPLE_COUNT` constant, the bits of a
-/// two-phase schedule's mask it uses (e.g. to normalise `render --debug-out`'s `samples.png`).
-pub fn samples_per_pixel(estimator: Estimator, settings: &AoSettings) -> u32 {
-    params(estimator, settings).1[0] as u32
 }
 
 /// Pixel (x, y)'s rotation and jitter for screen-space estimators (HBAO, HBAO+, GTAO, GTAO-VB): (cos, sin) of
@@ -144,19 +169,4 @@ pub(crate) fn bayer_table(period: f32) -> [[f32; 4]; 16] {
         let (c, s, jitter) = bayer_pattern(i as u32 % 4, i as u32 / 4, period);
         [c, s, jitter, 0.0]
     })
-}
-
-/// An estimator's WGSL and the names of its pipeline constants (also for composing shaders without
-/// a device: the shader validation test).
-pub(crate) fn wgsl(estimator: Estimator) -> (&'static str, &'static [&'static str]) {
-    match estimator {
-        Estimator::Vao => (vao::WGSL, vao::CONSTANTS),
-        Estimator::Hbao => (hbao::WGSL, hbao::CONSTANTS),
-        Estimator::HbaoPlus => (hbao_plus::WGSL, hbao_plus::CONSTANTS),
-        Estimator::Gtao => (gtao::WGSL, gtao::CONSTANTS),
-        Estimator::Sao => (sao::WGSL, sao::CONSTANTS),
-        Estimator::Ssao => (ssao::WGSL, ssao::CONSTANTS),
-        Estimator::PyramidHbao => (pyramid_hbao::WGSL, pyramid_hbao::CONSTANTS),
-        Estimator::GtaoVb => (gtao_vb::WGSL, gtao_vb::CONSTANTS),
-    }
 }

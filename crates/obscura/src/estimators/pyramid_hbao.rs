@@ -2,7 +2,73 @@
 //! walked over the levels of the depth pyramid, each direction's largest weighted contribution.
 //! Its per-pixel offsets are here so the tests use the same numbers.
 
-use crate::settings::{PyramidHbaoSettings, PyramidSettings};
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
+
+/// Pyramid HBAO parameters (seed 004 §3.4–3.5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PyramidHbaoSettings {
+    /// Radius R in world units: attenuation W(r) = 1 − r/R (Eq. 7).
+    pub radius: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// D, directions per pixel (seed 004: 8), 1 to 32.
+    pub directions: u32,
+    /// Steps on every pyramid level along each direction, 1 to 16 (the paper fixes a number
+    /// without giving it; ours is 4).
+    pub steps: u32,
+}
+
+impl Default for PyramidHbaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            exponent: 1.0,
+            directions: 8,
+            steps: 4,
+        }
+    }
+}
+
+impl PyramidHbaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "pyramid_hbao.radius",
+            "--pyramid-hbao-radius",
+            "Pyramid HBAO radius R in world units; attenuation 1 − r/R.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--phbao-radius"])
+        .length()
+        .doc("Pyramid HBAO radius R (attenuation W(r) = 1 − r/R, seed 004 Eq. 7)")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "pyramid_hbao.exponent",
+            "--pyramid-hbao-exponent",
+            "Pyramid HBAO power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--phbao-exponent"]),
+        Knob::new(
+            "pyramid_hbao.directions",
+            "--pyramid-hbao-directions",
+            "Pyramid HBAO directions per pixel, D (seed 004: 8).",
+            Kind::int(1, 32),
+        )
+        .aliases(&["--phbao-directions"])
+        .widget(Widget::Range),
+        Knob::new(
+            "pyramid_hbao.steps",
+            "--pyramid-hbao-steps",
+            "Pyramid HBAO steps on every pyramid level along each direction (K^l px apart on level l).",
+            Kind::int(1, 16),
+        )
+        .aliases(&["--phbao-steps"])
+        .widget(Widget::Range),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -39,8 +105,17 @@ struct PyramidHbaoParams {
     pattern: [[f32; 4]; 16],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: PyramidHbaoSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings` over `pyramid`.
-pub(crate) fn params(s: &PyramidHbaoSettings, pyramid: &PyramidSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &PyramidHbaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     let pattern = std::array::from_fn(|i| {
         let (u, o) = pixel_offsets(i as u32 % 4, i as u32 / 4);
         [u, o, 0.0, 0.0]
@@ -49,7 +124,7 @@ pub(crate) fn params(s: &PyramidHbaoSettings, pyramid: &PyramidSettings) -> (Vec
         radius: s.radius,
         inv_radius: 1.0 / s.radius,
         exponent: s.exponent,
-        factor: pyramid.factor as f32,
+        factor: inputs.pyramid_factor as f32,
         directions: s.directions,
         _pad: [0; 3],
         pattern,
@@ -57,8 +132,8 @@ pub(crate) fn params(s: &PyramidHbaoSettings, pyramid: &PyramidSettings) -> (Vec
     (
         bytemuck::bytes_of(&params).to_vec(),
         vec![
-            f64::from(s.directions * pyramid.levels * s.steps),
-            f64::from(pyramid.levels),
+            f64::from(s.directions * inputs.pyramid_levels * s.steps),
+            f64::from(inputs.pyramid_levels),
             f64::from(s.steps),
         ],
     )

@@ -2,8 +2,78 @@
 //! Luebke 2012, seed 004 §2.2.2): spiral taps over the depth pyramid, the level chosen by the
 //! tap's distance.
 
-use crate::settings::{PyramidSettings, SaoSettings};
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
+
+/// Scalable Ambient Obscurance parameters (McGuire et al. 2012; defaults of its published code:
+/// 11 taps on 7 spiral turns, bias 0.01, intensity 1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SaoSettings {
+    /// Radius R in world units: taps up to R on screen, falloff (R² − d²)³.
+    pub radius: f32,
+    /// N, taps per pixel, 1 to 64.
+    pub samples: u32,
+    /// τ, turns of the tap spiral.
+    pub spiral_turns: f32,
+    /// β, world units a tap must rise above the tangent plane before it occludes.
+    pub bias: f32,
+    /// Scale of the summed obscurance, in world units: under SAO's shipped normalisation
+    /// intensity/R⁶ · 5/N the sum has the dimension of an inverse length, which the intensity
+    /// cancels ([`crate::AoSettings::scaled`] scales it with the radii).
+    pub intensity: f32,
+}
+
+impl Default for SaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            samples: 11,
+            spiral_turns: 7.0,
+            bias: 0.01,
+            intensity: 1.0,
+        }
+    }
+}
+
+impl SaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new("sao.radius", "--sao-radius", "SAO radius R in world units.", Kind::POSITIVE)
+            .length()
+            .doc("SAO radius R (taps up to R on screen, falloff (R² − d²)³)")
+            .widget(Widget::RADIUS),
+        Knob::new("sao.samples", "--sao-samples", "SAO spiral taps per pixel, N (SAO's code: 11).", Kind::int(1, 64))
+            .widget(Widget::Range),
+        Knob::new(
+            "sao.spiral_turns",
+            "--sao-spiral-turns",
+            "SAO turns of the tap spiral, τ (SAO's code: 7).",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--sao-turns"]),
+        Knob::new(
+            "sao.bias",
+            "--sao-bias",
+            "SAO bias β: how far a tap must rise above the tangent plane to occlude.",
+            Kind::NON_NEGATIVE,
+        )
+        .length(),
+        Knob::new(
+            "sao.intensity",
+            "--sao-intensity",
+            "SAO intensity (scale of the obscurance), in world units as SAO's normalisation has it.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc(
+            "scale of the summed obscurance (A = 1 − intensity/R⁶ · 5/N · Σ, SAO's shipped \
+             normalisation, whose sum has the dimension of an inverse length: the intensity is a \
+             length, scaled with the radii)",
+        ),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -42,8 +112,17 @@ struct SaoParams {
     pattern: [[f32; 4]; 16],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: SaoSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings` over `pyramid`.
-pub(crate) fn params(s: &SaoSettings, pyramid: &PyramidSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &SaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(TAU).map(|[c, sn, _, _]| [sn.atan2(c), 0.0, 0.0, 0.0]);
     let params = SaoParams {
         radius: s.radius,
@@ -51,13 +130,13 @@ pub(crate) fn params(s: &SaoSettings, pyramid: &PyramidSettings) -> (Vec<u8>, Ve
         scale: s.intensity / s.radius.powi(6) * 5.0 / s.samples as f32,
         bias: s.bias,
         spiral_turns: s.spiral_turns,
-        inv_log_factor: 1.0 / (pyramid.factor as f32).ln(),
+        inv_log_factor: 1.0 / (inputs.pyramid_factor as f32).ln(),
         log_q: LEVEL_OFFSET_PX.ln(),
         epsilon: (EPSILON_PER_RADIUS * s.radius).powi(2),
         pattern,
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
-        vec![f64::from(s.samples), f64::from(pyramid.levels)],
+        vec![f64::from(s.samples), f64::from(inputs.pyramid_levels)],
     )
 }

@@ -1,8 +1,82 @@
 //! The SSAO estimator of seed 001 §3.2 (`shaders/estimators/ssao.wgsl`): Alchemy AO (McGuire et
 //! al. 2011), N samples on a spiral within the world radius.
 
-use crate::settings::{SdQuery, SsaoSettings};
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
+
+/// SSAO parameters (seed 001 §3.2: Alchemy AO, McGuire et al. 2011; 32 samples as seed 001
+/// Tab. 1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SsaoSettings {
+    /// Radius R in world units: samples within R count.
+    pub radius: f32,
+    /// N, samples per pixel, 1 to 32 (one bit each in the two-phase mask).
+    pub samples: u32,
+    /// σ, the intensity: A = max(0, 1 − 2σ·u/N · Σ)^k with u = 0.1 R (ours: the paper folds u
+    /// into σ; written out, σ does not depend on the scene's units).
+    pub intensity: f32,
+    /// β, the bias per world unit of depth (the paper's 10⁻⁴).
+    pub bias: f32,
+    /// k, the contrast: the power applied to the final AO.
+    pub contrast: f32,
+}
+
+impl Default for SsaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            samples: 32,
+            intensity: 1.0,
+            bias: 1e-4,
+            contrast: 1.0,
+        }
+    }
+}
+
+impl SsaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "ssao.radius",
+            "--ssao-radius",
+            "SSAO (Alchemy) radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("SSAO (Alchemy AO, seed 001's SSAO) radius R: samples within R count")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "ssao.samples",
+            "--ssao-samples",
+            "SSAO samples per pixel, N (seed 001 Tab. 1: 32).",
+            Kind::int(1, 32),
+        )
+        .note("one bit per sample")
+        .widget(Widget::Range),
+        Knob::new(
+            "ssao.intensity",
+            "--ssao-intensity",
+            "SSAO intensity σ.",
+            Kind::POSITIVE,
+        )
+        .doc("σ: A = max(0, 1 − 2σ·u/N · Σ)^k, u = 0.1 R (ours: the paper folds u into σ)"),
+        Knob::new(
+            "ssao.bias",
+            "--ssao-bias",
+            "SSAO bias β per world unit of depth.",
+            Kind::NON_NEGATIVE,
+        )
+        .doc("β, bias per world unit of depth (McGuire et al. 2011: 10⁻⁴)"),
+        Knob::new(
+            "ssao.contrast",
+            "--ssao-contrast",
+            "SSAO contrast k (power of the final AO).",
+            Kind::POSITIVE,
+        ),
+    ];
+}
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md), after the shared
 /// screen-space pixel set-up.
@@ -47,8 +121,17 @@ struct SsaoParams {
     pattern: [[f32; 4]; 16],
 }
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: SsaoSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &SsaoSettings, query: SdQuery) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(s: &SsaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     let pattern = super::bayer_table(TAU).map(|[c, sn, _, _]| [sn.atan2(c), 0.0, 0.0, 0.0]);
     let params = SsaoParams {
         radius: s.radius,
@@ -65,7 +148,7 @@ pub(crate) fn params(s: &SsaoSettings, query: SdQuery) -> (Vec<u8>, Vec<f64>) {
         bytemuck::bytes_of(&params).to_vec(),
         vec![
             f64::from(s.samples),
-            f64::from(u8::from(query == SdQuery::FirstLayer)),
+            f64::from(u8::from(inputs.literal_query)),
         ],
     )
 }

@@ -2,9 +2,133 @@
 //! rotation pattern and the parameters of `shaders/estimators/vao.wgsl`. The same tables feed the
 //! CPU mirror in [`crate::reference::cpu_vao`].
 
-use crate::settings::{Normalization, VaoSettings};
+use crate::error::SettingsError;
+use crate::knob::{Kind, Knob, Widget};
 use glam::{Vec2, Vec3};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
+use std::fmt;
+use std::str::FromStr;
+
+/// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, docs/AUTHORS_CODE.md
+/// §1.2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VaoSettings {
+    /// Sphere radius R in world units.
+    pub radius: f32,
+    /// Thickness τ of the constant (fully occluding) area above the sample column, in units of R.
+    pub thickness: f32,
+    /// Power applied to the final AO.
+    pub exponent: f32,
+    /// Line samples per pixel: 8, 16 or 32.
+    pub samples: u32,
+    /// How the free column lengths become AO (default [`Normalization::Clipped`]).
+    pub normalization: Normalization,
+}
+
+/// How VAO turns the free column lengths into AO (see `shaders/estimators/vao.wgsl`). In files:
+/// `"clipped"` or `"hemisphere"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Normalization {
+    /// Seed 000 Eq. 7 with the hemisphere factor 2: `2/N Σ free/2h`. Exactly 1 on an unoccluded
+    /// plane only on average over the 4×4 rotation pattern.
+    #[serde(alias = "paper")]
+    Hemisphere,
+    /// `Σ free/2h / Σ clipped/2h`: the same limit, exactly 1 on every unoccluded plane.
+    #[default]
+    Clipped,
+}
+
+impl FromStr for Normalization {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "hemisphere" | "paper" => Ok(Normalization::Hemisphere),
+            "clipped" => Ok(Normalization::Clipped),
+            _ => Err(SettingsError::Invalid {
+                field: "vao.normalization",
+                value: s.to_string(),
+                rule: "must be 'clipped' (default) or 'hemisphere' (the paper's 2/N)".into(),
+            }),
+        }
+    }
+}
+
+impl Default for VaoSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            thickness: 0.5,
+            exponent: 1.3,
+            samples: 8,
+            normalization: Normalization::Clipped,
+        }
+    }
+}
+
+impl fmt::Display for Normalization {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Normalization::Hemisphere => "hemisphere",
+            Normalization::Clipped => "clipped",
+        })
+    }
+}
+
+impl VaoSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "vao.radius",
+            "--vao-radius",
+            "VAO sphere radius R in world units.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--radius"])
+        .length()
+        .doc("VAO sphere radius R")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "vao.thickness",
+            "--vao-thickness",
+            "VAO thickness τ (constant occluded area above the column, in units of R).",
+            Kind::NON_NEGATIVE,
+        )
+        .aliases(&["--thickness"])
+        .units("units of R")
+        .doc("thickness τ of the fully occluding area above the sample column")
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 2.0,
+            log: false,
+        }),
+        Knob::new(
+            "vao.exponent",
+            "--vao-exponent",
+            "VAO power applied to the final AO.",
+            Kind::POSITIVE,
+        )
+        .aliases(&["--exponent"]),
+        Knob::new(
+            "vao.samples",
+            "--vao-samples",
+            "VAO line samples per pixel.",
+            Kind::OneOf(&[8, 16, 32]),
+        )
+        .aliases(&["--samples"])
+        .widget(Widget::Buttons),
+        Knob::new(
+            "vao.normalization",
+            "--vao-normalization",
+            "VAO normalisation: clipped (exact 1 on planes) or hemisphere (the paper's 2/N).",
+            Kind::Choice(&["clipped", "hemisphere"]),
+        )
+        .aliases(&["--normalization"])
+        .doc("clipped: exactly 1 on every unoccluded plane; hemisphere: the paper's 2/N"),
+    ];
+}
 
 /// Base-2 van der Corput radical inverse of `i`.
 pub fn van_der_corput(i: u32) -> f32 {
@@ -105,8 +229,17 @@ pub(crate) const WGSL: &str = include_str!("../../shaders/estimators/vao.wgsl");
 /// Its `override` constants: the sample count (the loop unrolls).
 pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
 
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: VaoSettings::KNOBS,
+    params: |section, inputs| params(&super::section(section), inputs),
+    table: None,
+};
+
 /// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(settings: &VaoSettings) -> (Vec<u8>, Vec<f64>) {
+pub(crate) fn params(settings: &VaoSettings, _: &super::SourceInputs) -> (Vec<u8>, Vec<f64>) {
     (
         bytemuck::bytes_of(&VaoParams::new(settings)).to_vec(),
         vec![f64::from(settings.samples)],

@@ -134,11 +134,12 @@ impl AmbientOcclusion {
             None => (screen, &view),
         };
         let frame_layout = bindings::frame_layout(device, true);
-        let estimator = EstimatorPass::for_row(
+        let (section, inputs) = settings.estimator_inputs();
+        let estimator = EstimatorPass::new(
             device,
             &gpu.queue,
-            row.estimator,
-            settings,
+            (row.estimator.name(), row.estimator.caps().module),
+            (&section, &inputs),
             // Output pixels: at half resolution, half as many of the working image's.
             settings.max_radius_px * work.height as f32 / screen.height as f32,
         );

@@ -244,13 +244,19 @@ fn check_all_schedules(
     }
 }
 
+/// An estimator's WGSL and the names of its pipeline constants.
+fn wgsl(estimator: crate::technique::Estimator) -> (&'static str, &'static [&'static str]) {
+    let module = estimator.caps().module;
+    (module.wgsl, module.constants)
+}
+
 #[test]
 fn every_row_composes_and_validates() {
     for row in TABLE {
         for sd in sd_layouts(row.source) {
             for stage in schedules::stages(row.schedule) {
-                let estimator = crate::estimators::wgsl(row.estimator);
-                let entries = crate::estimators::layout_entries(row.estimator);
+                let estimator = wgsl(row.estimator);
+                let entries = crate::estimators::layout_entries(row.estimator.caps().module);
                 check_stage(row.name, estimator, &entries, row.source, sd, stage);
             }
         }
@@ -272,8 +278,8 @@ fn every_estimator_runs_over_every_source_it_supports() {
             if source.supports(estimator) {
                 check_all_schedules(
                     estimator.name(),
-                    crate::estimators::wgsl(estimator),
-                    &crate::estimators::layout_entries(estimator),
+                    wgsl(estimator),
+                    &crate::estimators::layout_entries(estimator.caps().module),
                     source,
                     estimator.order_independent(),
                 );
@@ -305,7 +311,7 @@ fn a_new_estimator_needs_no_source_or_schedule_edit() {
 fn a_broken_combination_fails_the_check() {
     // The check itself can fail: a source without the contract's functions, and a shader whose
     // binding is not in its layout.
-    let (estimator, _) = crate::estimators::wgsl(crate::technique::Estimator::Vao);
+    let estimator = crate::estimators::vao::MODULE.wgsl;
     let stage = schedules::single::stage();
     let missing = schedules::compose(estimator, "", &stage.parts);
     assert!(std::panic::catch_unwind(|| check("missing source", &missing, &[], &[])).is_err());

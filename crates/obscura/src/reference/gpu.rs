@@ -37,14 +37,16 @@ pub fn render_reference_gpu(
     let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
     let gpu_bvh = GpuBvh::new(device, bvh, scene);
     // The VAO estimator through the single-pass loop over the all-layers source (reference.wgsl).
-    let estimator = crate::estimators::EstimatorPass::for_row(
+    let (section, inputs) = crate::settings::AoSettings {
+        vao: settings.vao,
+        ..Default::default()
+    }
+    .estimator_inputs();
+    let estimator = crate::estimators::EstimatorPass::new(
         device,
         &gpu.queue,
-        crate::technique::Estimator::Vao,
-        &crate::settings::AoSettings {
-            vao: settings.vao,
-            ..Default::default()
-        },
+        ("vao", &crate::estimators::vao::MODULE),
+        (&section, &inputs),
         0.0, // the ground truth's R is never capped
     );
     let mut parts = crate::schedules::ESTIMATOR_PRELUDE.to_vec();

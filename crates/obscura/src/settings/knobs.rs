@@ -3,31 +3,51 @@
 //! here names a field: they all come from the `KNOBS` lists beside the settings structs.
 
 use super::*;
+use crate::estimators::SourceInputs;
 use crate::knob::{self, Kind, Knob, Value};
 
-/// Every section's knobs, in docs/SETTINGS.md's order.
+/// The knobs of the settings every technique has and of the sources, in docs/SETTINGS.md's
+/// order; each estimator's come from its module (`EstimatorCaps::module`), after these.
 const KNOB_LISTS: &[&[Knob]] = &[
-    VaoSettings::KNOBS,
     BlurSettings::KNOBS,
     AoSettings::KNOBS,
     MultiviewSettings::KNOBS,
     TemporalSettings::KNOBS,
     StochasticDepthSettings::KNOBS,
     RaySdSettings::KNOBS,
-    HbaoSettings::KNOBS,
-    GtaoSettings::KNOBS,
     PyramidSettings::KNOBS,
-    PyramidHbaoSettings::KNOBS,
-    SsaoSettings::KNOBS,
-    SaoSettings::KNOBS,
-    HbaoPlusSettings::KNOBS,
-    GtaoVbSettings::KNOBS,
 ];
 
 impl AoSettings {
     /// Every settings field's knob (all but `technique`), in docs/SETTINGS.md's order.
     pub fn knobs() -> impl Iterator<Item = &'static Knob> {
-        KNOB_LISTS.iter().flat_map(|list| list.iter())
+        let estimators = Estimator::ALL.into_iter().map(|e| e.caps().module.knobs);
+        KNOB_LISTS.iter().copied().chain(estimators).flatten()
+    }
+
+    /// What the estimator's parameters read: its settings section (serde form) and its
+    /// source's choices.
+    pub fn estimator_inputs(&self) -> (Value, SourceInputs) {
+        let tree = self.to_tree();
+        let section = knob::get(&tree, self.technique.estimator().section())
+            .cloned()
+            .expect("every estimator has its settings section");
+        let sd = &self.stochastic_depth;
+        let inputs = SourceInputs {
+            literal_query: sd.query == SdQuery::FirstLayer,
+            compensation: sd.compensation,
+            pyramid_levels: self.pyramid.levels,
+            pyramid_factor: self.pyramid.factor,
+        };
+        (section, inputs)
+    }
+
+    /// Samples per pixel of the technique's estimator: its `SAMPLE_COUNT` constant, the bits of
+    /// a two-phase schedule's mask it uses (e.g. to normalise `render --debug-out`'s
+    /// `samples.png`).
+    pub fn samples_per_pixel(&self) -> u32 {
+        let (section, inputs) = self.estimator_inputs();
+        (self.technique.estimator().caps().module.params)(&section, &inputs).1[0] as u32
     }
 
     /// The knob of the field at `path` (`gtao.slices`).

@@ -20,6 +20,14 @@ mod stochastic_depth;
 mod tests;
 mod validate;
 
+pub use crate::estimators::gtao::{GtaoSettings, GTAO_MAX_SLICES};
+pub use crate::estimators::gtao_vb::{GtaoVbSettings, SectorActivation};
+pub use crate::estimators::hbao::{HbaoSettings, HBAO_MAX_DIRECTIONS};
+pub use crate::estimators::hbao_plus::HbaoPlusSettings;
+pub use crate::estimators::pyramid_hbao::PyramidHbaoSettings;
+pub use crate::estimators::sao::SaoSettings;
+pub use crate::estimators::ssao::SsaoSettings;
+pub use crate::estimators::vao::{Normalization, VaoSettings};
 pub use estimators::*;
 pub use files::*;
 pub use presets::*;

@@ -405,11 +405,7 @@ fn cpu_image(r: &Renderer, view: DebugView, width: u32, height: u32) -> Result<O
                 return Ok(None);
             };
             let settings = r.settings();
-            let per_pixel = obscura::estimators::samples_per_pixel(
-                settings.technique.row().estimator,
-                settings,
-            )
-            .max(1) as f32;
+            let per_pixel = settings.samples_per_pixel().max(1) as f32;
             let grey = masks
                 .iter()
                 .map(|m| m.count_ones() as f32 / per_pixel)
