@@ -8,14 +8,34 @@
 //! schedules own the loops; the sources consult the estimator for each depth they find. Nothing
 //! here knows the technique table or the settings of the whole.
 
-pub mod gtao;
-pub mod gtao_vb;
-pub mod hbao;
-pub mod hbao_plus;
-pub mod pyramid_hbao;
-pub mod sao;
-pub mod ssao;
-pub mod vao;
+/// The registry of estimators, one line each: its module, its settings struct and what its
+/// settings are for (the doc of `AoSettings`' field). `registry!(then)` hands the list to the
+/// macro `then`: [`declare_modules`] below, and `AoSettings`' fields and defaults
+/// (settings/mod.rs). Adding an estimator: its module, its line here, its row and caps literal
+/// in technique.rs (docs/ARCHITECTURE.md, "Adding an estimator").
+macro_rules! registry {
+    ($then:ident) => {
+        $then! {
+            vao: VaoSettings = "The VAO estimator (`vao`, `vao-dual`, `rt-vao`, `rt-svao`, `sd-vao`, …).",
+            hbao: HbaoSettings = "The classic HBAO estimator (`hbao`, `hbao-dual`, `sd-hbao`, …).",
+            hbao_plus: HbaoPlusSettings = "The HBAO+ estimator (`hbao+`, `hbao+-dual`, `sd-hbao+`, …).",
+            gtao: GtaoSettings = "The GTAO estimator (`gtao`).",
+            pyramid_hbao: PyramidHbaoSettings = "The Pyramid HBAO estimator (`pyramid-hbao`).",
+            sao: SaoSettings = "The Scalable Ambient Obscurance estimator (`sao`).",
+            ssao: SsaoSettings = "The SSAO (Alchemy AO) estimator (`ssao`, `sd-ssao`, …).",
+            gtao_vb: GtaoVbSettings = "The visibility-bitmask estimator (`gtao-vb`, `sd-gtao-vb`, …).",
+        }
+    };
+}
+pub(crate) use registry;
+
+/// The registry's modules.
+macro_rules! declare_modules {
+    ($($(#[$attr:meta])* $name:ident: $settings:ident = $doc:literal,)*) => {
+        $($(#[$attr])* pub mod $name;)*
+    };
+}
+registry!(declare_modules);
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS, ESTIMATOR_TABLE};
 use crate::knob::{Knob, Value};

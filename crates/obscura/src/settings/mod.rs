@@ -20,14 +20,10 @@ mod stochastic_depth;
 mod tests;
 mod validate;
 
-pub use crate::estimators::gtao::{GtaoSettings, GTAO_MAX_SLICES};
-pub use crate::estimators::gtao_vb::{GtaoVbSettings, SectorActivation};
-pub use crate::estimators::hbao::{HbaoSettings, HBAO_MAX_DIRECTIONS};
-pub use crate::estimators::hbao_plus::HbaoPlusSettings;
-pub use crate::estimators::pyramid_hbao::PyramidHbaoSettings;
-pub use crate::estimators::sao::SaoSettings;
-pub use crate::estimators::ssao::SsaoSettings;
-pub use crate::estimators::vao::{Normalization, VaoSettings};
+pub use crate::estimators::gtao::GTAO_MAX_SLICES;
+pub use crate::estimators::gtao_vb::SectorActivation;
+pub use crate::estimators::hbao::HBAO_MAX_DIRECTIONS;
+pub use crate::estimators::vao::Normalization;
 pub use estimators::*;
 pub use files::*;
 pub use presets::*;
@@ -44,83 +40,95 @@ impl AoSettings {
     }
 }
 
-/// Everything a technique's kernels read, as data: every field has a default (the papers' /
-/// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
-/// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
-/// an unknown field is an error. `docs/SETTINGS.md` lists every field.
-///
-/// ```
-/// use obscura::settings::{AoSettings, Preset};
-/// use obscura::Technique;
-///
-/// let mut s = AoSettings::preset("gtao-vb".parse::<Technique>()?, Preset::High);
-/// s.gtao_vb.radius = 0.75;
-/// s.validate()?;
-/// // α = 1.5/S unless given: 0.375 at the default S = 4.
-/// assert_eq!(s.stochastic_depth.alpha(), 0.375);
-///
-/// s.vao.radius = -1.0;
-/// let err = s.validate().unwrap_err().to_string();
-/// assert!(err.contains("vao.radius"), "{err}"); // errors name the field
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct AoSettings {
-    /// Which row of the technique table runs (estimator × hidden-depth source × schedule); default
-    /// `vao`.
-    pub technique: Technique,
-    /// The VAO estimator (`vao`, `vao-dual`, `rt-vao`, `rt-svao`, `rt-svao-dense`, `sd-vao`,
-    /// `sd-svao`).
-    pub vao: VaoSettings,
-    /// The bilateral blur that filters every technique's raw AO.
-    pub blur: BlurSettings,
-    /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
-    /// the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
-    /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
-    /// depth map (`sd-vao`, `sd-svao`).
-    pub peel_separation: f32,
-    /// The stochastic depth map (`sd-vao`, `sd-svao`).
-    pub stochastic_depth: StochasticDepthSettings,
-    /// The ray-traced stochastic depth map (`ray-sd-vao`).
-    pub ray_sd: RaySdSettings,
-    /// The classic HBAO estimator (`hbao`, `hbao-dual`).
-    pub hbao: HbaoSettings,
-    /// The HBAO+ estimator (`hbao+`, `hbao+-dual`).
-    pub hbao_plus: HbaoPlusSettings,
-    /// The GTAO estimator (`gtao`).
-    pub gtao: GtaoSettings,
-    /// The depth pyramid (`sao`, `pyramid-hbao`).
-    pub pyramid: PyramidSettings,
-    /// The Pyramid HBAO estimator (`pyramid-hbao`).
-    pub pyramid_hbao: PyramidHbaoSettings,
-    /// The Scalable Ambient Obscurance estimator (`sao`).
-    pub sao: SaoSettings,
-    /// The SSAO (Alchemy AO) estimator (`ssao`).
-    pub ssao: SsaoSettings,
-    /// The visibility-bitmask estimator (`gtao-vb`, `gtao-vb-dual`).
-    pub gtao_vb: GtaoVbSettings,
-    /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
-    /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
-    pub resolution: Resolution,
-    /// The AO radius's cap on screen, in pixels of the output image (seed 002 §3.5; the
-    /// authors' `ssMaxRadius`): where a shading point's radius R would cover more
-    /// pixels (a surface close to the camera), R is shrunk for that pixel to cover exactly this
-    /// many, so the kernel keeps its shape. Every estimator honours it; the ground truths never
-    /// do. 0 (the default): no cap. The authors pair 512 px with their map's 512 px guard band
-    /// at 1080p, so that samples never fall beyond the map; it costs accuracy near the camera
-    /// (measured: docs/SETTINGS.md), so it is off unless asked for.
-    pub max_radius_px: f32,
-    /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
-    /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
-    /// GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the single-pass schedule
-    /// at full resolution.
-    pub bent_normals: bool,
-    /// The multi-view schedule's second view (`sd-hbao+-multiview`).
-    pub multiview: MultiviewSettings,
-    /// Temporal accumulation of the AO over frames (off by default).
-    pub temporal: TemporalSettings,
+/// `AoSettings` and its defaults, with one field per estimator of the registry
+/// (`estimators::registry`), each re-exported here by its settings struct.
+macro_rules! ao_settings {
+    ($($(#[$attr:meta])* $name:ident: $settings:ident = $doc:literal,)*) => {
+        $($(#[$attr])* pub use crate::estimators::$name::$settings;)*
+
+        /// Everything a technique's kernels read, as data: every field has a default (the papers' /
+        /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
+        /// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
+        /// an unknown field is an error. `docs/SETTINGS.md` lists every field.
+        ///
+        /// ```
+        /// use obscura::settings::{AoSettings, Preset};
+        /// use obscura::Technique;
+        ///
+        /// let mut s = AoSettings::preset("gtao-vb".parse::<Technique>()?, Preset::High);
+        /// s.gtao_vb.radius = 0.75;
+        /// s.validate()?;
+        /// // α = 1.5/S unless given: 0.375 at the default S = 4.
+        /// assert_eq!(s.stochastic_depth.alpha(), 0.375);
+        ///
+        /// s.vao.radius = -1.0;
+        /// let err = s.validate().unwrap_err().to_string();
+        /// assert!(err.contains("vao.radius"), "{err}"); // errors name the field
+        /// # Ok::<(), Box<dyn std::error::Error>>(())
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+        #[serde(default, deny_unknown_fields)]
+        pub struct AoSettings {
+            /// Which row of the technique table runs (estimator × hidden-depth source × schedule); default
+            /// `vao`.
+            pub technique: Technique,
+            $($(#[$attr])* #[doc = $doc] pub $name: $settings,)*
+            /// The bilateral blur that filters every technique's raw AO.
+            pub blur: BlurSettings,
+            /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
+            /// the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
+            /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
+            /// depth map (`sd-vao`, `sd-svao`).
+            pub peel_separation: f32,
+            /// The stochastic depth map (`sd-vao`, `sd-svao`).
+            pub stochastic_depth: StochasticDepthSettings,
+            /// The ray-traced stochastic depth map (`ray-sd-vao`).
+            pub ray_sd: RaySdSettings,
+            /// The depth pyramid (`sao`, `pyramid-hbao`).
+            pub pyramid: PyramidSettings,
+            /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
+            /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
+            pub resolution: Resolution,
+            /// The AO radius's cap on screen, in pixels of the output image (seed 002 §3.5; the
+            /// authors' `ssMaxRadius`): where a shading point's radius R would cover more
+            /// pixels (a surface close to the camera), R is shrunk for that pixel to cover exactly this
+            /// many, so the kernel keeps its shape. Every estimator honours it; the ground truths never
+            /// do. 0 (the default): no cap. The authors pair 512 px with their map's 512 px guard band
+            /// at 1080p, so that samples never fall beyond the map; it costs accuracy near the camera
+            /// (measured: docs/SETTINGS.md), so it is off unless asked for.
+            pub max_radius_px: f32,
+            /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
+            /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
+            /// GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the single-pass schedule
+            /// at full resolution.
+            pub bent_normals: bool,
+            /// The multi-view schedule's second view (`sd-hbao+-multiview`).
+            pub multiview: MultiviewSettings,
+            /// Temporal accumulation of the AO over frames (off by default).
+            pub temporal: TemporalSettings,
+        }
+
+        impl Default for AoSettings {
+            fn default() -> Self {
+                Self {
+                    technique: Technique::default(),
+                    $($(#[$attr])* $name: $settings::default(),)*
+                    pyramid: PyramidSettings::default(),
+                    blur: BlurSettings::default(),
+                    peel_separation: 0.01,
+                    stochastic_depth: StochasticDepthSettings::default(),
+                    ray_sd: RaySdSettings::default(),
+                    resolution: Resolution::Full,
+                    max_radius_px: 0.0,
+                    bent_normals: false,
+                    multiview: MultiviewSettings::default(),
+                    temporal: TemporalSettings::default(),
+                }
+            }
+        }
+    };
 }
+crate::estimators::registry!(ao_settings);
 
 /// Temporal accumulation (issue 13; src/filter/temporal.rs): before the blur, each pixel's AO is
 /// averaged with its history from the previous frames, reprojected by depth and camera motion,
@@ -378,31 +386,5 @@ impl fmt::Display for Resolution {
             Resolution::Full => "full",
             Resolution::Half => "half",
         })
-    }
-}
-
-impl Default for AoSettings {
-    fn default() -> Self {
-        Self {
-            technique: Technique::default(),
-            hbao: HbaoSettings::default(),
-            hbao_plus: HbaoPlusSettings::default(),
-            gtao: GtaoSettings::default(),
-            pyramid: PyramidSettings::default(),
-            pyramid_hbao: PyramidHbaoSettings::default(),
-            sao: SaoSettings::default(),
-            ssao: SsaoSettings::default(),
-            gtao_vb: GtaoVbSettings::default(),
-            vao: VaoSettings::default(),
-            blur: BlurSettings::default(),
-            peel_separation: 0.01,
-            stochastic_depth: StochasticDepthSettings::default(),
-            ray_sd: RaySdSettings::default(),
-            resolution: Resolution::Full,
-            max_radius_px: 0.0,
-            bent_normals: false,
-            multiview: MultiviewSettings::default(),
-            temporal: TemporalSettings::default(),
-        }
     }
 }
