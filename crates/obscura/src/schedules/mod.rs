@@ -428,7 +428,7 @@ impl SchedulePass {
 #[cfg(test)]
 mod tests {
     use super::{DISTINCT_DEPTHS, WRITTEN_OUT};
-    use crate::pipeline::Renderer;
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::gpu;
     use crate::scene;
     use crate::settings::AoSettings;

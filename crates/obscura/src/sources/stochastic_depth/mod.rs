@@ -818,7 +818,7 @@ pub(crate) fn begin<'e>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::Renderer;
+    use crate::pipeline::renderer::Renderer;
     use crate::raster::test_support::{gpu, moved};
     use crate::scene;
     use crate::settings::AoSettings;

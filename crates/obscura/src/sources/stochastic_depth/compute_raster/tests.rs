@@ -1,7 +1,7 @@
 //! The compute-rasterised map against the hardware's: the same fragments, up to rounding.
 
 use super::{ITEM_CAPACITY, OWN_ITEMS, TILE_TESTS};
-use crate::pipeline::Renderer;
+use crate::pipeline::renderer::Renderer;
 use crate::raster::test_support::{gpu, moved};
 use crate::scene::{self, AlphaMode, Camera, Material, Scene, Texture};
 use crate::settings::{AoSettings, SdMask, SdRasterizer, SdSelection};
