@@ -58,26 +58,31 @@ pub const SCHEDULE_TWO_PHASE_INDIRECT: &str =
     include_str!("../shaders/schedules/two_phase_indirect.wgsl");
 pub const SCHEDULE_WORK_LIST: &str = include_str!("../shaders/schedules/work_list.wgsl");
 
-pub const GBUFFER: &str = include_str!("../shaders/gbuffer.wgsl");
-pub const TRIANGLE_CULL: &str = include_str!("../shaders/triangle_cull.wgsl");
+pub const GBUFFER: &str = include_str!("../shaders/raster/gbuffer.wgsl");
+pub const TRIANGLE_CULL: &str = include_str!("../shaders/raster/triangle_cull.wgsl");
 pub const OCCLUSION_PYRAMID_LAYOUT: &str = include_str!("../shaders/common/occlusion_pyramid.wgsl");
-pub const OCCLUSION_PYRAMID: &str = include_str!("../shaders/occlusion_pyramid.wgsl");
-pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/gbuffer_resolve.wgsl");
-pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/gbuffer_resolve_main.wgsl");
-pub const VISIBILITY_TARGET_LOAD: &str = include_str!("../shaders/visibility_target_load.wgsl");
-pub const VISIBILITY_WORDS_LOAD: &str = include_str!("../shaders/visibility_words_load.wgsl");
-pub const VISIBILITY_WORDS_STORE: &str = include_str!("../shaders/visibility_words_store.wgsl");
-pub const VISIBILITY_WORDS_INDEX: &str = include_str!("../shaders/visibility_words_index.wgsl");
+pub const OCCLUSION_PYRAMID: &str = include_str!("../shaders/raster/occlusion_pyramid.wgsl");
+pub const GBUFFER_RESOLVE: &str = include_str!("../shaders/raster/gbuffer_resolve.wgsl");
+pub const GBUFFER_RESOLVE_MAIN: &str = include_str!("../shaders/raster/gbuffer_resolve_main.wgsl");
+pub const VISIBILITY_TARGET_LOAD: &str =
+    include_str!("../shaders/raster/visibility_target_load.wgsl");
+pub const VISIBILITY_WORDS_LOAD: &str =
+    include_str!("../shaders/raster/visibility_words_load.wgsl");
+pub const VISIBILITY_WORDS_STORE: &str =
+    include_str!("../shaders/raster/visibility_words_store.wgsl");
+pub const VISIBILITY_WORDS_INDEX: &str =
+    include_str!("../shaders/raster/visibility_words_index.wgsl");
 pub const GBUFFER_VISIBILITY_ATOMIC: &str =
-    include_str!("../shaders/gbuffer_visibility_atomic.wgsl");
-pub const DEPTH_PEEL: &str = include_str!("../shaders/depth_peel.wgsl");
-pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/depth_peel_resolve.wgsl");
-pub const BILATERAL_BLUR: &str = include_str!("../shaders/bilateral_blur.wgsl");
-pub const TEMPORAL_ACCUMULATION: &str = include_str!("../shaders/temporal_accumulation.wgsl");
-pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/half_resolution/downsample.wgsl");
-pub const HALF_UPSAMPLE: &str = include_str!("../shaders/half_resolution/upsample.wgsl");
-pub const RAY_QUERY: &str = include_str!("../shaders/ray_query.wgsl");
-pub const REFERENCE: &str = include_str!("../shaders/reference.wgsl");
+    include_str!("../shaders/raster/gbuffer_visibility_atomic.wgsl");
+pub const DEPTH_PEEL: &str = include_str!("../shaders/raster/depth_peel.wgsl");
+pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/raster/depth_peel_resolve.wgsl");
+pub const BILATERAL_BLUR: &str = include_str!("../shaders/filter/bilateral_blur.wgsl");
+pub const TEMPORAL_ACCUMULATION: &str =
+    include_str!("../shaders/filter/temporal_accumulation.wgsl");
+pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/filter/half_resolution/downsample.wgsl");
+pub const HALF_UPSAMPLE: &str = include_str!("../shaders/filter/half_resolution/upsample.wgsl");
+pub const RAY_QUERY: &str = include_str!("../shaders/bvh/ray_query.wgsl");
+pub const REFERENCE: &str = include_str!("../shaders/reference/reference.wgsl");
 pub const ENGINE_DEPTH: &str = include_str!("../shaders/engine_input/depth.wgsl");
 pub const ENGINE_NORMALS: &str = include_str!("../shaders/engine_input/normals.wgsl");
 

@@ -308,3 +308,37 @@ fn estimators_import_no_settings_sources_schedules_or_pipeline() {
         .collect();
     assert!(found.is_empty(), "estimators imports {found:?}");
 }
+
+/// `shaders/` mirrors `src/`: every WGSL file lies in a folder named after the `src/` module
+/// that uses it, or in `common/` (helpers several modules share); none at the root.
+#[test]
+fn every_shader_folder_names_a_module() {
+    let modules = modules();
+    let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+    let mut stack = vec![shaders.clone()];
+    let (mut count, mut stray) = (0, Vec::new());
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            if path.extension().is_none_or(|e| e != "wgsl") {
+                continue;
+            }
+            count += 1;
+            let relative = path.strip_prefix(&shaders).unwrap();
+            let mut components = relative.components();
+            let top = components.next().unwrap().as_os_str().to_string_lossy();
+            if components.next().is_none() || (top != "common" && !modules.contains(&*top)) {
+                stray.push(relative.display().to_string());
+            }
+        }
+    }
+    assert!(count > 50, "the scan found {count} shaders");
+    assert!(
+        stray.is_empty(),
+        "shaders outside a folder named after their src/ module (or common/): {stray:?}"
+    );
+}

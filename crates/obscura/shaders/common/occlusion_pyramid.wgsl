@@ -1,5 +1,5 @@
 // The occlusion pyramid's layout (src/raster/occlusion_pyramid.rs), shared by its builder
-// (shaders/occlusion_pyramid.wgsl) and its reader (shaders/triangle_cull.wgsl): for each level
+// (shaders/raster/occlusion_pyramid.wgsl) and its reader (shaders/raster/triangle_cull.wgsl): for each level
 // from PYRAMID_FIRST_LEVEL to PYRAMID_LAST_LEVEL, the farthest reversed-Z depth over square tiles
 // of 2^level pixels (level 0: the depth itself) of a framebuffer of `size` pixels,
 // ceil(size / 2^level) tiles row by row, one level after another in one buffer. The builder

@@ -1,4 +1,4 @@
-// Hidden-depth source "all layers", for the `vao` ground truth only (shaders/reference.wgsl): no
+// Hidden-depth source "all layers", for the `vao` ground truth only (shaders/reference/reference.wgsl): no
 // depth buffer at all; every sample that leaves its shading pixel traces its camera-ray column
 // from the near plane through every surface (column_trace.wgsl), so the result is the VAO model
 // with nothing hidden (src/reference/ground_truth.rs mirrors it on the CPU).

@@ -122,7 +122,7 @@ pub struct QueryRay {
     pub t_max: f32,
 }
 
-/// What [`trace_batch`] found for one ray (mirrors `QueryResult` in `shaders/ray_query.wgsl`).
+/// What [`trace_batch`] found for one ray (mirrors `QueryResult` in `shaders/bvh/ray_query.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct QueryResult {

@@ -1,4 +1,4 @@
-//! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/bilateral_blur.wgsl`).
+//! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/filter/bilateral_blur.wgsl`).
 
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;

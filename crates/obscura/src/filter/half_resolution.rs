@@ -1,11 +1,11 @@
 //! Half resolution (`resolution = "half"`; seed 001 Tab. 1–2 run every stochastic-depth variant at
 //! 960×540 for 1080p and note the ~4× saving, §5): the pass list around a technique that runs at
 //! half the width and height. Before it, `downsample` reduces the frame's depth, normals and
-//! second layer 2×2 → 1 (`shaders/half_resolution/downsample.wgsl`: exact depth where the four lie
+//! second layer 2×2 → 1 (`shaders/filter/half_resolution/downsample.wgsl`: exact depth where the four lie
 //! on a plane, the nearest of the four elsewhere); the technique's source, schedule and blur then
 //! run on that half frame; after them `upsample` writes the full-size output with a depth-aware
 //! (joint bilateral) upsample guided by the full-resolution depth and normals
-//! (`shaders/half_resolution/upsample.wgsl`). How the paper made its half-resolution inputs and
+//! (`shaders/filter/half_resolution/upsample.wgsl`). How the paper made its half-resolution inputs and
 //! upsampled is not said; both rules are ours and documented in the shaders.
 
 use crate::error::Error;

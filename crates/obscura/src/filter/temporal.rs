@@ -1,4 +1,4 @@
-//! Temporal accumulation (issue 13; `shaders/temporal_accumulation.wgsl`): the AO of the last
+//! Temporal accumulation (issue 13; `shaders/filter/temporal_accumulation.wgsl`): the AO of the last
 //! frames, reprojected by depth and camera motion, averaged with this frame's, history rejected
 //! where the surface differs (depth or normal). The estimators turn their 4×4 pattern by one
 //! entry per frame meanwhile ([`TemporalAccumulation::pattern_offset`]), so a still camera

@@ -1,12 +1,12 @@
-//! The G-buffer (`shaders/gbuffer.wgsl`): linear depth (`R32Float`) and camera-facing
+//! The G-buffer (`shaders/raster/gbuffer.wgsl`): linear depth (`R32Float`) and camera-facing
 //! view-space face normals (`Rgba16Float`) over the guard-banded framebuffer; when asked for, a
-//! second depth layer by depth peeling (`shaders/depth_peel.wgsl`, seed 000 §2.1); and base colour
+//! second depth layer by depth peeling (`shaders/raster/depth_peel.wgsl`, seed 000 §2.1); and base colour
 //! (`Rgba8UnormSrgb`) only on request ([`GBuffer::render_albedo`], for composites), by its own
 //! pass with the same draws.
 //!
 //! Two passes make depth and normals: a raster pass that stores only the visible triangle per
 //! pixel (a visibility buffer, `R32Uint`, with a reversed-Z `Depth32Float` buffer), then a compute
-//! pass (`shaders/gbuffer_resolve.wgsl`) that computes the surface point at each pixel centre from
+//! pass (`shaders/raster/gbuffer_resolve.wgsl`) that computes the surface point at each pixel centre from
 //! that triangle. Rasterisation is the scarce resource on the compute GPUs we measure on
 //! (BENCHMARKS.md, issue 16); compute is not. The triangles that are never alpha-tested are drawn
 //! first with a fragment shader without `discard`, so the hardware may test their depth before
@@ -49,7 +49,7 @@ enum Visibility {
     /// A colour target ([`VISIBILITY_FORMAT`]) beside the depth buffer.
     Target(wgpu::Texture),
     /// No colour target: a storage buffer of one 64-bit word per pixel that the fragments fill by
-    /// `atomicMax` and the resolve empties (`shaders/gbuffer_visibility_atomic.wgsl`), where the
+    /// `atomicMax` and the resolve empties (`shaders/raster/gbuffer_visibility_atomic.wgsl`), where the
     /// device has [`visibility_words_available`].
     Words(wgpu::Buffer),
 }
@@ -75,7 +75,7 @@ fn visibility_words_fit(limits: &wgpu::Limits, width: u32, height: u32) -> bool 
 }
 
 /// The bytes of the words of a `width`×`height` framebuffer: 8 a pixel, in whole 2×2 quads
-/// (`shaders/visibility_words_index.wgsl`), so an odd side is rounded up.
+/// (`shaders/raster/visibility_words_index.wgsl`), so an odd side is rounded up.
 fn visibility_words_bytes(width: u32, height: u32) -> u64 {
     8 * u64::from(width.next_multiple_of(2)) * u64::from(height.next_multiple_of(2))
 }
@@ -127,7 +127,7 @@ struct Peel {
     params: wgpu::Buffer,
     /// The peeled layer's triangle per pixel ([`VISIBILITY_FORMAT`]).
     visibility: wgpu::Texture,
-    /// Its linear depth from the triangle (`shaders/depth_peel_resolve.wgsl`).
+    /// Its linear depth from the triangle (`shaders/raster/depth_peel_resolve.wgsl`).
     resolve: wgpu::ComputePipeline,
     depth: wgpu::Texture,
     /// The pass's depth buffer ([`PEEL_Z_FORMAT`]); the G-buffer's own keeps the first layer.

@@ -1,4 +1,4 @@
-//! The G-buffer read back to the CPU ([`crate::pipeline::Renderer::read_gbuffer`]): what the
+//! The G-buffer read back to the CPU ([`crate::pipeline::renderer::Renderer::read_gbuffer`]): what the
 //! CPU mirrors of the GPU passes ([`crate::reference`]) and the tests read.
 
 use glam::{UVec2, Vec3};

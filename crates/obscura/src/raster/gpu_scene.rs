@@ -7,7 +7,7 @@ use crate::gpu::GpuError;
 use crate::scene::{AlphaMode, Scene};
 use glam::{Vec2, Vec3};
 
-/// GPU mirror of `Material` in `shaders/gbuffer.wgsl`.
+/// GPU mirror of `Material` in `shaders/raster/gbuffer.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct GpuMaterial {
@@ -41,7 +41,7 @@ pub struct GpuScene {
     /// The same triangles, each group along a Morton curve of their centroids: the order of
     /// [`GpuScene::chunks`] ([`GpuScene::draw_ordered`]).
     draw_triangles: wgpu::Buffer,
-    /// One `Material` of `shaders/gbuffer.wgsl` per scene material (colour, texture layer, alpha
+    /// One `Material` of `shaders/raster/gbuffer.wgsl` per scene material (colour, texture layer, alpha
     /// cutoff, back-face flag).
     pub materials: wgpu::Buffer,
     /// Every base-colour texture as one `Rgba8Unorm` 2D array, one layer each (smaller ones in the

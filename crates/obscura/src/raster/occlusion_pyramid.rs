@@ -1,4 +1,4 @@
-//! The occlusion pyramid (`shaders/occlusion_pyramid.wgsl`, layout in
+//! The occlusion pyramid (`shaders/raster/occlusion_pyramid.wgsl`, layout in
 //! `shaders/common/occlusion_pyramid.wgsl`): the farthest depth per tile of 1 to 64 pixels of a
 //! reversed-Z depth buffer, which the second phase of [`super::triangle_cull`]'s occlusion
 //! culling tests triangles against. A storage buffer rather than a mipmapped texture: one

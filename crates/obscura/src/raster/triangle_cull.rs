@@ -1,4 +1,4 @@
-//! Triangle culling before the raster passes (`shaders/triangle_cull.wgsl`, issue 16): a compute
+//! Triangle culling before the raster passes (`shaders/raster/triangle_cull.wgsl`, issue 16): a compute
 //! pass keeps, per draw of [`super::gbuffer::visibility_draws`], the triangles that may cover a
 //! pixel centre (in the frustum, front-facing where back faces are culled, not between pixel
 //! centres), in their order, and writes each draw's indirect arguments; the raster passes then

@@ -1,4 +1,4 @@
-//! The bilateral blur of `shaders/bilateral_blur.wgsl` on the CPU: a test oracle.
+//! The bilateral blur of `shaders/filter/bilateral_blur.wgsl` on the CPU: a test oracle.
 
 use crate::raster::GBufferImage;
 use crate::settings::BlurSettings;

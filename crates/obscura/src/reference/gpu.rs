@@ -1,4 +1,4 @@
-//! The ground truth on the GPU (`shaders/reference.wgsl`): the same two models as
+//! The ground truth on the GPU (`shaders/reference/reference.wgsl`): the same two models as
 //! [`super::ground_truth`] through the compute BVH traversal, held to the CPU oracle by tests.
 
 use super::ground_truth::{ReferenceModel, ReferenceSettings};

@@ -310,7 +310,7 @@ impl AoSettings {
 }
 
 /// The smallest `temporal.depth_tolerance` accepted: about twice the rounding of the history's
-/// 16-bit depth (`shaders/temporal_accumulation.wgsl`, `pack_history_depth`: 2^-10 relative).
+/// 16-bit depth (`shaders/filter/temporal_accumulation.wgsl`, `pack_history_depth`: 2^-10 relative).
 pub const MIN_TEMPORAL_DEPTH_TOLERANCE: f32 = 0.002;
 
 impl Default for TemporalSettings {

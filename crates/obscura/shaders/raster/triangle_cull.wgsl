@@ -18,7 +18,7 @@
 // "GPU-Driven Rendering Pipelines", SIGGRAPH 2015 Advances course): the first keeps, of those, the
 // triangles some pixel showed last frame (`seen_frame`, written by gbuffer_resolve_main.wgsl);
 // after they are drawn, the second keeps the others unless the first phase's depths
-// (shaders/occlusion_pyramid.wgsl) are nearer than the triangle at every pixel it may cover
+// (shaders/raster/occlusion_pyramid.wgsl) are nearer than the triangle at every pixel it may cover
 // (hidden_by_pyramid). Every triangle that can win a pixel is still drawn, by one phase or the
 // other.
 

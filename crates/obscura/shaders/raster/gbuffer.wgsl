@@ -28,7 +28,7 @@ struct Camera {
 @group(0) @binding(3) var<storage, read> triangles: array<vec4<u32>>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var textures: texture_2d_array<f32>;
-// The triangles the culling pass kept (shaders/triangle_cull.wgsl), each draw's from its first
+// The triangles the culling pass kept (shaders/raster/triangle_cull.wgsl), each draw's from its first
 // triangle on; a draw's vertex `v` is corner `v % 3` of triangle `drawn_triangles[v / 3]`.
 @group(1) @binding(0) var<storage, read> drawn_triangles: array<u32>;
 

@@ -1,6 +1,6 @@
 // The occlusion pyramid (src/raster/occlusion_pyramid.rs; layout: common/occlusion_pyramid.wgsl):
 // the farthest depth per tile of the first raster phase's reversed-Z depth buffer, read by the
-// second phase's triangle culling (shaders/triangle_cull.wgsl). Two-phase occlusion culling as in
+// second phase's triangle culling (shaders/raster/triangle_cull.wgsl). Two-phase occlusion culling as in
 // Haar and Aaltonen, "GPU-Driven Rendering Pipelines" (SIGGRAPH 2015 Advances course): what was
 // visible last frame is drawn first, and its depths decide which of the other triangles can be
 // seen at all.

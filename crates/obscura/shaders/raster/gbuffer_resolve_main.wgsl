@@ -1,7 +1,7 @@
 // G-buffer resolve: depth and normal of every pixel from the visibility buffer (appended to
 // gbuffer.wgsl, gbuffer_resolve.wgsl and the header that reads the visibility pass's output,
 // `visible_triangle`: visibility_target_load.wgsl or visibility_words_load.wgsl); and, for
-// the next frame's occlusion culling (shaders/triangle_cull.wgsl), the frame number at which
+// the next frame's occlusion culling (shaders/raster/triangle_cull.wgsl), the frame number at which
 // each shown triangle was last seen.
 
 const VISIBILITY_BINDING: u32 = 6u;
