@@ -1,11 +1,9 @@
 //! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
 //! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
 
-use crate::error::SettingsError;
 use crate::knob::{Kind, Knob, Widget};
 use serde::{Deserialize, Serialize};
 use std::f32::consts::PI;
-use std::str::FromStr;
 
 /// How a sample's angular span turns into sectors of the visibility bitmask (seed 003).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -18,22 +16,6 @@ pub enum SectorActivation {
     Round,
     /// A sector the span covers whole.
     Floor,
-}
-
-impl FromStr for SectorActivation {
-    type Err = SettingsError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "ceil" => Ok(SectorActivation::Ceil),
-            "round" => Ok(SectorActivation::Round),
-            "floor" => Ok(SectorActivation::Floor),
-            _ => Err(SettingsError::Invalid {
-                field: "gtao_vb.activation",
-                value: s.to_string(),
-                rule: "must be 'ceil' (default), 'round' or 'floor'".into(),
-            }),
-        }
-    }
 }
 
 /// GTAO with visibility bitmasks (seed 003): slices × steps per side, 32 sectors per slice,

@@ -2,13 +2,11 @@
 //! rotation pattern and the parameters of `shaders/estimators/vao.wgsl`. The same tables feed the
 //! CPU mirror in [`crate::reference::cpu_vao`].
 
-use crate::error::SettingsError;
 use crate::knob::{Kind, Knob, Widget};
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 use std::fmt;
-use std::str::FromStr;
 
 /// Volumetric AO parameters (seed 000; defaults from the authors' 2022 code, docs/AUTHORS_CODE.md
 /// §1.2).
@@ -39,21 +37,6 @@ pub enum Normalization {
     /// `Σ free/2h / Σ clipped/2h`: the same limit, exactly 1 on every unoccluded plane.
     #[default]
     Clipped,
-}
-
-impl FromStr for Normalization {
-    type Err = SettingsError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "hemisphere" | "paper" => Ok(Normalization::Hemisphere),
-            "clipped" => Ok(Normalization::Clipped),
-            _ => Err(SettingsError::Invalid {
-                field: "vao.normalization",
-                value: s.to_string(),
-                rule: "must be 'clipped' (default) or 'hemisphere' (the paper's 2/N)".into(),
-            }),
-        }
-    }
 }
 
 impl Default for VaoSettings {

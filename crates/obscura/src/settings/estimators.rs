@@ -126,3 +126,36 @@ impl BlurSettings {
         ),
     ];
 }
+
+// The estimators' own names for their choices, parsed where settings errors live (the
+// estimators know nothing of settings errors).
+impl FromStr for Normalization {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "hemisphere" | "paper" => Ok(Normalization::Hemisphere),
+            "clipped" => Ok(Normalization::Clipped),
+            _ => Err(SettingsError::Invalid {
+                field: "vao.normalization",
+                value: s.to_string(),
+                rule: "must be 'clipped' (default) or 'hemisphere' (the paper's 2/N)".into(),
+            }),
+        }
+    }
+}
+
+impl FromStr for SectorActivation {
+    type Err = SettingsError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "ceil" => Ok(SectorActivation::Ceil),
+            "round" => Ok(SectorActivation::Round),
+            "floor" => Ok(SectorActivation::Floor),
+            _ => Err(SettingsError::Invalid {
+                field: "gtao_vb.activation",
+                value: s.to_string(),
+                rule: "must be 'ceil' (default), 'round' or 'floor'".into(),
+            }),
+        }
+    }
+}
