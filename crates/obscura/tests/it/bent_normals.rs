@@ -20,7 +20,7 @@ fn cases() -> Vec<(String, AoSettings)> {
         let mut s = technique_settings(t, false);
         s.bent_normals = true;
         // Near first samples (the corner's limit needs them): GTAO 4 × 8, GTAO-VB 3 × 5 (its
-        // nearest sample within the thickness, as tests/gtao_vb.rs's corner test).
+        // nearest sample within the thickness, as tests/it/gtao_vb.rs's corner test).
         (s.gtao.slices, s.gtao.steps) = (4, 8);
         (s.gtao_vb.slices, s.gtao_vb.steps) = (3, 5);
         out.push((t.to_string(), s));
@@ -72,11 +72,11 @@ fn an_unoccluded_plane_bends_nothing() {
     }
 }
 
-/// GTAO-VB's uniform-sector model at the corner point (tests/gtao_vb.rs's `gtao_vb_corner_limit`:
-/// in each view slice the wall occupies the sectors from its line to the hemisphere's edge), its
-/// bent normal as the shader forms it (∫ω dθ over the free arc per slice, against the open
-/// hemisphere's, n·|open| + visible − open) over 2000 slice angles: the tilt away from the wall,
-/// degrees.
+/// GTAO-VB's uniform-sector model at the corner point (tests/it/gtao_vb.rs's
+/// `gtao_vb_corner_limit`: in each view slice the wall occupies the sectors from its line to the
+/// hemisphere's edge), its bent normal as the shader forms it (∫ω dθ over the free arc per slice,
+/// against the open hemisphere's, n·|open| + visible − open) over 2000 slice angles: the tilt away
+/// from the wall, degrees.
 fn gtao_vb_uniform_corner_tilt(view: glam::Mat4) -> f32 {
     use std::f32::consts::{FRAC_PI_2, PI};
     let n = 2000;
@@ -174,11 +174,11 @@ fn hbao_plus_bent_mirror(
 
 #[test]
 fn a_corner_bends_away_from_the_wall_by_the_closed_form_angle() {
-    // A floor meeting a tall wall (tests/common.rs's corner, seen obliquely). At the corner line
-    // the open directions are a quarter of the sphere, {n·ω > 0, w·ω > 0} (n the floor's normal,
-    // w the wall's, pointing away from it). Their cosine-weighted mean, ∫ω (n·ω) dω, has n part
-    // ∫(n·ω)² = π/3 and w part ∫(w·ω)(n·ω) = 2/3 over that quarter, so it tilts from the normal
-    // towards w by atan(2/π) = 32.48°; the floor pixels within 2 cm of the line (radius 0.5)
+    // A floor meeting a tall wall (tests/common/mod.rs's corner, seen obliquely). At the corner
+    // line the open directions are a quarter of the sphere, {n·ω > 0, w·ω > 0} (n the floor's
+    // normal, w the wall's, pointing away from it). Their cosine-weighted mean, ∫ω (n·ω) dω, has n
+    // part ∫(n·ω)² = π/3 and w part ∫(w·ω)(n·ω) = 2/3 over that quarter, so it tilts from the
+    // normal towards w by atan(2/π) = 32.48°; the floor pixels within 2 cm of the line (radius 0.5)
     // are close to that limit. GTAO and GTAO-VB's cosine-weighted sectors integrate exactly that
     // weight per slice (measured: GTAO 4 × 8 30.8°, at its default 2 × 2 29.3°; GTAO-VB cosine
     // 32.8°): within 2.5°. GTAO-VB's uniform sectors weigh angles within each view slice, a

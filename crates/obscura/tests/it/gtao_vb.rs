@@ -1,7 +1,8 @@
 //! GTAO with visibility bitmasks (seed 003) against values derived without the GPU kernel: an
 //! unoccluded plane, a plain CPU implementation on a read-back G-buffer (uniform and
 //! cosine-weighted sectors), its model's closed form for a step seen from above and its limit at
-//! an inside corner, and the hemisphere ground truth (its dual-depth row: tests/source_twins.rs).
+//! an inside corner, and the hemisphere ground truth (its dual-depth row:
+//! tests/it/source_twins.rs).
 
 use crate::common::*;
 use glam::{UVec2, Vec2, Vec3};

@@ -2,7 +2,7 @@
 //! GPU kernel: an unoccluded plane, a plain CPU implementation of the same estimator on a
 //! read-back G-buffer (single pass and interleaved), its model's closed form for a step seen from
 //! above, and its model over exact geometry at an inside corner (its dual-depth row:
-//! tests/source_twins.rs).
+//! tests/it/source_twins.rs).
 
 use crate::common::*;
 use glam::{UVec2, Vec2};

@@ -1,7 +1,7 @@
 //! The interleaved schedule (seed-code-notes §1.7) with the VAO estimator, whose per-pixel sample
 //! pattern is finer than HBAO+'s: unoccluded planes stay at 1, and snapping every sample to the
 //! nearest pixel of its residue class mod 4 changes the image only a little. (HBAO+ and HBAO over
-//! this schedule match CPU implementations exactly: tests/hbao_plus.rs, tests/horizon.rs.)
+//! this schedule match CPU implementations exactly: tests/it/hbao_plus.rs, tests/it/horizon.rs.)
 
 use crate::common::*;
 use obscura::{scene, Renderer, Technique};

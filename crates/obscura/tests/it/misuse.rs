@@ -1,6 +1,6 @@
 //! Library misuse (issue 15): each misuse of the public API returns the documented `Err`, naming
 //! what is wrong; nothing panics. (Texture size, format, usage and sample count of the engine
-//! path: tests/engine_input.rs; of `FrameTextures`: here.)
+//! path: tests/it/engine_input.rs; of `FrameTextures`: here.)
 
 use crate::common;
 use crate::common::*;

@@ -97,7 +97,7 @@ fn holding_every_hidden_layer_the_raster_map_equals_the_ray_traced_one() {
 fn the_two_phase_row_reads_the_same_nearest_layers() {
     // sd-svao rasterises the map only where phase 1 asked for it; with the nearest layers the
     // pixels it asks for hold the same depths, so it must equal sd-vao (seed 000 §3.9's identity,
-    // tests/two_phase_twins.rs for the stochastic map), with each way of limiting the map.
+    // tests/it/two_phase_twins.rs for the stochastic map), with each way of limiting the map.
     use obscura::settings::SdMask;
     let gpu = gpu();
     for name in ["stairs", "grass"] {

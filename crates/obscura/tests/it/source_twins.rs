@@ -2,7 +2,7 @@
 //! gives the same image as its first-layer twin (same estimator and schedule) where nothing is
 //! hidden: a height field seen from above has no second layer and nothing for the stochastic depth
 //! map to keep, so the source has nothing to add. Table-driven: a new estimator's dual or stochastic-depth row is checked here
-//! without an edit. (`sd-svao`, two-phase, is held to `sd-vao` by tests/two_phase_twins.rs.)
+//! without an edit. (`sd-svao`, two-phase, is held to `sd-vao` by tests/it/two_phase_twins.rs.)
 
 use crate::common::*;
 use glam::Vec3;

@@ -262,7 +262,7 @@ fn the_maps_choices_stay_put_while_the_camera_moves() {
 fn sd_svao_limits_the_map_to_requested_pixels() {
     // Same seeds, so the map limited to the requested pixels (by stencil, depth or discard) holds
     // the same values wherever phase 1 asked for it (the images are held equal to sd-vao's by
-    // tests/two_phase_twins.rs), and nothing elsewhere: read as written, not as the AO reads it.
+    // tests/it/two_phase_twins.rs), and nothing elsewhere: read as written, not as the AO reads it.
     // Each map first draws a frame from a view nearer the scene, so that at the pixels requested
     // there but not here the depth and stencil that frame wrote lie in front of this frame's
     // hidden layers: only this frame's mask (for the stencil and the depth mask, the
@@ -744,7 +744,7 @@ fn compensation_only_darkens_and_reaches_every_stochastic_row() {
 #[test]
 fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer() {
     // `stochastic_depth.guard_band` (ours, after seed 002 §3.5): the scene and camera of the
-    // ray-traced map's band test (tests/ray_stochastic_depth.rs). A step's face lies just past
+    // ray-traced map's band test (tests/it/ray_stochastic_depth.rs). A step's face lies just past
     // the framebuffer's right edge (its 4 px guard band included); the samples that reach it
     // fall off the framebuffer, where without the map's band they read the framebuffer's edge
     // (more floor). With a 32 px band (the samples reach about 12 px) the map is rasterised

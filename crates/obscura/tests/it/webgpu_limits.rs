@@ -6,7 +6,7 @@
 //! so phase 2 of the ray-traced rows (the two-phase work list with its count in one buffer) and
 //! the ray-traced map's collection (its hit counts in the map's buffer) were made to fit. Only the
 //! compute rasteriser of the stochastic depth map needs more (12 buffers); `auto` then chooses the
-//! hardware's, whose map is the same (tests/stochastic_depth.rs, compute_raster tests).
+//! hardware's, whose map is the same (tests/it/stochastic_depth.rs, compute_raster tests).
 
 use crate::common::*;
 use obscura::settings::Resolution;
