@@ -2,7 +2,7 @@
 # Make sure a Vulkan driver is installed, and what the viewer's test needs to open a window without
 # a screen. On a machine without them (no GPU, fresh Debian/Ubuntu), install Mesa's software
 # Vulkan driver (lavapipe: slow but real, enough for the demo and tests), Xvfb (a virtual X
-# display: `obscura view` runs under it in tests/view.rs) and the X libraries winit loads at run
+# display: `obscura view` runs under it in tests/it/view.rs) and the X libraries winit loads at run
 # time. Only what is missing is installed; nothing at all when everything is there.
 set -euo pipefail
 need=()

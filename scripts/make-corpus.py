@@ -2,7 +2,7 @@
 """Writes the malformed-input corpus (issue 15) into crates/obscura-cli/tests/corpus/: scene files
 that are broken or degenerate in the ways real files are, and manifest.json with what `obscura
 render --scene FILE` must do with each ("error" with a word the one-line message must contain, or
-"ok"). tests/cli.rs runs every entry: the exit status, one line of message, no panic, no output
+"ok"). tests/it/cli.rs runs every entry: the exit status, one line of message, no panic, no output
 file on error, under 10 s. Python's standard library only; run again after changing it:
 
     python3 scripts/make-corpus.py
@@ -139,7 +139,7 @@ def main():
         json.dump(cases, f, indent=1)
     with open(os.path.join(OUT, "README.md"), "w") as f:
         f.write("# Malformed-input corpus\n\nMade by `scripts/make-corpus.py` (do not edit by hand); "
-                "`tests/cli.rs` renders every file with `obscura render --scene FILE` and checks the "
+                "`tests/it/cli.rs` renders every file with `obscura render --scene FILE` and checks the "
                 "outcome below: exit status 1 with one line of message containing the text (error), or "
                 "success with the text in the warnings (ok); never a panic, nothing written on error, "
                 "under 10 s each.\n\n| file | outcome | message contains |\n|---|---|---|\n")

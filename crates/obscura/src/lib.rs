@@ -13,7 +13,7 @@
 //! Conventions: right-handed view space looking down −Z, linear depth = −z in world units,
 //! AO = 1 unoccluded / 0 fully occluded, exponent applied last. The defaults assume metres; for a
 //! scene in other units, [`AoSettings::scaled`] converts every setting in world units, after
-//! which every technique gives the same image as in metres (tests/scale_invariance.rs).
+//! which every technique gives the same image as in metres (tests/it/scale_invariance.rs).
 
 #![warn(missing_docs)]
 

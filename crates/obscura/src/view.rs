@@ -19,8 +19,8 @@ pub fn default_guard_band(height: u32) -> u32 {
 
 /// The near plane used for a scene: linear depth does not depend on it, so it only has to be
 /// small against the scene (1e-5 of its diagonal, whatever the scene's units: a fixed floor
-/// would clip a scene in kilometres or of a few millimetres in metres; tests/scale_invariance.rs),
-/// and 1e-5 for a scene without extent.
+/// would clip a scene in kilometres or of a few millimetres in metres;
+/// tests/it/scale_invariance.rs), and 1e-5 for a scene without extent.
 pub fn near_plane(scene: &crate::scene::Scene) -> f32 {
     let diagonal = scene.bounds().diagonal();
     if diagonal > 0.0 && diagonal.is_finite() {

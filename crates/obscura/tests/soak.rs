@@ -7,6 +7,9 @@
 //! techniques switched every `min(500, frames / (2 · techniques))` frames (`$OBSCURA_SOAK_SWITCH`). `$OBSCURA_SOAK_SIZE`
 //! (default 64x48) and `$OBSCURA_SOAK_TECHNIQUES` (comma-separated; default every row) set up the
 //! device run. The time of every block of 50 frames is reported: flat too.
+//!
+//! Its own test binary, unlike the other tests (one binary, tests/it/): it samples the resident
+//! memory of the whole process, which the other tests' allocations would move.
 
 mod common;
 use common::*;

@@ -26,7 +26,7 @@
 // - a surface on or below the shading point's tangent plane (within 1e-3 rad) occludes nothing.
 //   Samples snap to pixel centres, off the direction's slice, where a tilted plane's elevation
 //   differs from its tangent's in the slice: without the rule every tilted unoccluded plane
-//   occluded itself by up to 0.12 (measured on tests/common.rs's tilted floor);
+//   occluded itself by up to 0.12 (measured on tests/common/mod.rs's tilted floor);
 // - the start jitter and the 1-pixel minimum first step of our
 //   HBAO+ (the authors' HBAO+ placement, docs/AUTHORS_CODE.md §1.7), and the 4×4 Bayer
 //   rotation/jitter pattern of every screen-space estimator here (src/estimators/mod.rs).

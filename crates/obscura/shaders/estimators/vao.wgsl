@@ -124,7 +124,7 @@ fn column_height(f: VaoFrame, c: VaoColumn, p: vec3<f32>) -> f32 {
 // ray the height is column_height at the camera plus this times the depth; taking the slope as
 // the difference of two heights instead loses it to rounding wherever the heights are large next
 // to it (a scene far from the camera in world units: at 4096 times the built-ins' scale the
-// ray-traced AO moved by up to 4e-3; tests/scale_invariance.rs).
+// ray-traced AO moved by up to 4e-3; tests/it/scale_invariance.rs).
 fn column_height_slope(f: VaoFrame, d: vec3<f32>) -> f32 {
     return dot(d, f.plane);
 }
@@ -181,7 +181,7 @@ fn vao_pixel_at(id: vec2<u32>, pos: vec3<f32>, normal: vec3<f32>) -> VaoPixel {
     // pixel_to_view(px, 1) = ((px.x s.x − 1) t.x, (1 − px.y s.y) t.y, −1), s = ndc_per_pixel,
     // t = tan_half_fov (common/view.wgsl), written out: the coefficients taken as differences of
     // pixel_to_view at three points lost too much (an open plane's AO fell below 1 in
-    // tests/vao_analytic.rs).
+    // tests/it/vao_analytic.rs).
     let per_pixel = view.ndc_per_pixel * view.tan_half_fov;
     p.frame.ray_plane = vec3<f32>(
         per_pixel.x * plane.x,

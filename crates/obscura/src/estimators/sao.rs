@@ -94,7 +94,7 @@ pub const LEVEL_OFFSET_PX: f32 = 8.0;
 /// ε = (0.2 R)²: SAO's code adds ε = 0.01 to v·v against division by zero, a squared length in
 /// the metres it was written for; held at its value for our default R = 0.5 but made
 /// proportional to R², so that a scene in other units gives the same image (with
-/// `AoSettings::scaled`; tests/scale_invariance.rs).
+/// `AoSettings::scaled`; tests/it/scale_invariance.rs).
 pub const EPSILON_PER_RADIUS: f32 = 0.2;
 
 /// GPU mirror of `SaoParams` in the WGSL.

@@ -103,7 +103,7 @@ pub const FALLOFF_U: f32 = 0.1;
 /// ε = (0.02 R)²: Alchemy AO's ε = 10⁻⁴ against division by zero is a squared length in the
 /// paper's metres; held at that value for our default R = 0.5 but made proportional to R², so
 /// that a scene in other units gives the same image (with `AoSettings::scaled`;
-/// tests/scale_invariance.rs).
+/// tests/it/scale_invariance.rs).
 pub const EPSILON_PER_RADIUS: f32 = 0.02;
 
 /// GPU mirror of `SsaoParams` in the WGSL.

@@ -3,7 +3,7 @@
 //! sees what they cost (an encoder's `clear_buffer` is not inside any timed pass).
 
 // The kernel is included here, not through `crate::shaders`: gpu/ knows nothing of the
-// techniques' shaders (tests/module_graph.rs).
+// techniques' shaders (tests/it/module_graph.rs).
 use super::PassProfiler;
 
 /// The pipeline that fills buffers with zeros. The buffers' sizes must be whole 16-byte words

@@ -117,7 +117,7 @@ impl PixelFrame {
     /// How fast [`Self::height`] grows along view-space direction `d` (its linear part; vao.wgsl
     /// `column_height_slope`). Not the difference of two heights: that loses the slope to
     /// rounding where the heights are large next to it (a scene far from its camera in world
-    /// units; tests/scale_invariance.rs).
+    /// units; tests/it/scale_invariance.rs).
     pub fn height_slope(&self, d: Vec3) -> f32 {
         let lateral = Vec2::new(d.dot(self.tangent), d.dot(self.bitangent));
         d.dot(self.axis) + lateral.dot(self.n_local.truncate()) * self.inv_n_z

@@ -152,7 +152,7 @@ impl TwoPhase {
         );
         // The count and the list in one buffer: one storage binding fewer, so that phase 2 of
         // the ray-traced rows (the BVH's five buffers and the source's own) stays within
-        // WebGPU's default of 8 storage buffers per stage (tests/webgpu_limits.rs).
+        // WebGPU's default of 8 storage buffers per stage (tests/it/webgpu_limits.rs).
         // WGSL sizes the struct in whole multiples of its 128-byte alignment, and a binding must
         // hold at least one: 256 bytes for one pixel.
         let work_list = buffer(

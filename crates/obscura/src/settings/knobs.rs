@@ -132,7 +132,7 @@ impl AoSettings {
     /// `factor` and every one per world unit (`blur.sharpness`) divided by it; pixels, angles
     /// and fractions unchanged. A scene in centimetres with settings made for metres takes
     /// `settings.scaled(100.0)`; every technique then gives the same image
-    /// (tests/scale_invariance.rs renders them all both ways).
+    /// (tests/it/scale_invariance.rs renders them all both ways).
     pub fn scaled(&self, factor: f32) -> Self {
         let mut tree = self.to_tree();
         for (path, power) in Self::world_unit_fields() {

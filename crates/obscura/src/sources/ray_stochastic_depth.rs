@@ -159,7 +159,7 @@ pub struct RayStochasticDepthMap {
     /// `reservoir` floats per texel: reversed-Z `near / depth`, 0 = empty; then, from word
     /// [`Self::hits_offset`] on, one u32 per texel: the hits its ray handled (at most
     /// `max_count`). One buffer for both, so that the collection binds at most WebGPU's default
-    /// of 8 storage buffers per stage with the BVH's five (tests/webgpu_limits.rs).
+    /// of 8 storage buffers per stage with the BVH's five (tests/it/webgpu_limits.rs).
     depths: wgpu::Buffer,
     /// Bound where no request mask is (single pass).
     no_request: wgpu::Buffer,

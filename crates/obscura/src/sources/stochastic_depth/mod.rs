@@ -439,9 +439,9 @@ impl StochasticDepthMap {
             Default::default()
         };
         // With `--sd-mask depth` or `stencil` and early tests, the fixed-function test alone
-        // keeps unrequested pixels from the shader (tests/stochastic_depth.rs holds the map empty
-        // there); otherwise the shader reads the mask as well (for the stenciled map that read
-        // cost 0.5 % of its pass on an H200, BENCHMARKS.md).
+        // keeps unrequested pixels from the shader (tests/it/stochastic_depth.rs holds the map
+        // empty there); otherwise the shader reads the mask as well (for the stenciled map that
+        // read cost 0.5 % of its pass on an H200, BENCHMARKS.md).
         let mask_in_tests = !compute_raster
             && matches!(requested, Some(SdMask::Depth | SdMask::Stencil))
             && early_tests_available(device);

@@ -1,0 +1,6 @@
+//! The integration tests of `obscura-cli`, one binary: each former `tests/NAME.rs` is the
+//! module `NAME` (`tests/it/NAME.rs`). The error corpus stays in `tests/corpus`.
+
+mod cli;
+mod path;
+mod view;
