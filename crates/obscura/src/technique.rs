@@ -105,27 +105,29 @@ techniques!(
     RaySdGtaoVb
 );
 
-/// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Estimator {
-    /// Volumetric AO, seed 000 §3.1–3.5.
-    Vao,
-    /// Horizon-based AO, seed 001 §3.2 Algorithm 2, seed 004 §2.2.1.
-    Hbao,
-    /// NVIDIA-style per-sample horizon AO, the seed authors' baseline (seed 000 §2.1,
-    /// docs/AUTHORS_CODE.md §1.7).
-    HbaoPlus,
-    /// Ground-truth-based AO (Jimenez et al. 2016), the baseline of seed 003.
-    Gtao,
-    /// SSAO as seed 001 §3.2 extends it: Alchemy AO (McGuire et al. 2011).
-    Ssao,
-    /// Scalable Ambient Obscurance (McGuire et al. 2012), seed 004 §2.2.2.
-    Sao,
-    /// Pyramid HBAO, seed 004 §3.
-    PyramidHbao,
-    /// GTAO with a visibility bitmask of 32 sectors per slice (seed 003).
-    GtaoVb,
+/// `Estimator`, one variant per entry of the registry (`estimators::registry`).
+macro_rules! estimator_enum {
+    ($($(#[$attr:meta])* $name:ident: $variant:ident($settings:ident) = $doc:literal,)*) => {
+        /// What turns depth samples into occlusion (`src/estimators/`, `shaders/estimators/`).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Estimator {
+            $($(#[$attr])* #[doc = $doc] $variant,)*
+        }
+
+        impl Estimator {
+            /// Every estimator, in the registry's order.
+            // One push per entry: an entry's `cfg` can stand on a statement, not on an element
+            // of `vec![…]`.
+            #[allow(clippy::vec_init_then_push)]
+            pub fn all() -> Vec<Estimator> {
+                let mut all = Vec::new();
+                $($(#[$attr])* all.push(Estimator::$variant);)*
+                all
+            }
+        }
+    };
 }
+estimators::registry!(estimator_enum);
 
 /// What answers "what lies behind the first surface here" (`src/sources/`, `shaders/sources/`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -757,18 +759,6 @@ pub struct EstimatorCaps {
 }
 
 impl Estimator {
-    /// Every estimator, in the README's order.
-    pub const ALL: [Estimator; 8] = [
-        Estimator::Vao,
-        Estimator::Hbao,
-        Estimator::HbaoPlus,
-        Estimator::Gtao,
-        Estimator::Ssao,
-        Estimator::Sao,
-        Estimator::PyramidHbao,
-        Estimator::GtaoVb,
-    ];
-
     /// Everything the library asks of the estimator.
     pub const fn caps(self) -> &'static EstimatorCaps {
         match self {
@@ -938,6 +928,22 @@ impl Estimator {
                     ("gtao_vb.steps", [2.0, 2.0, 3.0, 5.0]),
                 ],
                 module: &estimators::gtao_vb::MODULE,
+            },
+            #[cfg(test)]
+            Estimator::Stub => &EstimatorCaps {
+                name: "stub",
+                section: "stub",
+                radius: "stub.radius",
+                debug_image: None,
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: false,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[("stub.samples", [4.0, 8.0, 16.0, 32.0])],
+                module: &estimators::stub::MODULE,
             },
         }
     }

@@ -8,22 +8,31 @@
 //! schedules own the loops; the sources consult the estimator for each depth they find. Nothing
 //! here knows the technique table or the settings of the whole.
 
-/// The registry of estimators, one line each: its module, its settings struct and what its
-/// settings are for (the doc of `AoSettings`' field). `registry!(then)` hands the list to the
-/// macro `then`: [`declare_modules`] below, and `AoSettings`' fields and defaults
-/// (settings/mod.rs). Adding an estimator: its module, its line here, its row and caps literal
-/// in technique.rs (docs/ARCHITECTURE.md, "Adding an estimator").
+/// The registry of estimators, one entry each: its module, its `Estimator` variant, its settings
+/// struct and what it is (with a paper section). `registry!(then)` hands the list to the macro
+/// `then`: the module declarations below, the `Estimator` enum (technique.rs) and `AoSettings`'
+/// fields and defaults (settings/mod.rs). Adding an estimator: its module, its entry here, its
+/// caps literal and rows in technique.rs, its test (docs/ARCHITECTURE.md, "Adding a technique").
 macro_rules! registry {
     ($then:ident) => {
         $then! {
-            vao: VaoSettings = "The VAO estimator (`vao`, `vao-dual`, `rt-vao`, `rt-svao`, `sd-vao`, …).",
-            hbao: HbaoSettings = "The classic HBAO estimator (`hbao`, `hbao-dual`, `sd-hbao`, …).",
-            hbao_plus: HbaoPlusSettings = "The HBAO+ estimator (`hbao+`, `hbao+-dual`, `sd-hbao+`, …).",
-            gtao: GtaoSettings = "The GTAO estimator (`gtao`).",
-            pyramid_hbao: PyramidHbaoSettings = "The Pyramid HBAO estimator (`pyramid-hbao`).",
-            sao: SaoSettings = "The Scalable Ambient Obscurance estimator (`sao`).",
-            ssao: SsaoSettings = "The SSAO (Alchemy AO) estimator (`ssao`, `sd-ssao`, …).",
-            gtao_vb: GtaoVbSettings = "The visibility-bitmask estimator (`gtao-vb`, `sd-gtao-vb`, …).",
+            vao: Vao(VaoSettings) = "Volumetric AO, seed 000 §3.1–3.5.",
+            hbao: Hbao(HbaoSettings) = "Horizon-based AO, seed 001 §3.2 Algorithm 2, seed 004 §2.2.1.",
+            hbao_plus: HbaoPlus(HbaoPlusSettings) = "NVIDIA-style per-sample horizon AO, the seed \
+                authors' baseline (seed 000 §2.1, docs/AUTHORS_CODE.md §1.7).",
+            gtao: Gtao(GtaoSettings) = "Ground-truth-based AO (Jimenez et al. 2016), the baseline \
+                of seed 003.",
+            ssao: Ssao(SsaoSettings) = "SSAO as seed 001 §3.2 extends it: Alchemy AO (McGuire et \
+                al. 2011).",
+            sao: Sao(SaoSettings) = "Scalable Ambient Obscurance (McGuire et al. 2012), seed 004 \
+                §2.2.2.",
+            pyramid_hbao: PyramidHbao(PyramidHbaoSettings) = "Pyramid HBAO, seed 004 §3.",
+            gtao_vb: GtaoVb(GtaoVbSettings) = "GTAO with a visibility bitmask of 32 sectors per \
+                slice (seed 003).",
+            // A stub with the knobs of a real one, to test that an entry alone gives an estimator
+            // its flags, checks, presets, viewer widgets and docs rows (settings/tests.rs).
+            #[cfg(test)]
+            stub: Stub(StubSettings) = "A test stub (settings/tests.rs).",
         }
     };
 }
@@ -31,7 +40,7 @@ pub(crate) use registry;
 
 /// The registry's modules.
 macro_rules! declare_modules {
-    ($($(#[$attr:meta])* $name:ident: $settings:ident = $doc:literal,)*) => {
+    ($($(#[$attr:meta])* $name:ident: $variant:ident($settings:ident) = $doc:literal,)*) => {
         $($(#[$attr])* pub mod $name;)*
     };
 }

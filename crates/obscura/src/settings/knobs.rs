@@ -21,7 +21,7 @@ const KNOB_LISTS: &[&[Knob]] = &[
 impl AoSettings {
     /// Every settings field's knob (all but `technique`), in docs/SETTINGS.md's order.
     pub fn knobs() -> impl Iterator<Item = &'static Knob> {
-        let estimators = Estimator::ALL.into_iter().map(|e| e.caps().module.knobs);
+        let estimators = Estimator::all().into_iter().map(|e| e.caps().module.knobs);
         KNOB_LISTS.iter().copied().chain(estimators).flatten()
     }
 

@@ -43,7 +43,7 @@ impl AoSettings {
 /// `AoSettings` and its defaults, with one field per estimator of the registry
 /// (`estimators::registry`), each re-exported here by its settings struct.
 macro_rules! ao_settings {
-    ($($(#[$attr:meta])* $name:ident: $settings:ident = $doc:literal,)*) => {
+    ($($(#[$attr:meta])* $name:ident: $variant:ident($settings:ident) = $doc:literal,)*) => {
         $($(#[$attr])* pub use crate::estimators::$name::$settings;)*
 
         /// Everything a technique's kernels read, as data: every field has a default (the papers' /
@@ -72,7 +72,8 @@ macro_rules! ao_settings {
             /// Which row of the technique table runs (estimator × hidden-depth source × schedule); default
             /// `vao`.
             pub technique: Technique,
-            $($(#[$attr])* #[doc = $doc] pub $name: $settings,)*
+            $($(#[$attr])* #[doc = concat!("The estimator `", stringify!($name), "`: ", $doc)]
+            pub $name: $settings,)*
             /// The bilateral blur that filters every technique's raw AO.
             pub blur: BlurSettings,
             /// `vao-dual`: the second layer is the nearest surface more than this many world units behind

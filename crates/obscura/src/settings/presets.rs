@@ -77,20 +77,26 @@ impl AoSettings {
             technique,
             ..AoSettings::default()
         };
+        s.apply_preset(row.estimator.caps().presets, preset);
+        s.apply_preset(row.source.caps().presets, preset);
+        s
+    }
+
+    /// Sets every field of a preset table (an estimator's or a source's caps: a field's values
+    /// at low, medium, high, ultra) to its value at `preset`.
+    pub(crate) fn apply_preset(&mut self, table: &[(&str, [f64; 4])], preset: Preset) {
         let level = Preset::ALL
             .iter()
             .position(|p| *p == preset)
             .expect("a preset");
-        let tables = row.estimator.caps().presets.iter();
-        for (path, values) in tables.chain(row.source.caps().presets) {
+        for (path, values) in table {
             let knob = AoSettings::knob(path).expect("a preset names a settings field");
             let value = match knob.kind {
                 Kind::Number { int: false, .. } => Value::Float(values[level]),
                 _ => Value::Integer(values[level] as i64),
             };
-            s.set_field(knob, Some(value))
+            self.set_field(knob, Some(value))
                 .expect("a preset's value is valid");
         }
-        s
     }
 }

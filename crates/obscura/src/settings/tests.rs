@@ -256,9 +256,14 @@ fn every_radius_is_set_at_once() {
         assert_eq!(s.radius(), 2.25, "{technique}");
         // The ground truth reads the VAO radius whatever the technique.
         assert_eq!(s.vao.radius, 2.25, "{technique}");
-        // All eight estimators' radius fields, and nothing else.
+        // Every estimator's radius field (the test-only stub's too), and nothing else.
         let json = serde_json::to_string(&s).unwrap();
-        assert_eq!(json.matches(":2.25").count(), 8, "{technique}: {json}");
+        let estimators = Estimator::all().len();
+        assert_eq!(
+            json.matches(":2.25").count(),
+            estimators,
+            "{technique}: {json}"
+        );
         assert!(s.validate().is_ok(), "{technique}");
     }
 }
@@ -285,7 +290,8 @@ fn blur_sigma_is_a_natural_gaussian() {
 #[test]
 fn validation_names_fields_that_exist_and_no_flags() {
     let paths = AoSettings::field_paths();
-    assert_eq!(paths.len(), 77, "{paths:?}");
+    // 77, and the test-only stub estimator's 2 (estimators/stub.rs).
+    assert_eq!(paths.len(), 77 + 2, "{paths:?}");
     let mut broken: Vec<AoSettings> = Vec::new();
     let mut push = |f: &dyn Fn(&mut AoSettings)| {
         let mut s = AoSettings::default();
@@ -433,6 +439,7 @@ fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
     }
     let mut listed: Vec<(String, i32)> = AoSettings::world_unit_fields()
         .iter()
+        .filter(|(f, _)| !f.starts_with("stub."))
         .map(|&(f, p)| (f.to_string(), p))
         .collect();
     documented.sort();
@@ -466,7 +473,12 @@ fn the_fields_scaled_with_the_scene_are_those_the_docs_give_in_world_units() {
 #[test]
 fn docs_settings_md_holds_the_field_table_the_knobs_make() {
     let docs = include_str!("../../../../docs/SETTINGS.md");
-    let table = AoSettings::fields_markdown();
+    // Without the test-only stub estimator's rows (estimators/stub.rs).
+    let table: String = AoSettings::fields_markdown()
+        .lines()
+        .filter(|l| !l.starts_with("| `stub."))
+        .map(|l| format!("{l}\n"))
+        .collect();
     assert!(
         docs.contains(&table),
         "docs/SETTINGS.md must hold this table (AoSettings::fields_markdown):\n{table}"
@@ -516,4 +528,54 @@ fn presets_name_fields_and_medium_is_the_default() {
             AoSettings::preset(technique, preset).validate().unwrap();
         }
     }
+}
+
+/// An estimator's registry entry (estimators/mod.rs) and its caps literal alone give its fields
+/// everything: flags (the CLI makes its flags of exactly `AoSettings::knobs`), checks, scaling,
+/// presets, viewer widgets and docs/SETTINGS.md rows. The test-only stub (estimators/stub.rs)
+/// has nothing else.
+#[test]
+fn a_registry_entry_gives_an_estimator_flags_checks_presets_widgets_and_docs() {
+    use crate::knob::Widget;
+    let stub = Estimator::Stub;
+    assert!(Estimator::all().contains(&stub));
+    let radius = AoSettings::knob_for_flag("--stub-radius").expect("a flag");
+    assert_eq!(radius.path, "stub.radius");
+    let mut s = AoSettings::default();
+    s.set_field_text(radius, "0.25").unwrap();
+    assert_eq!(s.stub.radius, 0.25);
+    let e = s.set_field_text(radius, "-1").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "invalid stub.radius -1: must be a positive number of world units, e.g. 0.5"
+    );
+    s.stub.samples = 99;
+    let e = s.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("stub.samples 99") && e.contains("1 to 32"),
+        "{e}"
+    );
+    // Scaled with the scene, as a length.
+    assert_eq!(AoSettings::default().scaled(4.0).stub.radius, 2.0);
+    // Its presets, from its caps literal.
+    for (preset, want) in Preset::ALL.into_iter().zip([4, 8, 16, 32]) {
+        let mut p = AoSettings::default();
+        p.apply_preset(stub.caps().presets, preset);
+        assert_eq!(p.stub.samples, want, "{preset}");
+    }
+    // The viewer shows the knobs of a row's estimator section that have a widget.
+    let shown: Vec<&str> = AoSettings::knobs()
+        .filter(|k| k.section() == stub.section() && k.widget != Widget::Hidden)
+        .map(|k| k.path)
+        .collect();
+    assert_eq!(shown, ["stub.radius", "stub.samples"]);
+    // Its rows in docs/SETTINGS.md's table, and its field everywhere else.
+    let table = AoSettings::fields_markdown();
+    assert!(
+        table.contains("| `stub.samples` | `--stub-samples` | 1 to 32 |"),
+        "{table}"
+    );
+    assert!(AoSettings::field_paths().contains(&"stub.radius".to_string()));
+    s.set_every_radius(3.0);
+    assert_eq!(s.stub.radius, 3.0);
 }

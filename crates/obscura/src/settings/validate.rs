@@ -75,7 +75,7 @@ impl AoSettings {
     /// does the ground truth, which takes `vao.radius`. Each estimator still reads R its own way
     /// (docs/SETTINGS.md: e.g. GTAO's samples reach 1.457 R, HBAO+ fades by 1 − d²/R²).
     pub fn set_every_radius(&mut self, radius: f32) {
-        for estimator in Estimator::ALL {
+        for estimator in Estimator::all() {
             self.set_radius_of(estimator, radius);
         }
     }
