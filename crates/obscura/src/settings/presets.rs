@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::knob::{Kind, Value};
+use crate::technique::Source;
 
 /// A quality level: [`AoSettings::preset`] says per technique what each sets.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -98,5 +99,42 @@ impl AoSettings {
             self.set_field(knob, Some(value))
                 .expect("a preset's value is valid");
         }
+    }
+
+    /// docs/SETTINGS.md's preset table: one column per estimator and source that has presets
+    /// (their caps literals' tables), the fields each sets, their values per preset.
+    pub fn presets_markdown() -> String {
+        let mut sources: Vec<Source> = Vec::new();
+        for t in Technique::all() {
+            if !sources.contains(&t.source()) {
+                sources.push(t.source());
+            }
+        }
+        let estimators = Estimator::all()
+            .into_iter()
+            .map(|e| (e.name(), e.caps().presets));
+        let sources = sources.into_iter().map(|s| (s.name(), s.caps().presets));
+        let columns: Vec<(&str, &[(&str, [f64; 4])])> = estimators
+            .chain(sources)
+            .filter(|(_, table)| !table.is_empty())
+            .collect();
+        let mut out = String::from("| preset |");
+        for (name, table) in &columns {
+            let fields: Vec<String> = table.iter().map(|(f, _)| format!("`{f}`")).collect();
+            out.push_str(&format!(" {name}: {} |", fields.join(", ")));
+        }
+        out.push_str(&format!("\n|---|{}\n", "---|".repeat(columns.len())));
+        for (level, preset) in Preset::ALL.into_iter().enumerate() {
+            out.push_str(&format!("| `{preset}` |"));
+            for (_, table) in &columns {
+                let values: Vec<String> = table
+                    .iter()
+                    .map(|(_, v)| crate::knob::number(v[level]))
+                    .collect();
+                out.push_str(&format!(" {} |", values.join(", ")));
+            }
+            out.push('\n');
+        }
+        out
     }
 }

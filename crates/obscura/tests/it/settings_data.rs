@@ -1,8 +1,7 @@
 //! Settings as data: docs/SETTINGS.md stays equal to what the library does (the default file,
 //! every field, the preset table), and the public file API from outside the crate.
 
-use obscura::settings::{AoSettings, Preset, SettingsError, StochasticDepthSettings};
-use obscura::technique::{Estimator, Source};
+use obscura::settings::{AoSettings, Preset, SettingsError};
 use obscura::Technique;
 
 fn doc() -> String {
@@ -10,100 +9,45 @@ fn doc() -> String {
     std::fs::read_to_string(path).expect("docs/SETTINGS.md")
 }
 
-/// The first technique of the table with estimator `e`.
-fn with_estimator(e: Estimator) -> Technique {
-    Technique::all().find(|t| t.estimator() == e).unwrap()
-}
-
-/// The preset table of docs/SETTINGS.md, made by calling `AoSettings::preset`.
-fn preset_table() -> String {
-    let sd = Technique::all()
-        .find(|t| t.source() == Source::StochasticDepth)
-        .unwrap();
-    let mut out = String::from(
-        "| preset | VAO: `vao.samples`, `blur.radius` | HBAO: `hbao.directions` × `.steps` | HBAO+: `hbao_plus.directions` × `.steps`, `blur.radius` | GTAO: `gtao.slices` × `.steps` | GTAO-VB: `gtao_vb.slices` × `.steps` | Pyramid HBAO: `pyramid_hbao.directions` × `.steps` | SAO: `sao.samples` | SSAO: `ssao.samples` | stochastic depth: `stochastic_depth.samples` (S), `.alpha` (α) |\n|---|---|---|---|---|---|---|---|---|---|\n",
-    );
-    for p in Preset::ALL {
-        let at = |e| AoSettings::preset(with_estimator(e), p);
-        let (v, hb, h, gt, g, ph, sao, ss, s) = (
-            at(Estimator::Vao),
-            at(Estimator::Hbao),
-            at(Estimator::HbaoPlus),
-            at(Estimator::Gtao),
-            at(Estimator::GtaoVb),
-            at(Estimator::PyramidHbao),
-            at(Estimator::Sao),
-            at(Estimator::Ssao),
-            AoSettings::preset(sd, p),
-        );
-        out += &format!(
-            "| `{p}` | {}, {} | {} × {} | {} × {}, {} | {} × {} | {} × {} | {} × {} | {} | {} | {}, {} |\n",
-            v.vao.samples,
-            v.blur.radius,
-            hb.hbao.directions,
-            hb.hbao.steps,
-            h.hbao_plus.directions,
-            h.hbao_plus.steps,
-            h.blur.radius,
-            gt.gtao.slices,
-            gt.gtao.steps,
-            g.gtao_vb.slices,
-            g.gtao_vb.steps,
-            ph.pyramid_hbao.directions,
-            ph.pyramid_hbao.steps,
-            sao.sao.samples,
-            ss.ssao.samples,
-            s.stochastic_depth.samples,
-            s.stochastic_depth.alpha()
-        );
-    }
-    out
-}
-
 #[test]
 fn the_preset_table_is_the_whole_story() {
     let text = doc();
-    let table = preset_table();
+    let table = AoSettings::presets_markdown();
     assert!(
         text.contains(&table),
-        "docs/SETTINGS.md must contain this preset table:\n{table}"
+        "docs/SETTINGS.md must contain this preset table (AoSettings::presets_markdown):\n{table}"
     );
-    // The table holds for every technique: the VAO columns for every VAO-estimator technique,
-    // the stochastic-depth ones for every technique with that source (the others keep the
-    // defaults), and nothing else changes.
-    let sd = Technique::all()
-        .find(|t| t.source() == Source::StochasticDepth)
-        .unwrap();
+    // The table holds for every technique, and nothing else changes: a preset sets only the
+    // fields its row's estimator and source name, medium is the defaults, every preset is valid.
+    let defaults = |t| AoSettings {
+        technique: t,
+        ..AoSettings::default()
+    };
     for t in Technique::all() {
+        let named: Vec<&str> = t
+            .estimator()
+            .caps()
+            .presets
+            .iter()
+            .chain(t.source().caps().presets)
+            .map(|(field, _)| *field)
+            .collect();
         for p in Preset::ALL {
             let s = AoSettings::preset(t, p);
-            let mut want = AoSettings {
-                technique: t,
-                ..AoSettings::default()
-            };
-            let first = AoSettings::preset(with_estimator(t.estimator()), p);
-            match t.estimator() {
-                Estimator::Vao => {
-                    want.vao.samples = first.vao.samples;
-                    want.blur.radius = first.blur.radius;
-                }
-                Estimator::Hbao => want.hbao = first.hbao,
-                Estimator::HbaoPlus => {
-                    want.hbao_plus = first.hbao_plus;
-                    want.blur.radius = first.blur.radius;
-                }
-                Estimator::Gtao => want.gtao = first.gtao,
-                Estimator::PyramidHbao => want.pyramid_hbao = first.pyramid_hbao,
-                Estimator::Sao => want.sao = first.sao,
-                Estimator::Ssao => want.ssao = first.ssao,
-                Estimator::GtaoVb => want.gtao_vb = first.gtao_vb,
+            s.validate().unwrap();
+            if p == Preset::Medium {
+                assert_eq!(s, defaults(t), "{t}");
             }
-            want.stochastic_depth = if t.source() == Source::StochasticDepth {
-                AoSettings::preset(sd, p).stochastic_depth
-            } else {
-                StochasticDepthSettings::default()
-            };
-            assert_eq!(s, want, "{t} {p}");
+            let (a, b) = (
+                serde_json::to_value(s).unwrap(),
+                serde_json::to_value(defaults(t)).unwrap(),
+            );
+            for field in AoSettings::field_paths() {
+                let pointer = format!("/{}", field.replace('.', "/"));
+                if a.pointer(&pointer) != b.pointer(&pointer) {
+                    assert!(named.contains(&field.as_str()), "{t} {p}: {field} changed");
+                }
+            }
         }
     }
 }
