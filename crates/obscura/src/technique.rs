@@ -492,6 +492,10 @@ pub struct Needs {
     pub stochastic_depth_map: bool,
 }
 
+/// What presets change: each field's value at low, medium, high and ultra (medium is always the
+/// default).
+pub type PresetTable = &'static [(&'static str, [f64; 4])];
+
 /// What the rest of the library needs to know of a hidden-depth source: one literal per source
 /// ([`Source::caps`]), every field required, so that a new source answers every question.
 #[derive(Clone, Copy, Debug)]
@@ -515,7 +519,7 @@ pub struct SourceCaps {
     /// It serves pyramid levels: the estimators that read levels, and only those.
     pub serves_levels: bool,
     /// What presets change in its section: a field's value at low, medium, high, ultra.
-    pub presets: &'static [(&'static str, [f64; 4])],
+    pub presets: PresetTable,
 }
 
 impl Source {
@@ -753,7 +757,7 @@ pub struct EstimatorCaps {
     pub bent_normals: bool,
     /// What presets change: a field's value at low, medium, high, ultra (medium is always the
     /// default), fields of its own section or the blur's.
-    pub presets: &'static [(&'static str, [f64; 4])],
+    pub presets: PresetTable,
     /// Its module: WGSL, constants, settings knobs, parameter packing (`src/estimators/`).
     pub module: &'static EstimatorModule,
 }

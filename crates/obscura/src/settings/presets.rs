@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::knob::{Kind, Value};
-use crate::technique::Source;
+use crate::technique::{PresetTable, Source};
 
 /// A quality level: [`AoSettings::preset`] says per technique what each sets.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -114,7 +114,7 @@ impl AoSettings {
             .into_iter()
             .map(|e| (e.name(), e.caps().presets));
         let sources = sources.into_iter().map(|s| (s.name(), s.caps().presets));
-        let columns: Vec<(&str, &[(&str, [f64; 4])])> = estimators
+        let columns: Vec<(&str, PresetTable)> = estimators
             .chain(sources)
             .filter(|(_, table)| !table.is_empty())
             .collect();
