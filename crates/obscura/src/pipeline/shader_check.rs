@@ -168,7 +168,7 @@ fn frame_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
 
 /// The stochastic depth layouts to compose a source with (one dummy for the other sources).
 fn sd_layouts(source: Source) -> Vec<SdLayout> {
-    let all: &[u32] = if source == Source::StochasticDepth {
+    let all: &[u32] = if source.needs().stochastic_depth_map {
         &crate::settings::SD_SAMPLE_COUNTS
     } else {
         &[1]

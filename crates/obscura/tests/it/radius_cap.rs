@@ -135,7 +135,7 @@ fn every_estimator_with_its_radius_capped_equals_the_smaller_radius_on_a_facing_
     let mut seen = Vec::new();
     for row in TABLE.iter().filter(|r| {
         r.schedule == Schedule::Single
-            && matches!(r.source, Source::FirstLayer | Source::DepthPyramid)
+            && (r.source == Source::FirstLayer || r.source.caps().serves_levels)
     }) {
         if seen.contains(&row.estimator) {
             continue;

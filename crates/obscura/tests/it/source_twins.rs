@@ -19,10 +19,7 @@ fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
         .iter()
         .filter(|r| {
             r.source == Source::DualDepth
-                || (matches!(
-                    r.source,
-                    Source::StochasticDepth | Source::RayStochasticDepth
-                ) && r.schedule == Schedule::Single)
+                || (r.source.maps_hidden_depth() && r.schedule == Schedule::Single)
         })
         .collect();
     assert!(!rows.is_empty());
@@ -67,10 +64,7 @@ fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
     let gpu = gpu();
     let scene = obscura::scene::builtin("stairs").unwrap();
     for row in TABLE.iter().filter(|r| {
-        matches!(
-            r.source,
-            Source::StochasticDepth | Source::RayStochasticDepth
-        ) && r.schedule == Schedule::Single
+        r.source.maps_hidden_depth() && r.schedule == Schedule::Single
     }) {
         let twin = TABLE
             .iter()
