@@ -7,6 +7,9 @@ use anyhow::anyhow;
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use obscura::knob::{Kind, Knob};
 use obscura::settings::{AoSettings, SettingsError};
+use obscura::technique::{Schedule, TechniqueRow, TABLE};
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 
 /// The setting flags given, in the knobs' order (the order of docs/SETTINGS.md), each with the
 /// name it was given by and its text (a switch's: the value it sets).
@@ -39,23 +42,45 @@ fn id(flag: &'static str) -> &'static str {
     flag.trim_start_matches("--")
 }
 
-/// `--help`'s group of a section's flags.
-fn heading(section: &str) -> &'static str {
-    match section {
-        "" | "blur" | "temporal" => "Settings of every technique",
-        "vao" => "VAO (vao, vao-dual, rt-vao, sd-vao, …)",
-        "hbao" => "HBAO (hbao, hbao-dual, sd-hbao, …)",
-        "hbao_plus" => "HBAO+ (hbao+, sd-hbao+, …)",
-        "gtao" => "GTAO (gtao)",
-        "gtao_vb" => "GTAO-VB (gtao-vb, sd-gtao-vb, …)",
-        "ssao" => "SSAO (ssao, sd-ssao, …)",
-        "sao" => "SAO (sao)",
-        "pyramid" | "pyramid_hbao" => "Depth pyramid, Pyramid HBAO (sao, pyramid-hbao)",
-        "stochastic_depth" => "Stochastic depth map (sd-*)",
-        "ray_sd" => "Ray-traced stochastic depth map (ray-sd-*)",
-        "multiview" => "Second view (sd-hbao+-multiview)",
-        _ => "Other settings",
-    }
+/// `--help`'s group of a section's flags: the estimator's or source's whose section it is, with
+/// the rows that read it (from the technique table), or the settings every technique has.
+fn heading(section: &'static str) -> &'static str {
+    // Made once per section (clap keeps help headings as `&'static str`: each is leaked once).
+    static HEADINGS: OnceLock<Mutex<HashMap<&str, &'static str>>> = OnceLock::new();
+    let mut headings = HEADINGS
+        .get_or_init(Default::default)
+        .lock()
+        .expect("not poisoned");
+    headings
+        .entry(section)
+        .or_insert_with(|| make_heading(section))
+}
+
+fn make_heading(section: &str) -> &'static str {
+    let rows = |keep: &dyn Fn(&TechniqueRow) -> bool| -> Vec<&str> {
+        TABLE.iter().filter(|r| keep(r)).map(|r| r.name).collect()
+    };
+    let (what, rows) = match TABLE.iter().find(|r| r.estimator.section() == section) {
+        Some(row) => (
+            format!("estimator {}", row.estimator.name()),
+            rows(&|r| r.estimator == row.estimator),
+        ),
+        None => match TABLE
+            .iter()
+            .find(|r| r.source.section() == section && !section.is_empty())
+        {
+            Some(row) => (
+                format!("source {}", row.source.name()),
+                rows(&|r| r.source == row.source),
+            ),
+            None if section == "multiview" => (
+                "second view".into(),
+                rows(&|r| r.schedule == Schedule::Multiview),
+            ),
+            None => return "Settings of every technique",
+        },
+    };
+    Box::leak(format!("Settings of the {what} ({})", rows.join(", ")).into_boxed_str())
 }
 
 /// The help of `knob`'s primary flag: its help, its older names and its default.

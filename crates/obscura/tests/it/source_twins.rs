@@ -63,9 +63,10 @@ fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
     // only: where the map's extra occluders also darken, it can rise (sd-vao here: 0.058 → 0.060).
     let gpu = gpu();
     let scene = obscura::scene::builtin("stairs").unwrap();
-    for row in TABLE.iter().filter(|r| {
-        r.source.maps_hidden_depth() && r.schedule == Schedule::Single
-    }) {
+    for row in TABLE
+        .iter()
+        .filter(|r| r.source.maps_hidden_depth() && r.schedule == Schedule::Single)
+    {
         let twin = TABLE
             .iter()
             .find(|t| {
