@@ -6,10 +6,11 @@
 //! errors, the viewer's sliders and docs/SETTINGS.md's field table.
 //!
 //! Knobs are plain data (`const`) and reach their field through the settings' serde form (the
-//! same paths as settings files): no accessor is written per field, so a field and its knob are
-//! two lines in one file. The cost, a settings value through JSON, is paid only when settings are
-//! made or changed, never per frame of GPU work. A declarative list over a derive: a derive macro
-//! needs a proc-macro crate of its own, and the declarations read as well as a table.
+//! same paths as settings files, as a [`Value`] tree): no accessor is written per field, so a
+//! field and its knob are two declarations in one file. The cost, a settings value's round trip
+//! through that tree, is paid only when settings are made or changed, never per frame of GPU
+//! work. A declarative list over a derive: a derive macro needs a proc-macro crate of its own, and
+//! the declarations read as well as a table (docs/ARCHITECTURE.md, "Settings").
 
 use std::fmt::Write as _;
 
