@@ -47,9 +47,9 @@ macro_rules! ao_settings {
         $($(#[$attr])* pub use crate::estimators::$name::$settings;)*
 
         /// Everything a technique's kernels read, as data: every field has a default (the papers' /
-        /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the same
-        /// fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give any subset;
-        /// an unknown field is an error. `docs/SETTINGS.md` lists every field.
+        /// authors' values), and settings files (JSON or TOML, [`AoSettings::from_file`]) name the
+        /// same fields, nested as here (`vao.radius`, `stochastic_depth.alpha`, …). A file may give
+        /// any subset; an unknown field is an error. `docs/SETTINGS.md` lists every field.
         ///
         /// ```
         /// use obscura::settings::{AoSettings, Preset};
@@ -69,17 +69,17 @@ macro_rules! ao_settings {
         #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
         #[serde(default, deny_unknown_fields)]
         pub struct AoSettings {
-            /// Which row of the technique table runs (estimator × hidden-depth source × schedule); default
-            /// `vao`.
+            /// Which row of the technique table runs (estimator × hidden-depth source × schedule);
+            /// default `vao`.
             pub technique: Technique,
             $($(#[$attr])* #[doc = concat!("The estimator `", stringify!($name), "`: ", $doc)]
             pub $name: $settings,)*
             /// The bilateral blur that filters every technique's raw AO.
             pub blur: BlurSettings,
-            /// `vao-dual`: the second layer is the nearest surface more than this many world units behind
-            /// the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
-            /// Also the minimum distance behind the first layer for a fragment to enter the stochastic
-            /// depth map (`sd-vao`, `sd-svao`).
+            /// `vao-dual`: the second layer is the nearest surface more than this many world units
+            /// behind the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
+            /// Also the minimum distance behind the first layer for a fragment to enter the
+            /// stochastic depth map (`sd-vao`, `sd-svao`).
             pub peel_separation: f32,
             /// The stochastic depth map (`sd-vao`, `sd-svao`).
             pub stochastic_depth: StochasticDepthSettings,
@@ -87,21 +87,21 @@ macro_rules! ao_settings {
             pub ray_sd: RaySdSettings,
             /// The depth pyramid (`sao`, `pyramid-hbao`).
             pub pyramid: PyramidSettings,
-            /// Where the technique runs: at the inputs' resolution, or at half of it in each axis and
-            /// brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
+            /// Where the technique runs: at the inputs' resolution, or at half of it in each axis
+            /// and brought back by a depth-aware upsample (seed 001 Tab. 1–2; every technique can).
             pub resolution: Resolution,
             /// The AO radius's cap on screen, in pixels of the output image (seed 002 §3.5; the
-            /// authors' `ssMaxRadius`): where a shading point's radius R would cover more
-            /// pixels (a surface close to the camera), R is shrunk for that pixel to cover exactly this
-            /// many, so the kernel keeps its shape. Every estimator honours it; the ground truths never
-            /// do. 0 (the default): no cap. The authors pair 512 px with their map's 512 px guard band
-            /// at 1080p, so that samples never fall beyond the map; it costs accuracy near the camera
-            /// (measured: docs/SETTINGS.md), so it is off unless asked for.
+            /// authors' `ssMaxRadius`): where a shading point's radius R would cover more pixels (a
+            /// surface close to the camera), R is shrunk for that pixel to cover exactly this many,
+            /// so the kernel keeps its shape. Every estimator honours it; the ground truths never
+            /// do. 0 (the default): no cap. The authors pair 512 px with their map's 512 px guard
+            /// band at 1080p, so that samples never fall beyond the map; it costs accuracy near the
+            /// camera (measured: docs/SETTINGS.md), so it is off unless asked for.
             pub max_radius_px: f32,
-            /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001 §4,
-            /// Fig. 9): view space, unit length, for the techniques whose estimator reports one (GTAO,
-            /// GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the single-pass schedule
-            /// at full resolution.
+            /// Also write the bent normal, the mean unoccluded direction, next to the AO (seed 001
+            /// §4, Fig. 9): view space, unit length, for the techniques whose estimator reports one
+            /// (GTAO, GTAO-VB, VAO, HBAO+ and their dual and stochastic-depth rows), on the
+            /// single-pass schedule at full resolution.
             pub bent_normals: bool,
             /// The multi-view schedule's second view (`sd-hbao+-multiview`).
             pub multiview: MultiviewSettings,
