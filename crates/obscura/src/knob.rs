@@ -311,8 +311,10 @@ impl Knob {
                     }
                 } else if max.is_infinite() {
                     format!("{} {}", if min_open { ">" } else { "≥" }, number(min))
-                } else if int {
+                } else if int && table {
                     format!("{} to {}", number(min), number(max))
+                } else if int {
+                    format!("between {} and {}", number(min), number(max))
                 } else {
                     format!(
                         "in {}{}, {}{}",
@@ -475,7 +477,8 @@ mod tests {
         );
         assert_eq!(k.values_text(), "> 0, world units");
         let k = Knob::new("a.slices", "--a-slices", "", Kind::int(1, 16));
-        assert_eq!(k.rule("2"), "must be 1 to 16, e.g. 2");
+        assert_eq!(k.rule("2"), "must be between 1 and 16, e.g. 2");
+        assert_eq!(k.values_text(), "1 to 16");
         let k = Knob::new("a.b", "--a-b", "", Kind::number(0.0, 1.0, false, true));
         assert_eq!(k.rule("0.1"), "must be in [0, 1), e.g. 0.1");
         let k = Knob::new("a.n", "--a-n", "", Kind::OneOf(&[8, 16, 32]));

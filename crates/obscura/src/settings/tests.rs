@@ -552,7 +552,7 @@ fn a_registry_entry_gives_an_estimator_flags_checks_presets_widgets_and_docs() {
     s.stub.samples = 99;
     let e = s.validate().unwrap_err().to_string();
     assert!(
-        e.contains("stub.samples 99") && e.contains("1 to 32"),
+        e.contains("stub.samples 99") && e.contains("between 1 and 32"),
         "{e}"
     );
     // Scaled with the scene, as a length.
