@@ -42,31 +42,36 @@ fn modules() -> BTreeSet<String> {
         .collect()
 }
 
-/// Every `.rs` file under `src/` but `lib.rs`, with its top-level module.
-fn files() -> Vec<(PathBuf, String)> {
-    let src = src();
+/// Every file under `root` whose extension is `extension`, sorted.
+fn files_under(root: &Path, extension: &str) -> Vec<PathBuf> {
     let mut files = Vec::new();
-    let mut stack = vec![src.clone()];
+    let mut stack = vec![root.to_path_buf()];
     while let Some(dir) = stack.pop() {
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 stack.push(path);
-                continue;
-            }
-            if path.extension().is_none_or(|e| e != "rs") {
-                continue;
-            }
-            let relative = path.strip_prefix(&src).unwrap();
-            let top = relative.components().next().unwrap().as_os_str();
-            let top = top.to_string_lossy().trim_end_matches(".rs").to_string();
-            if top != "lib" {
-                files.push((path, top));
+            } else if path.extension().is_some_and(|e| e == extension) {
+                files.push(path);
             }
         }
     }
     files.sort();
     files
+}
+
+/// Every `.rs` file under `src/` but `lib.rs`, with its top-level module.
+fn files() -> Vec<(PathBuf, String)> {
+    let src = src();
+    files_under(&src, "rs")
+        .into_iter()
+        .filter_map(|path| {
+            let relative = path.strip_prefix(&src).unwrap();
+            let top = relative.components().next().unwrap().as_os_str();
+            let top = top.to_string_lossy().trim_end_matches(".rs").to_string();
+            (top != "lib").then_some((path, top))
+        })
+        .collect()
 }
 
 /// The lines of `path` outside comments; with `tests` false, also outside test code.
@@ -306,27 +311,17 @@ fn estimators_import_no_settings_sources_schedules_or_pipeline() {
 fn every_shader_folder_names_a_module() {
     let modules = modules();
     let shaders = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    let mut stack = vec![shaders.clone()];
-    let (mut count, mut stray) = (0, Vec::new());
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            if path.extension().is_none_or(|e| e != "wgsl") {
-                continue;
-            }
-            count += 1;
-            let relative = path.strip_prefix(&shaders).unwrap();
-            let mut components = relative.components();
-            let top = components.next().unwrap().as_os_str().to_string_lossy();
-            if components.next().is_none() || (top != "common" && !modules.contains(&*top)) {
-                stray.push(relative.display().to_string());
-            }
+    let all = files_under(&shaders, "wgsl");
+    let mut stray = Vec::new();
+    for path in &all {
+        let relative = path.strip_prefix(&shaders).unwrap();
+        let mut components = relative.components();
+        let top = components.next().unwrap().as_os_str().to_string_lossy();
+        if components.next().is_none() || (top != "common" && !modules.contains(&*top)) {
+            stray.push(relative.display().to_string());
         }
     }
+    let count = all.len();
     assert!(count > 50, "the scan found {count} shaders");
     assert!(
         stray.is_empty(),
