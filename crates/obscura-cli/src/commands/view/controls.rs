@@ -46,16 +46,23 @@ pub fn presets(ui: &mut egui::Ui, settings: &mut AoSettings, units_per_metre: f3
 pub fn parameters(ui: &mut egui::Ui, settings: &mut AoSettings, scene_scale: f32) {
     let row = settings.technique.row();
     let sections = ["", "blur", row.estimator.section(), row.source.section()];
+    // The values as this frame starts: a widget changes only its own field.
+    let tree = settings.to_tree();
     for knob in AoSettings::knobs() {
         if knob.widget != Widget::Hidden && sections.contains(&knob.section()) {
-            knob_widget(ui, settings, knob, scene_scale);
+            knob_widget(ui, settings, &tree, knob, scene_scale);
         }
     }
 }
 
-fn knob_widget(ui: &mut egui::Ui, settings: &mut AoSettings, knob: &'static Knob, scale: f32) {
-    let tree = settings.to_tree();
-    let Some(value) = knob::get(&tree, knob.path).cloned() else {
+fn knob_widget(
+    ui: &mut egui::Ui,
+    settings: &mut AoSettings,
+    tree: &Value,
+    knob: &'static Knob,
+    scale: f32,
+) {
+    let Some(value) = knob::get(tree, knob.path).cloned() else {
         return; // an optional field left out: files and flags only
     };
     let mut new = value.clone();
