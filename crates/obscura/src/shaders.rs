@@ -10,6 +10,7 @@ pub const PATTERN: &str = include_str!("../shaders/common/pattern.wgsl");
 pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
 pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
+pub const HEMISPHERE: &str = include_str!("../shaders/common/hemisphere.wgsl");
 pub const VERTEX_NORMAL: &str = include_str!("../shaders/common/vertex_normal.wgsl");
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");
@@ -18,6 +19,9 @@ pub const BENT: &str = include_str!("../shaders/common/bent.wgsl");
 
 pub const SOURCE_FIRST_LAYER: &str = include_str!("../shaders/sources/first_layer.wgsl");
 pub const SOURCE_DUAL_DEPTH: &str = include_str!("../shaders/sources/dual_depth.wgsl");
+pub const SOURCE_RAY_CAMERA: &str = include_str!("../shaders/sources/ray_camera.wgsl");
+pub const SOURCE_SCREEN_RAYS: &str = include_str!("../shaders/sources/screen_rays.wgsl");
+pub const SOURCE_BVH_RAYS: &str = include_str!("../shaders/sources/bvh_rays.wgsl");
 pub const SOURCE_COLUMN_TRACE: &str = include_str!("../shaders/sources/column_trace.wgsl");
 pub const SOURCE_COLUMN_RAYS: &str = include_str!("../shaders/sources/column_rays.wgsl");
 pub const SOURCE_DEPTH_PYRAMID: &str = include_str!("../shaders/sources/depth_pyramid.wgsl");

@@ -102,7 +102,13 @@ techniques!(
     SdGtaoVbStenciled,
     /// `ray-sd-gtao-vb`: GTAO-VB; every sample also marks the sectors of every depth of the
     /// ray-traced stochastic depth map.
-    RaySdGtaoVb
+    RaySdGtaoVb,
+    /// `hemisphere`: cosine-weighted rays within R, each marched in screen space over the first
+    /// depth layer with a thickness (screen-space ray-traced AO).
+    Hemisphere,
+    /// `rtao`: cosine-weighted rays within R, each traced through the BVH: the ground truth's
+    /// model and rays, a few per pixel per frame.
+    Rtao
 );
 
 /// `Estimator`, one variant per entry of the registry (`estimators::registry`).
@@ -147,6 +153,12 @@ pub enum Source {
     /// Levels of mean linear depth (seed 004 §3.3): samples read the level their estimator names.
     /// Hides nothing; the source of the estimators that need levels (SAO, Pyramid HBAO).
     DepthPyramid,
+    /// Each hemisphere ray marched in screen space over the first depth layer, every surface
+    /// taken to be `hemisphere.thickness` thick. Reads the hemisphere estimator's rays.
+    ScreenRays,
+    /// Each hemisphere ray traced through the BVH in world space: nothing is hidden from it.
+    /// Reads the hemisphere estimator's rays.
+    BvhRays,
 }
 
 /// Which passes run the estimator over the source (`src/schedules/`, `shaders/schedules/`).
@@ -477,6 +489,24 @@ pub const TABLE: &[TechniqueRow] = &[
         source: Source::RayStochasticDepth,
         schedule: Schedule::Single,
     },
+    TechniqueRow {
+        technique: Technique::Hemisphere,
+        name: "hemisphere",
+        summary: "Hemisphere AO: cosine-weighted rays marched in screen space with a thickness",
+        paper: "the ground truth's model (src/reference), screen-space ray marching",
+        estimator: Estimator::Hemisphere,
+        source: Source::ScreenRays,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::Rtao,
+        name: "rtao",
+        summary: "Ray-traced AO: cosine-weighted rays within R traced through the BVH",
+        paper: "the ground truth's model (src/reference), rays through the compute BVH",
+        estimator: Estimator::Hemisphere,
+        source: Source::BvhRays,
+        schedule: Schedule::Single,
+    },
 ];
 
 /// What a technique needs from the caller beyond depth and normals.
@@ -607,6 +637,30 @@ impl Source {
                 costly_resolve: false,
                 only_for: None,
                 serves_levels: true,
+                presets: &[],
+            },
+            Source::ScreenRays => &SourceCaps {
+                name: "screen rays",
+                section: "",
+                needs: NONE,
+                maps_hidden_depth: false,
+                costly_resolve: false,
+                only_for: Some(Estimator::Hemisphere),
+                serves_levels: false,
+                presets: &[],
+            },
+            Source::BvhRays => &SourceCaps {
+                name: "bvh rays",
+                section: "",
+                needs: Needs {
+                    triangles: true,
+                    bvh: true,
+                    ..NONE
+                },
+                maps_hidden_depth: false,
+                costly_resolve: true,
+                only_for: Some(Estimator::Hemisphere),
+                serves_levels: false,
                 presets: &[],
             },
         }
@@ -932,6 +986,28 @@ impl Estimator {
                     ("gtao_vb.steps", [2.0, 2.0, 3.0, 5.0]),
                 ],
                 module: &estimators::gtao_vb::MODULE,
+            },
+            // Rays per pixel per frame and screen-march points; rays double per preset.
+            Estimator::Hemisphere => &EstimatorCaps {
+                name: "hemisphere",
+                section: "hemisphere",
+                radius: "hemisphere.radius",
+                debug_image: Some((
+                    "blocked.png",
+                    "the fraction of the rays blocked, none black to all white",
+                )),
+                reads_levels: false,
+                order_independent: true,
+                defers_resolves: true,
+                resolves_distinct_depths: false,
+                exact_hidden: false,
+                late_load_with_bent_normals: false,
+                bent_normals: false,
+                presets: &[
+                    ("hemisphere.rays", [2.0, 4.0, 8.0, 16.0]),
+                    ("hemisphere.steps", [4.0, 8.0, 12.0, 16.0]),
+                ],
+                module: &estimators::hemisphere::MODULE,
             },
             #[cfg(test)]
             Estimator::Stub => &EstimatorCaps {

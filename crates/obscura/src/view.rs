@@ -384,7 +384,8 @@ impl ScreenGeometry {
             ndc_per_pixel: (2.0 / size).to_array(),
             projection_scale: (0.5 * size / self.tan_half_fov).to_array(),
             pattern_offset: 0,
-            _pad: [0; 3],
+            frame: 0,
+            _pad: [0; 2],
         }
     }
 }
@@ -411,8 +412,11 @@ pub struct ViewUniform {
     /// How far the estimators' 4×4 pattern is turned this frame (0 to 15; 0 unless temporal
     /// accumulation is on).
     pub pattern_offset: u32,
+    /// The frame number (0 unless temporal accumulation is on, which counts frames): the
+    /// `hemisphere` estimator seeds each frame's rays with it.
+    pub frame: u32,
     /// Padding to the WGSL struct's 64 bytes.
-    pub _pad: [u32; 3],
+    pub _pad: [u32; 2],
 }
 
 #[cfg(test)]

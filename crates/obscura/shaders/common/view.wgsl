@@ -18,8 +18,10 @@ struct View {
     // How far the estimators' 4×4 pattern is turned this frame (common/pattern.wgsl): 0 unless
     // temporal accumulation is on, which turns it by one entry per frame.
     pattern_offset: u32,
+    // The frame number (0 unless temporal accumulation is on): the seed of the `hemisphere`
+    // estimator's rays this frame.
+    frame: u32,
     // Pads the struct to 64 bytes, as a struct member of a uniform struct is laid out.
-    pad0: u32,
     pad1: u32,
     pad2: u32,
 }

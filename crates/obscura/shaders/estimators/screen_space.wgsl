@@ -2,7 +2,7 @@
 // pixel from: the shading point and its normal from the frame, and the world radius R they use,
 // capped on screen (`max_radius_px`, seed 002 §3.5; common/view.wgsl capped_radius), in world
 // units and in framebuffer pixels. Put in front of such an estimator (its Rust module
-// concatenates the two).
+// concatenates the two); the hemisphere estimator takes only its accessors.
 
 struct ScreenPixel {
     pos: vec3<f32>,

@@ -4,10 +4,10 @@
 //   (schedules/single.wgsl) over the all-layers source: every sample's camera ray traced over its
 //   interval from the near plane (sources/all_layers.wgsl, column_trace.wgsl).
 //   `vao-mean` runs model 0 once per turn of the 4×4 pattern and sums a sixteenth of each.
-// - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (Hammersley set with a
-//   per-pixel Cranley-Patterson rotation from a PCG hash), a batch of `spp_count` rays of
-//   `spp_total` per dispatch, occlusion summed into `reference_out` across batches.
-// Needs common/hash.wgsl and common/vertex_normal.wgsl in front. Its own parameters and output take the schedule group.
+// - model 1 (`hemisphere`): cosine-weighted rays within R from the surface (common/hemisphere.wgsl,
+//   the rays the `hemisphere` estimator traces too), a batch of `spp_count` rays of `spp_total`
+//   per dispatch, occlusion summed into `reference_out` across batches.
+// Needs common/hash.wgsl, common/hemisphere.wgsl and common/vertex_normal.wgsl in front. Its own parameters and output take the schedule group.
 
 struct ReferenceParams {
     model: u32,
@@ -25,16 +25,6 @@ struct ReferenceParams {
 @group(GROUP_SCHEDULE) @binding(REFERENCE_PARAMS) var<uniform> reference: ReferenceParams;
 // Per visible pixel: the AO (vao model) or the summed occlusion of the rays so far (hemisphere).
 @group(GROUP_SCHEDULE) @binding(REFERENCE_OUT) var<storage, read_write> reference_out: array<f32>;
-
-fn pixel_rotation_2d(seed: u32, x: u32, y: u32) -> vec2<f32> {
-    let h1 = pcg_hash(seed ^ pcg_hash(x + pcg_hash(y)));
-    let h2 = pcg_hash(h1);
-    return vec2<f32>(f32(h1 >> 8u), f32(h2 >> 8u)) / 16777216.0;
-}
-
-fn hammersley(i: u32, n: u32) -> vec2<f32> {
-    return vec2<f32>((f32(i) + 0.5) / f32(n), f32(reverseBits(i)) * 2.3283064365386963e-10);
-}
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
@@ -85,12 +75,7 @@ fn main(@builtin(global_invocation_id) global_id: vec3<u32>) {
     let rotation = pixel_rotation_2d(reference.seed, id.x, id.y);
     var occlusion = 0.0;
     for (var i = reference.spp_start; i < reference.spp_start + reference.spp_count; i++) {
-        let h = hammersley(i, reference.spp_total) + rotation;
-        let u = h - floor(h);
-        let r = sqrt(u.x);
-        let phi = 6.283185307179586 * u.y;
-        let local = vec3<f32>(r * cos(phi), r * sin(phi), sqrt(max(1.0 - u.x, 0.0)));
-        let ray_dir = basis[0] * local.x + basis[1] * local.y + n * local.z;
+        let ray_dir = hemisphere_direction(i, reference.spp_total, rotation, n, basis);
         if (reference.falloff != 0u) {
             let occluder = bvh_closest_hit(start, ray_dir, 0.0, radius);
             if (occluder.t >= 0.0) {

@@ -7,29 +7,10 @@
 // per-hit visibilities. The result equals the `vao` ground-truth model (src/reference).
 // Reads the VAO estimator's columns: a VAO-only source (src/technique.rs says so).
 //
-// Needs common/material.wgsl and common/bvh.wgsl in front, and the camera below. The source
+// Needs common/material.wgsl, common/bvh.wgsl and sources/ray_camera.wgsl in front. The source
 // functions are in column_rays.wgsl (depth buffer first) or all_layers.wgsl (the ground truth).
 
-struct RayCamera {
-    // View space -> world space.
-    camera_to_world: mat4x4<f32>,
-    // Near plane: rays start there.
-    near: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
-}
-
-@group(GROUP_SOURCE) @binding(SOURCE_RAY_CAMERA) var<uniform> ray_camera: RayCamera;
-// Rays whose traversal overflowed its stack: their result may be incomplete, so they are counted
-// and reported (AmbientOcclusion::read_stack_overflows), never silently wrong.
-@group(GROUP_SOURCE) @binding(SOURCE_STACK_OVERFLOWS) var<storage, read_write> stack_overflows: atomic<u32>;
-
 // State of the ray being traced, read by bvh_on_hit.
-// The BVH (common/bvh.wgsl) in the source group, from binding SOURCE_BVH.
-const BVH_GROUP: u32 = GROUP_SOURCE;
-const BVH_BINDING: u32 = SOURCE_BVH;
-
 var<private> trace_halo_start: f32;
 var<private> trace_column: VaoColumn;
 var<private> trace_height_at_0: f32;

@@ -29,6 +29,8 @@ macro_rules! registry {
             pyramid_hbao: PyramidHbao(PyramidHbaoSettings) = "Pyramid HBAO, seed 004 §3.",
             gtao_vb: GtaoVb(GtaoVbSettings) = "GTAO with a visibility bitmask of 32 sectors per \
                 slice (seed 003).",
+            hemisphere: Hemisphere(HemisphereSettings) = "Hemisphere AO: cosine-weighted rays \
+                within R, the ground truth's model (src/reference/ground_truth.rs).",
             // A stub with the knobs of a real one, to test that an entry alone gives an estimator
             // its flags, checks, presets, viewer widgets and docs rows (settings/tests.rs).
             #[cfg(test)]

@@ -251,6 +251,7 @@ impl AmbientOcclusion {
             // The estimators' pattern turns by one entry per frame (View pattern_offset).
             let mut uniform = work.screen().uniform();
             uniform.pattern_offset = temporal.pattern_offset();
+            uniform.frame = temporal.frame();
             let buffer = self.half.as_ref().map_or(&self.view, HalfResolution::view);
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
         }

@@ -56,6 +56,7 @@ pub fn render_reference_gpu(
         shaders::SOURCE_ALL_LAYERS,
         shaders::SCHEDULE_SINGLE,
         shaders::HASH,
+        shaders::HEMISPHERE,
         shaders::VERTEX_NORMAL,
         shaders::REFERENCE,
     ]);

@@ -17,13 +17,27 @@ struct RayCamera {
     _pad: [f32; 3],
 }
 
-/// The WGSL in front of the source functions: the BVH traversal and the column tracing.
-pub(crate) fn trace_wgsl() -> [&'static str; 3] {
+/// The WGSL in front of the source functions: the BVH traversal, its bindings and the column
+/// tracing.
+pub(crate) fn trace_wgsl() -> [&'static str; 4] {
     use crate::shaders;
     [
         shaders::MATERIAL,
         shaders::BVH,
+        shaders::SOURCE_RAY_CAMERA,
         shaders::SOURCE_COLUMN_TRACE,
+    ]
+}
+
+/// The BVH rays source's WGSL (`rtao`): the BVH traversal, its bindings and the hemisphere rays'
+/// tracing. It binds what column rays bind ([`layout_entries`], [`ColumnRays`]).
+pub(crate) fn bvh_rays_wgsl() -> [&'static str; 4] {
+    use crate::shaders;
+    [
+        shaders::MATERIAL,
+        shaders::BVH,
+        shaders::SOURCE_RAY_CAMERA,
+        shaders::SOURCE_BVH_RAYS,
     ]
 }
 

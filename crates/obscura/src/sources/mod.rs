@@ -52,6 +52,8 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
             parts.push(shaders::SOURCE_COLUMN_RAYS);
             parts.join("\n")
         }
+        Source::ScreenRays => shaders::SOURCE_SCREEN_RAYS.to_string(),
+        Source::BvhRays => column_rays::bvh_rays_wgsl().join("\n"),
         Source::StochasticDepth => [
             &stochastic_depth::bindings_wgsl(sd_layout, ray_layout.guard),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
@@ -73,9 +75,9 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
 /// Group-2 layout entries of the resolving passes.
 pub(crate) fn resolve_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
-        Source::FirstLayer => Vec::new(),
+        Source::FirstLayer | Source::ScreenRays => Vec::new(),
         Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
-        Source::ColumnRays => column_rays::layout_entries(),
+        Source::ColumnRays | Source::BvhRays => column_rays::layout_entries(),
         Source::StochasticDepth => stochastic_depth::read_layout_entries(),
         Source::RayStochasticDepth => ray_stochastic_depth::read_layout_entries(),
         Source::DepthPyramid => depth_pyramid::layout_entries(),
@@ -90,15 +92,19 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
             entry::storage(SOURCE_SD_REQUEST, false),
             entry::storage(SOURCE_SD_INTERVAL, false),
         ],
-        Source::FirstLayer | Source::DualDepth | Source::ColumnRays | Source::DepthPyramid => {
-            Vec::new()
-        }
+        Source::FirstLayer
+        | Source::DualDepth
+        | Source::ColumnRays
+        | Source::DepthPyramid
+        | Source::ScreenRays
+        | Source::BvhRays => Vec::new(),
     }
 }
 
 enum Held {
     FirstLayer,
     DualDepth,
+    /// Column rays and BVH rays: both bind the camera, the overflow counter and the BVH.
     ColumnRays(Box<ColumnRays>),
     StochasticDepth(Box<StochasticDepthMap>),
     RayStochasticDepth(Box<RayStochasticDepthMap>),
@@ -160,13 +166,14 @@ impl SourcePass {
             (!entries.is_empty()).then(|| bindings::layout(device, label, &entries))
         };
         let held = match kind {
-            Source::FirstLayer => Held::FirstLayer,
+            // The march reads only the frame's depth and normals.
+            Source::FirstLayer | Source::ScreenRays => Held::FirstLayer,
             Source::DualDepth => Held::DualDepth,
-            Source::ColumnRays => {
+            Source::ColumnRays | Source::BvhRays => {
                 let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
                 let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;
-                let layout = layout_of(resolve_entries(kind), "column rays")
-                    .expect("column rays bind their camera");
+                let layout =
+                    layout_of(resolve_entries(kind), kind.name()).expect("rays bind their camera");
                 let rays = ColumnRays::new(device, &layout, scene_gpu, bvh);
                 return Ok(Self {
                     kind,

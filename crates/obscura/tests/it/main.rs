@@ -20,6 +20,7 @@ mod gpu_reference;
 mod gtao_vb;
 mod half_resolution;
 mod hbao_plus;
+mod hemisphere;
 mod horizon;
 mod interleaved;
 mod misuse;

@@ -85,9 +85,11 @@ fn variants(source: Source, scene: &str) -> Vec<(String, AoSettings)> {
             ("defaults".into(), base),
             ("radius capped".into(), capped(base)),
         ],
-        Source::FirstLayer | Source::DualDepth | Source::DepthPyramid => {
-            vec![("defaults".into(), base)]
-        }
+        Source::FirstLayer
+        | Source::DualDepth
+        | Source::DepthPyramid
+        | Source::ScreenRays
+        | Source::BvhRays => vec![("defaults".into(), base)],
     }
 }
 

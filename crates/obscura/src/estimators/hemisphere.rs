@@ -1,0 +1,134 @@
+//! The hemisphere estimator (`shaders/estimators/hemisphere.wgsl`): cosine-weighted rays within
+//! the world radius R from each visible pixel, the model of `reference --model hemisphere` and of
+//! offline renderers' AO, with the ground truth's rays (`shaders/common/hemisphere.wgsl`). Its
+//! sources answer whether a ray is blocked: marched in screen space over the first depth layer
+//! with a thickness (`screen rays`), or traced through the scene's BVH (`bvh rays`, `rtao`).
+//! Each frame of temporal accumulation draws a new set of rays, so the accumulated image
+//! converges to the ground truth.
+
+use crate::knob::{Kind, Knob, Widget};
+use serde::{Deserialize, Serialize};
+
+/// Hemisphere AO parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HemisphereSettings {
+    /// Radius R in world units: surfaces farther along a ray do not occlude it.
+    pub radius: f32,
+    /// Rays per pixel each frame, 1 to 32 (one bit each in the two-phase mask).
+    pub rays: u32,
+    /// Weight a blocked ray by W(t) = max(0, 1 − t/R) rather than 1 (the ground truth's
+    /// `--falloff`).
+    pub falloff: bool,
+    /// Screen rays: points tested along each ray.
+    pub steps: u32,
+    /// Screen rays: the thickness assumed behind every depth sample, world units (a ray point
+    /// farther behind the first surface than this passes behind it).
+    pub thickness: f32,
+}
+
+impl Default for HemisphereSettings {
+    fn default() -> Self {
+        Self {
+            radius: 0.5,
+            rays: 4,
+            falloff: false,
+            steps: 8,
+            // GTAO-VB's and VAO's default thickness, the same physical assumption.
+            thickness: 0.25,
+        }
+    }
+}
+
+impl HemisphereSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "hemisphere.radius",
+            "--hemisphere-radius",
+            "Hemisphere AO radius R in world units: farther surfaces do not occlude.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("radius R: a ray is blocked by surfaces within R of the shading point")
+        .widget(Widget::RADIUS),
+        Knob::new(
+            "hemisphere.rays",
+            "--hemisphere-rays",
+            "Hemisphere rays per pixel each frame.",
+            Kind::int(1, 32),
+        )
+        .note("one bit per ray")
+        .doc("cosine-weighted rays per pixel each frame (a new set every frame with --temporal)")
+        .widget(Widget::Range),
+        Knob::new(
+            "hemisphere.falloff",
+            "--hemisphere-falloff",
+            "Weight a ray blocked at distance t by 1 - t/R (reference --falloff).",
+            Kind::Switch { flag_sets: true },
+        )
+        .doc("weight a ray blocked at t by W(t) = max(0, 1 − t/R), as `reference --falloff`")
+        .widget(Widget::Checkbox),
+        Knob::new(
+            "hemisphere.steps",
+            "--hemisphere-steps",
+            "Screen rays: points tested along each ray.",
+            Kind::int(1, 64),
+        )
+        .doc("screen rays: points tested along each ray, evenly spaced with a per-pixel jitter")
+        .widget(Widget::Range),
+        Knob::new(
+            "hemisphere.thickness",
+            "--hemisphere-thickness",
+            "Screen rays: thickness behind every depth sample, world units.",
+            Kind::POSITIVE,
+        )
+        .length()
+        .doc("screen rays: the thickness assumed behind every depth sample (a ray passes behind it)"),
+    ];
+}
+
+/// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md): the shared rays and the
+/// screen-space estimators' accessors, then the estimator.
+pub(crate) const WGSL: &str = concat!(
+    include_str!("../../shaders/common/hash.wgsl"),
+    include_str!("../../shaders/estimators/screen_space.wgsl"),
+    include_str!("../../shaders/common/hemisphere.wgsl"),
+    include_str!("../../shaders/estimators/hemisphere.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_sample.wgsl"),
+    include_str!("../../shaders/estimators/no_depth_interval.wgsl"),
+    include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
+);
+
+/// Its `override` constant: the rays per pixel.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+
+/// GPU mirror of `HemisphereParams` in the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct HemisphereParams {
+    radius: f32,
+    thickness: f32,
+    falloff: u32,
+    steps: u32,
+}
+
+/// The estimator as the technique table runs it (`EstimatorCaps::module`).
+pub const MODULE: super::EstimatorModule = super::EstimatorModule {
+    wgsl: WGSL,
+    constants: CONSTANTS,
+    knobs: HemisphereSettings::KNOBS,
+    params: |section, _| params(&super::section(section)),
+    table: None,
+};
+
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
+pub(crate) fn params(s: &HemisphereSettings) -> (Vec<u8>, Vec<f64>) {
+    let params = HemisphereParams {
+        radius: s.radius,
+        thickness: s.thickness,
+        falloff: u32::from(s.falloff),
+        steps: s.steps,
+    };
+    (bytemuck::bytes_of(&params).to_vec(), vec![f64::from(s.rays)])
+}
