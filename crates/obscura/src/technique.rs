@@ -987,7 +987,9 @@ impl Estimator {
                 ],
                 module: &estimators::gtao_vb::MODULE,
             },
-            // Rays per pixel per frame and screen-march points; rays double per preset.
+            // Rays per pixel per frame and screen-march points. One ray is the default (its cost
+            // through the BVH is most of the frame, docs/lab/2026-12-06-hemisphere.md); low
+            // marches fewer points.
             Estimator::Hemisphere => &EstimatorCaps {
                 name: "hemisphere",
                 section: "hemisphere",
@@ -1004,7 +1006,7 @@ impl Estimator {
                 late_load_with_bent_normals: false,
                 bent_normals: false,
                 presets: &[
-                    ("hemisphere.rays", [2.0, 4.0, 8.0, 16.0]),
+                    ("hemisphere.rays", [1.0, 1.0, 2.0, 4.0]),
                     ("hemisphere.steps", [4.0, 8.0, 12.0, 16.0]),
                 ],
                 module: &estimators::hemisphere::MODULE,
