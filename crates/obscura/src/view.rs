@@ -6,8 +6,9 @@
 //! docs/AUTHORS_CODE.md §2.1: `fov' = 2·atan(tan(fov/2)·(H/2+g)/(H/2))`). Pixels keep a square
 //! footprint, so the horizontal widening follows from the aspect ratio.
 
+use crate::estimators::mirror::MirrorScreen;
 use crate::scene::Camera;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, UVec2, Vec2, Vec3};
 
 /// Default guard band for a visible height: 64 px at 1080p scaled with the height and rounded up
 /// to a multiple of 16 (64 at 1080p, 96 at 1440p, 128 at 4K; docs/ARCHITECTURE.md
@@ -387,6 +388,33 @@ impl ScreenGeometry {
             frame: 0,
             _pad: [0; 2],
         }
+    }
+}
+
+/// The estimators' mirrors read the screen through this trait: they sit below `view`.
+impl MirrorScreen for ScreenGeometry {
+    fn visible_size(&self) -> UVec2 {
+        UVec2::new(self.width, self.height)
+    }
+
+    fn guard_band(&self) -> u32 {
+        self.guard_band
+    }
+
+    fn projection_scale(&self) -> Vec2 {
+        Vec2::from(self.uniform().projection_scale)
+    }
+
+    fn pixel_to_view(&self, px: Vec2, z: f32) -> Vec3 {
+        ScreenGeometry::pixel_to_view(self, px, z)
+    }
+
+    fn view_to_pixel(&self, p: Vec3) -> Vec2 {
+        ScreenGeometry::view_to_pixel(self, p)
+    }
+
+    fn capped_radius(&self, radius: f32, z: f32, max_radius_px: f32) -> f32 {
+        ScreenGeometry::capped_radius(self, radius, z, max_radius_px)
     }
 }
 

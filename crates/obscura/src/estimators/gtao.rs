@@ -1,10 +1,16 @@
 //! The GTAO estimator (`shaders/estimators/gtao.wgsl`): ground-truth-based AO (Jimenez et al.
 //! 2016), the baseline of seed 003, with XeGTAO's falloff and step distribution. Its slice table
-//! and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
+//! and per-pixel pattern are here so that its CPU mirror, [`cpu_gtao`] (the kernel in plain Rust
+//! for the tests), uses the same numbers.
 
+use super::mirror::{
+    open_slice_visibility, per_shaded_pixel, side_visibility, surface_at, MirrorGBuffer,
+    MirrorScreen,
+};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
-use std::f32::consts::PI;
+use std::f32::consts::{FRAC_PI_2, PI};
 
 /// The most `gtao.slices` (the parameter block's slice table).
 pub const GTAO_MAX_SLICES: u32 = 16;
@@ -160,4 +166,65 @@ pub(crate) fn params(s: &GtaoSettings, _: &super::SourceInputs) -> (Vec<u8>, Vec
         bytemuck::bytes_of(&params).to_vec(),
         vec![f64::from(s.slices * 2 * s.steps), f64::from(s.steps)],
     )
+}
+
+/// The CPU mirror: GTAO as `gtao.wgsl` states it, as plain Rust per pixel of `g` drawn with
+/// `screen` (single-pass schedule). Returns the AO of every visible pixel, row-major, and whether
+/// one of its samples lay within 1e-3 px of a pixel edge, where float rounding may snap the GPU
+/// and the CPU to different neighbours (the tests allow a difference only there).
+pub fn cpu_gtao(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &GtaoSettings,
+) -> (Vec<f32>, Vec<bool>) {
+    let reach = reach(s.radius);
+    per_shaded_pixel(g, screen, reach, |x, y, p| {
+        let (c, sn, jitter) = pixel_pattern(x, y, s.slices);
+        let min_fraction = 1.3 / p.radius_px;
+        let (mut visible, mut open, mut edge) = (0.0f32, 0.0f32, false);
+        for j in 0..s.slices {
+            let (bx, by) = slice_direction(j, s.slices);
+            let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+            let d3 = dir.extend(0.0);
+            let tangent = (d3 - p.v * d3.dot(p.v)).normalize();
+            let axis = tangent.cross(p.v);
+            let projected = p.n - axis * p.n.dot(axis);
+            let length = projected.length();
+            let gamma = projected.dot(tangent).atan2(projected.dot(p.v));
+            let lowest = [-gamma.sin(), gamma.sin()];
+            let mut horizon = lowest;
+            for (side, sign) in [(0, 1.0), (1, -1.0)] {
+                for k in 0..s.steps {
+                    let f = (k as f32 + jitter) / s.steps as f32;
+                    let distance = (f * f + min_fraction) * p.radius_px;
+                    let px = p.centre + sign * Vec2::new(dir.x, -dir.y) * distance;
+                    let (surface, e) = surface_at(g, screen, p, px, false);
+                    edge |= e;
+                    let (cos_s, w) = match surface {
+                        Some(q) => {
+                            let delta = q - p.pos;
+                            let dist = delta.length();
+                            let above = delta.dot(p.n) > 1e-3 * dist;
+                            let w = if above { falloff(dist, s.radius) } else { 0.0 };
+                            (delta.dot(p.v) / dist.max(1e-20), w)
+                        }
+                        None => (-1.0, 0.0),
+                    };
+                    let sample = lowest[side] + (cos_s - lowest[side]) * w;
+                    let h = horizon[side];
+                    horizon[side] = sample.max(h + (sample - h) * s.thickness_blend);
+                }
+            }
+            let h1 = gamma + (horizon[0].clamp(-1.0, 1.0).acos() - gamma).min(FRAC_PI_2);
+            let h0 = gamma + (-horizon[1].clamp(-1.0, 1.0).acos() - gamma).max(-FRAC_PI_2);
+            visible += length * (side_visibility(h0, gamma) + side_visibility(h1, gamma));
+            open += length * open_slice_visibility(gamma);
+        }
+        let ao = if open > 0.0 {
+            (visible / open).clamp(0.0, 1.0).powf(s.exponent)
+        } else {
+            1.0
+        };
+        (ao, edge)
+    })
 }

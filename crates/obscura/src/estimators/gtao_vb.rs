@@ -1,9 +1,15 @@
 //! The GTAO visibility-bitmask estimator (`shaders/estimators/gtao_vb.wgsl`, seed 003). Its sample
-//! table and per-pixel pattern are here so the CPU mirror in the tests uses the same numbers.
+//! table and per-pixel pattern are here so that its CPU mirror, [`cpu_gtao_vb`] (the kernel in
+//! plain Rust for the tests), uses the same numbers.
 
+use super::mirror::{
+    open_slice_visibility, per_visible_pixel, pixel_setup, span_visibility, surface_at,
+    MirrorGBuffer, MirrorScreen,
+};
 use crate::knob::{Kind, Knob, Widget};
+use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
-use std::f32::consts::PI;
+use std::f32::consts::{FRAC_PI_2, PI};
 
 /// How a sample's angular span turns into sectors of the visibility bitmask (seed 003).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -216,6 +222,95 @@ pub(crate) fn params(s: &GtaoVbSettings, inputs: &super::SourceInputs) -> (Vec<u
             f64::from(s.steps),
         ],
     )
+}
+
+/// The sectors between hemisphere positions `a` and `b` (0 to 1 across the slice's hemisphere),
+/// as gtao_vb.wgsl's `sector_bits` marks them under `activation`.
+pub fn sector_bits(a: f32, b: f32, activation: SectorActivation) -> u32 {
+    let lo = a.min(b);
+    let width = (a.max(b) - lo) * 32.0;
+    let count = match activation {
+        SectorActivation::Ceil => width.ceil(),
+        SectorActivation::Round => width.round(),
+        SectorActivation::Floor => width.floor(),
+    };
+    let start = ((lo * 32.0) as u32).min(32);
+    let n = (count.max(0.0) as u32).min(32 - start);
+    if n == 0 {
+        0
+    } else {
+        (u32::MAX >> (32 - n)) << start
+    }
+}
+
+/// The CPU mirror: GTAO-VB as `gtao_vb.wgsl` states it, as plain Rust per pixel of `g` drawn with
+/// `screen` (single-pass schedule; uniform or cosine-weighted sectors as `s` says). Returns the AO
+/// of every visible pixel, row-major, and whether one of its samples lay within 1e-3 px of a pixel
+/// edge, where float rounding may snap the GPU and the CPU to different neighbours.
+pub fn cpu_gtao_vb(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &GtaoVbSettings,
+) -> (Vec<f32>, Vec<bool>) {
+    per_visible_pixel(screen, |x, y| {
+        let Some(p) = pixel_setup(g, screen, x, y, s.radius) else {
+            return (1.0, false);
+        };
+        let step_px = if p.radius_px >= 1.0 {
+            p.radius_px / s.steps as f32
+        } else {
+            0.0
+        };
+        let (c, sn, jitter) = pixel_pattern(x, y, s.slices);
+        let mut masks = [0u32; 3];
+        // Per slice: the projected normal's angle γ and length (cosine-weighted sectors).
+        let mut slice_normals = [(0.0f32, 0.0f32); 3];
+        let mut edge = false;
+        for i in 0..s.slices * 2 * s.steps {
+            if step_px == 0.0 {
+                break;
+            }
+            let (bx, by, side, step) = sample(i, s.slices, s.steps);
+            let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+            let slice = (i / (2 * s.steps)) as usize;
+            let px = p.centre
+                + side * Vec2::new(dir.x, -dir.y) * ((jitter + 1.0 + step as f32) * step_px);
+            let (surface, e) = surface_at(g, screen, &p, px, false);
+            edge |= e;
+            let d = dir.extend(0.0);
+            let tangent = (d - p.v * d.dot(p.v)).normalize();
+            let slice_normal = tangent.cross(p.v);
+            let projected = p.n - slice_normal * p.n.dot(slice_normal);
+            let normal_angle = projected.dot(tangent).atan2(projected.dot(p.v));
+            slice_normals[slice] = (normal_angle, projected.length());
+            let Some(q) = surface else { continue };
+            let front = q - p.pos;
+            if front.dot(p.n) <= 1e-3 * front.length() {
+                continue;
+            }
+            let back = front - p.v * s.thickness;
+            let position = |w: Vec3| {
+                let angle = w.dot(tangent).atan2(w.dot(p.v));
+                ((angle - normal_angle + FRAC_PI_2) / PI).clamp(0.0, 1.0)
+            };
+            masks[slice] |= sector_bits(position(front), position(back), s.activation);
+        }
+        let (mut visible, mut open) = (0.0f32, 0.0f32);
+        for (&mask, &(gamma, length)) in masks.iter().zip(&slice_normals).take(s.slices as usize) {
+            if !s.cosine_weighted {
+                visible += 1.0 - mask.count_ones() as f32 / 32.0;
+                open += 1.0;
+                continue;
+            }
+            // Every free sector k spans θ from γ + π(k/32 − ½) to γ + π((k + 1)/32 − ½).
+            let angle = |k: u32| gamma + PI * (k as f32 / 32.0 - 0.5);
+            for k in (0..32).filter(|k| mask & (1 << k) == 0) {
+                visible += length * span_visibility(angle(k), angle(k + 1), gamma);
+            }
+            open += length * open_slice_visibility(gamma);
+        }
+        ((visible / open).clamp(0.0, 1.0).powf(s.exponent), edge)
+    })
 }
 
 #[cfg(test)]

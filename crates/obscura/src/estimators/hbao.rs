@@ -1,10 +1,13 @@
 //! The classic HBAO estimator (`shaders/estimators/hbao.wgsl`): horizon-based AO as seed 001 §3.2
 //! Algorithm 2 and seed 004 §2.2.1 state it. Its direction table and per-pixel pattern are here so
-//! the CPU mirror in the tests uses the same numbers.
+//! that its CPU mirror, [`cpu_hbao`] (the kernel in plain Rust for the tests), uses the same
+//! numbers.
 
+use super::mirror::{per_shaded_pixel, surface_at, MirrorGBuffer, MirrorScreen};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
-use std::f32::consts::TAU;
+use std::f32::consts::{FRAC_PI_2, TAU};
 
 /// The most `hbao.directions` (the parameter block's direction table; seed 004's largest grid is
 /// 64 × 80).
@@ -156,4 +159,54 @@ pub(crate) fn params(s: &HbaoSettings, _: &super::SourceInputs) -> (Vec<u8>, Vec
         bytemuck::bytes_of(&params).to_vec(),
         vec![f64::from(s.directions * s.steps), f64::from(s.steps)],
     )
+}
+
+/// The CPU mirror: HBAO as `hbao.wgsl` states it, as plain Rust per pixel of `g` drawn with
+/// `screen`; `interleaved`: the interleaved schedule's samples, which read the nearest pixel of
+/// their own residue class mod 4. Returns the AO of every visible pixel, row-major, and whether
+/// one of its samples lay within 1e-3 px of where the pixel it reads flips, where float rounding
+/// may snap the GPU and the CPU to different neighbours (the tests allow a difference only there).
+pub fn cpu_hbao(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &HbaoSettings,
+    interleaved: bool,
+) -> (Vec<f32>, Vec<bool>) {
+    per_shaded_pixel(g, screen, s.radius, |x, y, p| {
+        let step = p.radius_px / (s.steps + 1) as f32;
+        let (c, sn, jitter) = pixel_pattern(x, y, s.directions);
+        let start = jitter * step + 1.0;
+        let (mut occlusion, mut edge) = (0.0f32, false);
+        for d in 0..s.directions {
+            let (bx, by) = direction(d, s.directions);
+            let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+            let d3 = dir.extend(0.0);
+            let slice = (d3 - p.v * d3.dot(p.v)).normalize();
+            let (n_v, n_d) = (p.n.dot(p.v), p.n.dot(slice));
+            let sin_t = -n_d / (n_v * n_v + n_d * n_d).max(1e-12).sqrt();
+            let t = sin_t.clamp(-1.0, 1.0).asin();
+            let mut sin_h = (t + s.angle_bias).min(FRAC_PI_2).sin();
+            for k in 0..s.steps {
+                let px = p.centre + Vec2::new(dir.x, -dir.y) * (start + k as f32 * step);
+                let (surface, e) = surface_at(g, screen, p, px, interleaved);
+                edge |= e;
+                let Some(q) = surface else { continue };
+                let v = q - p.pos;
+                let dist = v.length();
+                let sin_phi = v.dot(p.v) / dist.max(1e-20);
+                if v.dot(p.n) <= 1e-3 * dist {
+                    continue;
+                }
+                let w = (1.0 - dist / s.radius).max(0.0);
+                if w > 0.0 && sin_phi > sin_h {
+                    occlusion += w * (sin_phi - sin_h);
+                    sin_h = sin_phi;
+                }
+            }
+        }
+        let ao = (1.0 - occlusion / s.directions as f32)
+            .clamp(0.0, 1.0)
+            .powf(s.exponent);
+        (ao, edge)
+    })
 }

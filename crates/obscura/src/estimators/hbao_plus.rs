@@ -1,8 +1,11 @@
 //! The HBAO+ estimator (`shaders/estimators/hbao_plus.wgsl`): NVIDIA-style per-sample horizon AO
 //! as the seed authors' baseline (seed 000 §2.1, docs/AUTHORS_CODE.md §1.7). Its per-pixel pattern
-//! is here so the CPU mirror in the tests uses the same numbers.
+//! is here so that its CPU mirror, [`cpu_hbao_plus`] (the kernel in plain Rust for the tests),
+//! uses the same numbers.
 
+use super::mirror::{per_shaded_pixel, surface_at, MirrorGBuffer, MirrorScreen};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 
@@ -156,4 +159,42 @@ pub(crate) fn params(s: &HbaoPlusSettings, _: &super::SourceInputs) -> (Vec<u8>,
         bytemuck::bytes_of(&params).to_vec(),
         vec![f64::from(s.directions * s.steps), f64::from(s.steps)],
     )
+}
+
+/// The CPU mirror: HBAO+ as `hbao_plus.wgsl` states it, as plain Rust per pixel of `g` drawn with
+/// `screen`; `interleaved`: the interleaved schedule's samples, which read the nearest pixel of
+/// their own residue class mod 4. Returns the AO of every visible pixel, row-major, and whether
+/// one of its samples lay within 1e-3 px of where the pixel it reads flips, where float rounding
+/// may snap the GPU and the CPU to different neighbours (the tests allow a difference only there).
+pub fn cpu_hbao_plus(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &HbaoPlusSettings,
+    interleaved: bool,
+) -> (Vec<f32>, Vec<bool>) {
+    let neg_inv_r2 = -1.0 / (s.radius * s.radius);
+    per_shaded_pixel(g, screen, s.radius, |x, y, p| {
+        let step = p.radius_px / (s.steps + 1) as f32;
+        let (c, sn, jitter) = pixel_pattern(x, y, s.directions);
+        let start = jitter * step + 1.0;
+        let (mut occlusion, mut count, mut edge) = (0.0f32, 0.0f32, false);
+        for i in 0..s.directions * s.steps {
+            let (bx, by, k) = sample(i, s.directions, s.steps);
+            let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
+            let px = p.centre + dir * (start + k as f32 * step);
+            count += 1.0;
+            let (surface, e) = surface_at(g, screen, p, px, interleaved);
+            edge |= e;
+            let Some(q) = surface else { continue };
+            let v = q - p.pos;
+            let v_dot_v = v.dot(v).max(1e-20);
+            let angle_term = (p.n.dot(v) / v_dot_v.sqrt() - s.bias).clamp(0.0, 1.0);
+            let distance_term = (v_dot_v * neg_inv_r2 + 1.0).clamp(0.0, 1.0);
+            occlusion += angle_term * distance_term;
+        }
+        let ao = (1.0 - 2.0 * occlusion / count)
+            .clamp(0.0, 1.0)
+            .powf(s.exponent);
+        (ao, edge)
+    })
 }

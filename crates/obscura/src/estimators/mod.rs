@@ -4,9 +4,10 @@
 //! (docs/ARCHITECTURE.md: per-pixel setup, samples, the value of one sample against one depth, how
 //! values of several depths combine, "needs hidden depth?", the accumulated state and the finish)
 //! plus a Rust module here that holds everything else of it: its settings struct and their knobs,
-//! its parameter packing (bind group 1) and pipeline constants, as one [`EstimatorModule`]. The
-//! schedules own the loops; the sources consult the estimator for each depth they find. Nothing
-//! here knows the technique table or the settings of the whole.
+//! its parameter packing (bind group 1) and pipeline constants, as one [`EstimatorModule`], and its
+//! CPU mirror (`cpu_<name>`, the kernel as plain Rust that the tests hold the GPU to; what the
+//! mirrors share is in [`mirror`]). The schedules own the loops; the sources consult the estimator
+//! for each depth they find. Nothing here knows the technique table or the settings of the whole.
 
 /// The registry of estimators, one entry each: its module, its `Estimator` variant, its settings
 /// struct and what it is (with a paper section). `registry!(then)` hands the list to the macro
@@ -47,6 +48,9 @@ macro_rules! declare_modules {
     };
 }
 registry!(declare_modules);
+
+// Not an estimator (no registry entry): the helpers the estimators' CPU mirrors share.
+pub mod mirror;
 
 use crate::bindings::{self, entry, ESTIMATOR_PARAMS, ESTIMATOR_TABLE};
 use crate::knob::{Knob, Value};
@@ -191,6 +195,15 @@ pub fn bayer_pattern(x: u32, y: u32, period: f32) -> (f32, f32, f32) {
     let angle = period * vao::BAYER_4X4[i + 4 * j] as f32 / 16.0;
     let jitter = (vao::BAYER_4X4[j + 4 * i] as f32 + 0.5) / 16.0;
     (angle.cos(), angle.sin(), jitter)
+}
+
+/// Level `level`'s size in texels of the depth pyramid over a `full` framebuffer with factor K =
+/// `factor`: ⌈full / K^level⌉ per axis. Here, below the sources, because both the source that
+/// builds the levels (`sources::depth_pyramid`) and the pyramid estimators' mirrors
+/// ([`mirror::Levels`]) need it.
+pub fn pyramid_level_size(full: (u32, u32), factor: u32, level: u32) -> (u32, u32) {
+    let scale = factor.pow(level);
+    (full.0.div_ceil(scale), full.1.div_ceil(scale))
 }
 
 /// [`bayer_pattern`] for the 16 pixels of the 4×4 tile, indexed x % 4 + 4 (y % 4), as the

@@ -1,9 +1,13 @@
 //! The Pyramid HBAO estimator (`shaders/estimators/pyramid_hbao.wgsl`, seed 004 §3): directions
 //! walked over the levels of the depth pyramid, each direction's largest weighted contribution.
-//! Its per-pixel offsets are here so the tests use the same numbers.
+//! Its per-pixel offsets are here so that its CPU mirror, [`cpu_pyramid_hbao`] (the kernel in plain
+//! Rust for the tests), and the tests use the same numbers.
 
+use super::mirror::{per_visible_pixel, pixel_setup, Levels};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
+use std::f32::consts::TAU;
 
 /// Pyramid HBAO parameters (seed 004 §3.4–3.5).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -137,4 +141,53 @@ pub(crate) fn params(s: &PyramidHbaoSettings, inputs: &super::SourceInputs) -> (
             f64::from(s.steps),
         ],
     )
+}
+
+/// The CPU mirror: Pyramid HBAO as `pyramid_hbao.wgsl` states it, as plain Rust per pixel, over
+/// `l` (the G-buffer and the pyramid's `levels` levels as read back). Returns the AO of every
+/// visible pixel, row-major, and whether one of its samples lay within 1e-3 texel of a texel edge,
+/// where float rounding may snap the GPU and the CPU to different texels.
+pub fn cpu_pyramid_hbao(
+    l: &Levels,
+    s: &PyramidHbaoSettings,
+    levels: u32,
+) -> (Vec<f32>, Vec<bool>) {
+    let k = l.factor as f32;
+    per_visible_pixel(l.screen, |x, y| {
+        let Some(p) = pixel_setup(l.g, l.screen, x, y, s.radius) else {
+            return (1.0, false);
+        };
+        let (u0, o0) = pixel_offsets(x, y);
+        let (mut sum, mut edge) = (0.0f32, false);
+        for d in 0..s.directions {
+            let df = d as f32;
+            let u = (u0 + 0.618_034 * df).fract();
+            let o = (o0 + 0.754_877_7 * df).fract();
+            let angle = TAU * (df + u) / s.directions as f32;
+            let mut best = 0.0f32;
+            for level in 0..levels {
+                let size = k.powi(level as i32);
+                let start = s.steps as f32 * (size - 1.0) / (k - 1.0);
+                for step in 0..s.steps {
+                    let distance = (start + (step as f32 + o) * size).max(1.0);
+                    let px = p.centre + Vec2::new(angle.cos(), -angle.sin()) * distance;
+                    let (surface, e) = l.surface(p.pixel, px, level);
+                    edge |= e;
+                    if let Some(q) = surface {
+                        let v = q - p.pos;
+                        let dist = v.length();
+                        let sin_alpha = v.dot(p.n) / dist.max(1e-20);
+                        if sin_alpha > 1e-3 {
+                            best = best.max((1.0 - dist / s.radius).max(0.0) * sin_alpha);
+                        }
+                    }
+                }
+            }
+            sum += best;
+        }
+        let ao = (1.0 - sum / s.directions as f32)
+            .clamp(0.0, 1.0)
+            .powf(s.exponent);
+        (ao, edge)
+    })
 }

@@ -1,8 +1,10 @@
 //! The Scalable Ambient Obscurance estimator (`shaders/estimators/sao.wgsl`; McGuire, Mara,
 //! Luebke 2012, seed 004 §2.2.2): spiral taps over the depth pyramid, the level chosen by the
-//! tap's distance.
+//! tap's distance. Its CPU mirror, [`cpu_sao`], is the same kernel in plain Rust for the tests.
 
+use super::mirror::{per_shaded_pixel, Levels};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 
@@ -97,6 +99,11 @@ pub const LEVEL_OFFSET_PX: f32 = 8.0;
 /// `AoSettings::scaled`; tests/it/scale_invariance.rs).
 pub const EPSILON_PER_RADIUS: f32 = 0.2;
 
+/// SAO's ε for radius R, (0.2 R)² ([`EPSILON_PER_RADIUS`]).
+pub fn epsilon(radius: f32) -> f32 {
+    (EPSILON_PER_RADIUS * radius).powi(2)
+}
+
 /// GPU mirror of `SaoParams` in the WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -132,11 +139,43 @@ pub(crate) fn params(s: &SaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>,
         spiral_turns: s.spiral_turns,
         inv_log_factor: 1.0 / (inputs.pyramid_factor as f32).ln(),
         log_q: LEVEL_OFFSET_PX.ln(),
-        epsilon: (EPSILON_PER_RADIUS * s.radius).powi(2),
+        epsilon: epsilon(s.radius),
         pattern,
     };
     (
         bytemuck::bytes_of(&params).to_vec(),
         vec![f64::from(s.samples), f64::from(inputs.pyramid_levels)],
     )
+}
+
+/// The CPU mirror: SAO as `sao.wgsl` states it, as plain Rust per pixel, over `l` (the G-buffer
+/// and the pyramid's `levels` levels as read back). Returns the AO of every visible pixel,
+/// row-major, and whether one of its taps lay within 1e-3 texel of a texel edge or on the boundary
+/// between two levels, where float rounding may make the GPU and the CPU read different texels.
+pub fn cpu_sao(l: &Levels, s: &SaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>) {
+    let n = s.samples as f32;
+    per_shaded_pixel(l.g, l.screen, s.radius, |x, y, p| {
+        let (c, sn, _) = super::bayer_pattern(x, y, TAU);
+        let phi = sn.atan2(c);
+        let (mut sum, mut edge) = (0.0f32, false);
+        for i in 0..s.samples {
+            let alpha = (i as f32 + 0.5) / n;
+            let angle = alpha * TAU * s.spiral_turns + phi;
+            let distance = alpha * p.radius_px;
+            let exact = (distance.max(1.0).ln() - LEVEL_OFFSET_PX.ln()) / (l.factor as f32).ln();
+            edge |= exact > -0.5 && (exact - exact.round()).abs() < 1e-4;
+            let level = exact.floor().clamp(0.0, (levels - 1) as f32) as u32;
+            let px = p.centre + Vec2::new(angle.cos(), -angle.sin()) * distance;
+            let (surface, e) = l.surface(p.pixel, px, level);
+            edge |= e;
+            if let Some(q) = surface {
+                let v = q - p.pos;
+                let vv = v.dot(v);
+                let f = (s.radius * s.radius - vv).max(0.0);
+                sum += f * f * f * ((v.dot(p.n) - s.bias) / (epsilon(s.radius) + vv)).max(0.0);
+            }
+        }
+        let ao = (1.0 - sum * s.intensity / s.radius.powi(6) * 5.0 / n).max(0.0);
+        (ao, edge)
+    })
 }

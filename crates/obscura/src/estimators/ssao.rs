@@ -1,7 +1,10 @@
 //! The SSAO estimator of seed 001 §3.2 (`shaders/estimators/ssao.wgsl`): Alchemy AO (McGuire et
-//! al. 2011), N samples on a spiral within the world radius.
+//! al. 2011), N samples on a spiral within the world radius. Its CPU mirror, [`cpu_ssao`], is the
+//! same kernel in plain Rust for the tests.
 
+use super::mirror::{per_shaded_pixel, surface_at, MirrorGBuffer, MirrorScreen};
 use crate::knob::{Kind, Knob, Widget};
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 
@@ -106,6 +109,11 @@ pub const FALLOFF_U: f32 = 0.1;
 /// tests/it/scale_invariance.rs).
 pub const EPSILON_PER_RADIUS: f32 = 0.02;
 
+/// Alchemy AO's ε for radius R, (0.02 R)² ([`EPSILON_PER_RADIUS`]).
+pub fn epsilon(radius: f32) -> f32 {
+    (EPSILON_PER_RADIUS * radius).powi(2)
+}
+
 /// GPU mirror of `SsaoParams` in the WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -139,7 +147,7 @@ pub(crate) fn params(s: &SsaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>
         scale: 2.0 * s.intensity * FALLOFF_U * s.radius / s.samples as f32,
         bias: s.bias,
         contrast: s.contrast,
-        epsilon: (EPSILON_PER_RADIUS * s.radius).powi(2),
+        epsilon: epsilon(s.radius),
         spiral_turns: SPIRAL_TURNS,
         _pad: 0.0,
         pattern,
@@ -151,4 +159,38 @@ pub(crate) fn params(s: &SsaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>
             f64::from(u8::from(inputs.literal_query)),
         ],
     )
+}
+
+/// The CPU mirror: SSAO as `ssao.wgsl` states it, as plain Rust per pixel of `g` drawn with
+/// `screen` (single-pass schedule). Returns the AO of every visible pixel, row-major, and whether
+/// one of its samples lay within 1e-3 px of a pixel edge, where float rounding may snap the GPU
+/// and the CPU to different neighbours (the tests allow a difference only there).
+pub fn cpu_ssao(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &SsaoSettings,
+) -> (Vec<f32>, Vec<bool>) {
+    let n_samples = s.samples as f32;
+    per_shaded_pixel(g, screen, s.radius, |x, y, p| {
+        let (c, sn, _) = super::bayer_pattern(x, y, TAU);
+        let rotation = sn.atan2(c);
+        let (mut sum, mut edge) = (0.0f32, false);
+        for i in 0..s.samples {
+            let alpha = (i as f32 + 0.5) / n_samples;
+            let angle = alpha * TAU * SPIRAL_TURNS + rotation;
+            let px = p.centre + Vec2::new(angle.cos(), -angle.sin()) * (alpha * p.radius_px);
+            let (surface, e) = surface_at(g, screen, p, px, false);
+            edge |= e;
+            let Some(q) = surface else { continue };
+            let v = q - p.pos;
+            let vv = v.dot(v);
+            if vv < s.radius * s.radius {
+                sum += (v.dot(p.n) + p.pos.z * s.bias).max(0.0) / (vv + epsilon(s.radius));
+            }
+        }
+        let ao = (1.0 - 2.0 * s.intensity * FALLOFF_U * s.radius / n_samples * sum)
+            .max(0.0)
+            .powf(s.contrast);
+        (ao, edge)
+    })
 }

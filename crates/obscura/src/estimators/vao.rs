@@ -1,9 +1,12 @@
 //! The Volumetric Ambient Occlusion estimator (seed 000 §3.1–3.5): the sample kernel, the per-pixel
-//! rotation pattern and the parameters of `shaders/estimators/vao.wgsl`. The same tables feed the
-//! CPU mirror in [`crate::reference::cpu_vao`].
+//! rotation pattern and the parameters of `shaders/estimators/vao.wgsl`. The same tables feed its
+//! CPU mirror below: the sample geometry on the CPU ([`PixelFrame`], [`Column`], [`Accumulator`]),
+//! which the ray-traced `vao` reference shares, and the kernel as plain Rust per pixel
+//! ([`cpu_vao`], re-exported by `reference::cpu_vao` under its old path).
 
+use super::mirror::{per_visible_pixel, MirrorGBuffer, MirrorScreen};
 use crate::knob::{Kind, Knob, Widget};
-use glam::{Vec2, Vec3};
+use glam::{UVec2, Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 use std::fmt;
@@ -227,6 +230,249 @@ pub(crate) fn params(settings: &VaoSettings, _: &super::SourceInputs) -> (Vec<u8
         bytemuck::bytes_of(&VaoParams::new(settings)).to_vec(),
         vec![f64::from(settings.samples)],
     )
+}
+
+// ------------------------------------------------------------------------------ CPU mirror
+// The sample geometry of seed 000 §3.1–3.3 on the CPU, shared by the kernel's mirror below
+// (occluders from a depth buffer) and the ray-traced `vao` reference (`reference::ground_truth`,
+// occluders from every ray hit).
+
+/// Free length of the column `[end, start]` for an occluder at height `z` (Fig. 4 / Eq. 8).
+pub fn column_visibility(s: &VaoSettings, z: f32, start: f32, end: f32) -> f32 {
+    let length = start - end;
+    let sphere_vis = (start - end.max(z)).max(0.0);
+    let halo_start = (1.0 + s.thickness) * s.radius;
+    let halo_vis = ((z - halo_start) / length).clamp(0.0, 1.0) * length;
+    sphere_vis + halo_vis
+}
+
+/// One line sample: its hemisphere-clipped column and where it falls on screen.
+pub struct Column {
+    /// Lateral offset in the sample disc (tangent, bitangent), world units.
+    pub d: Vec2,
+    /// Half height of the full column.
+    pub h: f32,
+    /// Top of the clipped column: height along the view axis from the pixel's surface point,
+    /// world units.
+    pub start: f32,
+    /// Bottom of the clipped column (where the tangent plane cuts it, or −`h`); `start − end` is
+    /// its length.
+    pub end: f32,
+    /// Unclamped framebuffer pixel coordinates of the sample point.
+    pub px: Vec2,
+}
+
+/// A visible pixel's sample frame: position, view axis, disc basis, normal in that frame.
+pub struct PixelFrame {
+    /// The pixel's surface point, view space.
+    pub pos: Vec3,
+    /// Unit view axis from the point towards the camera: the columns' direction.
+    pub axis: Vec3,
+    /// First axis of the sample disc, perpendicular to `axis`.
+    pub tangent: Vec3,
+    /// Second axis of the sample disc, perpendicular to `axis` and `tangent`.
+    pub bitangent: Vec3,
+    n_local: Vec3,
+    inv_n_z: f32,
+    rotation: Vec2,
+}
+
+impl PixelFrame {
+    /// `pos`: view-space surface point; `n`: its view-space normal facing the camera;
+    /// `x`, `y`: the visible pixel (selects the 4×4 rotation).
+    pub fn new(pos: Vec3, n: Vec3, x: u32, y: u32) -> Self {
+        let n = n.normalize();
+        let axis = -pos.normalize();
+        let (tangent, bitangent) = orthonormal_basis(axis);
+        let n_local = Vec3::new(n.dot(tangent), n.dot(bitangent), n.dot(axis));
+        let n_z = if n_local.z >= 0.0 {
+            n_local.z.max(1e-4)
+        } else {
+            n_local.z.min(-1e-4)
+        };
+        Self {
+            pos,
+            axis,
+            tangent,
+            bitangent,
+            n_local,
+            inv_n_z: 1.0 / n_z,
+            rotation: pixel_rotation(x, y),
+        }
+    }
+
+    /// Sample `k` (unit direction before rotation, radius fraction) of the kernel, or `None` when
+    /// its clipped column is too short to count (seed 000 §3.2: a_i = 0).
+    pub fn column(
+        &self,
+        k: (Vec2, f32),
+        s: &VaoSettings,
+        screen: &dyn MirrorScreen,
+    ) -> Option<Column> {
+        let (dir, kr) = k;
+        let rot = self.rotation;
+        let dir = Vec2::new(dir.x * rot.x - dir.y * rot.y, dir.x * rot.y + dir.y * rot.x);
+        let r = s.radius;
+        let d = dir * (kr * r);
+        let h = (r * r - d.dot(d)).max(0.0).sqrt();
+        let z_i = (-d.dot(self.n_local.truncate()) * self.inv_n_z).clamp(-h, h);
+        let (start, end) = if self.n_local.z >= 0.0 {
+            (h, z_i)
+        } else {
+            (z_i, -h)
+        };
+        if start - end < MIN_COLUMN_FRACTION * r {
+            return None;
+        }
+        let sample_pos = self.pos + self.tangent * d.x + self.bitangent * d.y;
+        Some(Column {
+            d,
+            h,
+            start,
+            end,
+            px: screen.view_to_pixel(sample_pos),
+        })
+    }
+
+    /// Height of view-space point `p` in `column`'s frame: its height along the view axis,
+    /// corrected along the tangent plane for its lateral offset from the column (vao.wgsl).
+    pub fn height(&self, column: &Column, p: Vec3) -> f32 {
+        let offset = p - self.pos;
+        let lateral = Vec2::new(offset.dot(self.tangent), offset.dot(self.bitangent)) - column.d;
+        offset.dot(self.axis) + lateral.dot(self.n_local.truncate()) * self.inv_n_z
+    }
+
+    /// How fast [`Self::height`] grows along view-space direction `d` (its linear part; vao.wgsl
+    /// `column_height_slope`). Not the difference of two heights: that loses the slope to
+    /// rounding where the heights are large next to it (a scene far from its camera in world
+    /// units; tests/it/scale_invariance.rs).
+    pub fn height_slope(&self, d: Vec3) -> f32 {
+        let lateral = Vec2::new(d.dot(self.tangent), d.dot(self.bitangent));
+        d.dot(self.axis) + lateral.dot(self.n_local.truncate()) * self.inv_n_z
+    }
+}
+
+/// The per-pixel sums of free and clipped column fractions.
+#[derive(Default)]
+pub struct Accumulator {
+    sum: f32,
+    clipped_sum: f32,
+}
+
+impl Accumulator {
+    /// Add one column: its free length `free` and its clipped length, each over its full length 2h.
+    pub fn add(&mut self, column: &Column, free: f32) {
+        let inv_2h = 0.5 / column.h;
+        self.sum += free * inv_2h;
+        self.clipped_sum += (column.start - column.end) * inv_2h;
+    }
+
+    /// Final AO with the normalisation and exponent of `s`.
+    pub fn finish(&self, s: &VaoSettings) -> f32 {
+        let raw = match s.normalization {
+            Normalization::Hemisphere => 2.0 * self.sum / s.samples as f32,
+            Normalization::Clipped if self.clipped_sum > 0.0 => self.sum / self.clipped_sum,
+            Normalization::Clipped => 1.0,
+        };
+        raw.clamp(0.0, 1.0).powf(s.exponent)
+    }
+}
+
+/// The kernel's samples for `s` (before rotation).
+pub fn kernel(s: &VaoSettings) -> Vec<(Vec2, f32)> {
+    (0..s.samples)
+        .map(|i| kernel_sample(i, s.samples))
+        .collect()
+}
+
+/// The framebuffer pixel a sample reads, and whether its projection lies within 1e-3 px of a
+/// pixel edge (there float rounding may snap two implementations to different pixels).
+pub fn snap(px: Vec2, screen: &dyn MirrorScreen) -> (UVec2, bool) {
+    let full = screen.full_size().as_vec2();
+    let px = px.clamp(Vec2::ZERO, full - 0.5);
+    let frac = px - px.floor();
+    let ambiguous = frac.min_element() < 1e-3 || frac.max_element() > 1.0 - 1e-3;
+    (px.as_uvec2(), ambiguous)
+}
+
+/// What [`cpu_vao`] returns for every visible pixel (before blur).
+pub struct CpuVao {
+    /// AO per visible pixel, row-major, exponent applied (1 = unoccluded; background 1).
+    pub ao: Vec<f32>,
+    /// Pixels where some sample projects within `1e-3` px of a pixel edge: there float rounding
+    /// may snap the GPU and the CPU to different neighbours, so the two may legitimately differ.
+    pub ambiguous: Vec<bool>,
+}
+
+/// The CPU mirror: VAO as `vao.wgsl` computes it from the first depth layer (no blur), as plain
+/// Rust per pixel of `g` drawn with `screen`, settings `s`: the oracle the GPU `vao` pass is
+/// tested against. Returns the AO of every visible pixel and where a sample lay on a pixel edge
+/// ([`CpuVao`]).
+pub fn cpu_vao(g: &dyn MirrorGBuffer, screen: &dyn MirrorScreen, s: &VaoSettings) -> CpuVao {
+    cpu_vao_turned(g, screen, s, 0)
+}
+
+/// [`cpu_vao`] with the 4×4 rotation pattern turned by `pattern_offset` entries, as the GPU
+/// turns it per frame under temporal accumulation (`pattern_index` in common/pattern.wgsl).
+pub fn cpu_vao_turned(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &VaoSettings,
+    pattern_offset: u32,
+) -> CpuVao {
+    cpu_vao_with(g, screen, s, pattern_offset, 0.0)
+}
+
+/// [`cpu_vao_turned`] with the radius capped at `max_radius_px` pixels on screen (0: no cap;
+/// `AoSettings::max_radius_px`): each pixel runs the kernel with its own R,
+/// [`MirrorScreen::capped_radius`], as `vao.wgsl` does.
+pub fn cpu_vao_with(
+    g: &dyn MirrorGBuffer,
+    screen: &dyn MirrorScreen,
+    s: &VaoSettings,
+    pattern_offset: u32,
+    max_radius_px: f32,
+) -> CpuVao {
+    let kernel = kernel(s);
+    let (ao, ambiguous) = per_visible_pixel(screen, |x, y| {
+        let pixel = UVec2::new(x, y) + screen.guard_band();
+        let z = g.depth_at(pixel);
+        if z <= 0.0 {
+            return (1.0, false);
+        }
+        let pos = screen.pixel_to_view(pixel.as_vec2() + 0.5, z);
+        let s = &VaoSettings {
+            radius: screen.capped_radius(s.radius, -pos.z, max_radius_px),
+            ..*s
+        };
+        // The pattern entry this pixel uses, as the (x % 4, y % 4) that names it.
+        let entry = (x % 4 + 4 * (y % 4) + pattern_offset) % 16;
+        let frame = PixelFrame::new(pos, g.normal_at(pixel), entry % 4, entry / 4);
+        let (mut acc, mut ambiguous) = (Accumulator::default(), false);
+        for &k in &kernel {
+            let Some(column) = frame.column(k, s, screen) else {
+                continue;
+            };
+            let (sample_pixel, edge) = snap(column.px, screen);
+            ambiguous |= edge;
+            let mut free = column.start - column.end;
+            if sample_pixel != pixel {
+                let sz = g.depth_at(sample_pixel);
+                if sz > 0.0 {
+                    let occluder = screen.pixel_to_view(sample_pixel.as_vec2() + 0.5, sz);
+                    free = column_visibility(
+                        s,
+                        frame.height(&column, occluder),
+                        column.start,
+                        column.end,
+                    );
+                }
+            }
+            acc.add(&column, free);
+        }
+        (acc.finish(s), ambiguous)
+    });
+    CpuVao { ao, ambiguous }
 }
 
 #[cfg(test)]

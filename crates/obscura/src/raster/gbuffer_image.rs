@@ -1,6 +1,8 @@
 //! The G-buffer read back to the CPU ([`crate::pipeline::renderer::Renderer::read_gbuffer`]): what the
-//! CPU mirrors of the GPU passes ([`crate::reference`]) and the tests read.
+//! CPU mirrors of the GPU passes ([`crate::reference`], the estimators' `cpu_<name>`) and the tests
+//! read.
 
+use crate::estimators::mirror::MirrorGBuffer;
 use glam::{UVec2, Vec3};
 
 /// A G-buffer read back to the CPU (whole framebuffer, guard band included, row-major).
@@ -28,5 +30,20 @@ impl GBufferImage {
             .flat_map(|y| (0..w).map(move |x| UVec2::new(x, y) + guard_band))
             .map(|p| self.depth_at(p))
             .collect()
+    }
+}
+
+/// The estimators' mirrors read a G-buffer through this trait: they sit below `raster`.
+impl MirrorGBuffer for GBufferImage {
+    fn size(&self) -> UVec2 {
+        UVec2::new(self.width, self.height)
+    }
+
+    fn depth_at(&self, p: UVec2) -> f32 {
+        GBufferImage::depth_at(self, p)
+    }
+
+    fn normal_at(&self, p: UVec2) -> Vec3 {
+        self.normals[(p.y * self.width + p.x) as usize]
     }
 }

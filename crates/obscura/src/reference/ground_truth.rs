@@ -18,8 +18,8 @@
 //!   HBAO's Blender reference, seed 004 §4), stratified by a Hammersley set with a seeded
 //!   per-pixel Cranley–Patterson rotation.
 
-use super::vao_model::{column_visibility, kernel, Accumulator, Column, PixelFrame};
 use crate::bvh::{Bvh, HitAction, Ray};
+use crate::estimators::vao::{column_visibility, kernel, Accumulator, Column, PixelFrame};
 use crate::scene::Scene;
 use crate::settings::VaoSettings;
 use crate::view::FrameView;

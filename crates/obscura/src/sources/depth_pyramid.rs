@@ -5,6 +5,7 @@
 //! layers of one array texture, each layer the size of level 1, so the AO pass binds one texture.
 
 use crate::bindings::{self, entry, SOURCE_PYRAMID_LEVELS, SOURCE_PYRAMID_PARAMS};
+use crate::estimators::pyramid_level_size;
 use crate::gpu::PassProfiler;
 use crate::settings::PyramidSettings;
 use crate::shaders;
@@ -12,12 +13,6 @@ use wgpu::util::DeviceExt;
 
 /// The most levels, level 0 included (`PyramidParams.levels` in the WGSL holds eight).
 pub const MAX_LEVELS: u32 = 8;
-
-/// Level `l`'s size in texels for a `full` framebuffer: ⌈full / K^l⌉ per axis.
-pub fn level_size(full: (u32, u32), factor: u32, level: u32) -> (u32, u32) {
-    let scale = factor.pow(level);
-    (full.0.div_ceil(scale), full.1.div_ceil(scale))
-}
 
 /// GPU mirror of `PyramidLevel` in build.wgsl.
 #[repr(C)]
@@ -57,7 +52,7 @@ pub(crate) struct DepthPyramid {
 impl DepthPyramid {
     pub fn new(device: &wgpu::Device, settings: &PyramidSettings, full: (u32, u32)) -> Self {
         let (levels, factor) = (settings.levels, settings.factor);
-        let first = level_size(full, factor, 1);
+        let first = pyramid_level_size(full, factor, 1);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("depth pyramid"),
             size: wgpu::Extent3d {
@@ -76,7 +71,7 @@ impl DepthPyramid {
         });
         let mut table = [[0.0f32; 4]; MAX_LEVELS as usize];
         for (l, row) in table.iter_mut().enumerate().take(levels as usize) {
-            let (w, h) = level_size(full, factor, l as u32);
+            let (w, h) = pyramid_level_size(full, factor, l as u32);
             *row = [factor.pow(l as u32) as f32, w as f32, h as f32, 0.0];
         }
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -102,7 +97,10 @@ impl DepthPyramid {
         );
         let build_params: Vec<wgpu::Buffer> = (1..levels)
             .map(|l| {
-                let (below, size) = (level_size(full, factor, l - 1), level_size(full, factor, l));
+                let (below, size) = (
+                    pyramid_level_size(full, factor, l - 1),
+                    pyramid_level_size(full, factor, l),
+                );
                 let level = BuildLevel {
                     below_size: [below.0, below.1],
                     size: [size.0, size.1],
@@ -199,7 +197,7 @@ impl DepthPyramid {
                 &self.build_groups[level as usize - 2]
             };
             pass.set_bind_group(0, group, &[]);
-            let (w, h) = level_size(self.full, self.factor, level);
+            let (w, h) = pyramid_level_size(self.full, self.factor, level);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
     }
@@ -215,15 +213,15 @@ impl DepthPyramid {
         ]
     }
 
-    /// Levels 1 … L − 1 of the last frame, each row-major over its own size ([`level_size`]).
-    /// Waits for the GPU.
+    /// Levels 1 … L − 1 of the last frame, each row-major over its own size
+    /// ([`pyramid_level_size`]). Waits for the GPU.
     pub fn read_levels(&self, gpu: &crate::gpu::Gpu) -> Result<Vec<Vec<f32>>, crate::error::Error> {
         let width = self.texture.width() as usize;
         (1..self.levels)
             .map(|level| {
                 let bytes = crate::gpu::read_texture_layer_bytes(gpu, &self.texture, level - 1, 4)?;
                 let texels: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
-                let (w, h) = level_size(self.full, self.factor, level);
+                let (w, h) = pyramid_level_size(self.full, self.factor, level);
                 Ok((0..h as usize)
                     .flat_map(|y| texels[y * width..y * width + w as usize].to_vec())
                     .collect())

@@ -590,26 +590,6 @@ pub fn assert_beats_no_occlusion(
     }
 }
 
-/// The framebuffer pixel a sample at `px` reads for shading pixel `own` (framebuffer pixels of a
-/// `full` framebuffer), and whether `px` lies within 1e-3 px of where the choice flips. Single and
-/// two-phase schedules: the pixel `px` falls in, clamped into the framebuffer. Interleaved: the
-/// pixel of `own`'s residue class mod 4 nearest to `px` (shaders/schedules/interleaved.wgsl),
-/// clamped into the class's quarter-resolution layer.
-pub fn sample_cell(px: Vec2, own: UVec2, full: Vec2, interleaved: bool) -> (UVec2, bool) {
-    if !interleaved {
-        let f = px.fract();
-        let edge = f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
-        return (px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2(), edge);
-    }
-    let residue = own % 4;
-    let t = (px - 0.5 - residue.as_vec2()) / 4.0;
-    let f = t.fract();
-    let edge = (f - 0.5).abs().min_element() < 1e-3 / 4.0;
-    let size = (full / 4.0).ceil();
-    let cell = t.round().clamp(Vec2::ZERO, size - 1.0).as_uvec2();
-    (cell * 4 + residue, edge)
-}
-
 /// A floor (y = 0, z > 0) meeting a tall wall (z = 0) seen obliquely from (0.6, 2, 3): the mean
 /// raw AO of `settings` over the floor pixels within 2 cm of the corner line (away from the image
 /// edge), how many they are, and the view's world-to-view matrix.

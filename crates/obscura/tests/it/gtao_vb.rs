@@ -2,132 +2,15 @@
 //! unoccluded plane, a plain CPU implementation on a read-back G-buffer (uniform and
 //! cosine-weighted sectors), its model's closed form for a step seen from above and its limit at
 //! an inside corner, and the hemisphere ground truth (its dual-depth row:
-//! tests/it/source_twins.rs).
+//! tests/it/source_twins.rs). The CPU implementation is the estimator's mirror,
+//! `estimators::gtao_vb::cpu_gtao_vb`.
 
 use crate::common::*;
-use glam::{UVec2, Vec2, Vec3};
-use obscura::estimators::gtao_vb::{pixel_pattern, sample};
-use obscura::reference::cpu_vao::GBufferImage;
+use glam::{UVec2, Vec3};
+use obscura::estimators::gtao_vb::{cpu_gtao_vb, pixel_pattern, sample, sector_bits};
 use obscura::settings::{GtaoVbSettings, SectorActivation};
-use obscura::{scene, Renderer, ScreenGeometry, Technique};
+use obscura::{scene, Renderer, Technique};
 use std::f32::consts::{FRAC_PI_2, PI};
-
-/// ∫_a^b cos(θ − γ)|sin θ| dθ, as slice_visibility.wgsl's `span_visibility`.
-fn span_visibility(a: f32, b: f32, gamma: f32) -> f32 {
-    let side = |h: f32| 0.25 * (-(2.0 * h - gamma).cos() + gamma.cos() + 2.0 * h * gamma.sin());
-    b.signum() * side(b) - a.signum() * side(a)
-}
-
-/// The sectors between hemisphere positions a and b, as the WGSL's `sector_bits`.
-fn sector_bits(a: f32, b: f32, activation: SectorActivation) -> u32 {
-    let lo = a.min(b);
-    let width = (a.max(b) - lo) * 32.0;
-    let count = match activation {
-        SectorActivation::Ceil => width.ceil(),
-        SectorActivation::Round => width.round(),
-        SectorActivation::Floor => width.floor(),
-    };
-    let start = ((lo * 32.0) as u32).min(32);
-    let n = (count.max(0.0) as u32).min(32 - start);
-    if n == 0 {
-        0
-    } else {
-        (u32::MAX >> (32 - n)) << start
-    }
-}
-
-/// GTAO-VB as `shaders/estimators/gtao_vb.wgsl` states it, for every visible pixel, and whether
-/// some sample lies within 1e-3 px of a pixel edge.
-fn cpu_gtao_vb(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    s: &GtaoVbSettings,
-) -> (Vec<f32>, Vec<bool>) {
-    let uniform = screen.uniform();
-    let full = Vec2::new(g.width as f32, g.height as f32);
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    for y in 0..screen.height {
-        for x in 0..screen.width {
-            let pixel = UVec2::new(x, y) + screen.guard_band;
-            let z = g.depth_at(pixel);
-            if z.is_nan() || z <= 0.0 {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            }
-            let centre = pixel.as_vec2() + 0.5;
-            let pos = screen.pixel_to_view(centre, z);
-            let v = (-pos).normalize();
-            let n = g.normals[(pixel.y * g.width + pixel.x) as usize].normalize();
-            let radius_px = s.radius * uniform.projection_scale[1] / z;
-            let step_px = if radius_px >= 1.0 {
-                radius_px / s.steps as f32
-            } else {
-                0.0
-            };
-            let (c, sn, jitter) = pixel_pattern(x, y, s.slices);
-            let mut masks = [0u32; 3];
-            // Per slice: the projected normal's angle γ and length (cosine-weighted sectors).
-            let mut slice_normals = [(0.0f32, 0.0f32); 3];
-            let mut edge = false;
-            for i in 0..s.slices * 2 * s.steps {
-                if step_px == 0.0 {
-                    break;
-                }
-                let (bx, by, side, step) = sample(i, s.slices, s.steps);
-                let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
-                let slice = (i / (2 * s.steps)) as usize;
-                let px = centre
-                    + side * Vec2::new(dir.x, -dir.y) * ((jitter + 1.0 + step as f32) * step_px);
-                let f = px.fract();
-                edge |= f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
-                let d = dir.extend(0.0);
-                let tangent = (d - v * d.dot(v)).normalize();
-                let slice_normal = tangent.cross(v);
-                let projected = n - slice_normal * n.dot(slice_normal);
-                let normal_angle = projected.dot(tangent).atan2(projected.dot(v));
-                slice_normals[slice] = (normal_angle, projected.length());
-                let cell = px.clamp(Vec2::ZERO, full - 0.5).floor().as_uvec2();
-                if cell == pixel {
-                    continue;
-                }
-                let z2 = g.depth_at(cell);
-                if z2.is_nan() || z2 <= 0.0 {
-                    continue;
-                }
-                let front = screen.pixel_to_view(cell.as_vec2() + 0.5, z2) - pos;
-                if front.dot(n) <= 1e-3 * front.length() {
-                    continue;
-                }
-                let back = front - v * s.thickness;
-                let position = |w: Vec3| {
-                    let angle = w.dot(tangent).atan2(w.dot(v));
-                    ((angle - normal_angle + FRAC_PI_2) / PI).clamp(0.0, 1.0)
-                };
-                masks[slice] |= sector_bits(position(front), position(back), s.activation);
-            }
-            let (mut visible, mut open) = (0.0f32, 0.0f32);
-            for (&mask, &(gamma, length)) in
-                masks.iter().zip(&slice_normals).take(s.slices as usize)
-            {
-                if !s.cosine_weighted {
-                    visible += 1.0 - mask.count_ones() as f32 / 32.0;
-                    open += 1.0;
-                    continue;
-                }
-                // Every free sector k spans θ from γ + π(k/32 − ½) to γ + π((k + 1)/32 − ½).
-                let angle = |k: u32| gamma + PI * (k as f32 / 32.0 - 0.5);
-                for k in (0..32).filter(|k| mask & (1 << k) == 0) {
-                    visible += length * span_visibility(angle(k), angle(k + 1), gamma);
-                }
-                open += length * (gamma.cos() + gamma * gamma.sin());
-            }
-            ao.push((visible / open).clamp(0.0, 1.0).powf(s.exponent));
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
-}
 
 #[test]
 fn unoccluded_plane_is_one_everywhere() {

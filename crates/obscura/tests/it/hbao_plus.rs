@@ -2,14 +2,14 @@
 //! GPU kernel: an unoccluded plane, a plain CPU implementation of the same estimator on a
 //! read-back G-buffer (single pass and interleaved), its model's closed form for a step seen from
 //! above, and its model over exact geometry at an inside corner (its dual-depth row:
-//! tests/it/source_twins.rs).
+//! tests/it/source_twins.rs). The CPU implementation is the estimator's mirror,
+//! `estimators::hbao_plus::cpu_hbao_plus`.
 
 use crate::common::*;
 use glam::{UVec2, Vec2};
-use obscura::estimators::hbao_plus::{pixel_pattern, sample};
-use obscura::reference::cpu_vao::GBufferImage;
+use obscura::estimators::hbao_plus::{cpu_hbao_plus, pixel_pattern, sample};
 use obscura::settings::HbaoPlusSettings;
-use obscura::{scene, Renderer, ScreenGeometry, Technique};
+use obscura::{scene, Renderer, Technique};
 
 #[test]
 fn unoccluded_plane_is_one_everywhere() {
@@ -32,75 +32,6 @@ fn unoccluded_plane_is_one_everywhere() {
             );
         }
     }
-}
-
-/// HBAO+ as `shaders/estimators/hbao_plus.wgsl` states it, for every visible pixel, and whether
-/// some sample of the pixel lies within 1e-3 px of a pixel edge (where float rounding may snap
-/// the GPU and the CPU to different neighbours).
-fn cpu_hbao_plus(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    s: &HbaoPlusSettings,
-    interleaved: bool,
-) -> (Vec<f32>, Vec<bool>) {
-    let uniform = screen.uniform();
-    let full = Vec2::new(g.width as f32, g.height as f32);
-    let neg_inv_r2 = -1.0 / (s.radius * s.radius);
-    let mut ao = Vec::new();
-    let mut ambiguous = Vec::new();
-    for y in 0..screen.height {
-        for x in 0..screen.width {
-            let pixel = UVec2::new(x, y) + screen.guard_band;
-            let z = g.depth_at(pixel);
-            let mut edge = false;
-            if z.is_nan() || z <= 0.0 {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            }
-            let centre = pixel.as_vec2() + 0.5;
-            let pos = screen.pixel_to_view(centre, z);
-            let n = g.normals[(pixel.y * g.width + pixel.x) as usize].normalize();
-            let radius_px = s.radius * uniform.projection_scale[1] / z;
-            if radius_px < 1.0 {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            }
-            let step = radius_px / (s.steps + 1) as f32;
-            let (c, sn, jitter) = pixel_pattern(x, y, s.directions);
-            let start = jitter * step + 1.0;
-            let (mut occlusion, mut count) = (0.0f32, 0.0f32);
-            for i in 0..s.directions * s.steps {
-                let (bx, by, k) = sample(i, s.directions, s.steps);
-                let base = Vec2::new(bx, by);
-                let dir = Vec2::new(base.x * c - base.y * sn, base.x * sn + base.y * c);
-                let px = centre + dir * (start + k as f32 * step);
-                count += 1.0;
-                let (cell, e) = sample_cell(px, pixel, full, interleaved);
-                edge |= e;
-                if cell == pixel {
-                    continue;
-                }
-                let z2 = g.depth_at(cell);
-                if z2.is_nan() || z2 <= 0.0 {
-                    continue;
-                }
-                let v = screen.pixel_to_view(cell.as_vec2() + 0.5, z2) - pos;
-                let v_dot_v = v.dot(v).max(1e-20);
-                let angle_term = (n.dot(v) / v_dot_v.sqrt() - s.bias).clamp(0.0, 1.0);
-                let distance_term = (v_dot_v * neg_inv_r2 + 1.0).clamp(0.0, 1.0);
-                occlusion += angle_term * distance_term;
-            }
-            ao.push(
-                (1.0 - 2.0 * occlusion / count)
-                    .clamp(0.0, 1.0)
-                    .powf(s.exponent),
-            );
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
 }
 
 #[test]

@@ -2,15 +2,16 @@
 //! (Jimenez et al. 2016 with XeGTAO's falloff), against values derived without the GPU kernels:
 //! unoccluded planes, the closed forms of their models for a step seen from above and at an
 //! inside corner, plain CPU implementations on read-back G-buffers (single pass and interleaved),
-//! the hemisphere ground truth, and the debug images.
+//! the hemisphere ground truth, and the debug images. The CPU implementations are the
+//! estimators' mirrors, `estimators::hbao::cpu_hbao` and `estimators::gtao::cpu_gtao`.
 
 use crate::common::*;
-use glam::{UVec2, Vec2, Vec3};
-use obscura::estimators::{gtao, hbao};
-use obscura::reference::cpu_vao::GBufferImage;
+use glam::Vec3;
+use obscura::estimators::gtao::{self, cpu_gtao};
+use obscura::estimators::hbao::cpu_hbao;
 use obscura::scene::{self, Camera};
 use obscura::settings::{AoSettings, GtaoSettings, HbaoSettings};
-use obscura::{Renderer, ScreenGeometry, Technique};
+use obscura::{Renderer, Technique};
 use std::f32::consts::{FRAC_PI_2, PI};
 
 #[test]
@@ -163,197 +164,6 @@ fn hbao_at_an_inside_corner_matches_its_models_limit() {
     println!("hbao at the inside corner: mean AO {mean:.4} over {count} pixels, limit {want:.4}");
     assert!(want < 0.9, "the corner must occlude: {want}");
     assert!((mean - want).abs() < 0.04, "{mean} vs {want}");
-}
-
-// ------------------------------------------------------------------------------ CPU mirrors
-
-/// Per visible pixel of a G-buffer: its view-space position, unit vector to the camera, normal,
-/// pixel centre and radius in pixels (None for background).
-struct PixelSetup {
-    pos: Vec3,
-    v: Vec3,
-    n: Vec3,
-    centre: Vec2,
-    pixel: UVec2,
-    radius_px: f32,
-}
-
-fn pixel_setup(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    x: u32,
-    y: u32,
-    radius: f32,
-) -> Option<PixelSetup> {
-    let pixel = UVec2::new(x, y) + screen.guard_band;
-    let z = g.depth_at(pixel);
-    if z.is_nan() || z <= 0.0 {
-        return None;
-    }
-    let centre = pixel.as_vec2() + 0.5;
-    let pos = screen.pixel_to_view(centre, z);
-    Some(PixelSetup {
-        pos,
-        v: (-pos).normalize(),
-        n: g.normals[(pixel.y * g.width + pixel.x) as usize].normalize(),
-        centre,
-        pixel,
-        radius_px: radius * screen.uniform().projection_scale[1] / z,
-    })
-}
-
-/// The view-space surface at framebuffer position `px` (the pixel the schedule reads there,
-/// [`sample_cell`]), or None for the shading pixel itself or background; and whether `px` lies
-/// where the GPU and the CPU may snap to different pixels.
-fn surface_at(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    p: &PixelSetup,
-    px: Vec2,
-    interleaved: bool,
-) -> (Option<Vec3>, bool) {
-    let full = Vec2::new(g.width as f32, g.height as f32);
-    let (cell, edge) = sample_cell(px, p.pixel, full, interleaved);
-    if cell == p.pixel {
-        return (None, edge);
-    }
-    let z = g.depth_at(cell);
-    if z.is_nan() || z <= 0.0 {
-        return (None, edge);
-    }
-    (Some(screen.pixel_to_view(cell.as_vec2() + 0.5, z)), edge)
-}
-
-/// HBAO as `shaders/estimators/hbao.wgsl` states it, per visible pixel, and whether a sample lay
-/// on a pixel edge.
-fn cpu_hbao(
-    g: &GBufferImage,
-    screen: &ScreenGeometry,
-    s: &HbaoSettings,
-    interleaved: bool,
-) -> (Vec<f32>, Vec<bool>) {
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    for y in 0..screen.height {
-        for x in 0..screen.width {
-            let Some(p) = pixel_setup(g, screen, x, y, s.radius).filter(|p| p.radius_px >= 1.0)
-            else {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            };
-            let step = p.radius_px / (s.steps + 1) as f32;
-            let (c, sn, jitter) = hbao::pixel_pattern(x, y, s.directions);
-            let start = jitter * step + 1.0;
-            let (mut occlusion, mut edge) = (0.0f32, false);
-            for d in 0..s.directions {
-                let (bx, by) = hbao::direction(d, s.directions);
-                let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
-                let d3 = dir.extend(0.0);
-                let slice = (d3 - p.v * d3.dot(p.v)).normalize();
-                let (n_v, n_d) = (p.n.dot(p.v), p.n.dot(slice));
-                let sin_t = -n_d / (n_v * n_v + n_d * n_d).max(1e-12).sqrt();
-                let t = sin_t.clamp(-1.0, 1.0).asin();
-                let mut sin_h = (t + s.angle_bias).min(FRAC_PI_2).sin();
-                for k in 0..s.steps {
-                    let px = p.centre + Vec2::new(dir.x, -dir.y) * (start + k as f32 * step);
-                    let (surface, e) = surface_at(g, screen, &p, px, interleaved);
-                    edge |= e;
-                    let Some(q) = surface else { continue };
-                    let v = q - p.pos;
-                    let dist = v.length();
-                    let sin_phi = v.dot(p.v) / dist.max(1e-20);
-                    if v.dot(p.n) <= 1e-3 * dist {
-                        continue;
-                    }
-                    let w = (1.0 - dist / s.radius).max(0.0);
-                    if w > 0.0 && sin_phi > sin_h {
-                        occlusion += w * (sin_phi - sin_h);
-                        sin_h = sin_phi;
-                    }
-                }
-            }
-            ao.push(
-                (1.0 - occlusion / s.directions as f32)
-                    .clamp(0.0, 1.0)
-                    .powf(s.exponent),
-            );
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
-}
-
-/// ¼ (−cos(2h − γ) + cos γ + 2h sin γ).
-fn side_visibility(h: f32, gamma: f32) -> f32 {
-    0.25 * (-(2.0 * h - gamma).cos() + gamma.cos() + 2.0 * h * gamma.sin())
-}
-
-/// GTAO as `shaders/estimators/gtao.wgsl` states it, per visible pixel, and whether a sample lay
-/// on a pixel edge.
-fn cpu_gtao(g: &GBufferImage, screen: &ScreenGeometry, s: &GtaoSettings) -> (Vec<f32>, Vec<bool>) {
-    let reach = gtao::reach(s.radius);
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    for y in 0..screen.height {
-        for x in 0..screen.width {
-            let Some(p) = pixel_setup(g, screen, x, y, reach).filter(|p| p.radius_px >= 1.0) else {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            };
-            let (c, sn, jitter) = gtao::pixel_pattern(x, y, s.slices);
-            let min_fraction = 1.3 / p.radius_px;
-            let (mut visible, mut open, mut edge) = (0.0f32, 0.0f32, false);
-            for j in 0..s.slices {
-                let (bx, by) = gtao::slice_direction(j, s.slices);
-                let dir = Vec2::new(bx * c - by * sn, bx * sn + by * c);
-                let d3 = dir.extend(0.0);
-                let tangent = (d3 - p.v * d3.dot(p.v)).normalize();
-                let axis = tangent.cross(p.v);
-                let projected = p.n - axis * p.n.dot(axis);
-                let length = projected.length();
-                let gamma = projected.dot(tangent).atan2(projected.dot(p.v));
-                let lowest = [-gamma.sin(), gamma.sin()];
-                let mut horizon = lowest;
-                for (side, sign) in [(0, 1.0), (1, -1.0)] {
-                    for k in 0..s.steps {
-                        let f = (k as f32 + jitter) / s.steps as f32;
-                        let distance = (f * f + min_fraction) * p.radius_px;
-                        let px = p.centre + sign * Vec2::new(dir.x, -dir.y) * distance;
-                        let (surface, e) = surface_at(g, screen, &p, px, false);
-                        edge |= e;
-                        let (cos_s, w) = match surface {
-                            Some(q) => {
-                                let delta = q - p.pos;
-                                let dist = delta.length();
-                                let above = delta.dot(p.n) > 1e-3 * dist;
-                                let w = if above {
-                                    gtao::falloff(dist, s.radius)
-                                } else {
-                                    0.0
-                                };
-                                (delta.dot(p.v) / dist.max(1e-20), w)
-                            }
-                            None => (-1.0, 0.0),
-                        };
-                        let sample = lowest[side] + (cos_s - lowest[side]) * w;
-                        let h = horizon[side];
-                        horizon[side] = sample.max(h + (sample - h) * s.thickness_blend);
-                    }
-                }
-                let h1 = gamma + (horizon[0].clamp(-1.0, 1.0).acos() - gamma).min(FRAC_PI_2);
-                let h0 = gamma + (-horizon[1].clamp(-1.0, 1.0).acos() - gamma).max(-FRAC_PI_2);
-                visible += length * (side_visibility(h0, gamma) + side_visibility(h1, gamma));
-                open += length * (gamma.cos() + gamma * gamma.sin());
-            }
-            ao.push(if open > 0.0 {
-                (visible / open).clamp(0.0, 1.0).powf(s.exponent)
-            } else {
-                1.0
-            });
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
 }
 
 #[test]

@@ -2,16 +2,19 @@
 //! 2012, seed 004 §2.2.2) and Pyramid HBAO (seed 004 §3): every level against the mean of its
 //! children computed here, unoccluded planes, the closed forms of both models for a step seen from
 //! above and at an inside corner (Pyramid HBAO's limit, SAO over exact geometry), plain CPU
-//! implementations over the read-back depth and pyramid, and the hemisphere ground truth.
+//! implementations over the read-back depth and pyramid, and the hemisphere ground truth. The CPU
+//! implementations are the estimators' mirrors, `estimators::sao::cpu_sao` and
+//! `estimators::pyramid_hbao::cpu_pyramid_hbao`.
 
 use crate::common::*;
 use glam::{UVec2, Vec2, Vec3};
-use obscura::estimators::{pyramid_hbao, sao};
-use obscura::reference::cpu_vao::GBufferImage;
+use obscura::estimators::mirror::Levels;
+use obscura::estimators::pyramid_hbao::cpu_pyramid_hbao;
+use obscura::estimators::pyramid_level_size;
+use obscura::estimators::sao::{self, cpu_sao};
 use obscura::scene;
 use obscura::settings::{PyramidHbaoSettings, PyramidSettings, SaoSettings};
-use obscura::sources::depth_pyramid::level_size;
-use obscura::{Renderer, ScreenGeometry, Technique};
+use obscura::{Renderer, Technique};
 use std::f32::consts::{PI, TAU};
 
 /// Level `l` from level `l − 1` (`below`, `size` texels) as build.wgsl makes it: the mean of the
@@ -58,8 +61,13 @@ fn every_level_is_the_mean_of_its_children() {
         let full = (g.width, g.height);
         let mut below = g.depth.clone();
         for (l, got) in (1..levels).zip(&gpu_levels) {
-            let size = level_size(full, factor, l);
-            let want = cpu_level(&below, level_size(full, factor, l - 1), size, factor);
+            let size = pyramid_level_size(full, factor, l);
+            let want = cpu_level(
+                &below,
+                pyramid_level_size(full, factor, l - 1),
+                size,
+                factor,
+            );
             assert_eq!(got.len(), want.len(), "level {l} of K = {factor}");
             let mut geometry = 0;
             for (i, (&a, &b)) in got.iter().zip(&want).enumerate() {
@@ -157,7 +165,7 @@ fn sao_step_closed_form(d: f32, h: f32, s: &SaoSettings, pixel: UVec2) -> f32 {
             }
             let vv = (alpha * r).powi(2) + h * h;
             let f = (r * r - vv).max(0.0);
-            f * f * f * ((h - s.bias) / (sao_epsilon(s.radius) + vv)).max(0.0)
+            f * f * f * ((h - s.bias) / (sao::epsilon(s.radius) + vv)).max(0.0)
         })
         .sum();
     (1.0 - s.intensity / r.powi(6) * 5.0 / n * sum).max(0.0)
@@ -198,161 +206,6 @@ fn a_step_seen_from_above_matches_each_models_closed_form() {
             "sao d {d} h {h}: {got} vs {want}"
         );
     }
-}
-
-// ------------------------------------------------------------------------------ CPU mirrors
-
-/// The view-space surface a sample at framebuffer position `px` finds on `level` (0: the
-/// G-buffer's depth, clamped and snapped, the shading pixel and background giving none; l ≥ 1:
-/// the pyramid texel's mean depth at the texel block's centre), as sources/depth_pyramid.wgsl
-/// reads it; and whether `px` lies within 1e-3 texel of a texel edge (GPU and CPU may snap apart).
-struct Levels<'a> {
-    g: &'a GBufferImage,
-    screen: &'a ScreenGeometry,
-    pyramid: &'a [Vec<f32>],
-    factor: u32,
-}
-
-impl Levels<'_> {
-    fn surface(&self, pixel: UVec2, px: Vec2, level: u32) -> (Option<Vec3>, bool) {
-        let full = (self.g.width, self.g.height);
-        let scale = self.factor.pow(level) as f32;
-        let (w, h) = level_size(full, self.factor, level);
-        let t = px / scale;
-        let f = t.fract();
-        let edge = f.min_element() < 1e-3 || f.max_element() > 1.0 - 1e-3;
-        let texel = t
-            .clamp(Vec2::ZERO, Vec2::new(w as f32, h as f32) - 0.5)
-            .floor()
-            .as_uvec2();
-        let z = if level == 0 {
-            if texel == pixel {
-                return (None, edge);
-            }
-            self.g.depth_at(texel)
-        } else {
-            self.pyramid[level as usize - 1][(texel.y * w + texel.x) as usize]
-        };
-        if z.is_nan() || z <= 0.0 {
-            return (None, edge);
-        }
-        let centre = (texel.as_vec2() + 0.5) * scale;
-        (Some(self.screen.pixel_to_view(centre, z)), edge)
-    }
-
-    /// The shading point, its normal and the radius in pixels, or None for background.
-    fn pixel(&self, x: u32, y: u32, radius: f32) -> Option<(UVec2, Vec3, Vec3, f32)> {
-        let pixel = UVec2::new(x, y) + self.screen.guard_band;
-        let z = self.g.depth_at(pixel);
-        if z.is_nan() || z <= 0.0 {
-            return None;
-        }
-        let pos = self.screen.pixel_to_view(pixel.as_vec2() + 0.5, z);
-        let n = self.g.normals[(pixel.y * self.g.width + pixel.x) as usize].normalize();
-        Some((
-            pixel,
-            pos,
-            n,
-            radius * self.screen.uniform().projection_scale[1] / z,
-        ))
-    }
-}
-
-/// Pyramid HBAO as shaders/estimators/pyramid_hbao.wgsl states it, per visible pixel, and whether
-/// a sample lay on a texel edge.
-fn cpu_pyramid_hbao(l: &Levels, s: &PyramidHbaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>) {
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    let k = l.factor as f32;
-    for y in 0..l.screen.height {
-        for x in 0..l.screen.width {
-            let Some((pixel, pos, n, _)) = l.pixel(x, y, s.radius) else {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            };
-            let (u0, o0) = pyramid_hbao::pixel_offsets(x, y);
-            let (mut sum, mut edge) = (0.0f32, false);
-            for d in 0..s.directions {
-                let df = d as f32;
-                let u = (u0 + 0.618_034 * df).fract();
-                let o = (o0 + 0.754_877_7 * df).fract();
-                let angle = TAU * (df + u) / s.directions as f32;
-                let mut best = 0.0f32;
-                for level in 0..levels {
-                    let size = k.powi(level as i32);
-                    let start = s.steps as f32 * (size - 1.0) / (k - 1.0);
-                    for step in 0..s.steps {
-                        let distance = (start + (step as f32 + o) * size).max(1.0);
-                        let px =
-                            pixel.as_vec2() + 0.5 + Vec2::new(angle.cos(), -angle.sin()) * distance;
-                        let (surface, e) = l.surface(pixel, px, level);
-                        edge |= e;
-                        if let Some(q) = surface {
-                            let v = q - pos;
-                            let dist = v.length();
-                            let sin_alpha = v.dot(n) / dist.max(1e-20);
-                            if sin_alpha > 1e-3 {
-                                best = best.max((1.0 - dist / s.radius).max(0.0) * sin_alpha);
-                            }
-                        }
-                    }
-                }
-                sum += best;
-            }
-            ao.push(
-                (1.0 - sum / s.directions as f32)
-                    .clamp(0.0, 1.0)
-                    .powf(s.exponent),
-            );
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
-}
-
-/// SAO as shaders/estimators/sao.wgsl states it, per visible pixel, and whether a tap lay on a
-/// texel edge or on the boundary between two levels.
-fn cpu_sao(l: &Levels, s: &SaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>) {
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    let n = s.samples as f32;
-    for y in 0..l.screen.height {
-        for x in 0..l.screen.width {
-            let Some((pixel, pos, normal, radius_px)) =
-                l.pixel(x, y, s.radius).filter(|p| p.3 >= 1.0)
-            else {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            };
-            let (c, sn, _) = obscura::estimators::bayer_pattern(x, y, TAU);
-            let phi = sn.atan2(c);
-            let (mut sum, mut edge) = (0.0f32, false);
-            for i in 0..s.samples {
-                let alpha = (i as f32 + 0.5) / n;
-                let angle = alpha * TAU * s.spiral_turns + phi;
-                let distance = alpha * radius_px;
-                let exact =
-                    (distance.max(1.0).ln() - sao::LEVEL_OFFSET_PX.ln()) / (l.factor as f32).ln();
-                edge |= exact > -0.5 && (exact - exact.round()).abs() < 1e-4;
-                let level = exact.floor().clamp(0.0, (levels - 1) as f32) as u32;
-                let px = pixel.as_vec2() + 0.5 + Vec2::new(angle.cos(), -angle.sin()) * distance;
-                let (surface, e) = l.surface(pixel, px, level);
-                edge |= e;
-                if let Some(q) = surface {
-                    let v = q - pos;
-                    let vv = v.dot(v);
-                    let f = (s.radius * s.radius - vv).max(0.0);
-                    sum += f
-                        * f
-                        * f
-                        * ((v.dot(normal) - s.bias) / (sao_epsilon(s.radius) + vv)).max(0.0);
-                }
-            }
-            ao.push((1.0 - sum * s.intensity / s.radius.powi(6) * 5.0 / n).max(0.0));
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
 }
 
 #[test]
@@ -467,7 +320,7 @@ fn sao_at_an_inside_corner_matches_its_model_with_exact_geometry() {
                 let v = q - p;
                 let vv = v.dot(v);
                 let f = (sa.radius * sa.radius - vv).max(0.0);
-                sum += f * f * f * ((v.dot(n) - sa.bias) / (sao_epsilon(sa.radius) + vv)).max(0.0);
+                sum += f * f * f * ((v.dot(n) - sa.bias) / (sao::epsilon(sa.radius) + vv)).max(0.0);
             }
         }
         (1.0 - sum * sa.intensity / sa.radius.powi(6) * 5.0 / taps).max(0.0)
@@ -526,9 +379,4 @@ fn debug_images_show_the_levels_read() {
     println!("pyramid-hbao levels: plane {on_plane:.4}, step {at_step:.4}");
     assert_eq!(on_plane, 0.0);
     assert!(at_step > 0.05, "{at_step}");
-}
-
-/// SAO's ε for radius R: its code's 0.01 at R = 0.5, proportional to R².
-fn sao_epsilon(radius: f32) -> f32 {
-    (obscura::estimators::sao::EPSILON_PER_RADIUS * radius).powi(2)
 }

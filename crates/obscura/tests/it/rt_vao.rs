@@ -3,9 +3,9 @@
 
 use crate::common::*;
 use obscura::bvh::Bvh;
+use obscura::estimators::vao;
 use obscura::metrics::{summarize, Image};
 use obscura::reference::ground_truth::{render_reference, ReferenceSettings, Tracer};
-use obscura::reference::vao_model;
 use obscura::scene::{self, Scene};
 use obscura::{AoSettings, Renderer, Technique};
 
@@ -53,7 +53,7 @@ fn render(
             }
         })
         .collect();
-    let kernel = vao_model::kernel(&settings.vao);
+    let kernel = vao::kernel(&settings.vao);
     let exempt = (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
         .enumerate()
@@ -68,13 +68,12 @@ fn render(
             }
             // Any sample reading a mismatched pixel.
             let pos = screen.pixel_to_view(px.as_vec2() + 0.5, z);
-            let frame =
-                vao_model::PixelFrame::new(pos, g.normals[(px.y * fw + px.x) as usize], x, y);
+            let frame = vao::PixelFrame::new(pos, g.normals[(px.y * fw + px.x) as usize], x, y);
             kernel
                 .iter()
                 .filter_map(|&k| frame.column(k, &settings.vao, &screen))
                 .any(|c| {
-                    let (p, _) = vao_model::snap(c.px, &screen);
+                    let (p, _) = vao::snap(c.px, &screen);
                     mismatch[(p.y * fw + p.x) as usize]
                 })
         })

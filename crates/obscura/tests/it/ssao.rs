@@ -1,15 +1,15 @@
 //! Seed 001's SSAO, Alchemy AO (McGuire et al. 2011), against values derived without the GPU
 //! kernel: unoccluded planes, a plain CPU implementation on a read-back G-buffer, the model's
 //! closed form for a step seen from above and over exact geometry at an inside corner, and the
-//! hemisphere ground truth.
+//! hemisphere ground truth. The CPU implementation is the estimator's mirror,
+//! `estimators::ssao::cpu_ssao`.
 
 use crate::common::*;
 use glam::{UVec2, Vec2};
 use obscura::estimators::bayer_pattern;
-use obscura::estimators::ssao::{FALLOFF_U, SPIRAL_TURNS};
-use obscura::reference::cpu_vao::GBufferImage;
+use obscura::estimators::ssao::{self, cpu_ssao, FALLOFF_U, SPIRAL_TURNS};
 use obscura::settings::SsaoSettings;
-use obscura::{scene, Renderer, ScreenGeometry, Technique};
+use obscura::{scene, Renderer, Technique};
 use std::f32::consts::TAU;
 
 #[test]
@@ -28,55 +28,6 @@ fn unoccluded_plane_is_one_everywhere() {
             );
         }
     }
-}
-
-/// SSAO as shaders/estimators/ssao.wgsl states it, per visible pixel, and whether a sample lay on
-/// a pixel edge.
-fn cpu_ssao(g: &GBufferImage, screen: &ScreenGeometry, s: &SsaoSettings) -> (Vec<f32>, Vec<bool>) {
-    let full = Vec2::new(g.width as f32, g.height as f32);
-    let n_samples = s.samples as f32;
-    let (mut ao, mut ambiguous) = (Vec::new(), Vec::new());
-    for y in 0..screen.height {
-        for x in 0..screen.width {
-            let pixel = UVec2::new(x, y) + screen.guard_band;
-            let z = g.depth_at(pixel);
-            let radius_px = s.radius * screen.uniform().projection_scale[1] / z;
-            if z.is_nan() || z <= 0.0 || radius_px < 1.0 {
-                ao.push(1.0);
-                ambiguous.push(false);
-                continue;
-            }
-            let centre = pixel.as_vec2() + 0.5;
-            let pos = screen.pixel_to_view(centre, z);
-            let n = g.normals[(pixel.y * g.width + pixel.x) as usize].normalize();
-            let (c, sn, _) = bayer_pattern(x, y, TAU);
-            let rotation = sn.atan2(c);
-            let (mut sum, mut edge) = (0.0f32, false);
-            for i in 0..s.samples {
-                let alpha = (i as f32 + 0.5) / n_samples;
-                let angle = alpha * TAU * SPIRAL_TURNS + rotation;
-                let px = centre + Vec2::new(angle.cos(), -angle.sin()) * (alpha * radius_px);
-                let (cell, e) = sample_cell(px, pixel, full, false);
-                edge |= e;
-                let zq = g.depth_at(cell);
-                if cell == pixel || zq.is_nan() || zq <= 0.0 {
-                    continue;
-                }
-                let v = screen.pixel_to_view(cell.as_vec2() + 0.5, zq) - pos;
-                let vv = v.dot(v);
-                if vv < s.radius * s.radius {
-                    sum += (v.dot(n) + pos.z * s.bias).max(0.0) / (vv + ssao_epsilon(s.radius));
-                }
-            }
-            ao.push(
-                (1.0 - 2.0 * s.intensity * FALLOFF_U * s.radius / n_samples * sum)
-                    .max(0.0)
-                    .powf(s.contrast),
-            );
-            ambiguous.push(edge);
-        }
-    }
-    (ao, ambiguous)
 }
 
 #[test]
@@ -120,7 +71,7 @@ fn ssao_step_closed_form(d: f32, h: f32, s: &SsaoSettings, pixel: UVec2) -> f32 
         if angle.cos() * u <= d || vv >= s.radius * s.radius {
             continue;
         }
-        sum += (h - 20.0 * s.bias).max(0.0) / (vv + ssao_epsilon(s.radius));
+        sum += (h - 20.0 * s.bias).max(0.0) / (vv + ssao::epsilon(s.radius));
     }
     let u = FALLOFF_U * s.radius;
     (1.0 - 2.0 * s.intensity * u / n * sum)
@@ -184,7 +135,7 @@ fn at_an_inside_corner_matches_its_model_with_exact_geometry() {
                 let v = q - p;
                 let vv = v.dot(v);
                 if vv < ss.radius * ss.radius {
-                    sum += (v.dot(n) + p.z * ss.bias).max(0.0) / (vv + ssao_epsilon(ss.radius));
+                    sum += (v.dot(n) + p.z * ss.bias).max(0.0) / (vv + ssao::epsilon(ss.radius));
                 }
             }
         }
@@ -221,9 +172,4 @@ fn debug_image_counts_the_occluding_samples() {
     println!("ssao occluding samples: plane {plane:.4}, step {step:.4}");
     assert_eq!(plane, 0.0);
     assert!(step > 0.02, "{step}");
-}
-
-/// Alchemy AO's ε for radius R: the paper's 10⁻⁴ at R = 0.5, proportional to R².
-fn ssao_epsilon(radius: f32) -> f32 {
-    (obscura::estimators::ssao::EPSILON_PER_RADIUS * radius).powi(2)
 }
