@@ -108,7 +108,10 @@ techniques!(
     Hemisphere,
     /// `rtao`: cosine-weighted rays within R, each traced through the BVH: the ground truth's
     /// model and rays, a few per pixel per frame.
-    Rtao
+    Rtao,
+    /// `rtao-two-phase`: RTAO in two phases; phase 1 marches each ray in screen space and phase 2
+    /// traces only the rays it could not prove free (work list).
+    RtaoTwoPhase
 );
 
 /// `Estimator`, one variant per entry of the registry (`estimators::registry`).
@@ -506,6 +509,15 @@ pub const TABLE: &[TechniqueRow] = &[
         estimator: Estimator::Hemisphere,
         source: Source::BvhRays,
         schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::RtaoTwoPhase,
+        name: "rtao-two-phase",
+        summary: "RTAO in two phases: rays the screen proves free are not traced (work list)",
+        paper: "seed 000 §3.8's two phases carried to hemisphere rays (ours)",
+        estimator: Estimator::Hemisphere,
+        source: Source::BvhRays,
+        schedule: Schedule::TwoPhase,
     },
 ];
 

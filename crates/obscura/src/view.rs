@@ -386,7 +386,8 @@ impl ScreenGeometry {
             projection_scale: (0.5 * size / self.tan_half_fov).to_array(),
             pattern_offset: 0,
             frame: 0,
-            _pad: [0; 2],
+            near: 0.0,
+            _pad: 0,
         }
     }
 }
@@ -443,8 +444,11 @@ pub struct ViewUniform {
     /// The frame number (0 unless temporal accumulation is on, which counts frames): the
     /// `hemisphere` estimator seeds each frame's rays with it.
     pub frame: u32,
+    /// The camera's near plane where the renderer knows its camera (`set_camera`), else 0: what
+    /// lies nearer is never in the depth buffer (phase 1 of `rtao-two-phase` needs it).
+    pub near: f32,
     /// Padding to the WGSL struct's 64 bytes.
-    pub _pad: [u32; 2],
+    pub _pad: u32,
 }
 
 #[cfg(test)]

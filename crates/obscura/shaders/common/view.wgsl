@@ -21,8 +21,9 @@ struct View {
     // The frame number (0 unless temporal accumulation is on): the seed of the `hemisphere`
     // estimator's rays this frame.
     frame: u32,
+    // The camera's near plane where the renderer knows the camera, else 0 (src/view.rs).
+    near: f32,
     // Pads the struct to 64 bytes, as a struct member of a uniform struct is laid out.
-    pad1: u32,
     pad2: u32,
 }
 

@@ -101,18 +101,30 @@ fn hemisphere_blocked_at(t: f32) -> f32 {
     return select(0.0, clamp(t / params.radius, 0.0, 1.0), params.falloff != 0u);
 }
 
-// Whether view-space point `q` lies inside the surface seen at framebuffer pixel `cell` (linear
-// depth `z`): behind that surface's tangent plane (the pixel's G-buffer normal; so points above a
-// plane that the pixel centre misses by a fraction of a pixel are not taken for inside it) and at
-// most `thickness` behind its depth.
-fn hemisphere_inside(q: vec3<f32>, cell: vec2<u32>, z: f32) -> bool {
+// Where view-space point `q` lies against the surface seen at framebuffer pixel `cell` (linear
+// depth `z`): its signed distance from that surface's tangent plane (the pixel's G-buffer normal
+// turned to the camera), positive on the camera's side, and the slack a test allows it (relative,
+// as the ground truth offsets its rays from the surface). The plane rather than the pixel
+// centre's depth, so that points above a plane that the pixel centre misses by a fraction of a
+// pixel are never taken for inside it.
+struct SurfaceSide {
+    height: f32,
+    slack: f32,
+}
+
+fn surface_side(q: vec3<f32>, cell: vec2<u32>, z: f32) -> SurfaceSide {
     let surface = pixel_to_view(view, vec2<f32>(cell) + 0.5, z);
     var m = normalize(textureLoad(normal_tex, cell, 0).xyz);
     m = select(m, -m, dot(m, toward_camera(view, surface)) < 0.0);
-    // Relative slack, as the ground truth offsets its rays from the surface.
     let slack = 1e-4 * params.radius + 1e-6 * max(max(abs(surface.x), abs(surface.y)), abs(surface.z));
-    let depth = -q.z;
-    return dot(q - surface, m) < -slack && depth - z < params.thickness;
+    return SurfaceSide(dot(q - surface, m), slack);
+}
+
+// Whether `q` lies inside the surface at `cell`: behind its tangent plane and at most `thickness`
+// behind its depth.
+fn hemisphere_inside(q: vec3<f32>, cell: vec2<u32>, z: f32) -> bool {
+    let side = surface_side(q, cell, z);
+    return side.height < -side.slack && -q.z - z < params.thickness;
 }
 
 // The surface at view-space point `pos` against the ray's far end (the contract's single-depth

@@ -20,7 +20,7 @@ pub struct HemisphereSettings {
     /// Weight a blocked ray by W(t) = max(0, 1 − t/R) rather than 1 (the ground truth's
     /// `--falloff`).
     pub falloff: bool,
-    /// Screen rays: points tested along each ray.
+    /// Screen rays, and phase 1 of two-phase BVH rays: points tested along each ray.
     pub steps: u32,
     /// Screen rays: the thickness assumed behind every depth sample, world units (a ray point
     /// farther behind the first surface than this passes behind it).
@@ -75,10 +75,13 @@ impl HemisphereSettings {
         Knob::new(
             "hemisphere.steps",
             "--hemisphere-steps",
-            "Screen rays: points tested along each ray.",
+            "Screen rays (and rtao-two-phase's phase 1): points tested along each ray.",
             Kind::int(1, 64),
         )
-        .doc("screen rays: points tested along each ray, evenly spaced with a per-pixel jitter")
+        .doc(
+            "screen rays: points tested along each ray, evenly spaced with a per-pixel jitter; \
+             `rtao-two-phase`: points phase 1 tests to prove a ray free",
+        )
         .widget(Widget::Range),
         Knob::new(
             "hemisphere.thickness",

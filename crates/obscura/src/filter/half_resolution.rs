@@ -43,7 +43,8 @@ impl HalfResolution {
         let half_view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("half-resolution view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
-            // COPY_DST: temporal accumulation turns the pattern offset per frame.
+            // COPY_DST: set_camera writes the near plane and, with temporal accumulation, the
+            // pattern offset and the frame number.
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let frame_texture = |label, format, width, height, storage: bool| {

@@ -121,7 +121,8 @@ impl AmbientOcclusion {
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("view"),
             contents: bytemuck::bytes_of(&screen.uniform()),
-            // COPY_DST: temporal accumulation turns the pattern offset per frame.
+            // COPY_DST: set_camera writes the near plane and, with temporal accumulation, the
+            // pattern offset and the frame number.
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let half = match settings.resolution {
@@ -247,14 +248,16 @@ impl AmbientOcclusion {
         let frame = self.temporal().map_or(0, TemporalAccumulation::frame);
         self.source.set_camera(queue, &work, frame);
         self.schedule.set_camera(queue, &work);
+        // The camera's near plane, and with temporal accumulation the estimators' pattern turned
+        // by one entry per frame (View pattern_offset) and the frame number.
+        let mut uniform = work.screen().uniform();
+        uniform.near = work.near;
         if let Some(temporal) = self.temporal() {
-            // The estimators' pattern turns by one entry per frame (View pattern_offset).
-            let mut uniform = work.screen().uniform();
             uniform.pattern_offset = temporal.pattern_offset();
             uniform.frame = temporal.frame();
-            let buffer = self.half.as_ref().map_or(&self.view, HalfResolution::view);
-            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
         }
+        let buffer = self.half.as_ref().map_or(&self.view, HalfResolution::view);
+        queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
         self.camera_set.set(true);
     }
 

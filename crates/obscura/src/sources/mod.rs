@@ -187,7 +187,13 @@ impl SourcePass {
                     request_group: None,
                     request_cells: 0,
                     zero_fill: None,
-                    constants: Vec::new(),
+                    // Two-phase BVH rays: phase 1 proves rays free in screen space
+                    // (bvh_rays.wgsl).
+                    constants: if kind == Source::BvhRays && schedule.two_phase() {
+                        vec![("SCREEN_PROOF", 1.0)]
+                    } else {
+                        Vec::new()
+                    },
                 });
             }
             Source::StochasticDepth => {

@@ -1,7 +1,7 @@
 //! Every two-phase row of the technique table gives the same image as its single-pass twin (the
 //! row with the same estimator and source, scheduled in one pass): seed 000 §3.8/§3.9 present the
 //! two-phase pipelines as an optimisation, not an approximation. Table-driven: a new two-phase row
-//! is checked here without an edit.
+//! is checked here without an edit (but for two-phase BVH rays, tests/it/hemisphere.rs).
 
 use crate::common::{gpu, max_abs_diff};
 use obscura::scene;
@@ -120,7 +120,13 @@ fn twin_of(row: &TechniqueRow) -> &'static TechniqueRow {
 #[test]
 fn every_two_phase_row_equals_its_single_pass_twin() {
     let gpu = gpu();
-    let rows: Vec<_> = TABLE.iter().filter(|r| r.schedule.two_phase()).collect();
+    // Two-phase BVH rays are the exception: phase 1 proves rays free from the depth buffer, which
+    // misses geometry no pixel centre shows, so tests/it/hemisphere.rs holds that row to rtao with
+    // a stated bound instead.
+    let rows: Vec<_> = TABLE
+        .iter()
+        .filter(|r| r.schedule.two_phase() && r.source != Source::BvhRays)
+        .collect();
     assert!(!rows.is_empty());
     for name in ["stairs", "colonnade", "grass"] {
         let scene = scene::builtin(name).unwrap();
