@@ -80,6 +80,7 @@ pub const GBUFFER_VISIBILITY_ATOMIC: &str =
     include_str!("../shaders/raster/gbuffer_visibility_atomic.wgsl");
 pub const DEPTH_PEEL: &str = include_str!("../shaders/raster/depth_peel.wgsl");
 pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/raster/depth_peel_resolve.wgsl");
+pub const ATROUS: &str = include_str!("../shaders/filter/atrous.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/filter/bilateral_blur.wgsl");
 pub const TEMPORAL_ACCUMULATION: &str =
     include_str!("../shaders/filter/temporal_accumulation.wgsl");

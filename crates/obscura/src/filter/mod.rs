@@ -1,5 +1,6 @@
 //! Filters applied to raw AO: the tail of the pass list ([`crate::AmbientOcclusion`]).
 
+pub mod atrous;
 pub mod bilateral;
 pub mod half_resolution;
 pub mod temporal;

@@ -17,6 +17,7 @@ use crate::bindings;
 use crate::error::Error;
 use crate::estimators::EstimatorPass;
 use crate::filter::{
+    atrous::Atrous,
     bilateral::BilateralBlur,
     half_resolution::HalfResolution,
     temporal::{HistoryTexel, TemporalAccumulation},
@@ -193,7 +194,19 @@ impl AmbientOcclusion {
                 output: ao_texture("ao accumulated"),
             });
         }
-        if settings.blur.enabled && !estimator_debug {
+        // The à-trous denoiser takes the blur's place when enabled.
+        if settings.denoise.enabled && !estimator_debug {
+            filters.push(FilterStage {
+                filter: Box::new(Atrous::new(
+                    device,
+                    &settings.denoise,
+                    work_view,
+                    work.width,
+                    work.height,
+                )),
+                output: ao_texture("ao denoised"),
+            });
+        } else if settings.blur.enabled && !estimator_debug {
             filters.push(FilterStage {
                 filter: Box::new(BilateralBlur::new(
                     device,

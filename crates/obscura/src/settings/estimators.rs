@@ -52,6 +52,67 @@ impl Default for BlurSettings {
     }
 }
 
+/// The edge-avoiding à-trous denoiser made for AO (src/filter/atrous.rs): in the blur's place
+/// when enabled (off by default).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DenoiseSettings {
+    /// Whether it runs (then the bilateral blur does not).
+    pub enabled: bool,
+    /// À-trous iterations, taps 1, 2, 4, … pixels apart: 2 reach 6 px on each side.
+    pub iterations: u32,
+    /// How many of a pixel's local standard deviations of AO a neighbour may differ by and still
+    /// count (SVGF's σ_l).
+    pub sigma: f32,
+}
+
+impl Default for DenoiseSettings {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            // Two iterations and σ = 8 (Schied et al. 2017, §4.4, use 5 and 4) had the least
+            // squared error on one ray a pixel in tests/it/hemisphere.rs's room: further reach
+            // brightens contact shadows (a kernel cut off by a corner averages one side), and at
+            // one ray a pixel the spatial variance is too coarse a guide for σ = 4.
+            iterations: 2,
+            sigma: 8.0,
+        }
+    }
+}
+
+impl DenoiseSettings {
+    /// Every field's knob: range, unit, flag, help, widget (crate::knob).
+    pub const KNOBS: &'static [Knob] = &[
+        Knob::new(
+            "denoise.enabled",
+            "--denoise",
+            "Denoise with the edge-avoiding à-trous filter made for AO instead of the bilateral \
+             blur (for the noisy hemisphere rows, with or without --temporal).",
+            Kind::Switch { flag_sets: true },
+        )
+        .doc(
+            "the edge-avoiding à-trous denoiser in the blur's place: depth-, normal- and \
+             variance-stopped, so it weakens where the AO is already smooth (a long history)",
+        )
+        .widget(Widget::Checkbox),
+        Knob::new(
+            "denoise.iterations",
+            "--denoise-iterations",
+            "Denoiser iterations (taps 1, 2, 4, ... px apart).",
+            Kind::int(1, 5),
+        )
+        .doc("à-trous iterations, taps 1, 2, 4, … pixels apart (2 reach 6 px on each side)")
+        .widget(Widget::Range),
+        Knob::new(
+            "denoise.sigma",
+            "--denoise-sigma",
+            "Denoiser: local standard deviations of AO a neighbour may differ by.",
+            Kind::POSITIVE,
+        )
+        .doc("how many local standard deviations of AO a neighbour may differ by (SVGF uses 4)"),
+    ];
+}
+
 impl BlurSettings {
     /// The spatial weight's exponent per squared pixel of distance, in exp2 units: the weight of
     /// a tap d pixels away is exp2(−d²·falloff).

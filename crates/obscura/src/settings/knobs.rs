@@ -10,6 +10,7 @@ use crate::knob::{self, Kind, Knob, Value};
 /// order; each estimator's come from its module (`EstimatorCaps::module`), after these.
 const KNOB_LISTS: &[&[Knob]] = &[
     BlurSettings::KNOBS,
+    DenoiseSettings::KNOBS,
     AoSettings::KNOBS,
     MultiviewSettings::KNOBS,
     TemporalSettings::KNOBS,

@@ -76,6 +76,8 @@ macro_rules! ao_settings {
             pub $name: $settings,)*
             /// The bilateral blur that filters every technique's raw AO.
             pub blur: BlurSettings,
+            /// The à-trous denoiser, in the blur's place when enabled.
+            pub denoise: DenoiseSettings,
             /// `vao-dual`: the second layer is the nearest surface more than this many world units
             /// behind the first (the authors' `minSeparationDistance`, docs/AUTHORS_CODE.md §2.1).
             /// Also the minimum distance behind the first layer for a fragment to enter the
@@ -116,6 +118,7 @@ macro_rules! ao_settings {
                     $($(#[$attr])* $name: $settings::default(),)*
                     pyramid: PyramidSettings::default(),
                     blur: BlurSettings::default(),
+                    denoise: DenoiseSettings::default(),
                     peel_separation: 0.01,
                     stochastic_depth: StochasticDepthSettings::default(),
                     ray_sd: RaySdSettings::default(),

@@ -290,8 +290,8 @@ fn blur_sigma_is_a_natural_gaussian() {
 #[test]
 fn validation_names_fields_that_exist_and_no_flags() {
     let paths = AoSettings::field_paths();
-    // 82, and the test-only stub estimator's 2 (estimators/stub.rs).
-    assert_eq!(paths.len(), 82 + 2, "{paths:?}");
+    // 85, and the test-only stub estimator's 2 (estimators/stub.rs).
+    assert_eq!(paths.len(), 85 + 2, "{paths:?}");
     let mut broken: Vec<AoSettings> = Vec::new();
     let mut push = |f: &dyn Fn(&mut AoSettings)| {
         let mut s = AoSettings::default();

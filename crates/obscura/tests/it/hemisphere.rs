@@ -362,3 +362,57 @@ fn two_phase_traces_at_most_half_the_rays_for_nearly_the_same_image() {
         );
     }
 }
+
+#[test]
+fn the_denoiser_cuts_one_ray_noise_without_leaking_across_depth_edges() {
+    // One ray a pixel through the BVH, raw and denoised, against the 256-ray ground truth: the
+    // denoiser must cut the squared error at least 4×, and over the band of pixels within 4 px
+    // of a depth edge its mean signed error must stay near 0 (a filter that reached across the
+    // box's silhouette would pull the floor's occlusion and the box's openness into each other).
+    use obscura::metrics::{mse, summarize, Image};
+    let gpu = gpu();
+    let scene = room();
+    let (w, h) = (96, 64);
+    let eye = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), 50.0);
+    let render = |denoise: bool| {
+        let mut s = settings(Technique::Rtao, 1, 1.0);
+        s.denoise.enabled = denoise;
+        let mut r = Renderer::new(&gpu, &scene, &s, w, h, 16).unwrap();
+        r.render(&eye, None).unwrap();
+        let depth = r.read_gbuffer().unwrap().visible_depth(16);
+        (r.read_ao().unwrap(), depth, *r.view().unwrap())
+    };
+    let (raw, depth, view) = render(false);
+    let (denoised, _, _) = render(true);
+    let mut reference = ReferenceSettings {
+        model: ReferenceModel::Hemisphere,
+        spp: 256,
+        ..Default::default()
+    };
+    reference.vao.radius = 1.0;
+    let (truth, _) = render_reference_gpu(
+        &gpu,
+        &scene,
+        &Bvh::build(&scene),
+        view,
+        &reference,
+        &|_, _| {},
+    )
+    .unwrap();
+    let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
+    let (raw_mse, denoised_mse) = (
+        mse(&image(&raw), &image(&truth)).unwrap(),
+        mse(&image(&denoised), &image(&truth)).unwrap(),
+    );
+    let band = summarize(&image(&denoised), &image(&truth), &image(&depth), 4, 0.1).unwrap();
+    let leak = band.halo_bright + band.halo_dark;
+    println!("MSE raw {raw_mse:.5}, denoised {denoised_mse:.5}; band {band:?}, net {leak:.4}");
+    assert!(
+        raw_mse >= 4.0 * denoised_mse,
+        "MSE raw {raw_mse}, denoised {denoised_mse}"
+    );
+    assert!(
+        leak.abs() < 0.02,
+        "net error over the edge band {leak}: {band:?}"
+    );
+}

@@ -1,0 +1,139 @@
+// The edge-avoiding à-trous denoiser for AO: Dammertz, Sewtz, Hanika and Lensch, "Edge-Avoiding
+// À-Trous Wavelet Transform for fast Global Illumination Filtering" (HPG 2010), with the edge
+// stops and the variance guidance of Schied et al., "Spatiotemporal Variance-Guided Filtering"
+// (HPG 2017, §4.4), for an image of one channel (AO) and its variance:
+// - `moments`: each pixel's AO and the variance of the AO over its 5×5 neighbours on the same
+//   surface (Schied et al. estimate it spatially where a pixel's history is short; here it is
+//   always spatial: over frames of temporal accumulation the accumulated AO grows smooth, its
+//   variance falls, and with it the filter's reach across AO differences);
+// - `main`, then `main_last` for the last iteration: a 5×5 B3-spline kernel with taps
+//   `step` = 1, 2, 4, … pixels apart, each tap weighted by
+//     w_z = exp(−|(Q − P)·n_p| / (0.02 z_p))   (distance from the pixel's tangent plane,
+//                                               relative to its depth: scale-free),
+//     w_n = max(0, n_p·n_q)^64                  (SVGF's normal stop, σ_n between 32 and 128),
+//     w_l = exp(−|a_p − a_q| / (σ √var_p + ε))  (σ = `denoise.sigma`; SVGF's is 4),
+//   the variance carried with the squared weights (Schied et al. Eq. 5).
+// Background pixels keep their value (1).
+
+struct AtrousParams {
+    step: i32,
+    sigma: f32,
+    _pad0: f32,
+    _pad1: f32,
+}
+
+@group(0) @binding(0) var<uniform> view: View;
+@group(0) @binding(1) var<uniform> params: AtrousParams;
+@group(0) @binding(2) var depth_tex: texture_2d<f32>;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+// (AO, variance); an R32Float input reads variance 0.
+@group(0) @binding(4) var ao_in: texture_2d<f32>;
+@group(0) @binding(5) var moments_out: texture_storage_2d<rg32float, write>;
+@group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
+
+// B3 spline, 1/16 (1 4 6 4 1).
+const KERNEL = array<f32, 5>(0.0625, 0.25, 0.375, 0.25, 0.0625);
+
+struct Surface {
+    pos: vec3<f32>,
+    normal: vec3<f32>,
+    depth: f32,
+    valid: bool,
+}
+
+// The surface at visible pixel `p` (the frame's depth and normals carry the guard band).
+fn surface_at(p: vec2<i32>) -> Surface {
+    var s: Surface;
+    let pixel = vec2<u32>(p) + vec2<u32>(view.guard_band);
+    s.depth = textureLoad(depth_tex, pixel, 0).r;
+    s.valid = !is_background(s.depth);
+    if (s.valid) {
+        s.pos = pixel_to_view(view, vec2<f32>(pixel) + 0.5, s.depth);
+        s.normal = normalize(textureLoad(normal_tex, pixel, 0).xyz);
+    }
+    return s;
+}
+
+// The geometric part of a tap's weight: same tangent plane, same facing.
+fn surface_weight(p: Surface, q: Surface) -> f32 {
+    if (!q.valid) {
+        return 0.0;
+    }
+    let plane = abs(dot(q.pos - p.pos, p.normal)) / (0.02 * p.depth);
+    return exp(-plane) * pow(max(dot(p.normal, q.normal), 0.0), 64.0);
+}
+
+fn inside(q: vec2<i32>) -> bool {
+    return all(q >= vec2<i32>(0)) && all(q < vec2<i32>(view.visible_size));
+}
+
+@compute @workgroup_size(8, 8)
+fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
+    let p = vec2<i32>(id.xy);
+    if (!inside(p)) {
+        return;
+    }
+    let a = textureLoad(ao_in, p, 0).r;
+    let sp = surface_at(p);
+    if (!sp.valid) {
+        textureStore(moments_out, p, vec4<f32>(a, 0.0, 0.0, 0.0));
+        return;
+    }
+    var sum = vec2<f32>(a, a * a);
+    var weight = 1.0;
+    for (var k = 0; k < 25; k++) {
+        let q = p + vec2<i32>(k % 5 - 2, k / 5 - 2);
+        if (k == 12 || !inside(q)) {
+            continue;
+        }
+        let w = surface_weight(sp, surface_at(q));
+        let b = textureLoad(ao_in, q, 0).r;
+        sum += w * vec2<f32>(b, b * b);
+        weight += w;
+    }
+    let mean = sum / weight;
+    textureStore(moments_out, p, vec4<f32>(a, max(mean.y - mean.x * mean.x, 0.0), 0.0, 0.0));
+}
+
+// One iteration at pixel `p`: (AO, variance).
+fn filtered(p: vec2<i32>) -> vec2<f32> {
+    let centre = textureLoad(ao_in, p, 0).rg;
+    let sp = surface_at(p);
+    if (!sp.valid) {
+        return centre;
+    }
+    let reach = params.sigma * sqrt(centre.y) + 1e-4;
+    var sum = KERNEL[2] * KERNEL[2] * centre.x;
+    var variance = KERNEL[2] * KERNEL[2] * KERNEL[2] * KERNEL[2] * centre.y;
+    var weight = KERNEL[2] * KERNEL[2];
+    for (var k = 0; k < 25; k++) {
+        let offset = vec2<i32>(k % 5 - 2, k / 5 - 2);
+        let q = p + offset * params.step;
+        if (k == 12 || !inside(q)) {
+            continue;
+        }
+        let b = textureLoad(ao_in, q, 0).rg;
+        let w = KERNEL[offset.x + 2] * KERNEL[offset.y + 2] * surface_weight(sp, surface_at(q))
+            * exp(-abs(centre.x - b.x) / reach);
+        sum += w * b.x;
+        variance += w * w * b.y;
+        weight += w;
+    }
+    return vec2<f32>(min(sum / weight, 1.0), variance / (weight * weight));
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let p = vec2<i32>(id.xy);
+    if (inside(p)) {
+        textureStore(moments_out, p, vec4<f32>(filtered(p), 0.0, 0.0));
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn main_last(@builtin(global_invocation_id) id: vec3<u32>) {
+    let p = vec2<i32>(id.xy);
+    if (inside(p)) {
+        textureStore(ao_out, p, vec4<f32>(filtered(p).x));
+    }
+}
