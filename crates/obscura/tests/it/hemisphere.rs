@@ -21,6 +21,26 @@ fn settings(technique: Technique, rays: u32, radius: f32) -> AoSettings {
     s
 }
 
+/// The GPU ground truth of `view` over `scene`: the hemisphere model, `spp` rays of radius
+/// `radius` (seed 0: frame 0's rays when `spp` equals the estimator's rays).
+fn hemisphere_truth(
+    gpu: &obscura::Gpu,
+    scene: &Scene,
+    view: obscura::view::FrameView,
+    spp: u32,
+    radius: f32,
+) -> Vec<f32> {
+    let mut reference = ReferenceSettings {
+        model: ReferenceModel::Hemisphere,
+        spp,
+        ..Default::default()
+    };
+    reference.vao.radius = radius;
+    render_reference_gpu(gpu, scene, &Bvh::build(scene), view, &reference, &|_, _| {})
+        .unwrap()
+        .0
+}
+
 #[test]
 fn unoccluded_plane_is_one_everywhere() {
     let gpu = gpu();
@@ -74,26 +94,12 @@ fn rtao_traces_the_ground_truths_rays() {
     let eye = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), 50.0);
     r.render(&eye, None).unwrap();
     let ao = r.read_raw_ao().unwrap();
-    let mut reference = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 32,
-        ..Default::default()
-    };
-    reference.vao.radius = 1.0;
     let view = *r.view().unwrap();
     assert_eq!(
         view.view_matrix().to_scale_rotation_translation().1,
         glam::Quat::IDENTITY
     );
-    let (truth, _) = render_reference_gpu(
-        &gpu,
-        &scene,
-        &Bvh::build(&scene),
-        view,
-        &reference,
-        &|_, _| {},
-    )
-    .unwrap();
+    let truth = hemisphere_truth(&gpu, &scene, view, 32, 1.0);
     let differ: Vec<f32> = ao
         .iter()
         .zip(&truth)
@@ -275,25 +281,11 @@ fn frames_of_temporal_accumulation_converge_to_the_ground_truth() {
     let (w, h) = (64, 48);
     let mut r = Renderer::new(&gpu, &scene, &s, w, h, 16).unwrap();
     let eye = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), 50.0);
-    let mut reference = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 256,
-        ..Default::default()
-    };
-    reference.vao.radius = 1.0;
     let mut errors = Vec::new();
     for frame in 1..=16 {
         r.render(&eye, None).unwrap();
         if frame == 1 || frame == 16 {
-            let (truth, _) = render_reference_gpu(
-                &gpu,
-                &scene,
-                &Bvh::build(&scene),
-                *r.view().unwrap(),
-                &reference,
-                &|_, _| {},
-            )
-            .unwrap();
+            let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 256, 1.0);
             let ao = r.read_ao().unwrap();
             let mae = ao
                 .iter()
@@ -384,21 +376,7 @@ fn the_denoiser_cuts_one_ray_noise_without_leaking_across_depth_edges() {
     };
     let (raw, depth, view) = render(false);
     let (denoised, _, _) = render(true);
-    let mut reference = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 256,
-        ..Default::default()
-    };
-    reference.vao.radius = 1.0;
-    let (truth, _) = render_reference_gpu(
-        &gpu,
-        &scene,
-        &Bvh::build(&scene),
-        view,
-        &reference,
-        &|_, _| {},
-    )
-    .unwrap();
+    let truth = hemisphere_truth(&gpu, &scene, view, 256, 1.0);
     let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
     let (raw_mse, denoised_mse) = (
         mse(&image(&raw), &image(&truth)).unwrap(),
