@@ -106,6 +106,9 @@ pub(crate) fn pipeline(
     layouts.extend(schedule_layout.map(|l| (GROUP_SCHEDULE, l)));
     let mut constants = estimator.constants.clone();
     constants.extend_from_slice(source.constants());
+    if stage.source_group == SourceGroup::Request {
+        constants.extend_from_slice(source.request_constants());
+    }
     constants.extend_from_slice(&stage.constants);
     let wgsl = write_out_sample_loop(
         &compose(

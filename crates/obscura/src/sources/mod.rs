@@ -134,6 +134,8 @@ pub(crate) struct SourcePass {
     zero_fill: Option<ZeroFill>,
     /// The source's pipeline constants (the stochastic depth map's query switch).
     constants: Vec<(&'static str, f64)>,
+    /// Constants only phase 1 of a two-phase schedule sets (the request stage).
+    request_constants: Vec<(&'static str, f64)>,
 }
 
 fn missing(what: &str, source: Source) -> Error {
@@ -187,9 +189,10 @@ impl SourcePass {
                     request_group: None,
                     request_cells: 0,
                     zero_fill: None,
+                    constants: Vec::new(),
                     // Two-phase BVH rays: phase 1 proves rays free in screen space
-                    // (bvh_rays.wgsl).
-                    constants: if kind == Source::BvhRays && schedule.two_phase() {
+                    // (bvh_rays.wgsl); phase 2 only traces.
+                    request_constants: if kind == Source::BvhRays && schedule.two_phase() {
                         vec![("SCREEN_PROOF", 1.0)]
                     } else {
                         Vec::new()
@@ -323,12 +326,18 @@ impl SourcePass {
             request_cells,
             zero_fill,
             constants,
+            request_constants: Vec::new(),
         })
     }
 
     /// Pipeline constants every pass composed with this source sets.
     pub fn constants(&self) -> &[(&'static str, f64)] {
         &self.constants
+    }
+
+    /// Pipeline constants phase 1 of a two-phase schedule sets besides [`Self::constants`].
+    pub fn request_constants(&self) -> &[(&'static str, f64)] {
+        &self.request_constants
     }
 
     pub fn wgsl(&self) -> String {
