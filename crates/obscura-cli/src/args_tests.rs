@@ -214,9 +214,13 @@ fn one_radius_for_every_estimator_under_the_per_technique_flags() {
         "--hbao-radius",
         "3",
     ]);
+    // `--hbao-radius` is the old name of `--hbao-plus-radius`: it sets the rows whose radius is
+    // `hbao_plus.radius`, and only those.
+    let mut own_radius = 0;
     for t in Technique::all() {
         let s = args.settings(t).unwrap();
-        let want = if t.estimator() == obscura::technique::Estimator::HbaoPlus {
+        let want = if t.estimator().caps().radius == "hbao_plus.radius" {
+            own_radius += 1;
             3.0
         } else {
             2.0
@@ -225,6 +229,7 @@ fn one_radius_for_every_estimator_under_the_per_technique_flags() {
         // The ground truth's radius (`reference` and `compare` take `vao.radius`).
         assert_eq!(s.vao.radius, 2.0, "{t}");
     }
+    assert!(own_radius > 0, "no row has the radius --hbao-radius sets");
     for bad in ["0", "-1", "inf", "NaN"] {
         let e = ao(&["--ao-radius", bad])
             .settings(Technique::Gtao)

@@ -138,9 +138,27 @@ macro_rules! estimator_enum {
 }
 estimators::registry!(estimator_enum);
 
-/// What answers "what lies behind the first surface here" (`src/sources/`, `shaders/sources/`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Source {
+/// Declares [`Source`] and the list of its variants ([`Source::all`]) from one list, so that a
+/// test running every source cannot miss a new one.
+macro_rules! sources {
+    ($($(#[$doc:meta])* $variant:ident,)*) => {
+        /// What answers "what lies behind the first surface here" (`src/sources/`,
+        /// `shaders/sources/`).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Source {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl Source {
+            /// Every source, in declaration order.
+            pub fn all() -> impl Iterator<Item = Source> {
+                [$(Source::$variant,)*].into_iter()
+            }
+        }
+    };
+}
+
+sources!(
     /// The first depth layer only: occluded samples keep the estimator's thickness model.
     FirstLayer,
     /// A second depth layer by depth peeling (seed 000 §2.1).
@@ -162,7 +180,7 @@ pub enum Source {
     /// Each hemisphere ray traced through the BVH in world space: nothing is hidden from it.
     /// Reads the hemisphere estimator's rays.
     BvhRays,
-}
+);
 
 /// Which passes run the estimator over the source (`src/schedules/`, `shaders/schedules/`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

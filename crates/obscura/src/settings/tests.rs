@@ -169,16 +169,19 @@ fn presets_validate_and_medium_is_the_default() {
     assert_eq!(vao(Preset::Low), (8, 2, sd_default));
     assert_eq!(vao(Preset::High), (16, 4, sd_default));
     assert_eq!(vao(Preset::Ultra), (32, 6, sd_default));
-    let grid = |t, p| {
-        let s = AoSettings::preset(t, p);
-        match t.estimator() {
-            Estimator::Hbao => (s.hbao.directions, s.hbao.steps),
-            _ => (s.gtao.slices, s.gtao.steps),
-        }
-    };
-    let hbao: Vec<_> = Preset::ALL.map(|p| grid(Technique::Hbao, p)).into();
+    let hbao: Vec<_> = Preset::ALL
+        .map(|p| {
+            let s = AoSettings::preset(Technique::Hbao, p);
+            (s.hbao.directions, s.hbao.steps)
+        })
+        .into();
     assert_eq!(hbao, [(4, 4), (8, 4), (8, 10), (16, 20)]);
-    let gtao: Vec<_> = Preset::ALL.map(|p| grid(Technique::Gtao, p)).into();
+    let gtao: Vec<_> = Preset::ALL
+        .map(|p| {
+            let s = AoSettings::preset(Technique::Gtao, p);
+            (s.gtao.slices, s.gtao.steps)
+        })
+        .into();
     assert_eq!(gtao, [(1, 2), (2, 2), (3, 3), (9, 3)]);
     let sd = |p| {
         let s = AoSettings::preset(Technique::SdSvao, p);

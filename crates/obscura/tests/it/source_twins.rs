@@ -6,8 +6,26 @@
 
 use crate::common::*;
 use glam::Vec3;
-use obscura::technique::{Schedule, Source, TABLE};
+use obscura::technique::{Needs, Schedule, TechniqueRow, TABLE};
 use obscura::{AoSettings, Renderer};
+
+/// `row`'s first-layer twin: the row with its estimator and schedule over a source that needs
+/// nothing beyond the depth buffer and normals (the first layer). Exactly one, or which twin the
+/// row is held to would depend on the table's order.
+fn first_layer_twin(row: &TechniqueRow) -> &'static TechniqueRow {
+    let twins: Vec<_> = TABLE
+        .iter()
+        .filter(|t| {
+            t.source.needs() == Needs::default()
+                && t.estimator == row.estimator
+                && t.schedule == row.schedule
+        })
+        .collect();
+    match twins[..] {
+        [twin] => twin,
+        _ => panic!("{}: first-layer twins {twins:?}", row.name),
+    }
+}
 
 #[test]
 fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
@@ -18,20 +36,13 @@ fn every_hidden_depth_row_equals_its_first_layer_twin_with_one_layer() {
     let rows: Vec<_> = TABLE
         .iter()
         .filter(|r| {
-            r.source == Source::DualDepth
+            r.source.needs().second_layer
                 || (r.source.maps_hidden_depth() && r.schedule == Schedule::Single)
         })
         .collect();
     assert!(!rows.is_empty());
     for row in rows {
-        let twin = TABLE
-            .iter()
-            .find(|t| {
-                t.source == Source::FirstLayer
-                    && t.estimator == row.estimator
-                    && t.schedule == row.schedule
-            })
-            .unwrap_or_else(|| panic!("{}: no first-layer twin", row.name));
+        let twin = first_layer_twin(row);
         let render = |technique| {
             let mut s = AoSettings {
                 technique,
@@ -67,14 +78,7 @@ fn every_stochastic_depth_row_misses_less_occlusion_at_silhouettes() {
         .iter()
         .filter(|r| r.source.maps_hidden_depth() && r.schedule == Schedule::Single)
     {
-        let twin = TABLE
-            .iter()
-            .find(|t| {
-                t.source == Source::FirstLayer
-                    && t.estimator == row.estimator
-                    && t.schedule == Schedule::Single
-            })
-            .unwrap();
+        let twin = first_layer_twin(row);
         let metrics = |t| {
             let s = technique_settings(t, true);
             hemisphere_metrics(&gpu, &scene, &s, s.radius()).0
