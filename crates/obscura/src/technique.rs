@@ -765,12 +765,15 @@ impl Schedule {
 
     /// Whether this schedule can run over `source`: the multi-view one only over the stochastic
     /// depth map (its second view reads a second one); the interleaved one only over the first
-    /// layer (it splits that layer and reads nothing else).
+    /// layer (it splits that layer and reads nothing else); the two-phase ones over any source
+    /// but the depth pyramid, whose levels phase 1 does not bind (its request layout holds only
+    /// what `source_request` writes).
     pub fn supports_source(self, source: Source) -> bool {
         match self {
             Schedule::Interleaved => source == Source::FirstLayer,
             Schedule::Multiview => source == Source::StochasticDepth,
-            _ => true,
+            Schedule::TwoPhase | Schedule::TwoPhaseDense => !source.caps().serves_levels,
+            Schedule::Single => true,
         }
     }
 

@@ -234,11 +234,7 @@ fn check_all_schedules(
             Schedule::TwoPhaseDense,
             Schedule::Interleaved,
         ] {
-            // Phase 1 of the two-phase schedules binds no pyramid (`sources::request_entries`),
-            // so an estimator reading levels cannot run there, though `Schedule::supports` lets
-            // SAO (order-independent) through: no row does, and this check does not try.
-            let two_phase_ok = order_independent && !source.caps().serves_levels;
-            if (schedule.two_phase() && !two_phase_ok) || !schedule.supports_source(source) {
+            if (schedule.two_phase() && !order_independent) || !schedule.supports_source(source) {
                 continue;
             }
             for stage in schedules::stages(schedule) {
