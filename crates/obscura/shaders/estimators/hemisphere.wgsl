@@ -28,7 +28,7 @@ struct HemisphereParams {
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: HemisphereParams;
 
 // N, the rays per pixel, at most 32 (one bit per ray in the two-phase mask).
-override SAMPLE_COUNT: u32 = 4u;
+override SAMPLE_COUNT: u32 = 1u;
 
 struct EstimatorPixel {
     pixel: vec2<u32>,
