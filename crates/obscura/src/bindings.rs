@@ -28,6 +28,10 @@ pub const FRAME_AO_OUT: u32 = 3;
 /// The bent normals the pass writes with `bent_normals` (write-only `rgba16float` storage texture,
 /// view-space unit xyz; a 1×1 texture nobody writes otherwise).
 pub const FRAME_BENT_OUT: u32 = 4;
+/// The rays each visible pixel may cast this frame under a ray budget (`R32Uint`, read by the
+/// hemisphere estimator with `hemisphere.ray_budget`, written by `filter::ray_budget`; a 1×1
+/// texture nobody reads otherwise).
+pub const FRAME_RAY_GRANT: u32 = 5;
 
 /// Group 1, the estimator's parameters.
 pub const ESTIMATOR_PARAMS: u32 = 0;
@@ -94,6 +98,7 @@ const NAMED: &[(&str, u32)] = &[
     ("FRAME_NORMALS", FRAME_NORMALS),
     ("FRAME_AO_OUT", FRAME_AO_OUT),
     ("FRAME_BENT_OUT", FRAME_BENT_OUT),
+    ("FRAME_RAY_GRANT", FRAME_RAY_GRANT),
     ("ESTIMATOR_PARAMS", ESTIMATOR_PARAMS),
     ("ESTIMATOR_TABLE", ESTIMATOR_TABLE),
     ("SOURCE_SECOND_DEPTH", SOURCE_SECOND_DEPTH),
@@ -166,6 +171,18 @@ pub mod entry {
             binding,
             wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+        )
+    }
+
+    /// An unsigned-integer texture read with `textureLoad`.
+    pub fn texture_uint(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        compute(
+            binding,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Uint,
                 view_dimension: wgpu::TextureViewDimension::D2,
                 multisampled: false,
             },
@@ -265,6 +282,7 @@ pub fn frame_layout(device: &wgpu::Device, with_output: bool) -> wgpu::BindGroup
     if with_output {
         entries.push(entry::storage_texture_r32f(FRAME_AO_OUT));
         entries.push(entry::storage_texture_rgba16f(FRAME_BENT_OUT));
+        entries.push(entry::texture_uint(FRAME_RAY_GRANT));
     }
     layout(device, "frame", &entries)
 }

@@ -1,7 +1,9 @@
 //! What every AO pass reads: the frame's first depth layer and normals (guard-banded framebuffer)
 //! and its screen geometry, bound as group 0 (`shaders/frame/frame.wgsl`) with the AO output.
 
-use crate::bindings::{self, FRAME_AO_OUT, FRAME_BENT_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_VIEW};
+use crate::bindings::{
+    self, FRAME_AO_OUT, FRAME_BENT_OUT, FRAME_DEPTH, FRAME_NORMALS, FRAME_RAY_GRANT, FRAME_VIEW,
+};
 use crate::error::Error;
 use crate::view::ScreenGeometry;
 
@@ -21,13 +23,16 @@ pub struct FrameInputs<'a> {
 
 impl FrameInputs<'_> {
     /// Group 0 of an AO pass writing `output` (`R32Float` storage of the visible size) and, with
-    /// `bent_normals`, `bent` (`Rgba16Float` of the same size; a 1×1 one otherwise).
+    /// `bent_normals`, `bent` (`Rgba16Float` of the same size; a 1×1 one otherwise), reading the
+    /// rays each pixel may cast from `ray_grant` under a ray budget (`R32Uint`, visible size; a
+    /// 1×1 one otherwise).
     pub(crate) fn group(
         &self,
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         output: &wgpu::TextureView,
         bent: &wgpu::TextureView,
+        ray_grant: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
         bindings::group(
             device,
@@ -42,6 +47,10 @@ impl FrameInputs<'_> {
                 ),
                 (FRAME_AO_OUT, wgpu::BindingResource::TextureView(output)),
                 (FRAME_BENT_OUT, wgpu::BindingResource::TextureView(bent)),
+                (
+                    FRAME_RAY_GRANT,
+                    wgpu::BindingResource::TextureView(ray_grant),
+                ),
             ],
         )
     }

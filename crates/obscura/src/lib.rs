@@ -45,6 +45,7 @@ pub mod view;
 pub use engine_geometry::{AlphaMask, EngineGeometry, EngineMesh, IndexData, VertexAttribute};
 pub use engine_input::{EngineFrame, EngineInput, EngineNormals, NormalEncoding};
 pub use error::{Error, SettingsError};
+pub use filter::ray_budget::{RayBudgetReport, TimeBudget};
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};
 pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};
 pub use settings::{AoSettings, BlurSettings, Normalization, Technique, VaoSettings};

@@ -82,6 +82,7 @@ pub const DEPTH_PEEL: &str = include_str!("../shaders/raster/depth_peel.wgsl");
 pub const DEPTH_PEEL_RESOLVE: &str = include_str!("../shaders/raster/depth_peel_resolve.wgsl");
 pub const ATROUS: &str = include_str!("../shaders/filter/atrous.wgsl");
 pub const BILATERAL_BLUR: &str = include_str!("../shaders/filter/bilateral_blur.wgsl");
+pub const RAY_BUDGET: &str = include_str!("../shaders/filter/ray_budget.wgsl");
 pub const TEMPORAL_ACCUMULATION: &str =
     include_str!("../shaders/filter/temporal_accumulation.wgsl");
 pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/filter/half_resolution/downsample.wgsl");

@@ -30,6 +30,13 @@ struct HemisphereParams {
 // N, the rays per pixel, at most 32 (one bit per ray in the two-phase mask).
 override SAMPLE_COUNT: u32 = 1u;
 
+// Under a ray budget (`hemisphere.ray_budget`, filter/ray_budget.wgsl) each pixel casts the rays
+// the budget granted it this frame, N or fewer (a set of that many rays), or none: then its AO
+// is NO_RAYS, and temporal accumulation keeps its history as it is.
+override RAY_BUDGET: bool = false;
+@group(GROUP_FRAME) @binding(FRAME_RAY_GRANT) var ray_grant: texture_2d<u32>;
+const NO_RAYS: f32 = -1.0;
+
 struct EstimatorPixel {
     pixel: vec2<u32>,
     valid: bool,
@@ -40,6 +47,8 @@ struct EstimatorPixel {
     rotation: vec2<f32>,
     // Screen rays: where in its first interval the march's first point lies, in [0, 1).
     jitter: f32,
+    // The rays it casts this frame: N, or what a ray budget granted.
+    rays: u32,
 }
 
 struct EstimatorSample {
@@ -81,14 +90,19 @@ fn estimator_pixel(id: vec2<u32>) -> EstimatorPixel {
     // The visible pixel and the frame seed the rays, as the ground truth's seed and pixel do.
     p.rotation = pixel_rotation_2d(view.frame, id.x, id.y);
     p.jitter = hash_to_unit(pcg_hash(pcg_hash(view.frame + 0x9e3779b9u) ^ (id.x + pcg_hash(id.y))));
+    p.rays = SAMPLE_COUNT;
+    if (RAY_BUDGET) {
+        p.rays = min(textureLoad(ray_grant, id, 0).x, SAMPLE_COUNT);
+    }
     return p;
 }
 
 fn estimator_sample(p: EstimatorPixel, i: u32) -> EstimatorSample {
     var s: EstimatorSample;
-    s.dir = hemisphere_direction(i, SAMPLE_COUNT, p.rotation, p.normal, array<vec3<f32>, 2>(p.tangent, p.bitangent));
+    s.on = i < p.rays;
+    let count = max(p.rays, 1u);
+    s.dir = hemisphere_direction(i, count, p.rotation, p.normal, array<vec3<f32>, 2>(p.tangent, p.bitangent));
     s.px = view_to_pixel(view, p.pos + s.dir * params.radius);
-    s.on = true;
     return s;
 }
 
@@ -167,11 +181,14 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
 }
 
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return acc.visibility / f32(SAMPLE_COUNT);
+    if (p.rays == 0u) {
+        return NO_RAYS;
+    }
+    return acc.visibility / f32(p.rays);
 }
 
 // The debug image (`render --debug-out`): the fraction of the rays blocked, none black … all
 // white.
 fn estimator_debug(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    return acc.blocked / f32(SAMPLE_COUNT);
+    return acc.blocked / f32(max(p.rays, 1u));
 }

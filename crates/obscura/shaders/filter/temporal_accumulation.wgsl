@@ -9,6 +9,9 @@
 // With the estimators' 4×4 pattern turned by one entry per frame (View
 // pattern_offset), a still camera converges to the mean over all 16 rotations in 16 frames.
 // Pixels with no matching history (disocclusion, off screen, first frame) restart at n = 1.
+// Under a ray budget (ray_budget.wgsl) a pixel granted no rays this frame has a negative AO
+// (NO_RAYS of estimators/hemisphere.wgsl): it keeps its history as it is (n unchanged), or, with
+// none, shows 1 and stores n = 0, which the budget serves first next frame.
 //
 // History (rg32uint, visible size, ping-pong; 8 bytes, as the pass is bound by memory traffic):
 // x = AO as 24-bit fixed point << 8 | n (n ≤ 255); y = linear depth in 16 bits (low half, see
@@ -131,6 +134,12 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
             history = read_history(q, z_prev, n_world);
         }
     }
+    if (current < 0.0) {
+        let kept = select(1.0, history.x, history.y > 0.0);
+        textureStore(ao_out, id, vec4<f32>(kept));
+        store_history(id, kept, round(history.y), z, n_world);
+        return;
+    }
     let n = min(round(history.y) + 1.0, params.max_frames);
     var past = history.x;
     if (params.clamp != 0u) {
@@ -142,19 +151,29 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         // instead of a 3×3 block's 9 (BENCHMARKS.md has both timings).
         var m1 = current;
         var m2 = current * current;
+        var taps = 1.0;
         let last = vec2<i32>(view.visible_size) - 1;
         for (var k = 0; k < 4; k++) {
             let step = select(vec2<i32>(0, 1 - 2 * (k & 1)), vec2<i32>(1 - 2 * (k & 1), 0), k < 2);
             let v = textureLoad(ao_in, clamp(vec2<i32>(id) + step, vec2<i32>(0), last), 0).x;
-            m1 += v;
-            m2 += v * v;
+            // A neighbour with no rays this frame (ray budget) says nothing of the spread.
+            let fresh = v >= 0.0;
+            m1 += select(0.0, v, fresh);
+            m2 += select(0.0, v * v, fresh);
+            taps += select(0.0, 1.0, fresh);
         }
-        let mean = m1 / 5.0;
-        let sigma = sqrt(max(m2 / 5.0 - mean * mean, 0.0));
+        let mean = m1 / taps;
+        let sigma = sqrt(max(m2 / taps - mean * mean, 0.0));
         past = clamp(past, mean - GAMMA * sigma, mean + GAMMA * sigma);
     }
     let ao = select(current, mix(past, current, 1.0 / n), history.y > 0.0);
     textureStore(ao_out, id, vec4<f32>(ao));
+    store_history(id, ao, n, z, n_world);
+}
+
+// The history texel of visible pixel `id`: AO `ao` over `n` frames of the surface at linear depth
+// `z` with world normal `n_world`.
+fn store_history(id: vec2<u32>, ao: f32, n: f32, z: f32, n_world: vec3<f32>) {
     let packed_ao = (u32(round(saturate(ao) * AO_SCALE)) << 8u) | u32(n);
     let packed_surface = pack_history_depth(z)
         | (pack4x8snorm(vec4<f32>(encode_octahedral(n_world), 0.0, 0.0)) << 16u);

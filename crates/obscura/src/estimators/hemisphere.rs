@@ -25,6 +25,14 @@ pub struct HemisphereSettings {
     /// Screen rays: the thickness assumed behind every depth sample, world units (a ray point
     /// farther behind the first surface than this passes behind it).
     pub thickness: f32,
+    /// Rays a frame at most, given to the pixels whose accumulated AO is least certain (no
+    /// history first, then the largest variance); 0: every pixel casts `rays` rays. Needs
+    /// temporal accumulation (a pixel without rays keeps its history).
+    pub ray_budget: u32,
+    /// Milliseconds a frame for the budget's passes and the AO pass: the frame loops (`view`,
+    /// `path`, `bench`) set the ray budget each frame from the last frame's GPU timings
+    /// ([`crate::TimeBudget`]); 0: off. Needs temporal accumulation and timestamp queries.
+    pub time_budget: f32,
 }
 
 impl Default for HemisphereSettings {
@@ -39,6 +47,8 @@ impl Default for HemisphereSettings {
             steps: 8,
             // GTAO-VB's and VAO's default thickness, the same physical assumption.
             thickness: 0.25,
+            ray_budget: 0,
+            time_budget: 0.0,
         }
     }
 }
@@ -91,7 +101,37 @@ impl HemisphereSettings {
         )
         .length()
         .doc("screen rays: the thickness assumed behind every depth sample (a ray passes behind it)"),
+        Knob::new(
+            "hemisphere.ray_budget",
+            "--ray-budget",
+            "Hemisphere rays a frame at most, to the pixels with the least history or the most \
+             variance first (needs --temporal); 0: no budget.",
+            Kind::int(0, 1 << 30),
+        )
+        .units("rays")
+        .doc(
+            "rays a frame at most, given first to the pixels with no history, then to those whose \
+             accumulated AO has the largest variance; 0: every pixel casts `rays` (needs \
+             `temporal.enabled`)",
+        ),
+        Knob::new(
+            "hemisphere.time_budget",
+            "--time-budget",
+            "Milliseconds a frame for the hemisphere rays: the ray budget follows the GPU timings \
+             (view, path, bench; needs --temporal and timestamp queries); 0: off.",
+            Kind::POSITIVE.or_zero("off"),
+        )
+        .units("ms")
+        .doc(
+            "GPU milliseconds a frame for the ray budget's passes and the AO pass: frame loops \
+             set the ray budget from the last frame's timings (needs `temporal.enabled`)",
+        ),
     ];
+
+    /// Whether a ray budget or a time budget is asked for.
+    pub fn budgeted(&self) -> bool {
+        self.ray_budget > 0 || self.time_budget > 0.0
+    }
 }
 
 /// The estimator's WGSL (the estimator contract, docs/ARCHITECTURE.md): the shared rays and the
@@ -106,8 +146,8 @@ pub(crate) const WGSL: &str = concat!(
     include_str!("../../shaders/estimators/no_bent_normal.wgsl"),
 );
 
-/// Its `override` constant: the rays per pixel.
-pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT"];
+/// Its `override` constants: the rays per pixel; whether a ray budget grants them per pixel.
+pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "RAY_BUDGET"];
 
 /// GPU mirror of `HemisphereParams` in the WGSL.
 #[repr(C)]
@@ -124,17 +164,22 @@ pub const MODULE: super::EstimatorModule = super::EstimatorModule {
     wgsl: WGSL,
     constants: CONSTANTS,
     knobs: HemisphereSettings::KNOBS,
-    params: |section, _| params(&super::section(section)),
+    params: |section, inputs| params(&super::section(section), inputs.ray_budget),
     table: None,
 };
 
-/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`.
-pub(crate) fn params(s: &HemisphereSettings) -> (Vec<u8>, Vec<f64>) {
+/// The parameter block (group 1) and the values of [`CONSTANTS`] for `settings`; `ray_budget`:
+/// the AO pass reads each pixel's rays from the budget's grant (a budget asked for, with the
+/// temporal accumulation it needs running).
+pub(crate) fn params(s: &HemisphereSettings, ray_budget: bool) -> (Vec<u8>, Vec<f64>) {
     let params = HemisphereParams {
         radius: s.radius,
         thickness: s.thickness,
         falloff: u32::from(s.falloff),
         steps: s.steps,
     };
-    (bytemuck::bytes_of(&params).to_vec(), vec![f64::from(s.rays)])
+    (
+        bytemuck::bytes_of(&params).to_vec(),
+        vec![f64::from(s.rays), f64::from(u8::from(ray_budget))],
+    )
 }

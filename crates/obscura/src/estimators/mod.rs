@@ -90,6 +90,9 @@ pub struct SourceInputs {
     pub pyramid_levels: u32,
     /// The depth pyramid's factor K (`pyramid.factor`).
     pub pyramid_factor: u32,
+    /// A ray budget grants each pixel its rays this frame (the frame group's `FRAME_RAY_GRANT`,
+    /// from temporal accumulation's history: `AoSettings::ray_budget_active`).
+    pub ray_budget: bool,
 }
 
 impl SourceInputs {

@@ -3,6 +3,7 @@
 pub mod atrous;
 pub mod bilateral;
 pub mod half_resolution;
+pub mod ray_budget;
 pub mod temporal;
 
 use crate::frame::FrameInputs;

@@ -9,6 +9,7 @@
 
 use std::cell::Cell;
 
+use super::ray_budget::RayBudget;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::TemporalSettings;
@@ -73,17 +74,30 @@ pub struct TemporalAccumulation {
     previous: Cell<Option<FrameView>>,
     /// Frames since creation or the last reset; picks the history image and the pattern offset.
     frame: Cell<u32>,
+    /// `hemisphere.ray_budget`: which pixels cast rays this frame, from this history.
+    budget: Option<RayBudget>,
+}
+
+/// A ray budget for [`TemporalAccumulation::new`]: pixels cast `rays` rays when granted, at most
+/// `budget` a frame.
+#[derive(Clone, Copy, Debug)]
+pub struct BudgetRequest {
+    /// Rays a granted pixel casts (`hemisphere.rays`).
+    pub rays: u32,
+    /// Rays a frame, at most.
+    pub budget: u32,
 }
 
 impl TemporalAccumulation {
     /// The pass and its history images for a visible `width`×`height` AO image; `view` is the
-    /// frame's `View` uniform.
+    /// frame's `View` uniform; `budget`: the ray budget that reads this history, if any.
     pub fn new(
         device: &wgpu::Device,
         settings: &TemporalSettings,
         view: &wgpu::Buffer,
         width: u32,
         height: u32,
+        budget: Option<BudgetRequest>,
     ) -> Self {
         let source = shaders::with_common(
             &[shaders::VIEW, shaders::VERTEX_NORMAL],
@@ -124,6 +138,8 @@ impl TemporalAccumulation {
             settings: *settings,
             previous: Cell::new(None),
             frame: Cell::new(0),
+            budget: budget
+                .map(|b| RayBudget::new(device, &source, width, height, b.rays, b.budget)),
         }
     }
 
@@ -147,6 +163,45 @@ impl TemporalAccumulation {
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.previous.set(Some(*view));
         self.frame.set(self.frame.get().wrapping_add(1));
+        if let Some(budget) = &self.budget {
+            budget.set_frame(queue, self.frame.get());
+        }
+    }
+
+    /// The ray budget, if the hemisphere rows run under one.
+    pub fn ray_budget(&self) -> Option<&RayBudget> {
+        self.budget.as_ref()
+    }
+
+    /// Records the ray budget's passes for this frame (before the AO pass, which reads their
+    /// grants); nothing without a budget.
+    pub fn encode_budget(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &FrameInputs,
+        profiler: Option<&mut PassProfiler>,
+    ) {
+        let Some(budget) = &self.budget else {
+            return;
+        };
+        let parity = (self.frame.get() % 2) as usize;
+        budget.encode(
+            device,
+            encoder,
+            &[
+                (0, self.view.as_entire_binding()),
+                (1, self.params.as_entire_binding()),
+                (2, wgpu::BindingResource::TextureView(inputs.depth)),
+                (3, wgpu::BindingResource::TextureView(inputs.normals)),
+                (
+                    5,
+                    wgpu::BindingResource::TextureView(&self.history[1 - parity]),
+                ),
+            ],
+            (inputs.screen.width, inputs.screen.height),
+            profiler,
+        );
     }
 
     /// Forgets the history: the next frame starts the average afresh (a camera cut).

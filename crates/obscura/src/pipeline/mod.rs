@@ -20,7 +20,8 @@ use crate::filter::{
     atrous::Atrous,
     bilateral::BilateralBlur,
     half_resolution::HalfResolution,
-    temporal::{HistoryTexel, TemporalAccumulation},
+    ray_budget::RayBudgetReport,
+    temporal::{BudgetRequest, HistoryTexel, TemporalAccumulation},
     AoFilter,
 };
 use crate::frame::{check_float_texture, check_texture, FrameInputs};
@@ -72,6 +73,8 @@ pub struct AmbientOcclusion {
     raw: wgpu::Texture,
     /// `bent_normals`: the bent normals (visible size, `Rgba16Float`); 1×1 and unwritten otherwise.
     bent: wgpu::Texture,
+    /// The frame group's ray grant without a ray budget: 1×1, never read.
+    no_ray_grant: wgpu::Texture,
     filters: Vec<FilterStage>,
     /// `resolution = "half"`: the half frame and the passes around the technique.
     half: Option<HalfResolution>,
@@ -136,7 +139,9 @@ impl AmbientOcclusion {
             None => (screen, &view),
         };
         let frame_layout = bindings::frame_layout(device, true);
-        let (section, inputs) = settings.estimator_inputs();
+        let (section, mut inputs) = settings.estimator_inputs();
+        // The debug image runs no temporal accumulation, so no budget either: every ray.
+        inputs.ray_budget &= !estimator_debug;
         let estimator = EstimatorPass::new(
             device,
             &gpu.queue,
@@ -190,6 +195,10 @@ impl AmbientOcclusion {
                     work_view,
                     work.width,
                     work.height,
+                    inputs.ray_budget.then(|| BudgetRequest {
+                        rays: settings.hemisphere.rays,
+                        budget: initial_ray_budget(settings, &work),
+                    }),
                 )),
                 output: ao_texture("ao accumulated"),
             });
@@ -238,6 +247,14 @@ impl AmbientOcclusion {
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
             ),
+            no_ray_grant: crate::gpu::texture_2d(
+                device,
+                "no ray grant",
+                1,
+                1,
+                wgpu::TextureFormat::R32Uint,
+                wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
             filters,
             half,
             camera_set: std::cell::Cell::new(false),
@@ -285,6 +302,38 @@ impl AmbientOcclusion {
         if let Some(temporal) = self.temporal() {
             temporal.reset();
         }
+    }
+
+    /// Under a ray budget (`hemisphere.ray_budget` or `time_budget`, with temporal accumulation):
+    /// the rays a frame from the next frame on (frame loops with a time budget set it from the
+    /// GPU timings, [`crate::TimeBudget`]). An error without a budget.
+    pub fn set_ray_budget(&self, rays: u32) -> Result<(), Error> {
+        self.ray_budget()?.set_budget(rays);
+        Ok(())
+    }
+
+    /// Under a ray budget: what the last frame's selection granted (read back from the GPU).
+    pub fn read_ray_budget(&self) -> Result<RayBudgetReport, Error> {
+        Ok(self.ray_budget()?.read(&self.gpu)?)
+    }
+
+    /// Under a ray budget: the rays each visible pixel (of the working resolution) was granted
+    /// the last frame, row-major.
+    pub fn read_ray_grant(&self) -> Result<Vec<u32>, Error> {
+        let bytes = crate::gpu::read_texture_bytes(&self.gpu, self.ray_budget()?.grant_image(), 4)?;
+        Ok(bytemuck::cast_slice(&bytes).to_vec())
+    }
+
+    fn ray_budget(&self) -> Result<&crate::filter::ray_budget::RayBudget, Error> {
+        self.temporal()
+            .and_then(TemporalAccumulation::ray_budget)
+            .ok_or_else(|| {
+                Error::Input(
+                    "no ray budget: set hemisphere.ray_budget (--ray-budget) or \
+                     hemisphere.time_budget on a hemisphere row with temporal.enabled"
+                        .into(),
+                )
+            })
     }
 
     /// `temporal.enabled`: the history the last frame wrote, per visible pixel (at the working
@@ -410,13 +459,22 @@ impl AmbientOcclusion {
         let work = half_frame.as_ref().unwrap_or(&frame);
         let raw = self.raw.create_view(&Default::default());
         let bent = self.bent.create_view(&Default::default());
-        let frame_group = work.group(device, &self.frame_layout, &raw, &bent);
+        // The ray budget picks this frame's rays from the history before the AO pass casts them.
+        let budget = self.temporal().and_then(TemporalAccumulation::ray_budget);
+        if let Some(temporal) = self.temporal() {
+            temporal.encode_budget(device, encoder, work, profiler.as_deref_mut());
+        }
+        let ray_grant = budget
+            .map_or(&self.no_ray_grant, |b| b.grant_image())
+            .create_view(&Default::default());
+        let frame_group = work.group(device, &self.frame_layout, &raw, &bent, &ray_grant);
         let ctx = FrameContext {
             device,
             frame: work,
             frame_group: &frame_group,
             output: &raw,
             bent: &bent,
+            ray_grant: &ray_grant,
             estimator: &self.estimator,
             source: &self.source,
             gbuffer_z: gbuffer_z.filter(|_| self.half.is_none()),
@@ -672,6 +730,16 @@ impl AmbientOcclusion {
 /// `bent_normals` needs an estimator that reports them, on the single-pass schedule (the
 /// two-phase ones carry only three words per pixel between their phases), at full resolution:
 /// otherwise an error naming the techniques that can.
+/// The first frame's ray budget: `hemisphere.ray_budget`, or with only a time budget every ray
+/// the working image's pixels would cast (the time budget lowers it from the timings).
+fn initial_ray_budget(settings: &AoSettings, work: &ScreenGeometry) -> u32 {
+    match settings.hemisphere.ray_budget {
+        0 => (u64::from(work.width) * u64::from(work.height) * u64::from(settings.hemisphere.rays))
+            .min(u64::from(u32::MAX)) as u32,
+        n => n,
+    }
+}
+
 fn check_bent_normals(settings: &AoSettings) -> Result<(), Error> {
     let can = |row: &crate::technique::TechniqueRow| {
         row.estimator.bent_normals() && row.schedule == crate::technique::Schedule::Single

@@ -163,6 +163,7 @@ fn frame_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         entry::texture(bindings::FRAME_NORMALS),
         entry::storage_texture_r32f(bindings::FRAME_AO_OUT),
         entry::storage_texture_rgba16f(bindings::FRAME_BENT_OUT),
+        entry::texture_uint(bindings::FRAME_RAY_GRANT),
     ]
 }
 

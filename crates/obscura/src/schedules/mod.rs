@@ -181,6 +181,8 @@ pub(crate) struct FrameContext<'a> {
     /// group 0, as the multi-view one, bind them again).
     pub output: &'a wgpu::TextureView,
     pub bent: &'a wgpu::TextureView,
+    /// The rays per pixel of a ray budget `frame_group` reads (a 1×1 stand-in without one).
+    pub ray_grant: &'a wgpu::TextureView,
     pub estimator: &'a EstimatorPass,
     pub source: &'a SourcePass,
     /// The depth buffer `frame`'s first layer was rasterised into, where the caller drew the

@@ -255,9 +255,13 @@ impl Multiview {
             return self.main.encode(ctx, encoder, profiler);
         }
         // Pass 1 into the camera's own AO image.
-        let main_group = ctx
-            .frame
-            .group(device, &self.frame_layout, &self.main_ao, ctx.bent);
+        let main_group = ctx.frame.group(
+            device,
+            &self.frame_layout,
+            &self.main_ao,
+            ctx.bent,
+            ctx.ray_grant,
+        );
         let main_ctx = FrameContext {
             frame_group: &main_group,
             ..*ctx
@@ -281,7 +285,13 @@ impl Multiview {
             screen: self.second_screen,
             view: &self.second_view,
         };
-        let frame_group = second_frame.group(device, &self.frame_layout, ctx.output, ctx.bent);
+        let frame_group = second_frame.group(
+            device,
+            &self.frame_layout,
+            ctx.output,
+            ctx.bent,
+            ctx.ray_grant,
+        );
         let label = "multiview_second";
         let timestamp_writes = profiler.map(|p| p.compute_pass(label));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -39,8 +39,18 @@ impl AoSettings {
             compensation: sd.compensation,
             pyramid_levels: self.pyramid.levels,
             pyramid_factor: self.pyramid.factor,
+            ray_budget: self.ray_budget_active(),
         };
         (section, inputs)
+    }
+
+    /// Whether the hemisphere rows run under a ray budget: one asked for
+    /// (`hemisphere.ray_budget` or `hemisphere.time_budget`) on a hemisphere row with the
+    /// temporal accumulation it needs ([`Self::validate`] refuses a budget without it).
+    pub fn ray_budget_active(&self) -> bool {
+        self.technique.estimator() == crate::technique::Estimator::Hemisphere
+            && self.temporal.enabled
+            && self.hemisphere.budgeted()
     }
 
     /// Samples per pixel of the technique's estimator: its `SAMPLE_COUNT` constant, the bits of

@@ -38,6 +38,24 @@ impl AoSettings {
                 "must be at least 1 with slices × 2 × steps ≤ 32 (one bit per sample), e.g. 2",
             ));
         }
+        if self.technique.estimator() == Estimator::Hemisphere
+            && self.hemisphere.budgeted()
+            && !self.temporal.enabled
+        {
+            let (field, value) = match self.hemisphere.ray_budget {
+                0 => (
+                    "hemisphere.time_budget",
+                    self.hemisphere.time_budget.to_string(),
+                ),
+                n => ("hemisphere.ray_budget", n.to_string()),
+            };
+            return Err(invalid(
+                field,
+                value,
+                "needs temporal accumulation (a pixel granted no rays keeps its history): turn on \
+                 temporal.enabled (--temporal), or set it to 0",
+            ));
+        }
         let r = &self.ray_sd;
         if r.max_count < r.reservoir {
             return Err(invalid(

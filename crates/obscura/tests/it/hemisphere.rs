@@ -23,7 +23,7 @@ fn settings(technique: Technique, rays: u32, radius: f32) -> AoSettings {
 
 /// The GPU ground truth of `view` over `scene`: the hemisphere model, `spp` rays of radius
 /// `radius` (seed 0: frame 0's rays when `spp` equals the estimator's rays).
-fn hemisphere_truth(
+pub(crate) fn hemisphere_truth(
     gpu: &obscura::Gpu,
     scene: &Scene,
     view: obscura::view::FrameView,
@@ -58,7 +58,7 @@ fn unoccluded_plane_is_one_everywhere() {
 /// A floor (y = -1), a back wall (z = -6) and a box on the floor, seen by a camera at the origin
 /// looking down -Z: view space is world space shifted, so the estimator's rays (made about the
 /// view-space normal) are the ground truth's (made about the world normal).
-fn room() -> Scene {
+pub(crate) fn room() -> Scene {
     let v = Vec3::new;
     let floor = [
         v(-6.0, -1.0, 0.0),

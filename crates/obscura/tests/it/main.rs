@@ -31,6 +31,7 @@ mod pipeline;
 mod profiler;
 mod pyramid;
 mod radius_cap;
+mod ray_budget;
 mod ray_stochastic_depth;
 mod readme;
 mod reference;
