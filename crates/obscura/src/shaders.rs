@@ -11,6 +11,7 @@ pub const MATERIAL: &str = include_str!("../shaders/common/material.wgsl");
 pub const BVH: &str = include_str!("../shaders/common/bvh.wgsl");
 pub const HASH: &str = include_str!("../shaders/common/hash.wgsl");
 pub const HEMISPHERE: &str = include_str!("../shaders/common/hemisphere.wgsl");
+pub const VISIBILITY_VARIANCE: &str = include_str!("../shaders/common/visibility_variance.wgsl");
 pub const VERTEX_NORMAL: &str = include_str!("../shaders/common/vertex_normal.wgsl");
 
 pub const FRAME: &str = include_str!("../shaders/frame/frame.wgsl");

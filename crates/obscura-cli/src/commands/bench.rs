@@ -184,10 +184,19 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
             Renderer::with_bvh_cache(&gpu, &scene, &settings, width, height, guard_band, &bvh)?;
         let mut profiler = PassProfiler::new(&gpu, args.frames)?;
         let progress = bar(u64::from(args.warmup + args.frames), technique.name());
+        // Under a time budget the warm-up frames settle the ray budget; the timed frames keep it.
         for _ in 0..args.warmup {
-            renderer.render(&camera, None)?;
+            crate::args::render_frame(&gpu, &mut renderer, &camera)?;
             gpu.finish()?;
             progress.inc(1);
+        }
+        if let Some(ao) = renderer.ambient_occlusion() {
+            if let Ok(report) = ao.read_ray_budget() {
+                eprintln!(
+                    "{technique}: ray budget {} rays a frame ({} granted of {} wanted)",
+                    report.budget, report.granted, report.wanted
+                );
+            }
         }
         for k in 0..args.frames as usize {
             let camera = cameras[k % cameras.len()].1;

@@ -293,6 +293,15 @@ fn gpu_ms(
     if frames == 0 {
         return Ok(None);
     }
+    if renderer.settings().hemisphere.time_budget > 0.0 && renderer.settings().ray_budget_active() {
+        // A time budget follows each frame's timings: one profiler a frame.
+        let mut totals = Vec::new();
+        for _ in 0..frames {
+            let timings = crate::args::render_frame(gpu, renderer, camera)?.unwrap_or_default();
+            totals.push(obscura::TimeBudget::ao_ms(&timings));
+        }
+        return Ok(Some(super::bench::median(totals)));
+    }
     let mut profiler = match PassProfiler::new(gpu, frames) {
         Ok(p) => p,
         Err(e) => {
@@ -308,14 +317,8 @@ fn gpu_ms(
     let totals = profiler
         .read(gpu)?
         .iter()
-        .map(|frame| {
-            frame
-                .iter()
-                // The G-buffer's raster pass and its resolve.
-                .filter(|(pass, _)| !pass.starts_with("gbuffer"))
-                .map(|(_, ms)| ms)
-                .sum()
-        })
+        // Every pass but the G-buffer's raster pass and its resolve.
+        .map(obscura::TimeBudget::ao_ms)
         .collect();
     Ok(Some(super::bench::median(totals)))
 }

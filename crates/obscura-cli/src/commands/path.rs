@@ -168,7 +168,7 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
         let (mut renderer, settings) = job.renderer(gpu, technique)?;
         let mut images = Vec::with_capacity(samples.len());
         for (_, camera) in &samples {
-            renderer.render(camera, None)?;
+            crate::args::render_frame(gpu, &mut renderer, camera)?;
             images.push(renderer.read_ao()?);
             if gbuffers.len() < samples.len() {
                 gbuffers.push(renderer.read_gbuffer()?);

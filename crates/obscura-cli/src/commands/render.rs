@@ -37,16 +37,25 @@ pub struct RenderArgs {
     /// also its hits per ray (sd_hits.png). Always stats.json.
     #[arg(long, help = debug_out_help())]
     debug_out: Option<PathBuf>,
+    /// Frames rendered from the same camera, the last one written: with --temporal the image
+    /// after that many frames of accumulation (each frame turns the estimators' pattern; the
+    /// hemisphere rows draw new rays), with --ray-budget / --time-budget the budget's frames.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES))]
+    frames: u32,
 }
+
+/// `--frames` at most: still frames converge long before (temporal accumulation keeps 255).
+const MAX_FRAMES: i64 = 4096;
 
 pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     // Everything the user typed is checked before the (slow) scene load and GPU work.
     output::check_writable(&args.out)?;
     let settings = args.ao.settings(args.technique)?;
     if let Some(dir) = &args.debug_out {
-        if !args.technique.row().has_debug_output() {
+        if !args.technique.row().has_debug_output() && !settings.temporal.enabled {
             anyhow::bail!(
-                "--technique {} has no --debug-out images: use it with --technique {}",
+                "--technique {} has no --debug-out images: use it with --technique {} (or \
+                 with --temporal, for the history's images)",
                 args.technique,
                 technique_list(&debug_techniques())
             );
@@ -64,7 +73,9 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
     let gpu = obscura::Gpu::new(options)?;
     let mut renderer = Renderer::new(&gpu, &scene, &settings, width, height, guard_band)?;
-    renderer.render(&camera, None)?;
+    for _ in 0..args.frames {
+        crate::args::render_frame(&gpu, &mut renderer, &camera)?;
+    }
     let ao = renderer.read_ao()?;
     crate::args::warn_stack_overflows(&renderer)?;
     let gbuffer = renderer.read_gbuffer()?;
@@ -98,6 +109,9 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
         } else if row.schedule.two_phase() {
             let samples = settings.samples_per_pixel();
             write_debug(dir, &renderer, w, h, samples)?
+        }
+        if settings.temporal.enabled {
+            write_history_debug(dir, &renderer, &settings, (w, h), args.frames)?;
         }
         if let Some((name, what)) = row.estimator_debug_image() {
             let image = renderer
@@ -200,6 +214,77 @@ fn write_debug(
         dir.display()
     );
     Ok(())
+}
+
+/// Temporal accumulation's state after the last frame, at the working resolution:
+/// - `history.png`: frames in each pixel's history / `temporal.frames` (black: none);
+/// - hemisphere rows: `variance.png`, the standard error of each pixel's accumulated AO as the
+///   ray budget and the denoiser estimate it (√(a'(1 − a')/(m + 2)) for m = frames × rays,
+///   a' = (a m + 1)/(m + 2)), × 2 so that one ray's largest (0.5) is white;
+/// - under a ray budget: `rays.png`, the rays each pixel cast the last frame / `hemisphere.rays`;
+/// - `history.json`: the frames rendered, the mean history, and the budget's rays granted and
+///   wanted.
+fn write_history_debug(
+    dir: &std::path::Path,
+    renderer: &Renderer,
+    settings: &obscura::AoSettings,
+    (width, height): (u32, u32),
+    frames_rendered: u32,
+) -> Result<()> {
+    let ao = renderer
+        .ambient_occlusion()
+        .ok_or_else(|| anyhow::anyhow!("nothing rendered"))?;
+    let history = ao
+        .read_temporal_history()?
+        .ok_or_else(|| anyhow::anyhow!("no temporal history"))?;
+    let most = settings.temporal.frames.max(1) as f32;
+    let frames: Vec<f32> = history.iter().map(|t| t.frames as f32 / most).collect();
+    output::write_ao(&dir.join("history.png"), width, height, &frames)?;
+    let surface = history.iter().filter(|t| t.depth > 1e-6).count().max(1);
+    let mean_frames = history.iter().map(|t| f64::from(t.frames)).sum::<f64>() / surface as f64;
+    let mut stats = serde_json::json!({
+        "frames_rendered": frames_rendered,
+        "mean_history_frames": mean_frames,
+    });
+    let hemisphere = settings.technique.estimator() == obscura::technique::Estimator::Hemisphere;
+    if hemisphere {
+        let rays = f64::from(settings.hemisphere.rays);
+        let error: Vec<f32> = history
+            .iter()
+            .map(|t| match t.frames {
+                0 => 0.0,
+                n => 2.0 * visibility_std(f64::from(t.ao), f64::from(n) * rays) as f32,
+            })
+            .collect();
+        output::write_ao(&dir.join("variance.png"), width, height, &error)?;
+    }
+    if let Ok(report) = ao.read_ray_budget() {
+        let grant = ao.read_ray_grant()?;
+        let n = settings.hemisphere.rays.max(1) as f32;
+        let image: Vec<f32> = grant.iter().map(|&g| g as f32 / n).collect();
+        output::write_ao(&dir.join("rays.png"), width, height, &image)?;
+        stats["ray_budget"] = serde_json::json!(report.budget);
+        stats["rays_granted"] = serde_json::json!(report.granted);
+        stats["rays_wanted"] = serde_json::json!(report.wanted);
+        eprintln!(
+            "debug: ray budget {}: {} rays granted of {} wanted",
+            report.budget, report.granted, report.wanted
+        );
+    }
+    write_json(&dir.join("history.json"), &stats)?;
+    eprintln!(
+        "debug: mean history {mean_frames:.1} frames; wrote history.png{} in {}",
+        if hemisphere { ", variance.png" } else { "" },
+        dir.display()
+    );
+    Ok(())
+}
+
+/// The standard error of a mean of `rays` rays of visibility with mean `a`, with one free and
+/// one blocked ray of prior (shaders/common/visibility_variance.wgsl, mirrored here).
+fn visibility_std(a: f64, rays: f64) -> f64 {
+    let prior = (a * rays + 1.0) / (rays + 2.0);
+    (prior * (1.0 - prior) / (rays + 2.0)).sqrt()
 }
 
 /// Counts of a phase-1 sample bitmask image: (pixels with any flagged sample, flagged samples).

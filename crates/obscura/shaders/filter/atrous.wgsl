@@ -3,9 +3,12 @@
 // stops and the variance guidance of Schied et al., "Spatiotemporal Variance-Guided Filtering"
 // (HPG 2017, §4.4), for an image of one channel (AO) and its variance:
 // - `moments`: each pixel's AO and the variance of the AO over its 5×5 neighbours on the same
-//   surface (Schied et al. estimate it spatially where a pixel's history is short; here it is
-//   always spatial: over frames of temporal accumulation the accumulated AO grows smooth, its
-//   variance falls, and with it the filter's reach across AO differences);
+//   surface (Schied et al. estimate it spatially where a pixel's history is short). Behind
+//   temporal accumulation of hemisphere rays (RAYS > 0) a pixel's own variance is also known
+//   from its history: its mean over n frames of N rays of visibility varies by at most
+//   a(1 − a)/(nN) (common/visibility_variance.wgsl), and the smaller of the two is taken, so the
+//   filter's reach across AO differences falls as the history grows (issue 58: its strength
+//   falls with the history) while flat surfaces stay smoothed;
 // - `main`, then `main_last` for the last iteration: a 5×5 B3-spline kernel with taps
 //   `step` = 1, 2, 4, … pixels apart, each tap weighted by
 //     w_z = exp(−|(Q − P)·n_p| / (0.02 z_p))   (distance from the pixel's tangent plane,
@@ -30,6 +33,13 @@ struct AtrousParams {
 @group(0) @binding(4) var ao_in: texture_2d<f32>;
 @group(0) @binding(5) var moments_out: texture_storage_2d<rg32float, write>;
 @group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
+// Temporal accumulation's history this frame (temporal_accumulation.wgsl: the frame count n in
+// the low byte of x), read when RAYS > 0.
+@group(0) @binding(7) var history: texture_2d<u32>;
+
+// N, the hemisphere rays a pixel casts each frame, behind temporal accumulation; 0: no history
+// (spatial variance only).
+override RAYS: u32 = 0u;
 
 // B3 spline, 1/16 (1 4 6 4 1).
 const KERNEL = array<f32, 5>(0.0625, 0.25, 0.375, 0.25, 0.0625);
@@ -92,7 +102,14 @@ fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
         weight += w;
     }
     let mean = sum / weight;
-    textureStore(moments_out, p, vec4<f32>(a, max(mean.y - mean.x * mean.x, 0.0), 0.0, 0.0));
+    var variance = max(mean.y - mean.x * mean.x, 0.0);
+    if (RAYS > 0u) {
+        let frames = textureLoad(history, p, 0).x & 255u;
+        if (frames > 0u) {
+            variance = min(variance, visibility_variance(a, f32(frames * RAYS)));
+        }
+    }
+    textureStore(moments_out, p, vec4<f32>(a, variance, 0.0, 0.0));
 }
 
 // One iteration at pixel `p`: (AO, variance).
@@ -130,10 +147,28 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
+// The history's AO in 24-bit fixed point (temporal_accumulation.wgsl's AO_SCALE).
+const HISTORY_AO_SCALE: f32 = 16777215.0;
+
 @compute @workgroup_size(8, 8)
 fn main_last(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = vec2<i32>(id.xy);
-    if (inside(p)) {
-        textureStore(ao_out, p, vec4<f32>(filtered(p).x));
+    if (!inside(p)) {
+        return;
     }
+    var ao = filtered(p).x;
+    if (RAYS > 0u) {
+        // Behind temporal accumulation the filtered AO is blended with the accumulated one by
+        // 1/√n for n frames of history: the noise of a mean of n frames falls as 1/√n, and the
+        // filter's bias (occlusion spread along a surface) no longer does, so the longer the
+        // history the less of it is kept (measured: at 32 frames of 4 rays on stairs the full
+        // filter doubled the error against the ground truth).
+        let h = textureLoad(history, p, 0).x;
+        let frames = h & 255u;
+        if (frames > 0u) {
+            let accumulated = f32(h >> 8u) / HISTORY_AO_SCALE;
+            ao = mix(accumulated, ao, inverseSqrt(f32(frames)));
+        }
+    }
+    textureStore(ao_out, p, vec4<f32>(ao));
 }

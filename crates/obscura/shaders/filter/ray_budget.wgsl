@@ -3,12 +3,9 @@
 // temporal_accumulation.wgsl (its bindings and `read_history`, so a pixel's history is found by
 // the same reprojection the accumulation then uses):
 // - `priority`: each visible pixel's key, from its reprojected history (AO a, frames n): the
-//   variance of its running mean of n·N rays of visibility in [0, 1], at most a(1 − a)/(nN),
-//   taken with one free and one blocked ray of prior (a' = (a nN + 1)/(nN + 2), so that a pixel
-//   seen fully open or fully blocked after a few rays is not certain; Laplace's rule of
-//   succession), on a log scale in the key's high 10 bits; no history sorts first. Its low 6 bits
-//   are a hash of the pixel and frame, so pixels of equal priority are taken in a different order
-//   each frame. Every surface pixel's key is counted in a histogram of the 2^16 keys.
+//   variance of its running mean of n·N rays (common/visibility_variance.wgsl), on a log scale
+//   in the key's high 10 bits; no history sorts first. Its low 6 bits are a hash of the pixel
+//   and frame, so pixels of equal priority are taken in a different order each frame. Every surface pixel's key is counted in a histogram of the 2^16 keys.
 // - `threshold` (one workgroup): walks the histogram from the highest key down and finds the key
 //   T at which N rays for every pixel above would pass the budget: pixels above T get N rays,
 //   pixels at T share what is left (the same count each, at most N), pixels below get none, so
@@ -60,9 +57,7 @@ fn priority_level(a: f32, frames: f32) -> u32 {
     if (frames < 0.5) {
         return TOP_LEVEL;
     }
-    let m = frames * f32(budget.rays);
-    let a_prior = (a * m + 1.0) / (m + 2.0);
-    let variance = a_prior * (1.0 - a_prior) / (m + 2.0);
+    let variance = visibility_variance(a, frames * f32(budget.rays));
     let level = (log2(variance) - LOWEST_LOG2) * LEVELS_PER_OCTAVE;
     return 1u + u32(clamp(level, 0.0, f32(TOP_LEVEL - 2u)));
 }

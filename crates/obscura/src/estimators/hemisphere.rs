@@ -29,9 +29,9 @@ pub struct HemisphereSettings {
     /// history first, then the largest variance); 0: every pixel casts `rays` rays. Needs
     /// temporal accumulation (a pixel without rays keeps its history).
     pub ray_budget: u32,
-    /// Milliseconds a frame for the budget's passes and the AO pass: the frame loops (`view`,
-    /// `path`, `bench`) set the ray budget each frame from the last frame's GPU timings
-    /// ([`crate::TimeBudget`]); 0: off. Needs temporal accumulation and timestamp queries.
+    /// GPU milliseconds a frame after the G-buffer: the frame loops (`view`, `path`, `bench`'s
+    /// warm-up, `compare`) set the ray budget each frame from the last frame's GPU timings
+    /// (`TimeBudget`, filter/ray_budget.rs); 0: off. Needs temporal accumulation and timestamp queries.
     pub time_budget: f32,
 }
 
@@ -123,9 +123,15 @@ impl HemisphereSettings {
         )
         .units("ms")
         .doc(
-            "GPU milliseconds a frame for the ray budget's passes and the AO pass: frame loops \
-             set the ray budget from the last frame's timings (needs `temporal.enabled`)",
-        ),
+            "GPU milliseconds a frame after the G-buffer (the budget's passes, the sources, the \
+             AO pass, the filters): frame loops set the ray budget from the last frame's \
+             timings (needs `temporal.enabled`)",
+        )
+        .widget(Widget::Slider {
+            min: 0.0,
+            max: 4.0,
+            log: false,
+        }),
     ];
 
     /// Whether a ray budget or a time budget is asked for.

@@ -4,6 +4,7 @@
 //! at depth, normal and AO edges. Made for the noisy hemisphere rows (one ray a pixel): it reaches
 //! across a surface where the AO is noisy and less where it is already smooth (a long history).
 
+use super::FilterImages;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::DenoiseSettings;
@@ -27,27 +28,39 @@ pub struct Atrous {
     params: Vec<wgpu::Buffer>,
     view: wgpu::Buffer,
     images: [wgpu::TextureView; 2],
+    /// The history's stand-in where no temporal accumulation runs before (1×1, never read).
+    no_history: wgpu::TextureView,
 }
 
 impl Atrous {
     /// The pipelines and images for a visible `width`×`height` AO image; `view` is the frame's
     /// `View` uniform.
+    /// `history_rays`: behind temporal accumulation of hemisphere rays, the rays a pixel casts a
+    /// frame (its history then bounds its variance); `None` otherwise.
     pub fn new(
         device: &wgpu::Device,
         settings: &DenoiseSettings,
         view: &wgpu::Buffer,
         width: u32,
         height: u32,
+        history_rays: Option<u32>,
     ) -> Self {
-        let source = shaders::with_common(&[shaders::VIEW], shaders::ATROUS);
+        let source = shaders::with_common(
+            &[shaders::VIEW, shaders::VISIBILITY_VARIANCE],
+            shaders::ATROUS,
+        );
         let module = crate::gpu::shader_module(device, "atrous", &source);
+        let rays = [("RAYS", f64::from(history_rays.unwrap_or(0)))];
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: None,
                 module: &module,
                 entry_point: Some(entry),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &rays,
+                    ..Default::default()
+                },
                 cache: None,
             })
         };
@@ -82,6 +95,15 @@ impl Atrous {
             params,
             view: view.clone(),
             images: [image(), image()],
+            no_history: crate::gpu::texture_2d(
+                device,
+                "no history",
+                1,
+                1,
+                wgpu::TextureFormat::Rg32Uint,
+                wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default()),
         }
     }
 }
@@ -94,10 +116,14 @@ impl super::AoFilter for Atrous {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &FrameInputs,
-        input: &wgpu::TextureView,
-        output: &wgpu::TextureView,
+        images: FilterImages,
         mut profiler: Option<&mut PassProfiler>,
     ) {
+        let FilterImages {
+            input,
+            output,
+            history,
+        } = images;
         let (w, h) = (inputs.screen.width, inputs.screen.height);
         // (pipeline, its input, where it writes (binding 5 or 6), parameters, timing name)
         let mut passes = vec![(
@@ -116,28 +142,25 @@ impl super::AoFilter for Atrous {
             };
             passes.push((pipeline, read, target, params, "atrous"));
         }
+        let history = history.unwrap_or(&self.no_history);
         for (pipeline, read, (binding, target), params, name) in passes {
             let layout = pipeline.get_bind_group_layout(0);
-            let entries = [
+            let mut entries = vec![
                 (0, self.view.as_entire_binding()),
-                (1, params.as_entire_binding()),
                 (2, wgpu::BindingResource::TextureView(inputs.depth)),
                 (3, wgpu::BindingResource::TextureView(inputs.normals)),
                 (4, wgpu::BindingResource::TextureView(read)),
                 (binding, wgpu::BindingResource::TextureView(target)),
             ];
-            // The moments pass reads no parameters: its layout (made from what it uses) has no
-            // binding 1.
-            let entries: Vec<_> = entries
-                .into_iter()
-                .filter(|(b, _)| *b != 1 || name != "atrous_moments")
-                .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
-                .collect();
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(name),
-                layout: &layout,
-                entries: &entries,
-            });
+            // Each entry point's layout (made from what it uses): the moments pass and the last
+            // iteration read the history, the iterations the parameters.
+            if !std::ptr::eq(pipeline, &self.iterate) {
+                entries.push((7, wgpu::BindingResource::TextureView(history)));
+            }
+            if !std::ptr::eq(pipeline, &self.moments) {
+                entries.push((1, params.as_entire_binding()));
+            }
+            let group = crate::gpu::bind_group_at(device, name, &layout, &entries);
             let timestamp_writes = profiler.as_deref_mut().map(|p| p.compute_pass(name));
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(name),

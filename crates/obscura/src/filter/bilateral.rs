@@ -1,5 +1,6 @@
 //! Separable depth-aware bilateral blur (seed 000 §3.4, HBAO+ weights; `shaders/filter/bilateral_blur.wgsl`).
 
+use super::FilterImages;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::BlurSettings;
@@ -83,10 +84,14 @@ impl super::AoFilter for BilateralBlur {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &FrameInputs,
-        input: &wgpu::TextureView,
-        output: &wgpu::TextureView,
+        images: FilterImages,
         mut profiler: Option<&mut PassProfiler>,
     ) {
+        let FilterImages {
+            input,
+            output,
+            history: _,
+        } = images;
         let (w, h) = (inputs.screen.width, inputs.screen.height);
         // Workgroups: runs of 64 pixels along the direction × 8 lines across (bilateral_blur.wgsl).
         let steps = [

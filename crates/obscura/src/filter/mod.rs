@@ -9,18 +9,29 @@ pub mod temporal;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 
+/// What a filter reads and writes.
+#[derive(Clone, Copy)]
+pub struct FilterImages<'a> {
+    /// The previous image (`R32Float`, visible size).
+    pub input: &'a wgpu::TextureView,
+    /// Its own (`R32Float`, visible size).
+    pub output: &'a wgpu::TextureView,
+    /// Temporal accumulation's history as this frame wrote it (`Rg32Uint`,
+    /// [`temporal::HistoryTexel`]), for the filters after it.
+    pub history: Option<&'a wgpu::TextureView>,
+}
+
 /// A pass from one AO image to the next (`R32Float`, visible size), with the frame's inputs at
 /// hand (depth for edge-aware weights, the screen geometry).
 pub trait AoFilter {
-    /// Record the filter's passes from `input` to `output` (both `R32Float`, visible size), timed
-    /// by `profiler` when given.
+    /// Record the filter's passes from `images.input` to `images.output`, timed by `profiler`
+    /// when given.
     fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameInputs,
-        input: &wgpu::TextureView,
-        output: &wgpu::TextureView,
+        images: FilterImages,
         profiler: Option<&mut PassProfiler>,
     );
 

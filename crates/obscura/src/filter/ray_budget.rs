@@ -58,11 +58,13 @@ impl RayBudget {
         rays: u32,
         budget: u32,
     ) -> Self {
-        let source = format!(
-            "{}\n{temporal_source}\n{}",
+        let source = [
             shaders::HASH,
-            shaders::RAY_BUDGET
-        );
+            shaders::VISIBILITY_VARIANCE,
+            temporal_source,
+            shaders::RAY_BUDGET,
+        ]
+        .join("\n");
         let module = crate::gpu::shader_module(device, "ray budget", &source);
         let pipeline = |entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -248,7 +250,8 @@ impl TimeBudget {
 
     /// The next frame's ray budget after a frame of `budget` rays whose AO took `ms`.
     pub fn next(&self, budget: u32, ms: f64) -> u32 {
-        if !(ms > 0.0) || !(self.target_ms > 0.0) {
+        let positive = |x: f64| x > 0.0 && x.is_finite();
+        if !positive(ms) || !positive(self.target_ms) {
             return budget.clamp(1, self.max_rays.max(1));
         }
         let next = f64::from(budget.max(1)) * (self.target_ms / ms).sqrt();

@@ -10,6 +10,7 @@
 use std::cell::Cell;
 
 use super::ray_budget::RayBudget;
+use super::FilterImages;
 use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::TemporalSettings;
@@ -233,10 +234,14 @@ impl super::AoFilter for TemporalAccumulation {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &FrameInputs,
-        input: &wgpu::TextureView,
-        output: &wgpu::TextureView,
+        images: FilterImages,
         profiler: Option<&mut PassProfiler>,
     ) {
+        let FilterImages {
+            input,
+            output,
+            history: _,
+        } = images;
         let parity = (self.frame.get() % 2) as usize;
         let bind_group = crate::gpu::bind_group(
             device,

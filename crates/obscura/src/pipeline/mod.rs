@@ -22,7 +22,7 @@ use crate::filter::{
     half_resolution::HalfResolution,
     ray_budget::RayBudgetReport,
     temporal::{BudgetRequest, HistoryTexel, TemporalAccumulation},
-    AoFilter,
+    AoFilter, FilterImages,
 };
 use crate::frame::{check_float_texture, check_texture, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
@@ -212,6 +212,10 @@ impl AmbientOcclusion {
                     work_view,
                     work.width,
                     work.height,
+                    // Behind temporal accumulation of hemisphere rays: their count a frame.
+                    (settings.temporal.enabled
+                        && row.estimator == crate::technique::Estimator::Hemisphere)
+                        .then_some(settings.hemisphere.rays),
                 )),
                 output: ao_texture("ao denoised"),
             });
@@ -306,7 +310,7 @@ impl AmbientOcclusion {
 
     /// Under a ray budget (`hemisphere.ray_budget` or `time_budget`, with temporal accumulation):
     /// the rays a frame from the next frame on (frame loops with a time budget set it from the
-    /// GPU timings, [`crate::TimeBudget`]). An error without a budget.
+    /// GPU timings, [`crate::filter::ray_budget::TimeBudget`]). An error without a budget.
     pub fn set_ray_budget(&self, rays: u32) -> Result<(), Error> {
         self.ray_budget()?.set_budget(rays);
         Ok(())
@@ -322,6 +326,31 @@ impl AmbientOcclusion {
     pub fn read_ray_grant(&self) -> Result<Vec<u32>, Error> {
         let bytes = crate::gpu::read_texture_bytes(&self.gpu, self.ray_budget()?.grant_image(), 4)?;
         Ok(bytemuck::cast_slice(&bytes).to_vec())
+    }
+
+    /// With a time budget (`hemisphere.time_budget`): sets the next frame's ray budget from the
+    /// last frame's GPU `timings` ([`crate::filter::ray_budget::TimeBudget`]) and returns what that frame granted;
+    /// `None` without a time budget (nothing to follow). Frame loops call it after each timed
+    /// frame.
+    pub fn follow_time_budget(
+        &self,
+        timings: &crate::gpu::FrameTimings,
+    ) -> Result<Option<RayBudgetReport>, Error> {
+        let target = self.settings.hemisphere.time_budget;
+        if target.is_nan() || target <= 0.0 || !self.settings.ray_budget_active() {
+            return Ok(None);
+        }
+        let budget = self.ray_budget()?;
+        let report = budget.read(&self.gpu)?;
+        let controller = crate::filter::ray_budget::TimeBudget {
+            target_ms: f64::from(target),
+            max_rays: report.wanted,
+        };
+        budget.set_budget(controller.next(
+            report.budget,
+            crate::filter::ray_budget::TimeBudget::ao_ms(timings),
+        ));
+        Ok(Some(report))
     }
 
     fn ray_budget(&self) -> Result<&crate::filter::ray_budget::RayBudget, Error> {
@@ -482,16 +511,22 @@ impl AmbientOcclusion {
         self.schedule
             .encode(&ctx, encoder, profiler.as_deref_mut())?;
         let mut input = raw;
+        let mut history = None;
         for stage in &self.filters {
             let output = stage.output.create_view(&Default::default());
-            stage.filter.encode(
-                device,
-                encoder,
-                work,
-                &input,
-                &output,
-                profiler.as_deref_mut(),
-            );
+            let images = FilterImages {
+                input: &input,
+                output: &output,
+                history,
+            };
+            stage
+                .filter
+                .encode(device, encoder, work, images, profiler.as_deref_mut());
+            // The filters after temporal accumulation read the history it wrote.
+            history = history.or(stage
+                .filter
+                .as_temporal()
+                .map(TemporalAccumulation::history));
             input = output;
         }
         if let Some(half) = &self.half {

@@ -293,8 +293,8 @@ fn blur_sigma_is_a_natural_gaussian() {
 #[test]
 fn validation_names_fields_that_exist_and_no_flags() {
     let paths = AoSettings::field_paths();
-    // 85, and the test-only stub estimator's 2 (estimators/stub.rs).
-    assert_eq!(paths.len(), 85 + 2, "{paths:?}");
+    // 87, and the test-only stub estimator's 2 (estimators/stub.rs).
+    assert_eq!(paths.len(), 87 + 2, "{paths:?}");
     let mut broken: Vec<AoSettings> = Vec::new();
     let mut push = |f: &dyn Fn(&mut AoSettings)| {
         let mut s = AoSettings::default();
@@ -360,6 +360,11 @@ fn validation_names_fields_that_exist_and_no_flags() {
     push(&|s| s.gtao_vb.exponent = -1.0);
     push(&|s| s.gtao_vb.slices = 4);
     push(&|s| s.gtao_vb.steps = 9);
+    push(&|s| s.hemisphere.time_budget = -1.0);
+    push(&|s| {
+        s.technique = Technique::Rtao;
+        s.hemisphere.ray_budget = 1000;
+    });
     let mut reported = Vec::new();
     for s in &broken {
         match s.validate() {

@@ -53,7 +53,7 @@ impl AoSettings {
                 field,
                 value,
                 "needs temporal accumulation (a pixel granted no rays keeps its history): turn on \
-                 temporal.enabled (--temporal), or set it to 0",
+                 temporal.enabled, or set it to 0",
             ));
         }
         let r = &self.ray_sd;

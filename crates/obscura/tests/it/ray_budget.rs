@@ -3,7 +3,7 @@
 //! pixels without history first, then the least certain, and the accumulated image still
 //! converging to the ground truth.
 
-use super::hemisphere::{hemisphere_truth, room};
+use super::hemisphere::{hemisphere_truth, mean_abs_difference, room};
 use crate::common::*;
 use glam::Vec3;
 use obscura::settings::AoSettings;
@@ -160,13 +160,7 @@ fn the_budget_goes_where_the_variance_is_and_the_image_still_converges() {
         r.render(&eye(), None).unwrap();
     }
     let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 256, 1.0);
-    let mae = |ao: &[f32]| {
-        ao.iter()
-            .zip(&truth)
-            .map(|(a, b)| f64::from((a - b).abs()))
-            .sum::<f64>()
-            / truth.len() as f64
-    };
+    let mae = |ao: &[f32]| mean_abs_difference(ao, &truth);
     let (with_budget, spread) = (mae(&last.ao), mae(&r.read_ao().unwrap()));
     eprintln!("MAE after 48 budgeted frames {with_budget}, 12 even frames {spread}");
     assert!(

@@ -478,6 +478,23 @@ impl ViewerApp {
                 ui.small("one frame in 30 is timed");
             }
         }
+        let budgets = self.frame.as_ref().map_or(&[][..], |f| &f.budgets[..]);
+        for (i, report) in budgets.iter().enumerate() {
+            let Some(r) = report else { continue };
+            ui.separator();
+            ui.heading(if i == 0 {
+                "ray budget"
+            } else {
+                "ray budget (B)"
+            });
+            ui.label(format!("budget {} rays a frame", r.budget));
+            ui.label(format!(
+                "spent {} of {} wanted ({:.0} %)",
+                r.granted,
+                r.wanted,
+                100.0 * f64::from(r.granted) / f64::from(r.wanted.max(1))
+            ));
+        }
     }
 
     fn help(&mut self, ctx: &egui::Context) {

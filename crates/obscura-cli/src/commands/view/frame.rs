@@ -110,6 +110,8 @@ pub struct Frame {
     pub camera: Camera,
     /// `None`: the adapter has no timestamp queries.
     pub timings: Option<PaneTimings>,
+    /// Per pane (A, then B), under a ray budget: what the last frame granted.
+    pub budgets: Vec<Option<obscura::RayBudgetReport>>,
     /// Why the last debug view could not be shown (it shows the AO instead).
     pub view_note: Option<String>,
 }
@@ -163,6 +165,7 @@ impl Frame {
             display,
             camera,
             timings,
+            budgets: Vec::new(),
             view_note: None,
         }
     }
@@ -207,24 +210,39 @@ impl Frame {
         self.camera = *camera;
         let profile = profile && self.timings.is_some();
         let mut timings = Vec::new();
+        self.budgets.clear();
         for pane in std::iter::once(&mut self.a).chain(self.b.as_mut()) {
             let Some(renderer) = pane.renderer.as_mut() else {
                 continue;
             };
-            let mut profiler = if profile {
-                Some(PassProfiler::new(&self.gpu, 1)?)
+            // A time budget follows every frame's timings.
+            let follow = renderer.settings().hemisphere.time_budget > 0.0
+                && renderer.settings().ray_budget_active();
+            let rendered = if profile && !follow {
+                let mut profiler = PassProfiler::new(&self.gpu, 1)?;
+                renderer
+                    .render(camera, Some(&mut profiler))
+                    .map_err(anyhow::Error::from)
+                    .and_then(|()| Ok(Some(profiler.read(&self.gpu)?.pop().unwrap_or_default())))
             } else {
-                None
+                crate::args::render_frame(&self.gpu, renderer, camera)
             };
-            if let Err(e) = renderer.render(camera, profiler.as_mut()) {
-                // Keep the window alive: say why in the panel, show nothing for this pane.
-                pane.error = Some(format!("{:#}", crate::args::for_user(e.into())));
-                pane.renderer = None;
-                continue;
+            match rendered {
+                Ok(frame_timings) => {
+                    if profile {
+                        timings.push(frame_timings.unwrap_or_default());
+                    }
+                }
+                Err(e) => {
+                    // Keep the window alive: say why in the panel, show nothing for this pane.
+                    pane.error = Some(format!("{:#}", crate::args::for_user(e)));
+                    pane.renderer = None;
+                    continue;
+                }
             }
-            if let Some(p) = profiler {
-                timings.push(p.read(&self.gpu)?.pop().unwrap_or_default());
-            }
+            let ao = renderer.ambient_occlusion();
+            self.budgets
+                .push(ao.and_then(|ao| ao.read_ray_budget().ok()));
         }
         if profile {
             self.timings = Some(timings);
