@@ -103,11 +103,19 @@ pub struct SceneArgs {
             .map(|s| s.parse::<Normals>().expect("a listed value"))
     )]
     pub normals: Normals,
+    /// Let the scene file read the files it refers to (glTF buffers and images, OBJ material
+    /// libraries and textures) outside its own folder. Off by default, so that a scene from
+    /// elsewhere reads nothing but what came with it.
+    #[arg(long)]
+    pub allow_outside_files: bool,
 }
 
 impl SceneArgs {
     pub fn load(&self) -> Result<Scene> {
-        let mut scene = scene::load(&self.scene)?;
+        let options = scene::LoadOptions {
+            allow_outside_files: self.allow_outside_files,
+        };
+        let mut scene = scene::load_with(&self.scene, &options)?;
         scene.set_sidedness(self.sidedness());
         scene.set_normals(self.normals);
         Ok(scene)

@@ -12,6 +12,9 @@ pub use types::*;
 
 mod camera;
 mod error;
+mod files;
+#[cfg(test)]
+mod files_tests;
 mod gltf_loader;
 mod obj_loader;
 mod path;
@@ -25,6 +28,7 @@ mod real_scenes_tests;
 use std::path::{Path, PathBuf};
 
 pub use error::{CameraError, ExtentError, SceneError, MAX_EXTENT};
+pub use files::LoadOptions;
 pub use path::{CameraPath, Interpolation, Keyframe, PathError};
 pub use procedural::{builtin, builtin_names, layers_with_shells};
 pub use texture::MAX_TEXTURE_SIZE;
@@ -47,6 +51,12 @@ pub use texture::MAX_TEXTURE_SIZE;
 /// # Ok::<(), obscura::scene::SceneError>(())
 /// ```
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    load_with(spec, &LoadOptions::default())
+}
+
+/// [`load`] with `options`: whether the files a scene file refers to (glTF buffers and images,
+/// OBJ material libraries and textures) may lie outside its folder.
+pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError> {
     if builtin_names().contains(&spec) {
         return builtin(spec);
     }
@@ -55,8 +65,8 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let mut scene = match ext.as_deref() {
-        Some("gltf") | Some("glb") => gltf_loader::load(path)?,
-        Some("obj") => obj_loader::load(path)?,
+        Some("gltf") | Some("glb") => gltf_loader::load(path, options)?,
+        Some("obj") => obj_loader::load(path, options)?,
         // No extension and no such file: most likely a mistyped built-in name.
         None if !path.exists() => {
             return Err(SceneError::UnknownScene {
@@ -77,8 +87,18 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
     Ok(scene)
 }
 
-/// Reads a whole file, telling "does not exist" apart from other I/O failures.
+/// Reads a whole file, telling "does not exist" apart from other I/O failures. Only a regular file
+/// (or a folder, which fails to read) is opened: a FIFO would block until a writer comes, a device
+/// such as `/dev/zero` never ends.
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, SceneError> {
+    if let Ok(m) = std::fs::metadata(path) {
+        if !m.is_file() && !m.is_dir() {
+            return Err(SceneError::Io {
+                path: path.to_path_buf(),
+                source: std::io::Error::other("not a regular file (a FIFO, device or socket)"),
+            });
+        }
+    }
     std::fs::read(path).map_err(|source| {
         if source.kind() == std::io::ErrorKind::NotFound {
             SceneError::NotFound {
