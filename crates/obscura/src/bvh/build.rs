@@ -202,10 +202,11 @@ fn spread_bits(v: u32) -> u64 {
 /// removes at least 1/32 of the clusters: O(log n) iterations of O(n) work each.
 fn ploc(aabbs: &[Aabb]) -> (Bvh2, bool) {
     let n = aabbs.len();
-    let (lo, hi) = aabbs.iter().fold(
-        (Vec3A::INFINITY, Vec3A::NEG_INFINITY),
-        |(lo, hi), b| (lo.min(b.center()), hi.max(b.center())),
-    );
+    let (lo, hi) = aabbs
+        .iter()
+        .fold((Vec3A::INFINITY, Vec3A::NEG_INFINITY), |(lo, hi), b| {
+            (lo.min(b.center()), hi.max(b.center()))
+        });
     const GRID: f32 = ((1u32 << 21) - 1) as f32;
     let scale = GRID / (hi - lo).max(Vec3A::splat(f32::MIN_POSITIVE));
     // (code, index): the index breaks ties, so the order (and the tree) does not depend on the
@@ -215,8 +216,9 @@ fn ploc(aabbs: &[Aabb]) -> (Bvh2, bool) {
         .enumerate()
         .map(|(i, b)| {
             let q = ((b.center() - lo) * scale).clamp(Vec3A::ZERO, Vec3A::splat(GRID));
-            let code =
-                spread_bits(q.x as u32) | spread_bits(q.y as u32) << 1 | spread_bits(q.z as u32) << 2;
+            let code = spread_bits(q.x as u32)
+                | spread_bits(q.y as u32) << 1
+                | spread_bits(q.z as u32) << 2;
             (code, i as u32)
         })
         .collect();
@@ -238,20 +240,23 @@ fn ploc(aabbs: &[Aabb]) -> (Bvh2, bool) {
     let mut forced = false;
     while current.len() > 1 {
         let count = current.len();
-        best[..count].par_iter_mut().enumerate().for_each(|(i, out)| {
-            let a = current[i].aabb();
-            let mut pick = (f32::INFINITY, usize::MAX, true, i);
-            for j in i.saturating_sub(PLOC_WINDOW)..(i + PLOC_WINDOW + 1).min(count) {
-                if j != i {
-                    let area = a.union(current[j].aabb()).half_area();
-                    let key = (area, i.abs_diff(j), j != (i ^ 1), j);
-                    if (key.0, key.1, key.2) < (pick.0, pick.1, pick.2) {
-                        pick = key;
+        best[..count]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(i, out)| {
+                let a = current[i].aabb();
+                let mut pick = (f32::INFINITY, usize::MAX, true, i);
+                for j in i.saturating_sub(PLOC_WINDOW)..(i + PLOC_WINDOW + 1).min(count) {
+                    if j != i {
+                        let area = a.union(current[j].aabb()).half_area();
+                        let key = (area, i.abs_diff(j), j != (i ^ 1), j);
+                        if (key.0, key.1, key.2) < (pick.0, pick.1, pick.2) {
+                            pick = key;
+                        }
                     }
                 }
-            }
-            *out = pick.3 as u32;
-        });
+                *out = pick.3 as u32;
+            });
         let mutual = |i: usize| best[best[i] as usize] as usize == i;
         let stalled = (0..count).filter(|&i| mutual(i)).count() * 16 < count;
         // A few clusters left over at the end are no sign of a degenerate input.
