@@ -79,12 +79,54 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
             })
         }
     };
+    if scene.origin != glam::DVec3::ZERO {
+        log::warn!(
+            "scene '{}' lies {:.3e} units from its file's origin, far for its size: its \
+             coordinates are re-centred on ({}, {}, {}) to keep their precision; --eye and \
+             --target are still read in the file's coordinates",
+            scene.name,
+            scene.origin.length(),
+            scene.origin.x,
+            scene.origin.y,
+            scene.origin.z
+        );
+    }
     // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
     if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
         scene.normals.clear();
     }
     scene.validate()?;
     Ok(scene)
+}
+
+/// How far from its file's origin, in its own sizes, a scene may lie before it is re-centred: 32-bit
+/// floats hold about 7 digits, so at 10^4 sizes away a vertex keeps about 1/1700 of the scene's
+/// size (issue 62, defect 4: a 5 m scene 10^7 m away kept nothing).
+const FAR_IN_SIZES: f64 = 1e4;
+/// How far from its file's origin, in world units, a scene may lie before it is re-centred,
+/// whatever its size (at 10^5 a 32-bit float keeps 1/128 of a unit).
+const FAR_ABSOLUTE: f64 = 1e5;
+
+/// The origin a scene of vertices `points` (the file's coordinates, f64) is re-centred on: the
+/// centre of their bounds where it lies farther from the file's origin than [`FAR_ABSOLUTE`] or
+/// [`FAR_IN_SIZES`] times their extent; zero (no change) otherwise and for no or non-finite
+/// points.
+pub(crate) fn far_origin(points: impl Iterator<Item = glam::DVec3>) -> glam::DVec3 {
+    use glam::DVec3;
+    let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return DVec3::ZERO;
+    }
+    let centre = (lo + hi) * 0.5;
+    let distance = centre.abs().max_element();
+    let extent = (hi - lo).max_element();
+    if distance > FAR_ABSOLUTE || distance > FAR_IN_SIZES * extent {
+        centre
+    } else {
+        DVec3::ZERO
+    }
 }
 
 /// Reads a whole file, telling "does not exist" apart from other I/O failures. Only a regular file

@@ -122,7 +122,16 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
         scene,
     };
     loader.traverse()?;
-    Ok(loader.scene)
+    let mut scene = loader.scene;
+    scene.recentre();
+    scene.cameras.retain(|c| match c.camera.validate() {
+        Ok(()) => true,
+        Err(e) => {
+            log::warn!("{}: camera '{}' skipped: {e}", path.display(), c.name);
+            false
+        }
+    });
+    Ok(scene)
 }
 
 struct Loader<'a> {
@@ -366,13 +375,12 @@ impl Loader<'_> {
             fov_y_deg: perspective.yfov.to_degrees(),
         };
         let fov_y_deg = camera.fov_y_deg;
-        match camera.validate() {
-            Ok(()) => self.scene.cameras.push(NamedCamera {
-                name: name.clone(),
-                camera,
-            }),
-            Err(e) => log::warn!("{}: camera '{name}' skipped: {e}", self.path.display()),
-        }
+        // Validated once the scene is re-centred (`from_bytes`): far from the origin, f32 may
+        // not tell its eye from its target before.
+        self.scene.cameras.push(NamedCamera {
+            name: name.clone(),
+            camera,
+        });
         match camera_path::camera_path(self.doc, self.buffers, node, parent, &name, fov_y_deg) {
             Some(Ok(path)) => self.scene.paths.push(path),
             Some(Err(e)) => log::warn!(

@@ -148,9 +148,9 @@ fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, Str
         let alpha = if masked {
             1.0
         } else {
-            m.dissolve.unwrap_or(1.0)
+            m.dissolve.map_or(1.0, |d| d as f32)
         };
-        let [r, g, b] = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
+        let [r, g, b] = m.diffuse.map_or([0.8, 0.8, 0.8], |c| c.map(|x| x as f32));
         scene.materials.push(Material {
             name: m.name.clone(),
             base_color: [r, g, b, alpha],
@@ -170,6 +170,15 @@ fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, Str
     }
     let default_material = scene.materials.len() as u32;
     let mut used_default = false;
+    // Positions are parsed as f64 (tobj's `use_f64`): a scene far from its origin for its size
+    // is re-centred here, before its coordinates become f32 and lose its detail.
+    let origin = super::far_origin(
+        models
+            .iter()
+            .flat_map(|m| m.mesh.positions.chunks_exact(3))
+            .map(|p| glam::DVec3::new(p[0], p[1], p[2])),
+    );
+    scene.origin = origin;
 
     for model in &models {
         let mesh = &model.mesh;
@@ -194,15 +203,15 @@ fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, Str
         scene.positions.extend(
             mesh.positions
                 .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2])),
+                .map(|p| (glam::DVec3::new(p[0], p[1], p[2]) - origin).as_vec3()),
         );
         // Vertex normals (`vn`), where every vertex of the object has one (as for uvs below).
         if mesh.normals.len() == 3 * n {
-            scene.normals.extend(
-                mesh.normals
-                    .chunks_exact(3)
-                    .map(|v| Vec3::new(v[0], v[1], v[2]).normalize_or_zero()),
-            );
+            scene.normals.extend(mesh.normals.chunks_exact(3).map(|v| {
+                glam::DVec3::new(v[0], v[1], v[2])
+                    .as_vec3()
+                    .normalize_or_zero()
+            }));
         } else {
             scene.normals.extend(std::iter::repeat_n(Vec3::ZERO, n));
         }
@@ -212,7 +221,7 @@ fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, Str
             scene.uvs.extend(
                 mesh.texcoords
                     .chunks_exact(2)
-                    .map(|t| Vec2::new(t[0], 1.0 - t[1])),
+                    .map(|t| Vec2::new(t[0] as f32, 1.0 - t[1] as f32)),
             );
         } else {
             if !mesh.texcoords.is_empty() {
