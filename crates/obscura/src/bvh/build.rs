@@ -246,9 +246,11 @@ fn ploc(aabbs: &[Aabb]) -> (Bvh2, bool) {
             .for_each(|(i, out)| {
                 let a = current[i].aabb();
                 let mut pick = (f32::INFINITY, usize::MAX, true, i);
-                for j in i.saturating_sub(PLOC_WINDOW)..(i + PLOC_WINDOW + 1).min(count) {
+                let lo = i.saturating_sub(PLOC_WINDOW);
+                let window = &current[lo..(i + PLOC_WINDOW + 1).min(count)];
+                for (j, other) in (lo..).zip(window) {
                     if j != i {
-                        let area = a.union(current[j].aabb()).half_area();
+                        let area = a.union(other.aabb()).half_area();
                         let key = (area, i.abs_diff(j), j != (i ^ 1), j);
                         if (key.0, key.1, key.2) < (pick.0, pick.1, pick.2) {
                             pick = key;

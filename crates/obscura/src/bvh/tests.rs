@@ -752,7 +752,7 @@ fn assert_layout_consistent(scene: &Scene, bvh: &Bvh) {
             for slot in n.first..n.first + n.count {
                 let id = bvh.primitive_indices()[slot as usize];
                 seen[id as usize] += 1;
-                for p in triangle_vertices(&scene, id as usize).unwrap() {
+                for p in triangle_vertices(scene, id as usize).unwrap() {
                     assert!(Vec3::from(p).cmpge(lo).all() && Vec3::from(p).cmple(hi).all());
                 }
             }
@@ -769,7 +769,7 @@ fn assert_layout_consistent(scene: &Scene, bvh: &Bvh) {
     }
     assert_eq!(max_depth, bvh.max_depth());
     for (i, &count) in seen.iter().enumerate() {
-        let valid = triangle_vertices(&scene, i).is_some_and(|p| is_valid_triangle(&p));
+        let valid = triangle_vertices(scene, i).is_some_and(|p| is_valid_triangle(&p));
         assert_eq!(count, u32::from(valid), "triangle {i}");
     }
 }
