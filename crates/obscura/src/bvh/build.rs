@@ -194,8 +194,9 @@ fn spread_bits(v: u32) -> u64 {
 /// position in `aabbs`, children after their parents), and whether some iteration had to force
 /// pairs (the input is degenerate: see the module doc).
 ///
-/// Each iteration every cluster picks the neighbour within [`PLOC_WINDOW`] (Morton order) whose
-/// union with it has the least surface area; mutual picks merge. Ties, which coincident and nested
+/// Each iteration every cluster picks the neighbour within [`PLOC_WINDOW`] (Morton order; the
+/// next neighbours only in the first iterations) whose union with it has the least surface area;
+/// mutual picks merge. Ties, which coincident and nested
 /// boxes make common, go to the nearer neighbour and then to the aligned pair (2k, 2k + 1): with
 /// obvhs's rule (the last of the tied) picks are rarely mutual. An iteration that merges fewer than
 /// 1/16 of the clusters also merges each run of unmerged neighbours pairwise, so every iteration
@@ -238,16 +239,25 @@ fn ploc(aabbs: &[Aabb]) -> (Bvh2, bool) {
     // Pairs are written from the back, so children always come after their parent.
     let mut insert = 2 * n - 1;
     let mut forced = false;
+    let mut iteration = 0;
     while current.len() > 1 {
         let count = current.len();
+        // The first iterations, over the most clusters, look at the next neighbours only, as
+        // obvhs's do (its `search_depth_threshold`): most clusters there pair with one anyway.
+        let reach = if iteration < PARAMS.search_depth_threshold {
+            1
+        } else {
+            PLOC_WINDOW
+        };
+        iteration += 1;
         best[..count]
             .par_iter_mut()
             .enumerate()
             .for_each(|(i, out)| {
                 let a = current[i].aabb();
                 let mut pick = (f32::INFINITY, usize::MAX, true, i);
-                let lo = i.saturating_sub(PLOC_WINDOW);
-                let window = &current[lo..(i + PLOC_WINDOW + 1).min(count)];
+                let lo = i.saturating_sub(reach);
+                let window = &current[lo..(i + reach + 1).min(count)];
                 for (j, other) in (lo..).zip(window) {
                     if j != i {
                         let area = a.union(other.aabb()).half_area();

@@ -1148,7 +1148,7 @@ fn degenerate_inputs_stay_within_the_depth_bound() {
 /// Issue 62, defect 1: obvhs's clustering stalled on these inputs, time quadratic in the triangle
 /// count (on the 2-core development machine, 20,000 copies of one triangle took 25 s and a fan of
 /// 40,000 took 11.7 s; 10^5 of either would take minutes). Measured on that machine in release:
-/// 0.12 s for each build of 10^5 below; the bound leaves ~10× for slower or busier machines.
+/// 0.1 s for each build of 10^5 below; the bound leaves ~15× for slower or busier machines.
 #[test]
 fn fans_and_duplicates_build_in_n_log_n() {
     let n = 100_000;
