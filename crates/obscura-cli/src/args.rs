@@ -5,7 +5,7 @@ use crate::setting_flags::{named, SettingFlags};
 use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{AoSettings, Preset, SettingsError};
 use obscura::Technique;
@@ -35,20 +35,27 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 /// `x,y,z` of finite numbers.
 pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    parse_dvec3(s).map(|v| v.as_vec3())
+}
+
+/// [`parse_vec3`] in f64: a point given in a scene file's coordinates, which may lie too far from
+/// its origin for f32 to hold (the scene is then re-centred: `Scene::from_file_point`).
+pub fn parse_dvec3(s: &str) -> Result<DVec3, String> {
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != 3 {
         return Err(format!("'{s}' is not x,y,z (e.g. 0,1.5,4)"));
     }
-    let mut v = [0.0f32; 3];
+    let mut v = [0.0f64; 3];
     for (slot, p) in v.iter_mut().zip(&parts) {
+        // Finite in f32 too: every point ends up in f32.
         *slot = p
             .trim()
-            .parse::<f32>()
+            .parse::<f64>()
             .ok()
-            .filter(|x| x.is_finite())
+            .filter(|x| x.is_finite() && (*x as f32).is_finite())
             .ok_or_else(|| format!("'{p}' in '{s}' is not a finite number"))?;
     }
-    Ok(Vec3::from_array(v))
+    Ok(DVec3::from_array(v))
 }
 
 pub fn parse_technique(s: &str) -> Result<Technique, String> {
@@ -73,12 +80,12 @@ pub struct SceneArgs {
     /// A named camera of the scene (default: its first, the close-up).
     #[arg(long, conflicts_with_all = ["eye", "target"])]
     pub camera: Option<String>,
-    /// Camera position x,y,z (with --target).
-    #[arg(long, value_parser = parse_vec3, requires = "target", allow_hyphen_values = true)]
-    pub eye: Option<Vec3>,
-    /// Point looked at x,y,z (with --eye).
-    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
-    pub target: Option<Vec3>,
+    /// Camera position x,y,z (with --target), in the scene file's coordinates.
+    #[arg(long, value_parser = parse_dvec3, requires = "target", allow_hyphen_values = true)]
+    pub eye: Option<DVec3>,
+    /// Point looked at x,y,z (with --eye), in the scene file's coordinates.
+    #[arg(long, value_parser = parse_dvec3, requires = "eye", allow_hyphen_values = true)]
+    pub target: Option<DVec3>,
     /// The image's up direction x,y,z (with --eye; default +Y, or ∓Z looking straight down or
     /// up): 0,0,1 for a scene modelled Z up, as CAD and 3ds Max exports are.
     #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
@@ -103,11 +110,19 @@ pub struct SceneArgs {
             .map(|s| s.parse::<Normals>().expect("a listed value"))
     )]
     pub normals: Normals,
+    /// Let the scene file read the files it refers to (glTF buffers and images, OBJ material
+    /// libraries and textures) outside its own folder. Off by default, so that a scene from
+    /// elsewhere reads nothing but what came with it.
+    #[arg(long)]
+    pub allow_outside_files: bool,
 }
 
 impl SceneArgs {
     pub fn load(&self) -> Result<Scene> {
-        let mut scene = scene::load(&self.scene)?;
+        let options = scene::LoadOptions {
+            allow_outside_files: self.allow_outside_files,
+        };
+        let mut scene = scene::load_with(&self.scene, &options)?;
         scene.set_sidedness(self.sidedness());
         scene.set_normals(self.normals);
         Ok(scene)
@@ -141,6 +156,8 @@ impl SceneArgs {
         let mut camera = match (&self.camera, self.eye, self.target) {
             (Some(name), _, _) => scene.camera(name)?,
             (None, Some(eye), Some(target)) => {
+                // The file's coordinates: a scene far from its origin was re-centred on load.
+                let (eye, target) = (scene.from_file_point(eye), scene.from_file_point(target));
                 let mut camera = Camera::new(eye, target, self.fov.unwrap_or(60.0))?;
                 camera.up = self.up.unwrap_or(camera.up);
                 camera

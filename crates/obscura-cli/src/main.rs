@@ -85,7 +85,8 @@ fn main() -> ExitCode {
         env_logger::Env::default().default_filter_or("warn,eframe::native::run=off"),
     )
     .init();
-    // Ctrl-C: remove any output still being written, so nothing half-written is left behind.
+    // Ctrl-C, SIGTERM and SIGHUP (ctrlc's "termination" feature): remove any output still being
+    // written, so nothing half-written is left behind.
     let _ = ctrlc::set_handler(|| {
         obscura::output::remove_partial_files();
         eprintln!("\ninterrupted");

@@ -73,32 +73,105 @@ pub fn remove_partial_files() {
     }
 }
 
-/// Write through `write` into a temporary file beside `path`, then rename it over `path`.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), String>,
-) -> Result<(), Error> {
-    let dir = parent_dir(path);
+/// The `attempt`-th name [`write_atomically`] tries for its temporary file beside `path`: hidden,
+/// the process id (concurrent runs do not collide), a counter after the first, and the real
+/// extension last (encoders pick the format from it).
+pub fn partial_file_name(path: &Path, attempt: u32) -> PathBuf {
     let name = path
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or("output");
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("tmp");
-    // Keep the real extension last: encoders pick the format from it.
-    let tmp = dir.join(format!(".{name}.{}.partial.{ext}", std::process::id()));
+    let pid = std::process::id();
+    parent_dir(path).join(match attempt {
+        0 => format!(".{name}.{pid}.partial.{ext}"),
+        k => format!(".{name}.{pid}.{k}.partial.{ext}"),
+    })
+}
+
+/// How many names [`write_atomically`] tries before giving up.
+const PARTIAL_ATTEMPTS: u32 = 100;
+
+/// The identity of a file (device and inode on Unix), to tell whether the name still holds the
+/// file we created.
+#[cfg(unix)]
+fn identity(m: &std::fs::Metadata) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    Some((m.dev(), m.ino()))
+}
+
+#[cfg(not(unix))]
+fn identity(_: &std::fs::Metadata) -> Option<(u64, u64)> {
+    None
+}
+
+/// Write through `write` into a temporary file beside `path`, then rename it over `path`.
+///
+/// The temporary file is created here, exclusively (issue 62, defect 3): its name is predictable
+/// (`.NAME.PID.partial.EXT`), and opening an existing name would follow a symbolic link planted
+/// there and overwrite the link's target. `create_new` refuses any existing name, a link included
+/// (without following it), and the next name is tried. `write` then reopens the file by path (the
+/// encoders write to paths), so before the rename the name must still hold the regular file
+/// created here; anything else (a link swapped in meanwhile) is refused and left alone.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), Error> {
+    let fail = |message: String| Error::Output {
+        path: path.to_path_buf(),
+        message,
+    };
+    let mut created = None;
+    for attempt in 0..PARTIAL_ATTEMPTS {
+        let tmp = partial_file_name(path, attempt);
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(file) => {
+                created = Some((tmp, file.metadata().ok().and_then(|m| identity(&m))));
+                break;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => {
+                return Err(fail(format!(
+                    "cannot create a temporary file '{}' beside it: {e}",
+                    tmp.display()
+                )))
+            }
+        }
+    }
+    let Some((tmp, id)) = created else {
+        return Err(fail(format!(
+            "{PARTIAL_ATTEMPTS} temporary names beside it are taken (e.g. '{}'): remove the \
+             stale '.*.partial.*' files there",
+            partial_file_name(path, 0).display()
+        )));
+    };
     if let Ok(mut files) = IN_FLIGHT.lock() {
         files.push(tmp.clone());
     }
-    let result = write(&tmp).and_then(|()| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
+    let still_ours = || match std::fs::symlink_metadata(&tmp) {
+        Ok(m) if m.file_type().is_file() && identity(&m) == id => Ok(()),
+        _ => Err(format!(
+            "the temporary file '{}' was replaced while it was written (by a link or another \
+             file); nothing was renamed: check who else writes to that folder",
+            tmp.display()
+        )),
+    };
+    let result = write(&tmp)
+        .and_then(|()| still_ours())
+        .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
     if let Ok(mut files) = IN_FLIGHT.lock() {
         files.retain(|f| f != &tmp);
     }
     if let Err(message) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message,
-        });
+        // Only what is still ours: a name someone else swapped in is not removed either.
+        if still_ours().is_ok() {
+            let _ = std::fs::remove_file(&tmp);
+        }
+        return Err(fail(message));
     }
     Ok(())
 }
@@ -375,5 +448,47 @@ pub fn write_bent_normals(
             })
             .map_err(|e| e.to_string())
         }),
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    /// Issue 62, defect 3: a symbolic link planted at the temporary file's predictable name must
+    /// not be followed.
+    #[test]
+    fn a_planted_link_at_the_temporary_name_is_not_followed() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("ao.png");
+        let victim = dir.path().join("victim.txt");
+        std::fs::write(&victim, b"precious").unwrap();
+        // The first two names this process would use, both links to the victim (a dangling
+        // link too: create_new must not create its target either).
+        std::os::unix::fs::symlink(&victim, partial_file_name(&out, 0)).unwrap();
+        let absent = dir.path().join("absent.txt");
+        std::os::unix::fs::symlink(&absent, partial_file_name(&out, 1)).unwrap();
+        write_atomically(&out, |tmp| {
+            std::fs::write(tmp, b"image").map_err(|e| e.to_string())
+        })
+        .unwrap();
+        assert_eq!(std::fs::read(&victim).unwrap(), b"precious");
+        assert!(!absent.exists());
+        assert_eq!(std::fs::read(&out).unwrap(), b"image");
+        // The planted links are not ours to remove; our own temporary file is gone.
+        assert!(partial_file_name(&out, 0).symlink_metadata().is_ok());
+        assert!(!partial_file_name(&out, 2).exists());
+
+        // A link swapped in while the encoder writes is refused, not renamed into place.
+        let out2 = dir.path().join("ao2.png");
+        let err = write_atomically(&out2, |tmp| {
+            std::fs::remove_file(tmp).unwrap();
+            std::os::unix::fs::symlink(&victim, tmp).unwrap();
+            Ok(())
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("was replaced"), "{err}");
+        assert!(!out2.exists());
+        assert_eq!(std::fs::read(&victim).unwrap(), b"precious");
     }
 }

@@ -630,6 +630,16 @@ fn compare_and_reference_reject_bad_input() {
 
 #[test]
 fn ctrl_c_during_reference_leaves_no_file() {
+    interrupted_reference_leaves_no_file("-INT");
+}
+
+/// Issue 62, defect 3: `kill` (SIGTERM) runs the same clean-up as Ctrl-C.
+#[test]
+fn sigterm_during_reference_leaves_no_file() {
+    interrupted_reference_leaves_no_file("-TERM");
+}
+
+fn interrupted_reference_leaves_no_file(signal: &str) {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ref.exr");
     let mut child = Command::new(env!("CARGO_BIN_EXE_obscura"))
@@ -650,14 +660,18 @@ fn ctrl_c_during_reference_leaves_no_file() {
         .unwrap();
     std::thread::sleep(std::time::Duration::from_millis(800));
     let killed = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([signal, &child.id().to_string()])
         .status()
         .unwrap();
     assert!(killed.success());
     let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "interrupted runs exit with 130");
+    assert_eq!(
+        status.code(),
+        Some(130),
+        "interrupted runs ({signal}) exit with 130"
+    );
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-    assert!(left.is_empty(), "files left after Ctrl-C: {left:?}");
+    assert!(left.is_empty(), "files left after {signal}: {left:?}");
 }
 
 #[test]

@@ -191,13 +191,20 @@ impl Bvh {
     /// at most [`build::MAX_DEPTH`] levels deep whatever the input, so no GPU traversal overflows
     /// its stack.
     pub fn build(scene: &Scene) -> Bvh {
-        build::build(scene, Some(build::MAX_DEPTH))
+        build::build(scene, build::Shape::Bounded(build::MAX_DEPTH))
     }
 
-    /// [`Bvh::build`] without the depth bound: the SAH tree as it comes, however deep (to test
-    /// that a traversal reports a stack overflow).
+    /// [`Bvh::build`] without the depth bound: the SAH tree as it comes, however deep.
     pub fn build_unbounded(scene: &Scene) -> Bvh {
-        build::build(scene, None)
+        build::build(scene, build::Shape::Unbounded)
+    }
+
+    /// The tree obvhs's own build makes, however deep: chains as deep as the triangle count on
+    /// inputs its clustering stalls on (a polygon fan, duplicated or exponentially spaced
+    /// triangles), which [`Bvh::build`] never makes. For tests of the traversal's overflow report.
+    #[doc(hidden)]
+    pub fn build_obvhs_unbounded(scene: &Scene) -> Bvh {
+        build::build(scene, build::Shape::Obvhs)
     }
 
     /// The flat node array (empty for a scene without valid triangles): the root at index 0, an

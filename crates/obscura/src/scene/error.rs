@@ -96,6 +96,37 @@ pub enum SceneError {
         message: String,
     },
 
+    /// A scene file refers to a file (glTF buffer or image, OBJ material library or texture)
+    /// outside its own folder, and [`crate::scene::LoadOptions::allow_outside_files`] is off.
+    #[error(
+        "scene '{}' refers to '{uri}' outside the scene's folder '{}'; copy the file into the \
+         folder (or pass --allow-outside-files)",
+        scene.display(),
+        dir.display()
+    )]
+    OutsideFolder {
+        /// The scene file.
+        scene: PathBuf,
+        /// The reference as the file writes it.
+        uri: String,
+        /// The scene file's folder.
+        dir: PathBuf,
+    },
+
+    /// A scene file refers to something that is not a regular file (a folder, FIFO, device or
+    /// socket): reading it could block forever or never end.
+    #[error(
+        "scene '{}' refers to '{uri}', which is not a regular file (a folder, FIFO, device or \
+         socket); point it at a regular file in the scene's folder",
+        scene.display()
+    )]
+    NotRegularFile {
+        /// The scene file.
+        scene: PathBuf,
+        /// The reference as the file writes it.
+        uri: String,
+    },
+
     /// A loaded or hand-built scene that fails [`crate::scene::Scene::validate`].
     #[error("scene '{scene}' is invalid: {problem}")]
     Invalid {

@@ -12,6 +12,9 @@ pub use types::*;
 
 mod camera;
 mod error;
+mod files;
+#[cfg(test)]
+mod files_tests;
 mod gltf_loader;
 mod obj_loader;
 mod path;
@@ -25,6 +28,7 @@ mod real_scenes_tests;
 use std::path::{Path, PathBuf};
 
 pub use error::{CameraError, ExtentError, SceneError, MAX_EXTENT};
+pub use files::LoadOptions;
 pub use path::{CameraPath, Interpolation, Keyframe, PathError};
 pub use procedural::{builtin, builtin_names, layers_with_shells};
 pub use texture::MAX_TEXTURE_SIZE;
@@ -47,6 +51,12 @@ pub use texture::MAX_TEXTURE_SIZE;
 /// # Ok::<(), obscura::scene::SceneError>(())
 /// ```
 pub fn load(spec: &str) -> Result<Scene, SceneError> {
+    load_with(spec, &LoadOptions::default())
+}
+
+/// [`load`] with `options`: whether the files a scene file refers to (glTF buffers and images,
+/// OBJ material libraries and textures) may lie outside its folder.
+pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError> {
     if builtin_names().contains(&spec) {
         return builtin(spec);
     }
@@ -55,8 +65,8 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let mut scene = match ext.as_deref() {
-        Some("gltf") | Some("glb") => gltf_loader::load(path)?,
-        Some("obj") => obj_loader::load(path)?,
+        Some("gltf") | Some("glb") => gltf_loader::load(path, options)?,
+        Some("obj") => obj_loader::load(path, options)?,
         // No extension and no such file: most likely a mistyped built-in name.
         None if !path.exists() => {
             return Err(SceneError::UnknownScene {
@@ -69,6 +79,18 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
             })
         }
     };
+    if scene.origin != glam::DVec3::ZERO {
+        log::warn!(
+            "scene '{}' lies {:.3e} units from its file's origin, far for its size: its \
+             coordinates are re-centred on ({}, {}, {}) to keep their precision; --eye and \
+             --target are still read in the file's coordinates",
+            scene.name,
+            scene.origin.length(),
+            scene.origin.x,
+            scene.origin.y,
+            scene.origin.z
+        );
+    }
     // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
     if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
         scene.normals.clear();
@@ -77,8 +99,48 @@ pub fn load(spec: &str) -> Result<Scene, SceneError> {
     Ok(scene)
 }
 
-/// Reads a whole file, telling "does not exist" apart from other I/O failures.
+/// How far from its file's origin, in its own sizes, a scene may lie before it is re-centred: 32-bit
+/// floats hold about 7 digits, so at 10^4 sizes away a vertex keeps about 1/1700 of the scene's
+/// size (issue 62, defect 4: a 5 m scene 10^7 m away kept nothing).
+const FAR_IN_SIZES: f64 = 1e4;
+/// How far from its file's origin, in world units, a scene may lie before it is re-centred,
+/// whatever its size (at 10^5 a 32-bit float keeps 1/128 of a unit).
+const FAR_ABSOLUTE: f64 = 1e5;
+
+/// The origin a scene of vertices `points` (the file's coordinates, f64) is re-centred on: the
+/// centre of their bounds where it lies farther from the file's origin than [`FAR_ABSOLUTE`] or
+/// [`FAR_IN_SIZES`] times their extent; zero (no change) otherwise and for no or non-finite
+/// points.
+pub(crate) fn far_origin(points: impl Iterator<Item = glam::DVec3>) -> glam::DVec3 {
+    use glam::DVec3;
+    let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return DVec3::ZERO;
+    }
+    let centre = (lo + hi) * 0.5;
+    let distance = centre.abs().max_element();
+    let extent = (hi - lo).max_element();
+    if distance > FAR_ABSOLUTE || distance > FAR_IN_SIZES * extent {
+        centre
+    } else {
+        DVec3::ZERO
+    }
+}
+
+/// Reads a whole file, telling "does not exist" apart from other I/O failures. Only a regular file
+/// (or a folder, which fails to read) is opened: a FIFO would block until a writer comes, a device
+/// such as `/dev/zero` never ends.
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, SceneError> {
+    if let Ok(m) = std::fs::metadata(path) {
+        if !m.is_file() && !m.is_dir() {
+            return Err(SceneError::Io {
+                path: path.to_path_buf(),
+                source: std::io::Error::other("not a regular file (a FIFO, device or socket)"),
+            });
+        }
+    }
     std::fs::read(path).map_err(|source| {
         if source.kind() == std::io::ErrorKind::NotFound {
             SceneError::NotFound {

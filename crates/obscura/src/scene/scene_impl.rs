@@ -115,6 +115,37 @@ impl Scene {
         Ok(())
     }
 
+    /// The scene point at `file_point`, given in the file's coordinates (see [`Scene::origin`]),
+    /// computed in f64 so that a point far from the file's origin keeps its precision.
+    pub fn from_file_point(&self, file_point: glam::DVec3) -> Vec3 {
+        (file_point - self.origin).as_vec3()
+    }
+
+    /// Re-centres a scene that lies far from its origin for its size (issue 62, defect 4): 32-bit
+    /// floats there cannot tell eye from target or one vertex from its neighbour. The vertices,
+    /// named cameras and camera paths move by the centre of the bounds, which [`Scene::origin`]
+    /// keeps. A scene near its origin is left alone. Loaders that read f64 re-centre before
+    /// their coordinates become f32 (obj_loader); this one starts from the f32 positions, so it
+    /// keeps what they hold.
+    pub fn recentre(&mut self) {
+        let offset = super::far_origin(self.positions.iter().map(|p| p.as_dvec3()));
+        if offset == glam::DVec3::ZERO {
+            return;
+        }
+        let shift = |p: Vec3| (p.as_dvec3() - offset).as_vec3();
+        for p in &mut self.positions {
+            *p = shift(*p);
+        }
+        for c in &mut self.cameras {
+            c.camera.eye = shift(c.camera.eye);
+            c.camera.target = shift(c.camera.target);
+        }
+        for path in &mut self.paths {
+            path.move_points(shift);
+        }
+        self.origin += offset;
+    }
+
     /// Axis-aligned bounds of all vertex positions (a zero box at the origin when there are none).
     pub fn bounds(&self) -> Bounds {
         if self.positions.is_empty() {

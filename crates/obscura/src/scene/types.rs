@@ -193,6 +193,12 @@ pub struct Scene {
     /// occluders) and a glTF file's animated cameras; a scene without any gets an automatic
     /// orbit ([`Scene::path`]).
     pub paths: Vec<super::CameraPath>,
+    /// Where this scene's coordinates have their origin in its file's coordinates: a point at
+    /// `p` in the scene is at `origin + p` in the file. Zero unless the scene lay so far from its
+    /// file's origin, for its size, that 32-bit floats could not hold it ([`Scene::recentre`]);
+    /// points given in the file's coordinates (`--eye`, `--target`) go through
+    /// [`Scene::from_file_point`].
+    pub origin: glam::DVec3,
 }
 
 impl Texture {

@@ -42,7 +42,7 @@ fn along_the_chain() -> QueryRay {
 #[test]
 fn stack_overflow_is_reported() {
     let scene = chain(330);
-    let bvh = Bvh::build_unbounded(&scene);
+    let bvh = Bvh::build_obvhs_unbounded(&scene);
     let gpu = gpu();
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
     let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene);
@@ -119,7 +119,7 @@ fn a_polygon_fan_traces_without_overflow() {
             results.iter().filter(|r| r.hit_count == 0).count(),
         )
     };
-    let unbounded = Bvh::build_unbounded(&scene);
+    let unbounded = Bvh::build_obvhs_unbounded(&scene);
     let bounded = Bvh::build(&scene);
     println!(
         "fan: depth {} unbounded, {} bounded",
@@ -147,7 +147,7 @@ fn a_tree_too_deep_for_the_four_wide_walk_is_walked_two_wide() {
     // four-wide walk could need 79 entries. The upload falls back to two children a node, and
     // the ray along the chain then finds every hit the CPU finds, with no overflow.
     let scene = chain(200);
-    let bvh = Bvh::build_unbounded(&scene);
+    let bvh = Bvh::build_obvhs_unbounded(&scene);
     let (_, four_wide) = obscura::bvh::wide::widen(bvh.nodes(), 4);
     let stack = obscura::bvh::gpu::STACK_SIZE;
     assert!(

@@ -13,6 +13,7 @@ mod double_sided;
 mod engine_geometry;
 mod engine_input;
 mod examples;
+mod far_from_origin;
 mod fuzz_loaders;
 mod gbuffer;
 mod gpu_bvh;

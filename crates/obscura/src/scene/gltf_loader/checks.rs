@@ -124,25 +124,9 @@ fn check_uri(uri: &str) -> Result<(), String> {
     if uri.contains(':') {
         return Ok(()); // data: and file: URIs are parsed without percent-decoding
     }
-    let bytes = uri.as_bytes();
-    let mut decoded = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = |j: usize| bytes.get(j).and_then(|&c| (c as char).to_digit(16));
-        match (bytes[i], hex(i + 1), hex(i + 2)) {
-            (b'%', Some(hi), Some(lo)) => {
-                decoded.push((hi * 16 + lo) as u8);
-                i += 3;
-            }
-            (c, _, _) => {
-                decoded.push(c);
-                i += 1;
-            }
-        }
-    }
-    match String::from_utf8(decoded) {
-        Ok(_) => Ok(()),
-        Err(_) => Err(format!("uri '{uri}' does not percent-decode to UTF-8 text")),
+    match super::super::files::percent_decode(uri) {
+        Some(_) => Ok(()),
+        None => Err(format!("uri '{uri}' does not percent-decode to UTF-8 text")),
     }
 }
 

@@ -28,13 +28,14 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 use gltf::{buffer, Document, Node};
 
+use super::files::{self, LoadOptions};
 use super::{Camera, Material, NamedCamera, Scene, SceneError};
 use attributes::Attribute;
 use materials::BaseColorUv;
 use skinning::VertexPlacement;
 
 /// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
-pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
+pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let bytes = super::read_file(path)?;
     let error = |message: String| SceneError::Gltf {
         path: path.to_path_buf(),
@@ -42,15 +43,52 @@ pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
     };
     // Backstop only: the checks are meant to keep the `gltf` crate from panicking, but a panic in
     // a dependency on some input nobody thought of must still end as an error, not a crash.
-    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes))) {
-        Ok(result) => result.map_err(error),
+    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes, options))) {
+        Ok(Ok(scene)) => Ok(scene),
+        Ok(Err(Failure::Message(message))) => Err(error(message)),
+        Ok(Err(Failure::Scene(e))) => Err(e),
         Err(_) => Err(error(
             "internal error in the glTF reader (it panicked on this input)".into(),
         )),
     }
 }
 
-fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
+/// Why [`from_bytes`] failed: the file itself (a message for [`SceneError::Gltf`]), or a file
+/// it refers to (an error of its own, with its own fix).
+enum Failure {
+    Message(String),
+    Scene(SceneError),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Message(message)
+    }
+}
+
+/// Every buffer and image file `doc` refers to passes [`files::check`], before the `gltf` crate
+/// opens any of them.
+fn check_referenced_files(
+    path: &Path,
+    doc: &Document,
+    options: &LoadOptions,
+) -> Result<(), SceneError> {
+    let base = files::folder(path);
+    let json = doc.as_json();
+    let uris = json
+        .buffers
+        .iter()
+        .filter_map(|b| b.uri.as_deref())
+        .chain(json.images.iter().filter_map(|i| i.uri.as_deref()));
+    for uri in uris {
+        if let Some(file) = files::gltf_uri_file(base, uri) {
+            files::check(path, uri, &file, options)?;
+        }
+    }
+    Ok(())
+}
+
+fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene, Failure> {
     checks::glb_header(bytes)?;
     // Parse, check what gltf-json's validation itself would index blindly, then validate.
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
@@ -61,7 +99,8 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     take_extension(&mut json, instancing::NAME);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
-    let base = path.parent().unwrap_or_else(|| Path::new("."));
+    check_referenced_files(path, &doc, options).map_err(Failure::Scene)?;
+    let base = files::folder(path);
     let buffers = gltf::import_buffers(&doc, Some(base), gltf.blob)
         .map_err(|e| format!("loading buffers: {e}"))?;
     checks::views(&doc, &buffers)?;
@@ -83,7 +122,16 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         scene,
     };
     loader.traverse()?;
-    Ok(loader.scene)
+    let mut scene = loader.scene;
+    scene.recentre();
+    scene.cameras.retain(|c| match c.camera.validate() {
+        Ok(()) => true,
+        Err(e) => {
+            log::warn!("{}: camera '{}' skipped: {e}", path.display(), c.name);
+            false
+        }
+    });
+    Ok(scene)
 }
 
 struct Loader<'a> {
@@ -327,13 +375,12 @@ impl Loader<'_> {
             fov_y_deg: perspective.yfov.to_degrees(),
         };
         let fov_y_deg = camera.fov_y_deg;
-        match camera.validate() {
-            Ok(()) => self.scene.cameras.push(NamedCamera {
-                name: name.clone(),
-                camera,
-            }),
-            Err(e) => log::warn!("{}: camera '{name}' skipped: {e}", self.path.display()),
-        }
+        // Validated once the scene is re-centred (`from_bytes`): far from the origin, f32 may
+        // not tell its eye from its target before.
+        self.scene.cameras.push(NamedCamera {
+            name: name.clone(),
+            camera,
+        });
         match camera_path::camera_path(self.doc, self.buffers, node, parent, &name, fov_y_deg) {
             Some(Ok(path)) => self.scene.paths.push(path),
             Some(Err(e)) => log::warn!(

@@ -21,20 +21,27 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
+use super::files::{self, LoadOptions};
 use super::{AlphaMode, Material, Scene, SceneError};
 
 /// Largest absolute face index accepted (2^31): keeps `tobj`'s index arithmetic far from overflow.
 const MAX_INDEX: i64 = 1 << 31;
 
 /// Loads an `.obj` file. The result is not yet validated (the caller does that).
-pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
+pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let bytes = super::read_file(path)?;
     let error = |message: String| SceneError::Obj {
         path: path.to_path_buf(),
         message,
     };
+    let refused = Refused {
+        options,
+        first: RefCell::new(None),
+    };
     // Backstop only (see the module comment): a panic in `tobj` must still end as an error.
-    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes))) {
+    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes, &refused))) {
+        // A refused file wins over what its absence then caused.
+        _ if refused.first.borrow().is_some() => Err(refused.first.take().expect("checked")),
         Ok(result) => result.map_err(error),
         Err(_) => Err(error(
             "internal error in the OBJ reader (it panicked on this input)".into(),
@@ -42,14 +49,31 @@ pub(crate) fn load(path: &Path) -> Result<Scene, SceneError> {
     }
 }
 
-fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
+/// The files an OBJ refers to pass [`files::check`] before anything opens them; the first refused
+/// is kept here, and [`load`] returns it whatever else went wrong.
+struct Refused<'a> {
+    options: &'a LoadOptions,
+    first: RefCell<Option<SceneError>>,
+}
+
+impl Refused<'_> {
+    /// Whether `file`, named `name` in scene `obj`, may be read; records the refusal otherwise.
+    fn allows(&self, obj: &Path, name: &str, file: &Path) -> bool {
+        match files::check(obj, name.trim(), file, self.options) {
+            Ok(()) => true,
+            Err(e) => {
+                self.first.borrow_mut().get_or_insert(e);
+                false
+            }
+        }
+    }
+}
+
+fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, String> {
     let text = std::str::from_utf8(bytes)
         .map_err(|e| format!("it is not text (invalid UTF-8 at byte {})", e.valid_up_to()))?;
     prescan_faces(text)?;
-    let dir = path
-        .parent()
-        .unwrap_or_else(|| Path::new("."))
-        .to_path_buf();
+    let dir = files::folder(path).to_path_buf();
     // `..Default::default()` looks needless with tobj's default features, but another crate in
     // the build may enable `merging`/`reordering`, which add fields.
     #[allow(clippy::needless_update)]
@@ -64,7 +88,11 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     // Where names are looked up: the OBJ's folder, then each material library's.
     let dirs = RefCell::new(vec![dir.clone()]);
     let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |mtl| {
-        let mtl_path = textures::resolve(&dirs.borrow(), mtl.to_str().unwrap_or_default());
+        let name = mtl.to_str().unwrap_or_default();
+        let mtl_path = textures::resolve(&dirs.borrow(), name);
+        if !refused.allows(path, name, &mtl_path) {
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
         if let Some(folder) = mtl_path
             .parent()
             .filter(|f| !dirs.borrow().iter().any(|d| d == f))
@@ -98,25 +126,31 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         name: path.display().to_string(),
         ..Scene::default()
     };
+    if refused.first.borrow().is_some() {
+        return Err(String::new()); // load returns the refusal
+    }
     let mut cache = textures::TextureCache::default();
     for m in &materials {
-        let color = m
-            .diffuse_texture
-            .as_ref()
-            .map(|t| textures::resolve(&dirs.borrow(), t));
-        let mask = m
-            .dissolve_texture
-            .as_ref()
-            .map(|t| textures::resolve(&dirs.borrow(), t));
+        let texture_file = |name: &Option<String>| -> Result<_, String> {
+            let Some(name) = name else { return Ok(None) };
+            let file = textures::resolve(&dirs.borrow(), name);
+            if refused.allows(path, name, &file) {
+                Ok(Some(file))
+            } else {
+                Err(String::new()) // load returns the refusal
+            }
+        };
+        let color = texture_file(&m.diffuse_texture)?;
+        let mask = texture_file(&m.dissolve_texture)?;
         let texture = cache.material_texture(path, color, mask, &mut scene);
         let masked = texture.is_some_and(|t| t.masked);
         // With a mask the mask alone cuts: exporters write any `d` beside it (some 0).
         let alpha = if masked {
             1.0
         } else {
-            m.dissolve.unwrap_or(1.0)
+            m.dissolve.map_or(1.0, |d| d as f32)
         };
-        let [r, g, b] = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
+        let [r, g, b] = m.diffuse.map_or([0.8, 0.8, 0.8], |c| c.map(|x| x as f32));
         scene.materials.push(Material {
             name: m.name.clone(),
             base_color: [r, g, b, alpha],
@@ -136,6 +170,15 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
     }
     let default_material = scene.materials.len() as u32;
     let mut used_default = false;
+    // Positions are parsed as f64 (tobj's `use_f64`): a scene far from its origin for its size
+    // is re-centred here, before its coordinates become f32 and lose its detail.
+    let origin = super::far_origin(
+        models
+            .iter()
+            .flat_map(|m| m.mesh.positions.chunks_exact(3))
+            .map(|p| glam::DVec3::new(p[0], p[1], p[2])),
+    );
+    scene.origin = origin;
 
     for model in &models {
         let mesh = &model.mesh;
@@ -160,15 +203,15 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
         scene.positions.extend(
             mesh.positions
                 .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2])),
+                .map(|p| (glam::DVec3::new(p[0], p[1], p[2]) - origin).as_vec3()),
         );
         // Vertex normals (`vn`), where every vertex of the object has one (as for uvs below).
         if mesh.normals.len() == 3 * n {
-            scene.normals.extend(
-                mesh.normals
-                    .chunks_exact(3)
-                    .map(|v| Vec3::new(v[0], v[1], v[2]).normalize_or_zero()),
-            );
+            scene.normals.extend(mesh.normals.chunks_exact(3).map(|v| {
+                glam::DVec3::new(v[0], v[1], v[2])
+                    .as_vec3()
+                    .normalize_or_zero()
+            }));
         } else {
             scene.normals.extend(std::iter::repeat_n(Vec3::ZERO, n));
         }
@@ -178,7 +221,7 @@ fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, String> {
             scene.uvs.extend(
                 mesh.texcoords
                     .chunks_exact(2)
-                    .map(|t| Vec2::new(t[0], 1.0 - t[1])),
+                    .map(|t| Vec2::new(t[0] as f32, 1.0 - t[1] as f32)),
             );
         } else {
             if !mesh.texcoords.is_empty() {

@@ -140,6 +140,14 @@ pub enum PathError {
 }
 
 impl CameraPath {
+    /// Moves every keyframe's eye and target through `f` ([`crate::scene::Scene::recentre`]).
+    pub(crate) fn move_points(&mut self, f: impl Fn(Vec3) -> Vec3) {
+        for k in &mut self.keyframes {
+            k.eye = f(k.eye);
+            k.target = f(k.target);
+        }
+    }
+
     /// A path from keyframes, validated: at least one keyframe, finite and strictly increasing
     /// times, and a valid camera at every keyframe.
     pub fn new(
