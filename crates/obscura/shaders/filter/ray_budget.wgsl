@@ -35,6 +35,11 @@ struct BudgetResult {
     granted: u32,
     // Rays every surface pixel casting N would take.
     wanted: u32,
+    // The budget this frame ran under.
+    budget: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 @group(1) @binding(0) var<uniform> budget: BudgetParams;
@@ -118,6 +123,7 @@ fn threshold(@builtin(local_invocation_index) t: u32) {
         result.threshold = 0u;
         result.rays_at_threshold = budget.rays;
         result.wanted = sum * budget.rays;
+        result.budget = budget.budget;
         result.granted = min(sum * budget.rays, budget.budget);
     }
     storageBarrier();

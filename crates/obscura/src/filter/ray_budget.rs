@@ -21,7 +21,7 @@ struct BudgetParams {
 /// What the budget's selection found for the last frame ([`crate::AmbientOcclusion::read_ray_budget`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RayBudgetReport {
-    /// The budget: rays a frame, at most.
+    /// The budget the frame ran under: rays, at most.
     pub budget: u32,
     /// Rays granted ( ≤ `budget`).
     pub granted: u32,
@@ -98,7 +98,7 @@ impl RayBudget {
             keys: storage("ray budget keys", pixels.max(1) * 4),
             // Created zeroed; the threshold pass empties it after each frame.
             histogram: storage("ray budget histogram", KEY_COUNT * 4),
-            result: storage("ray budget result", 16),
+            result: storage("ray budget result", 32),
             grant_image: crate::gpu::texture_2d(
                 device,
                 "ray grant",
@@ -209,12 +209,13 @@ impl RayBudget {
         }
     }
 
-    /// What the last frame's selection found.
+    /// What the last frame's selection found (the budget it ran under: a time budget may have
+    /// set another for the next frame since).
     pub fn read(&self, gpu: &Gpu) -> Result<RayBudgetReport, crate::gpu::GpuError> {
         let bytes = crate::gpu::read_buffer_copy(gpu, &self.result)?;
         let words: &[u32] = bytemuck::cast_slice(&bytes);
         Ok(RayBudgetReport {
-            budget: self.budget.get(),
+            budget: words[4],
             granted: words[2],
             wanted: words[3],
         })
