@@ -106,6 +106,9 @@ techniques!(
     /// `hemisphere`: cosine-weighted rays within R, each marched in screen space over the first
     /// depth layer with a thickness (screen-space ray-traced AO).
     Hemisphere,
+    /// `hemisphere-dual`: hemisphere rays marched in screen space over two depth layers (depth
+    /// peeling): the second layer bounds the first surface's thickness.
+    HemisphereDual,
     /// `rtao`: cosine-weighted rays within R, each traced through the BVH: the ground truth's
     /// model and rays, a few per pixel per frame.
     Rtao,
@@ -177,6 +180,10 @@ sources!(
     /// Each hemisphere ray marched in screen space over the first depth layer, every surface
     /// taken to be `hemisphere.thickness` thick. Reads the hemisphere estimator's rays.
     ScreenRays,
+    /// Each hemisphere ray marched in screen space over the first and second depth layers: the
+    /// first surface no thicker than the gap to the second. Reads the hemisphere estimator's
+    /// rays.
+    ScreenRaysDual,
     /// Each hemisphere ray traced through the BVH in world space: nothing is hidden from it.
     /// Reads the hemisphere estimator's rays.
     BvhRays,
@@ -520,6 +527,15 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::HemisphereDual,
+        name: "hemisphere-dual",
+        summary: "Hemisphere AO marched over two depth layers: surfaces as thick as the gap behind",
+        paper: "the ground truth's model; seed 000 §2.1's second layer in the march (ours)",
+        estimator: Estimator::Hemisphere,
+        source: Source::ScreenRaysDual,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::Rtao,
         name: "rtao",
         summary: "Ray-traced AO: cosine-weighted rays within R traced through the BVH",
@@ -679,6 +695,19 @@ impl Source {
                 serves_levels: false,
                 presets: &[],
             },
+            Source::ScreenRaysDual => &SourceCaps {
+                name: "screen rays dual",
+                section: "",
+                needs: Needs {
+                    second_layer: true,
+                    ..NONE
+                },
+                maps_hidden_depth: false,
+                costly_resolve: false,
+                only_for: Some(Estimator::Hemisphere),
+                serves_levels: false,
+                presets: &[],
+            },
             Source::BvhRays => &SourceCaps {
                 name: "bvh rays",
                 section: "",
@@ -766,13 +795,17 @@ impl Schedule {
     /// Whether this schedule can run over `source`: the multi-view one only over the stochastic
     /// depth map (its second view reads a second one); the interleaved one only over the first
     /// layer (it splits that layer and reads nothing else); the two-phase ones over any source
-    /// but the depth pyramid, whose levels phase 1 does not bind (its request layout holds only
-    /// what `source_request` writes).
+    /// but those whose first look reads what phase 1 does not bind (its request layout holds
+    /// only what `source_request` writes): the depth pyramid's levels, and the second layer the
+    /// dual screen march reads at every step (a march decides its rays in the first look, so a
+    /// second phase would have nothing to do anyway).
     pub fn supports_source(self, source: Source) -> bool {
         match self {
             Schedule::Interleaved => source == Source::FirstLayer,
             Schedule::Multiview => source == Source::StochasticDepth,
-            Schedule::TwoPhase | Schedule::TwoPhaseDense => !source.caps().serves_levels,
+            Schedule::TwoPhase | Schedule::TwoPhaseDense => {
+                !source.caps().serves_levels && source != Source::ScreenRaysDual
+            }
             Schedule::Single => true,
         }
     }

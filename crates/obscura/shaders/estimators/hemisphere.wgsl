@@ -134,11 +134,11 @@ fn surface_side(q: vec3<f32>, cell: vec2<u32>, z: f32) -> SurfaceSide {
     return SurfaceSide(dot(q - surface, m), slack);
 }
 
-// Whether `q` lies inside the surface at `cell`: behind its tangent plane and at most `thickness`
-// behind its depth.
-fn hemisphere_inside(q: vec3<f32>, cell: vec2<u32>, z: f32) -> bool {
+// Whether `q` lies inside the surface at `cell`: behind its tangent plane and less than
+// `thickness` behind its depth.
+fn hemisphere_inside(q: vec3<f32>, cell: vec2<u32>, z: f32, thickness: f32) -> bool {
     let side = surface_side(q, cell, z);
-    return side.height < -side.slack && -q.z - z < params.thickness;
+    return side.height < -side.slack && -q.z - z < thickness;
 }
 
 // The surface at view-space point `pos` against the ray's far end (the contract's single-depth
@@ -148,7 +148,7 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     var o: Occluder;
     let q = p.pos + s.dir * params.radius;
     let cell = vec2<u32>(view_to_pixel(view, pos));
-    let inside = hemisphere_inside(q, cell, -pos.z);
+    let inside = hemisphere_inside(q, cell, -pos.z, params.thickness);
     o.value = select(1.0, hemisphere_blocked_at(params.radius), inside);
     o.hidden = !inside;
     return o;

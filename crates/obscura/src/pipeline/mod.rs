@@ -20,7 +20,7 @@ use crate::filter::{
     atrous::Atrous,
     bilateral::BilateralBlur,
     half_resolution::HalfResolution,
-    ray_budget::RayBudgetReport,
+    ray_budget::{RayBudget, RayBudgetReport, TimeBudget},
     temporal::{BudgetRequest, HistoryTexel, TemporalAccumulation},
     AoFilter, FilterImages,
 };
@@ -310,7 +310,7 @@ impl AmbientOcclusion {
 
     /// Under a ray budget (`hemisphere.ray_budget` or `time_budget`, with temporal accumulation):
     /// the rays a frame from the next frame on (frame loops with a time budget set it from the
-    /// GPU timings, [`crate::filter::ray_budget::TimeBudget`]). An error without a budget.
+    /// GPU timings, [`TimeBudget`]). An error without a budget.
     pub fn set_ray_budget(&self, rays: u32) -> Result<(), Error> {
         self.ray_budget()?.set_budget(rays);
         Ok(())
@@ -329,7 +329,7 @@ impl AmbientOcclusion {
     }
 
     /// With a time budget (`hemisphere.time_budget`): sets the next frame's ray budget from the
-    /// last frame's GPU `timings` ([`crate::filter::ray_budget::TimeBudget`]) and returns what that frame granted;
+    /// last frame's GPU `timings` ([`TimeBudget`]) and returns what that frame granted;
     /// `None` without a time budget (nothing to follow). Frame loops call it after each timed
     /// frame.
     pub fn follow_time_budget(
@@ -342,18 +342,15 @@ impl AmbientOcclusion {
         }
         let budget = self.ray_budget()?;
         let report = budget.read(&self.gpu)?;
-        let controller = crate::filter::ray_budget::TimeBudget {
+        let controller = TimeBudget {
             target_ms: f64::from(target),
             max_rays: report.wanted,
         };
-        budget.set_budget(controller.next(
-            report.budget,
-            crate::filter::ray_budget::TimeBudget::ao_ms(timings),
-        ));
+        budget.set_budget(controller.next(report.budget, TimeBudget::ao_ms(timings)));
         Ok(Some(report))
     }
 
-    fn ray_budget(&self) -> Result<&crate::filter::ray_budget::RayBudget, Error> {
+    fn ray_budget(&self) -> Result<&RayBudget, Error> {
         self.temporal()
             .and_then(TemporalAccumulation::ray_budget)
             .ok_or_else(|| {
@@ -762,9 +759,6 @@ impl AmbientOcclusion {
     }
 }
 
-/// `bent_normals` needs an estimator that reports them, on the single-pass schedule (the
-/// two-phase ones carry only three words per pixel between their phases), at full resolution:
-/// otherwise an error naming the techniques that can.
 /// The first frame's ray budget: `hemisphere.ray_budget`, or with only a time budget every ray
 /// the working image's pixels would cast (the time budget lowers it from the timings).
 fn initial_ray_budget(settings: &AoSettings, work: &ScreenGeometry) -> u32 {
@@ -774,6 +768,10 @@ fn initial_ray_budget(settings: &AoSettings, work: &ScreenGeometry) -> u32 {
         n => n,
     }
 }
+
+/// `bent_normals` needs an estimator that reports them, on the single-pass schedule (the
+/// two-phase ones carry only three words per pixel between their phases), at full resolution:
+/// otherwise an error naming the techniques that can.
 
 fn check_bent_normals(settings: &AoSettings) -> Result<(), Error> {
     let can = |row: &crate::technique::TechniqueRow| {

@@ -79,6 +79,12 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
             })
         }
     };
+    // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
+    if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
+        scene.normals.clear();
+    }
+    scene.validate()?;
+    // Said only of a scene that loads: one that is refused gets its one error.
     if scene.origin != glam::DVec3::ZERO {
         log::warn!(
             "scene '{}' lies {:.3e} units from its file's origin, far for its size: its \
@@ -91,11 +97,6 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
             scene.origin.z
         );
     }
-    // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
-    if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
-        scene.normals.clear();
-    }
-    scene.validate()?;
     Ok(scene)
 }
 
@@ -113,10 +114,15 @@ const FAR_ABSOLUTE: f64 = 1e5;
 /// points.
 pub(crate) fn far_origin(points: impl Iterator<Item = glam::DVec3>) -> glam::DVec3 {
     use glam::DVec3;
+    let mut finite = true;
     let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+        finite &= p.is_finite();
         (lo.min(p), hi.max(p))
     });
-    if !(lo.is_finite() && hi.is_finite()) {
+    // Non-finite vertices, scenes of no extent and scenes too large for floats anywhere
+    // (`Scene::check_extent`) are refused as they are.
+    let too_large = (hi - lo).max_element() > f64::from(MAX_EXTENT);
+    if !(finite && lo.is_finite() && hi.is_finite()) || hi == lo || too_large {
         return DVec3::ZERO;
     }
     let centre = (lo + hi) * 0.5;

@@ -52,7 +52,10 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
             parts.push(shaders::SOURCE_COLUMN_RAYS);
             parts.join("\n")
         }
-        Source::ScreenRays => shaders::SOURCE_SCREEN_RAYS.to_string(),
+        Source::ScreenRays => [shaders::SCREEN_RAYS_FIRST, shaders::SOURCE_SCREEN_RAYS].join("\n"),
+        Source::ScreenRaysDual => {
+            [shaders::SCREEN_RAYS_DUAL, shaders::SOURCE_SCREEN_RAYS].join("\n")
+        }
         Source::BvhRays => column_rays::bvh_rays_wgsl().join("\n"),
         Source::StochasticDepth => [
             &stochastic_depth::bindings_wgsl(sd_layout, ray_layout.guard),
@@ -76,7 +79,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
 pub(crate) fn resolve_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry> {
     match source {
         Source::FirstLayer | Source::ScreenRays => Vec::new(),
-        Source::DualDepth => vec![entry::texture(SOURCE_SECOND_DEPTH)],
+        Source::DualDepth | Source::ScreenRaysDual => vec![entry::texture(SOURCE_SECOND_DEPTH)],
         Source::ColumnRays | Source::BvhRays => column_rays::layout_entries(),
         Source::StochasticDepth => stochastic_depth::read_layout_entries(),
         Source::RayStochasticDepth => ray_stochastic_depth::read_layout_entries(),
@@ -97,6 +100,7 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
         | Source::ColumnRays
         | Source::DepthPyramid
         | Source::ScreenRays
+        | Source::ScreenRaysDual
         | Source::BvhRays => Vec::new(),
     }
 }
@@ -170,7 +174,7 @@ impl SourcePass {
         let held = match kind {
             // The march reads only the frame's depth and normals.
             Source::FirstLayer | Source::ScreenRays => Held::FirstLayer,
-            Source::DualDepth => Held::DualDepth,
+            Source::DualDepth | Source::ScreenRaysDual => Held::DualDepth,
             Source::ColumnRays | Source::BvhRays => {
                 let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
                 let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;

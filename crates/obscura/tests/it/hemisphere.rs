@@ -54,7 +54,11 @@ pub(crate) fn mean_abs_difference(a: &[f32], b: &[f32]) -> f64 {
 #[test]
 fn unoccluded_plane_is_one_everywhere() {
     let gpu = gpu();
-    for technique in [Technique::Hemisphere, Technique::Rtao] {
+    for technique in [
+        Technique::Hemisphere,
+        Technique::HemisphereDual,
+        Technique::Rtao,
+    ] {
         for blur in [false, true] {
             let mut s = technique_settings(technique, blur);
             s.hemisphere.rays = 8;
@@ -426,4 +430,39 @@ fn thirty_two_still_frames_converge_to_the_ground_truth_on_stairs_and_colonnade(
             "{name}: the denoiser added error: {errors:?}"
         );
     }
+}
+
+#[test]
+fn a_second_depth_layer_keeps_the_march_from_thickening_thin_surfaces() {
+    // `hemisphere-dual` caps each first surface's thickness at the gap to the second layer. Where
+    // the surfaces are thin blades (grass, seed 000 Fig. 14) rays that pass behind a blade are no
+    // longer taken as blocked: measured at 128×80, 32 rays, against a 512-ray truth, grass 0.1290
+    // → 0.1154 MAE. Where thin shells hide occluders farther behind (stairs' cloth) the rays
+    // passing behind them meet nothing the march can see either way: 0.0325 → 0.0331 (layers
+    // 0.0758 → 0.0763, colonnade 0.0099 both).
+    let gpu = gpu();
+    let mut errors = Vec::new();
+    for name in ["grass", "stairs"] {
+        let scene = obscura::scene::builtin(name).unwrap();
+        let eye = scene.cameras[0].camera;
+        let run = |technique| {
+            let s = settings(technique, 32, 0.5);
+            let mut r = Renderer::new(&gpu, &scene, &s, 128, 80, 16).unwrap();
+            r.render(&eye, None).unwrap();
+            (r.read_ao().unwrap(), *r.view().unwrap())
+        };
+        let (single, view) = run(Technique::Hemisphere);
+        let (dual, _) = run(Technique::HemisphereDual);
+        let truth = hemisphere_truth(&gpu, &scene, view, 512, 0.5);
+        errors.push((
+            mean_abs_difference(&single, &truth),
+            mean_abs_difference(&dual, &truth),
+        ));
+    }
+    eprintln!("MAE (first layer, two layers): grass, stairs {errors:?}");
+    let [(grass_single, grass_dual), (stairs_single, stairs_dual)] = errors[..] else {
+        unreachable!()
+    };
+    assert!(grass_dual < 0.95 * grass_single, "grass: {errors:?}");
+    assert!(stairs_dual < 1.05 * stairs_single, "stairs: {errors:?}");
 }
