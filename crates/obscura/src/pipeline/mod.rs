@@ -772,7 +772,6 @@ fn initial_ray_budget(settings: &AoSettings, work: &ScreenGeometry) -> u32 {
 /// `bent_normals` needs an estimator that reports them, on the single-pass schedule (the
 /// two-phase ones carry only three words per pixel between their phases), at full resolution:
 /// otherwise an error naming the techniques that can.
-
 fn check_bent_normals(settings: &AoSettings) -> Result<(), Error> {
     let can = |row: &crate::technique::TechniqueRow| {
         row.estimator.bent_normals() && row.schedule == crate::technique::Schedule::Single
