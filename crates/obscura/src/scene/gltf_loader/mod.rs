@@ -6,6 +6,9 @@
 //! in [`checks`] can run between them: some malformed files otherwise panic inside the crate.
 
 mod attributes;
+mod budget;
+#[cfg(test)]
+mod budget_tests;
 mod camera_path;
 mod checks;
 mod instancing;
@@ -99,6 +102,8 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
     take_extension(&mut json, instancing::NAME);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
+    // Before any data is read: what the file would make must fit (budget.rs).
+    budget::check(path, budget::count(&doc, roots(&doc))).map_err(Failure::Scene)?;
     check_referenced_files(path, &doc, options).map_err(Failure::Scene)?;
     let base = files::folder(path);
     let buffers = gltf::import_buffers(&doc, Some(base), gltf.blob)
@@ -151,16 +156,7 @@ impl Loader<'_> {
     /// Depth-first walk from the root nodes, accumulating world transforms.
     fn traverse(&mut self) -> Result<(), String> {
         let doc = self.doc;
-        let roots: Vec<Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
-            Some(s) => s.nodes().collect(),
-            None => {
-                let mut is_child = vec![false; doc.nodes().len()];
-                for child in doc.nodes().flat_map(|n| n.children()) {
-                    is_child[child.index()] = true;
-                }
-                doc.nodes().filter(|n| !is_child[n.index()]).collect()
-            }
-        };
+        let roots = roots(doc);
         let worlds = node_worlds(doc);
         let mut visited = vec![false; doc.nodes().len()];
         let mut stack: Vec<(Node, Mat4)> = roots
@@ -388,6 +384,21 @@ impl Loader<'_> {
                 self.path.display()
             ),
             None => {}
+        }
+    }
+}
+
+/// The nodes the scene starts from: the default scene's, else the first scene's, else every node
+/// that is no node's child.
+fn roots(doc: &Document) -> Vec<Node<'_>> {
+    match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(s) => s.nodes().collect(),
+        None => {
+            let mut is_child = vec![false; doc.nodes().len()];
+            for child in doc.nodes().flat_map(|n| n.children()) {
+                is_child[child.index()] = true;
+            }
+            doc.nodes().filter(|n| !is_child[n.index()]).collect()
         }
     }
 }
