@@ -20,6 +20,7 @@ mod quantization_tests;
 mod skinning;
 #[cfg(test)]
 mod skinning_tests;
+mod spec;
 #[cfg(test)]
 mod tests;
 
@@ -37,8 +38,34 @@ use attributes::Attribute;
 use materials::BaseColorUv;
 use skinning::VertexPlacement;
 
-/// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
+/// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that). What
+/// the file gets wrong against the glTF specification without keeping it from loading is logged
+/// as warnings, [`spec::MAX_PRINTED`] at most.
 pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
+    let (scene, problems) = load_with_problems(path, options)?;
+    for problem in problems.iter().take(spec::MAX_PRINTED) {
+        log::warn!(
+            "{}: not valid glTF 2.0 (loaded anyway): {problem}",
+            path.display()
+        );
+    }
+    if problems.len() > spec::MAX_PRINTED {
+        log::warn!(
+            "{}: {} more problems against the glTF 2.0 specification (the Khronos glTF \
+             validator lists them all)",
+            path.display(),
+            problems.len() - spec::MAX_PRINTED
+        );
+    }
+    Ok(scene)
+}
+
+/// [`load`], returning the problems against the specification ([`spec::problems`]) instead of
+/// logging them.
+fn load_with_problems(
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<(Scene, Vec<String>), SceneError> {
     let bytes = super::read_file(path)?;
     let error = |message: String| SceneError::Gltf {
         path: path.to_path_buf(),
@@ -91,7 +118,11 @@ fn check_referenced_files(
     Ok(())
 }
 
-fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene, Failure> {
+fn from_bytes(
+    path: &Path,
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<(Scene, Vec<String>), Failure> {
     checks::glb_header(bytes)?;
     // Parse, check what gltf-json's validation itself would index blindly, then validate.
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
@@ -102,6 +133,7 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
     take_extension(&mut json, instancing::NAME);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
+    let problems = spec::problems(&doc);
     // Before any data is read: what the file would make must fit (budget.rs).
     budget::check(path, budget::count(&doc, roots(&doc))).map_err(Failure::Scene)?;
     check_referenced_files(path, &doc, options).map_err(Failure::Scene)?;
@@ -136,7 +168,7 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
             false
         }
     });
-    Ok(scene)
+    Ok((scene, problems))
 }
 
 struct Loader<'a> {
