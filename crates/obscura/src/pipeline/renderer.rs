@@ -475,6 +475,27 @@ impl Renderer {
     }
 }
 
+/// A buffer too large for the device ([`crate::gpu::GpuError::BufferTooLarge`]) as one message
+/// that also names the image size and the technique, and what to change; other errors as they
+/// are.
+fn sized(
+    e: Error,
+    gpu: &Gpu,
+    settings: &AoSettings,
+    (width, height): (u32, u32),
+    guard_band: u32,
+) -> Error {
+    match e {
+        Error::Gpu(e @ crate::gpu::GpuError::BufferTooLarge { .. }) => Error::Input(format!(
+            "image size {width}x{height} (with its {guard_band} px guard band) with technique \
+             '{}' on '{}': {e}: use a smaller --size, or another technique",
+            settings.technique.name(),
+            gpu.summary.name
+        )),
+        e => e,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::radius_scale_warning;
@@ -514,26 +535,5 @@ mod tests {
                 }
             }
         }
-    }
-}
-
-/// A buffer too large for the device ([`crate::gpu::GpuError::BufferTooLarge`]) as one message
-/// that also names the image size and the technique, and what to change; other errors as they
-/// are.
-fn sized(
-    e: Error,
-    gpu: &Gpu,
-    settings: &AoSettings,
-    (width, height): (u32, u32),
-    guard_band: u32,
-) -> Error {
-    match e {
-        Error::Gpu(e @ crate::gpu::GpuError::BufferTooLarge { .. }) => Error::Input(format!(
-            "image size {width}x{height} (with its {guard_band} px guard band) with technique \
-             '{}' on '{}': {e}: use a smaller --size, or another technique",
-            settings.technique.name(),
-            gpu.summary.name
-        )),
-        e => e,
     }
 }

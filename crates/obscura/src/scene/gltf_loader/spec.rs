@@ -30,14 +30,14 @@ pub(super) fn problems(doc: &Document) -> Vec<String> {
         }
         let component = acc.data_type().size();
         if let Some(view) = acc.view() {
-            if (acc.offset() + view.offset()) % component != 0 {
+            if !(acc.offset() + view.offset()).is_multiple_of(component) {
                 out.push(format!(
                     "accessor {i}: its data starts at byte {} of its buffer, not a multiple of its \
                      {component}-byte component",
                     acc.offset() + view.offset()
                 ));
             }
-            if let Some(stride) = view.stride().filter(|s| s % 4 != 0) {
+            if let Some(stride) = view.stride().filter(|s| !s.is_multiple_of(4)) {
                 out.push(format!(
                     "buffer view {}: byteStride {stride} is not a multiple of 4",
                     view.index()
@@ -69,7 +69,7 @@ pub(super) fn problems(doc: &Document) -> Vec<String> {
                 .or_else(|| prim.get(&Semantic::Positions))
                 .map(|a| a.count());
             if let (Mode::Triangles, Some(corners)) = (prim.mode(), corners) {
-                if corners % 3 != 0 {
+                if !corners.is_multiple_of(3) {
                     out.push(format!(
                         "mesh {} primitive {}: {corners} triangle corners, not a multiple of 3 \
                         ",
