@@ -11,6 +11,16 @@ use obscura::settings::{AoSettings, Preset, SettingsError};
 use obscura::Technique;
 use std::path::PathBuf;
 
+/// Most frames any `--frames`, `--warmup`, `--timing-frames` or `--offscreen-frames` takes: more
+/// than an hour of frames at 30 per second, far beyond any timing or path, and small enough that
+/// counts derived from it (warm-up plus timed frames, one record per frame) cannot overflow or
+/// fill memory (issue 62, defect 5: `path --frames 1000000000` aborted allocating).
+pub const MAX_FRAME_COUNT: i64 = 100_000;
+
+/// Most rays per pixel `--spp` takes (2^20): a thousand times the default of 1024, hours of
+/// tracing already at small sizes.
+pub const MAX_SPP: i64 = 1 << 20;
+
 /// `WxH`, both positive.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s

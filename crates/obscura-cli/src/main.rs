@@ -52,34 +52,9 @@ enum Command {
     View(Box<commands::view::ViewArgs>),
 }
 
-/// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
-/// environment` when the variable is unset (headless machines, containers, CI), which reads as
-/// our error although obscura never opens a window. Give it a private directory (mode 0700, as
-/// the variable requires) when it is unset or empty; a set one is left alone, and any real error
-/// still prints.
-fn quiet_headless_vulkan() {
-    // Set and not empty: the user's (an empty value is as invalid to Mesa as none).
-    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|v| !v.is_empty()) {
-        return;
-    }
-    let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
-    let dir = std::env::temp_dir().join(format!("obscura-runtime-{user}"));
-    if std::fs::create_dir_all(&dir).is_err() {
-        return;
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        if std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700)).is_err() {
-            return;
-        }
-    }
-    // SAFETY-free in edition 2021; done first thing in main, before any thread or GPU instance.
-    std::env::set_var("XDG_RUNTIME_DIR", &dir);
-}
-
 fn main() -> ExitCode {
-    quiet_headless_vulkan();
+    // First thing, before any thread: it may set XDG_RUNTIME_DIR (Gpu::new would otherwise).
+    obscura::gpu::quiet_headless_vulkan();
     // eframe logs a failed start itself; `view` says it once, with what to do.
     env_logger::Builder::from_env(
         env_logger::Env::default().default_filter_or("warn,eframe::native::run=off"),

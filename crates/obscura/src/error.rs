@@ -100,12 +100,14 @@ pub enum SettingsError {
         message: String,
     },
     /// A settings file that parses but whose values do not validate.
-    #[error("settings file '{}': {source}", path.display())]
+    #[error("settings file '{}': {problem}", path.display())]
     InFile {
         /// The settings file.
         path: PathBuf,
-        /// What [`AoSettings::validate`](crate::settings::AoSettings::validate) rejected in the file's values.
-        source: Box<SettingsError>,
+        /// What [`AoSettings::validate`](crate::settings::AoSettings::validate) rejected in the
+        /// file's values. Not named `source`: thiserror would make that the error's source too,
+        /// and a chain printed whole (`{:#}`) would say it twice (issue 62).
+        problem: Box<SettingsError>,
     },
 }
 

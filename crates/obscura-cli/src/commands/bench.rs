@@ -22,10 +22,12 @@ pub struct BenchArgs {
     #[command(flatten)]
     ao: AoArgs,
     /// Timed frames.
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = 200,
+          value_parser = clap::value_parser!(u32).range(1..=crate::args::MAX_FRAME_COUNT))]
     frames: u32,
     /// Untimed frames first.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = 20,
+          value_parser = clap::value_parser!(u32).range(0..=crate::args::MAX_FRAME_COUNT))]
     warmup: u32,
     /// Also write the results as JSON.
     #[arg(long)]

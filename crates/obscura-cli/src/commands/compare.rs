@@ -58,7 +58,8 @@ pub struct CompareArgs {
 pub struct TimingArgs {
     /// Frames timed per technique after its first (the median is reported; 0: no timings). On a
     /// CPU adapter the times are marked as no GPU timings.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3,
+          value_parser = clap::value_parser!(u32).range(0..=crate::args::MAX_FRAME_COUNT))]
     pub timing_frames: u32,
 }
 

@@ -12,9 +12,26 @@ pub struct DiffArgs {
     a: PathBuf,
     /// Second image, the same size.
     b: PathBuf,
-    /// Fail (exit 1) when the largest absolute difference is above this.
-    #[arg(long)]
+    /// Fail (exit 1) when the largest absolute difference is above this (a finite number, 0 or
+    /// more).
+    #[arg(long, value_parser = parse_threshold, allow_hyphen_values = true)]
     max_abs: Option<f32>,
+}
+
+/// A threshold on a difference: finite and not negative. NaN would compare false with every
+/// difference (issue 62: `--max-abs NaN` was accepted), and a negative one fails every pair.
+fn parse_threshold(text: &str) -> Result<f32, String> {
+    let value: f32 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a number: give one like 0.01"))?;
+    if !value.is_finite() || value < 0.0 {
+        return Err(format!(
+            "{text} is not a finite number of 0 or more: give the largest difference allowed, \
+             like 0.01"
+        ));
+    }
+    Ok(value)
 }
 
 pub fn run(args: &DiffArgs) -> Result<()> {
@@ -52,7 +69,7 @@ pub fn run(args: &DiffArgs) -> Result<()> {
         sum_abs / pixels as f64
     );
     if let Some(bound) = args.max_abs {
-        if max_abs > bound || bound.is_nan() {
+        if max_abs > bound {
             bail!("max |a-b| {max_abs:e} is over --max-abs {bound:e}");
         }
     }

@@ -24,8 +24,11 @@ pub struct PathChoice {
     /// have `orbit`), or a .json keyframe file (docs/PATHS.md).
     #[arg(long = "path")]
     pub path: Option<String>,
-    /// Frames sampled evenly along the path, first and last keyframe included.
-    #[arg(long, default_value_t = 24)]
+    /// Frames sampled evenly along the path, first and last keyframe included (at most 100000;
+    /// every frame's images stay in memory for the temporal metrics, so frames × size must also
+    /// fit in 8 GiB).
+    #[arg(long, default_value_t = 24,
+          value_parser = clap::value_parser!(u32).range(0..=crate::args::MAX_FRAME_COUNT))]
     pub frames: u32,
 }
 
@@ -152,6 +155,13 @@ impl PathJob<'_> {
 /// Renders every frame of every technique (one renderer per technique, reused along the
 /// path), then the reference of every frame when asked.
 pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
+    check_path_memory(
+        job.frames,
+        (job.width, job.height),
+        job.guard_band,
+        job.techniques.len(),
+        job.reference.is_some(),
+    )?;
     let samples = job.path.sample(job.frames)?;
     let near = obscura::near_plane(job.scene);
     let views: Vec<FrameView> = samples
@@ -217,6 +227,45 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
         techniques,
         reference,
     })
+}
+
+/// Most bytes of images a path run keeps in memory ([`check_path_memory`]).
+const PATH_MEMORY_LIMIT: u64 = 8 << 30;
+
+/// What [`render_path`] keeps until the end, for the temporal metrics and the outputs: every
+/// frame's AO image of every technique, its G-buffer (depth and normals over the framebuffer,
+/// guard band included), its visible depth and, with a reference, the reference image. Refused
+/// above [`PATH_MEMORY_LIMIT`] before anything is rendered (issue 62, defect 5: `--frames
+/// 1000000000` aborted allocating).
+pub fn check_path_memory(
+    frames: u32,
+    (width, height): (u32, u32),
+    guard_band: u32,
+    techniques: usize,
+    with_reference: bool,
+) -> Result<()> {
+    let visible = u64::from(width) * u64::from(height);
+    let guard = 2 * u64::from(guard_band);
+    let framebuffer = (u64::from(width) + guard) * (u64::from(height) + guard);
+    let images = techniques as u64 + 1 + u64::from(with_reference);
+    let per_frame = visible * 4 * images + framebuffer * 16;
+    let bytes = per_frame.saturating_mul(u64::from(frames));
+    if bytes > PATH_MEMORY_LIMIT {
+        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+        let fitting = PATH_MEMORY_LIMIT / per_frame.max(1);
+        bail!(
+            "--frames {} at --size {}x{} with {} technique(s) would keep {:.1} GiB of images in \
+             memory (every frame's AO and G-buffer, for the temporal metrics), more than the \
+             limit of {:.0} GiB: use at most {fitting} frames at this size, or a smaller --size",
+            frames,
+            width,
+            height,
+            techniques,
+            gib(bytes),
+            gib(PATH_MEMORY_LIMIT)
+        );
+    }
+    Ok(())
 }
 
 #[derive(Args)]
@@ -289,6 +338,14 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
         args.reference.settings(args.reference_model, &args.ao)?;
     }
     let (width, height) = args.size;
+    // Before the scene is loaded and the output folder made (render_path checks again).
+    check_path_memory(
+        args.choice.frames,
+        args.size,
+        args.ao.guard_band(height),
+        techniques.len(),
+        args.with_reference,
+    )?;
     let scene = args.scene.load()?;
     let path = args.choice.resolve(&scene, width as f32 / height as f32)?;
     crate::args::prepare_out_folder(&args.out, "the frames")?;

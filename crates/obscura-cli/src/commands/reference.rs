@@ -19,7 +19,7 @@ use std::time::Instant;
 #[derive(Args, Clone, Debug)]
 pub struct ReferenceArgs {
     /// Hemisphere model: rays per pixel [default: 1024].
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=crate::args::MAX_SPP))]
     pub spp: Option<u32>,
     /// Hemisphere model: weight hits by max(0, 1 - t/R) instead of counting them fully.
     #[arg(long)]

@@ -205,6 +205,21 @@ fn bad_paths_are_clear_errors() {
         &["no camera path 'orbit'", "dolly"],
     );
     fails_with(&with(&["--frames", "1"]), &["--frames 1", "at least 2"]);
+    // Issue 62, defect 5: a billion frames aborted allocating; now clap's bound refuses it, and
+    // frames × size beyond memory is refused before anything is rendered.
+    fails_with(
+        &with(&["--frames", "1000000000"]),
+        &["--frames", "1000000000", "0..=100000"],
+    );
+    fails_with(
+        &with(&["--frames", "100000"]),
+        &[
+            "--frames 100000 at --size 64x48",
+            "GiB",
+            "limit of 8 GiB",
+            "at most",
+        ],
+    );
     fails_with(&with(&["--camera", "side"]), &["--camera", "camera path"]);
     let bad = dir.path().join("bad.json");
     std::fs::write(&bad, "[{\"time\": 0, \"eye\": [0, 1, 2]}]").unwrap();

@@ -71,12 +71,62 @@ pub enum GpuError {
         /// The adapter's name.
         adapter: String,
     },
+    /// A storage buffer larger than the device binds or makes ([`check_storage_size`]), found
+    /// before the buffer is made. [`crate::Renderer`] adds the image size and technique.
+    #[error(
+        "the {buffer} buffer needs {} MiB ({bytes} bytes), over this device's {limit_name} of {} \
+         MiB ({limit} bytes)",
+        mib(*bytes),
+        mib(*limit)
+    )]
+    BufferTooLarge {
+        /// The buffer's label (`occlusion pyramid`, `two-phase work list`, …).
+        buffer: &'static str,
+        /// The bytes it needs.
+        bytes: u64,
+        /// The limit it exceeds: `max_storage_buffer_binding_size` or `max_buffer_size`.
+        limit_name: &'static str,
+        /// That limit's value on this device, bytes.
+        limit: u64,
+    },
     /// wgpu validation errors raised since the last check ([`Gpu::check_errors`]), one a line.
     #[error("GPU validation error: {0}")]
     Validation(String),
     /// Anything else: an adapter limit or missing feature, a failed poll or buffer mapping.
     #[error("GPU error: {0}")]
     Other(String),
+}
+
+/// Bytes in MiB, rounded up, for messages.
+fn mib(bytes: u64) -> u64 {
+    bytes.div_ceil(1 << 20)
+}
+
+/// A storage buffer of `bytes` named `buffer` fits one binding and one buffer of a device with
+/// `limits`; else [`GpuError::BufferTooLarge`]. Checked before the buffer is made: wgpu would
+/// make it and report each bind group over it as a validation error of its own, long after
+/// (issue 62: `render --size 7680x4320` on lavapipe's 128 MiB printed three).
+pub fn check_storage_size(
+    limits: &wgpu::Limits,
+    buffer: &'static str,
+    bytes: u64,
+) -> Result<(), GpuError> {
+    let too_large = |limit_name, limit| GpuError::BufferTooLarge {
+        buffer,
+        bytes,
+        limit_name,
+        limit,
+    };
+    if bytes > limits.max_storage_buffer_binding_size {
+        return Err(too_large(
+            "max_storage_buffer_binding_size",
+            limits.max_storage_buffer_binding_size,
+        ));
+    }
+    if bytes > limits.max_buffer_size {
+        return Err(too_large("max_buffer_size", limits.max_buffer_size));
+    }
+    Ok(())
 }
 
 /// Adapter facts worth printing (`obscura info`) and recording next to benchmark numbers.
@@ -157,9 +207,42 @@ fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
     backend * 10 + device
 }
 
+/// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
+/// environment` (twice: once per instance obscura probes) when the variable is unset or empty
+/// (headless machines, containers, CI), which reads as an error although obscura opens no
+/// window. This gives it a private directory (mode 0700, as the variable requires) in that case;
+/// a set one is left alone, and any real error still prints. [`Gpu::new`] calls it, once, before
+/// it makes a wgpu instance, so every user of the library has it; a program with threads of its
+/// own that read the environment should call it first thing in `main` instead (it sets an
+/// environment variable, which is not safe while another thread reads the environment).
+pub fn quiet_headless_vulkan() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // Set and not empty: the user's (an empty value is as invalid to Mesa as none).
+        if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|v| !v.is_empty()) {
+            return;
+        }
+        let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
+        let dir = std::env::temp_dir().join(format!("obscura-runtime-{user}"));
+        if std::fs::create_dir_all(&dir).is_err() {
+            return;
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            if std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700)).is_err() {
+                return;
+            }
+        }
+        std::env::set_var("XDG_RUNTIME_DIR", &dir);
+    });
+}
+
 impl Gpu {
-    /// Pick an adapter (see [`GpuOptions`]) and create a device.
+    /// Pick an adapter (see [`GpuOptions`]) and create a device. Quiets Mesa's complaint about
+    /// an unset `XDG_RUNTIME_DIR` first ([`quiet_headless_vulkan`]).
     pub fn new(options: &GpuOptions) -> Result<Self, GpuError> {
+        quiet_headless_vulkan();
         let backend_name = options.backend.clone().or_else(|| {
             std::env::var("OBSCURA_BACKEND")
                 .ok()
@@ -305,7 +388,15 @@ impl Gpu {
         if errors.is_empty() {
             Ok(())
         } else {
-            let message = errors.join("\n");
+            // One message each: a resource made twice over the same limit (two bind groups of
+            // one buffer, say) raises the same error twice.
+            let mut distinct: Vec<&str> = Vec::new();
+            for e in errors.iter() {
+                if !distinct.contains(&e.as_str()) {
+                    distinct.push(e);
+                }
+            }
+            let message = distinct.join("\n");
             errors.clear();
             Err(GpuError::Validation(message))
         }
@@ -595,6 +686,33 @@ pub fn texture_2d(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn storage_buffers_over_either_limit_are_refused_with_both_numbers() {
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: 128 << 20,
+            max_buffer_size: 256 << 20,
+            ..wgpu::Limits::default()
+        };
+        assert!(check_storage_size(&limits, "occlusion pyramid", 128 << 20).is_ok());
+        let e = check_storage_size(&limits, "occlusion pyramid", 211_100_672)
+            .unwrap_err()
+            .to_string();
+        for needle in [
+            "occlusion pyramid",
+            "202 MiB",
+            "211100672",
+            "max_storage_buffer_binding_size of 128 MiB",
+        ] {
+            assert!(e.contains(needle), "{needle:?} not in: {e}");
+        }
+        let limits = wgpu::Limits {
+            max_buffer_size: 64 << 20,
+            ..limits
+        };
+        let e = check_storage_size(&limits, "two-phase pixels", 100 << 20).unwrap_err();
+        assert!(e.to_string().contains("max_buffer_size of 64 MiB"), "{e}");
+    }
 
     #[test]
     fn the_gl_backend_is_refused_with_what_to_use_instead() {

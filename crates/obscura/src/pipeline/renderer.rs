@@ -132,7 +132,8 @@ impl Renderer {
         let near = crate::view::near_plane(scene);
         let needs = settings.technique.needs();
         let peel = needs.second_layer.then_some(settings.peel_separation);
-        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel, &gpu_scene);
+        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel, &gpu_scene)
+            .map_err(|e| sized(e.into(), gpu, settings, (width, height), guard_band))?;
         let bvh = needs
             .bvh
             .then(|| GpuBvh::new(&gpu.device, &bvh.get(scene), scene));
@@ -169,12 +170,18 @@ impl Renderer {
     ) -> Result<(), Error> {
         let view = FrameView::new(*camera, self.width, self.height, self.guard_band, self.near);
         if self.ao.as_ref().map(|ao| ao.screen()) != Some(view.screen()) {
-            self.ao = Some(AmbientOcclusion::new(
-                &self.gpu,
-                &self.settings,
-                view.screen(),
-                self.scene_resources(),
-            )?);
+            self.ao = Some(
+                AmbientOcclusion::new(
+                    &self.gpu,
+                    &self.settings,
+                    view.screen(),
+                    self.scene_resources(),
+                )
+                .map_err(|e| {
+                    let size = (self.width, self.height);
+                    sized(e, &self.gpu, &self.settings, size, self.guard_band)
+                })?,
+            );
             self.gpu.check_errors()?;
         }
         let ao = self.ao.as_ref().expect("created above");
@@ -465,6 +472,27 @@ impl Renderer {
             );
         }
         Ok(out)
+    }
+}
+
+/// A buffer too large for the device ([`crate::gpu::GpuError::BufferTooLarge`]) as one message
+/// that also names the image size and the technique, and what to change; other errors as they
+/// are.
+fn sized(
+    e: Error,
+    gpu: &Gpu,
+    settings: &AoSettings,
+    (width, height): (u32, u32),
+    guard_band: u32,
+) -> Error {
+    match e {
+        Error::Gpu(e @ crate::gpu::GpuError::BufferTooLarge { .. }) => Error::Input(format!(
+            "image size {width}x{height} (with its {guard_band} px guard band) with technique \
+             '{}' on '{}': {e}: use a smaller --size, or another technique",
+            settings.technique.name(),
+            gpu.summary.name
+        )),
+        e => e,
     }
 }
 

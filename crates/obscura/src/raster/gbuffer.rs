@@ -171,7 +171,14 @@ impl GBuffer {
         height: u32,
         peel_separation: Option<f32>,
         scene: &GpuScene,
-    ) -> Self {
+    ) -> Result<Self, crate::gpu::GpuError> {
+        // The occlusion culling's pyramid is the one storage buffer here that grows with the
+        // framebuffer (the visibility words fall back to a colour target where they do not fit).
+        crate::gpu::check_storage_size(
+            &device.limits(),
+            "occlusion pyramid",
+            super::occlusion_pyramid::bytes(width, height),
+        )?;
         let target_with = |label, format, extra| {
             crate::gpu::texture_2d(
                 device,
@@ -345,7 +352,7 @@ impl GBuffer {
         );
         // Occlusion culling against the visibility pass's own depth buffer.
         let cull = TriangleCull::new(device, &scene.draw_ordered(), "triangle_cull", Some(&z));
-        Self {
+        Ok(Self {
             depth: depth_target,
             normals: target_with(
                 "normals",
@@ -383,7 +390,7 @@ impl GBuffer {
             }),
             peel,
             cull,
-        }
+        })
     }
 
     /// Triangles the last frame's culling was given, and kept by each phase of the visibility

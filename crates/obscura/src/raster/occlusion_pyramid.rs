@@ -10,6 +10,11 @@ use crate::gpu::PassProfiler;
 const FIRST_LEVEL: u32 = 0;
 const LAST_LEVEL: u32 = 6;
 
+/// Bytes of the pyramid of a `width`×`height` framebuffer (its one storage buffer).
+pub(crate) fn bytes(width: u32, height: u32) -> u64 {
+    4 * len(width, height)
+}
+
 /// Floats in the pyramid of a `width`×`height` framebuffer.
 fn len(width: u32, height: u32) -> u64 {
     (FIRST_LEVEL..=LAST_LEVEL)
@@ -43,7 +48,7 @@ impl OcclusionPyramid {
         );
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("occlusion pyramid"),
-            size: 4 * len(z.width(), z.height()),
+            size: bytes(z.width(), z.height()),
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });

@@ -127,6 +127,16 @@ pub enum SceneError {
         uri: String,
     },
 
+    /// A scene file that would make more than obscura loads ([`crate::scene::MAX_TRIANGLES`]),
+    /// refused before its data is read.
+    #[error("scene '{}' {message}", path.display())]
+    TooBig {
+        /// The scene file.
+        path: PathBuf,
+        /// What it would hold, the limit it exceeds and the fix.
+        message: String,
+    },
+
     /// A loaded or hand-built scene that fails [`crate::scene::Scene::validate`].
     #[error("scene '{scene}' is invalid: {problem}")]
     Invalid {

@@ -100,6 +100,50 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
     Ok(scene)
 }
 
+/// The most triangles a scene file may make, counted over every placement of its meshes (glTF
+/// nodes and `EXT_mesh_gpu_instancing` instances) before any of its data is read, so that a small
+/// file cannot fill memory (issue 62, defect 5). Real scenes pass easily: Sponza has about
+/// 260,000 triangles, the largest production scenes tens of millions; a loaded triangle costs
+/// about 100 bytes on the CPU (vertices, indices, BVH) before the GPU's copy, so the limit is
+/// about 5 GB. Vertices are held to three per triangle of it, mesh instances to one. The
+/// environment variable [`MAX_TRIANGLES_VAR`] replaces it ([`max_triangles`]).
+pub const MAX_TRIANGLES: u64 = 50_000_000;
+
+/// The environment variable that replaces [`MAX_TRIANGLES`] (a whole number of triangles).
+pub const MAX_TRIANGLES_VAR: &str = "OBSCURA_MAX_TRIANGLES";
+
+/// [`MAX_TRIANGLES`], or the value of [`MAX_TRIANGLES_VAR`] where that is set to a whole number
+/// (a value that is not one is reported and ignored).
+pub fn max_triangles() -> u64 {
+    match std::env::var(MAX_TRIANGLES_VAR) {
+        Ok(text) => match text.trim().replace(['_', ','], "").parse::<u64>() {
+            Ok(n) => n,
+            Err(_) => {
+                log::warn!(
+                    "{MAX_TRIANGLES_VAR}='{text}' is not a whole number of triangles; the limit \
+                     stays {}",
+                    thousands(MAX_TRIANGLES)
+                );
+                MAX_TRIANGLES
+            }
+        },
+        Err(_) => MAX_TRIANGLES,
+    }
+}
+
+/// `n` with its digits grouped by threes (`268,435,456`), for counts in messages.
+pub(crate) fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// How far from its file's origin, in its own sizes, a scene may lie before it is re-centred: 32-bit
 /// floats hold about 7 digits, so at 10^4 sizes away a vertex keeps about 1/1700 of the scene's
 /// size (issue 62, defect 4: a 5 m scene 10^7 m away kept nothing).

@@ -371,7 +371,7 @@ impl SchedulePass {
                     estimator,
                     source,
                     screen,
-                ))
+                )?)
             }
             Schedule::Multiview => {
                 let scene = inputs.scene.ok_or_else(|| {

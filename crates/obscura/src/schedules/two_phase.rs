@@ -118,7 +118,7 @@ impl TwoPhase {
         estimator: &EstimatorPass,
         source: &SourcePass,
         screen: &ScreenGeometry,
-    ) -> Self {
+    ) -> Result<Self, crate::gpu::GpuError> {
         let layouts: Vec<_> = stages
             .iter()
             .map(|s| bindings::layout(device, s.label, &s.schedule_entries))
@@ -137,6 +137,13 @@ impl TwoPhase {
             &[Some(&indirect_layout)],
         );
         let pixels = u64::from(screen.width) * u64::from(screen.height);
+        let limits = device.limits();
+        crate::gpu::check_storage_size(&limits, "two-phase pixels", pixels * PIXEL_BYTES)?;
+        crate::gpu::check_storage_size(
+            &limits,
+            "two-phase work list",
+            WORK_ITEMS_OFFSET + (pixels.max(1) * 4).next_multiple_of(WORK_ITEMS_OFFSET),
+        )?;
         let buffer = |label, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -181,7 +188,7 @@ impl TwoPhase {
                 (INDIRECT_DISPATCH, dispatch.as_entire_binding()),
             ],
         );
-        Self {
+        Ok(Self {
             compact,
             phase1_group: work(&layouts[0]),
             phase2_group: work(&layouts[1]),
@@ -192,7 +199,7 @@ impl TwoPhase {
             pixels: records,
             work_list,
             dispatch,
-        }
+        })
     }
 
     /// Phase 1's per-pixel records (16 bytes each, the sample bit mask first).

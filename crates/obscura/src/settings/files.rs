@@ -87,6 +87,23 @@ fn merge(base: &mut serde_json::Value, top: serde_json::Value) {
     }
 }
 
+/// [`merge`] for TOML trees.
+fn merge_toml(base: &mut toml::Value, top: toml::Value) {
+    match (base, top) {
+        (toml::Value::Table(base), toml::Value::Table(top)) => {
+            for (key, value) in top {
+                match base.get_mut(&key) {
+                    Some(slot) => merge_toml(slot, value),
+                    None => {
+                        base.insert(key, value);
+                    }
+                }
+            }
+        }
+        (slot, value) => *slot = value,
+    }
+}
+
 impl AoSettings {
     /// A settings file (`.json` or `.toml`, by extension) over the defaults, validated. The file
     /// may give any subset of the fields ([`AoSettings::field_paths`]); an unknown field, a value
@@ -115,19 +132,35 @@ impl AoSettings {
         // Typed first, for the parser's positions on unknown fields and wrong types ...
         parse::<AoSettings>(&text, format).map_err(parse_error)?;
         // ... then as a tree, to keep the fields the file leaves out.
-        let file: serde_json::Value = parse(&text, format).map_err(parse_error)?;
-        let mut merged = to_value(self);
-        merge(&mut merged, file);
-        let settings: AoSettings =
-            serde_json::from_value(merged).map_err(|e| SettingsError::Parse {
-                path: path.to_path_buf(),
-                line: None,
-                column: None,
-                message: e.to_string(),
-            })?;
+        let merge_error = |message: String| SettingsError::Parse {
+            path: path.to_path_buf(),
+            line: None,
+            column: None,
+            message,
+        };
+        let settings: AoSettings = match format {
+            SettingsFormat::Json => {
+                let file: serde_json::Value = parse(&text, format).map_err(parse_error)?;
+                let mut merged = to_value(self);
+                merge(&mut merged, file);
+                serde_json::from_value(merged).map_err(|e| merge_error(e.to_string()))?
+            }
+            // TOML's own tree: it keeps `nan` and `inf`, which a JSON tree turns into null, so
+            // that validation reports the value as written (issue 62: `radius = nan` was
+            // reported as "invalid type: null").
+            SettingsFormat::Toml => {
+                let file: toml::Value = parse(&text, format).map_err(parse_error)?;
+                let mut merged =
+                    toml::Value::try_from(self).map_err(|e| merge_error(e.to_string()))?;
+                merge_toml(&mut merged, file);
+                merged.try_into().map_err(|e: toml::de::Error| {
+                    merge_error(e.message().trim().replace('\n', "; "))
+                })?
+            }
+        };
         settings.validate().map_err(|e| SettingsError::InFile {
             path: path.to_path_buf(),
-            source: Box::new(e),
+            problem: Box::new(e),
         })?;
         Ok(settings)
     }

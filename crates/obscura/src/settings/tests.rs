@@ -126,6 +126,22 @@ fn bad_files_are_one_clear_error_naming_the_file() {
         &["vao.radius", "-1", "positive"],
     );
     assert!(!e.to_string().contains("--"), "{e}");
+    // Said once (issue 62: the invalid value was the error's source too, and `{:#}` said it
+    // twice).
+    assert!(std::error::Error::source(&e).is_none(), "{e:?}");
+    // Not-a-numbers and infinities as written, not as the "null" of a JSON tree (issue 62).
+    for text in ["nan", "inf", "-inf"] {
+        let e = check(
+            &file(d, "nan.toml", &format!("[vao]\nradius = {text}\n")),
+            &["vao.radius", "positive"],
+        );
+        let msg = e.to_string();
+        assert!(
+            msg.to_lowercase().contains(&format!("radius {text}:")),
+            "{msg}"
+        );
+        assert!(!msg.contains("null"), "{msg}");
+    }
     // Unreadable, and a format the extension does not say.
     let e = check(&d.join("missing.toml"), &["cannot read", "check the path"]);
     assert!(matches!(e, SettingsError::Read { .. }));

@@ -260,6 +260,18 @@ impl SourcePass {
             }
             _ => u64::from(full.0) * u64::from(full.1),
         };
+        if maps_hidden_depth && schedule.two_phase() {
+            let limits = device.limits();
+            crate::gpu::check_storage_size(
+                &limits,
+                "sd request",
+                zero_fill_size(request_cells * 4),
+            )?;
+            if kind == Source::RayStochasticDepth {
+                let bytes = zero_fill_size(request_cells * 8);
+                crate::gpu::check_storage_size(&limits, "ray sd intervals", bytes)?;
+            }
+        }
         let request = (maps_hidden_depth && schedule.two_phase()).then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sd request"),

@@ -11,24 +11,10 @@ use obscura::{
     ScreenGeometry, Technique,
 };
 
-/// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI). As the CLI does, gives
-/// Mesa's Vulkan window-system layer a runtime directory when XDG_RUNTIME_DIR is unset, so the
-/// test log is free of its complaint (once, before any GPU instance exists).
+/// The test GPU: whatever adapter `Gpu::new` picks (lavapipe on CI). `Gpu::new` gives Mesa's
+/// Vulkan window-system layer a runtime directory when XDG_RUNTIME_DIR is unset
+/// (`gpu::quiet_headless_vulkan`), so the test log is free of its complaint.
 pub fn gpu() -> Gpu {
-    static QUIET: std::sync::Once = std::sync::Once::new();
-    QUIET.call_once(|| {
-        if std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty()) {
-            let dir = std::env::temp_dir().join("obscura-test-runtime");
-            if std::fs::create_dir_all(&dir).is_ok() {
-                #[cfg(unix)]
-                {
-                    use std::os::unix::fs::PermissionsExt;
-                    let _ = std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700));
-                }
-                std::env::set_var("XDG_RUNTIME_DIR", &dir);
-            }
-        }
-    });
     Gpu::new(&GpuOptions::default()).expect("a GPU adapter (install mesa-vulkan-drivers)")
 }
 

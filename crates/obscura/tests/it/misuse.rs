@@ -183,3 +183,39 @@ fn a_scene_over_the_adapter_s_buffer_limit_is_an_error_naming_it() {
         obscura::raster::gpu_scene::GpuScene::new(&gpu.device, &gpu.queue, &scene, &limits).is_ok()
     );
 }
+
+/// Issue 62: a framebuffer whose occlusion pyramid needs more than one storage binding of the
+/// device (8K on lavapipe's 128 MiB) is refused before any buffer is made, in one message that
+/// names the size, the technique, the buffer and the limit; no validation error is left behind
+/// to be printed again (it was printed three times, once per bind group).
+#[test]
+fn a_size_over_the_storage_binding_limit_is_one_clear_error() {
+    let gpu = common::gpu();
+    let limits = gpu.device.limits();
+    let side = gpu.summary.max_texture_dimension_2d.min(16384);
+    // The pyramid's finest level alone is 4 bytes a pixel.
+    if 4 * u64::from(side) * u64::from(side) <= limits.max_storage_buffer_binding_size {
+        eprintln!("skipped: this device binds a {side}x{side} pyramid");
+        return;
+    }
+    let settings = AoSettings {
+        technique: Technique::SdVao,
+        ..AoSettings::default()
+    };
+    let scene = obscura::scene::load("stairs").unwrap();
+    let Err(e) = obscura::Renderer::new(&gpu, &scene, &settings, side, side, 0) else {
+        panic!("a {side}x{side} renderer was made");
+    };
+    let message = e.to_string();
+    for needle in [
+        &format!("{side}x{side}"),
+        "sd-vao",
+        "occlusion pyramid",
+        "max_storage_buffer_binding_size",
+        "--size",
+    ] {
+        assert!(message.contains(needle), "{needle:?} not in: {message}");
+    }
+    assert!(matches!(e, obscura::Error::Input(_)), "{e:?}");
+    gpu.check_errors().expect("no validation error left behind");
+}

@@ -51,12 +51,13 @@ pub struct ViewArgs {
     screenshot: Option<PathBuf>,
     /// Frames to run before --screenshot is taken and the window closes [default: 5 with
     /// --screenshot; without it, run until closed].
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=crate::args::MAX_FRAME_COUNT))]
     frames: Option<u32>,
     /// No window: render this many frames of the viewer's render path (renderers and display
     /// pass) at --size, waiting for the GPU after each, and print the frame times and per-pass
     /// GPU medians. For timing on machines without a display; --screenshot saves the last frame.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u32).range(1..=crate::args::MAX_FRAME_COUNT))]
     offscreen_frames: Option<u32>,
 }
 

@@ -11,9 +11,17 @@
 use gltf::accessor::{DataType, Dimensions};
 use gltf::{buffer, Accessor, Document};
 
+use crate::scene::thousands;
+
 /// Largest element count accepted for one accessor (2^26, far above any real scene's mesh):
 /// bounds memory for sparse accessors, whose count is not limited by any buffer's size.
 const MAX_ELEMENTS: usize = 1 << 26;
+
+/// Largest element count accepted for an accessor without a bufferView (2^24): its elements are
+/// zeros the file does not hold (under its sparse entries), so its count alone sets what reading
+/// it allocates; a kilobyte file could otherwise make gigabytes (issue 62, defect 5). Accessors
+/// with a bufferView are bounded by the file's own size ([`view_range`]).
+const MAX_UNBACKED_ELEMENTS: usize = 1 << 24;
 
 /// A `.glb` header must cover at least its own 12 bytes and not claim more than the file holds.
 pub(super) fn glb_header(bytes: &[u8]) -> Result<(), String> {
@@ -167,6 +175,15 @@ pub(super) fn accessor(
     if count == 0 || count > MAX_ELEMENTS {
         return Err(format!(
             "{name} has count {count} (must be 1..={MAX_ELEMENTS})"
+        ));
+    }
+    if acc.view().is_none() && count > MAX_UNBACKED_ELEMENTS {
+        return Err(format!(
+            "{name} has count {} without a bufferView (zeros the file does not hold, under its \
+             sparse entries), more than the limit of {} for such accessors: store its elements \
+             in a bufferView",
+            thousands(count as u64),
+            thousands(MAX_UNBACKED_ELEMENTS as u64)
         ));
     }
     let elem = acc.size();

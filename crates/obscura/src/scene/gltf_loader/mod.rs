@@ -6,6 +6,9 @@
 //! in [`checks`] can run between them: some malformed files otherwise panic inside the crate.
 
 mod attributes;
+mod budget;
+#[cfg(test)]
+mod budget_tests;
 mod camera_path;
 mod checks;
 mod instancing;
@@ -17,6 +20,7 @@ mod quantization_tests;
 mod skinning;
 #[cfg(test)]
 mod skinning_tests;
+mod spec;
 #[cfg(test)]
 mod tests;
 
@@ -34,8 +38,34 @@ use attributes::Attribute;
 use materials::BaseColorUv;
 use skinning::VertexPlacement;
 
-/// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that).
+/// Loads a `.gltf` or `.glb` file. The result is not yet validated (the caller does that). What
+/// the file gets wrong against the glTF specification without keeping it from loading is logged
+/// as warnings, [`spec::MAX_PRINTED`] at most.
 pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
+    let (scene, problems) = load_with_problems(path, options)?;
+    for problem in problems.iter().take(spec::MAX_PRINTED) {
+        log::warn!(
+            "{}: not valid glTF 2.0 (loaded anyway): {problem}",
+            path.display()
+        );
+    }
+    if problems.len() > spec::MAX_PRINTED {
+        log::warn!(
+            "{}: {} more problems against the glTF 2.0 specification (the Khronos glTF \
+             validator lists them all)",
+            path.display(),
+            problems.len() - spec::MAX_PRINTED
+        );
+    }
+    Ok(scene)
+}
+
+/// [`load`], returning the problems against the specification ([`spec::problems`]) instead of
+/// logging them.
+fn load_with_problems(
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<(Scene, Vec<String>), SceneError> {
     let bytes = super::read_file(path)?;
     let error = |message: String| SceneError::Gltf {
         path: path.to_path_buf(),
@@ -88,7 +118,11 @@ fn check_referenced_files(
     Ok(())
 }
 
-fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene, Failure> {
+fn from_bytes(
+    path: &Path,
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<(Scene, Vec<String>), Failure> {
     checks::glb_header(bytes)?;
     // Parse, check what gltf-json's validation itself would index blindly, then validate.
     let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| e.to_string())?;
@@ -99,6 +133,9 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
     take_extension(&mut json, instancing::NAME);
     let doc = Document::from_json(json).map_err(|e| e.to_string())?;
     checks::document(&doc)?;
+    let problems = spec::problems(&doc);
+    // Before any data is read: what the file would make must fit (budget.rs).
+    budget::check(path, budget::count(&doc, roots(&doc))).map_err(Failure::Scene)?;
     check_referenced_files(path, &doc, options).map_err(Failure::Scene)?;
     let base = files::folder(path);
     let buffers = gltf::import_buffers(&doc, Some(base), gltf.blob)
@@ -131,7 +168,7 @@ fn from_bytes(path: &Path, bytes: &[u8], options: &LoadOptions) -> Result<Scene,
             false
         }
     });
-    Ok(scene)
+    Ok((scene, problems))
 }
 
 struct Loader<'a> {
@@ -151,16 +188,7 @@ impl Loader<'_> {
     /// Depth-first walk from the root nodes, accumulating world transforms.
     fn traverse(&mut self) -> Result<(), String> {
         let doc = self.doc;
-        let roots: Vec<Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
-            Some(s) => s.nodes().collect(),
-            None => {
-                let mut is_child = vec![false; doc.nodes().len()];
-                for child in doc.nodes().flat_map(|n| n.children()) {
-                    is_child[child.index()] = true;
-                }
-                doc.nodes().filter(|n| !is_child[n.index()]).collect()
-            }
-        };
+        let roots = roots(doc);
         let worlds = node_worlds(doc);
         let mut visited = vec![false; doc.nodes().len()];
         let mut stack: Vec<(Node, Mat4)> = roots
@@ -388,6 +416,21 @@ impl Loader<'_> {
                 self.path.display()
             ),
             None => {}
+        }
+    }
+}
+
+/// The nodes the scene starts from: the default scene's, else the first scene's, else every node
+/// that is no node's child.
+fn roots(doc: &Document) -> Vec<Node<'_>> {
+    match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(s) => s.nodes().collect(),
+        None => {
+            let mut is_child = vec![false; doc.nodes().len()];
+            for child in doc.nodes().flat_map(|n| n.children()) {
+                is_child[child.index()] = true;
+            }
+            doc.nodes().filter(|n| !is_child[n.index()]).collect()
         }
     }
 }

@@ -800,3 +800,49 @@ fn specular_glossiness_materials_alpha_test_their_diffuse_texture() {
     };
     expect_error(&asset.write(&dir, Kind::Embedded), "diffuseTexture");
 }
+
+/// Issue 62: a file that breaks rules of the specification the loader does not need (an
+/// accessor's min of the wrong length, a matrix beside a translation, a rotation that is not a
+/// unit quaternion) still loads, and each problem is reported; a valid file has none.
+#[test]
+fn spec_problems_are_warnings_and_the_file_still_loads() {
+    let dir = temp_dir("spec");
+    let options = crate::scene::LoadOptions::default();
+    let good = Asset::default().write(&dir, Kind::Embedded);
+    let (_, problems) = super::load_with_problems(&good, &options).unwrap();
+    assert!(problems.is_empty(), "{problems:?}");
+    let asset = Asset {
+        patches: vec![
+            // gltf's validation checks POSITION's min and max, not the others'.
+            (
+                r#""count": 4, "type": "VEC2"}"#,
+                r#""count": 4, "type": "VEC2", "min": [0], "max": [1, 1]}"#,
+            ),
+            (
+                r#"{"name": "child", "mesh": 0, "scale": [2, 2, 2]}"#,
+                r#"{"name": "child", "mesh": 0, "scale": [2, 2, 2], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}"#,
+            ),
+            (
+                r#"{"name": "plain", "mesh": 1, "translation": [0, 4, 0]}"#,
+                r#"{"name": "plain", "mesh": 1, "translation": [0, 4, 0], "rotation": [0, 0, 0, 2]}"#,
+            ),
+        ],
+        ..Asset::default()
+    };
+    let bad = asset.write(&dir, Kind::Embedded);
+    let (scene, problems) = super::load_with_problems(&bad, &options).unwrap();
+    assert!(scene.triangle_count() > 0);
+    assert_eq!(problems.len(), 3, "{problems:?}");
+    for needle in [
+        "accessor 1: min has 1 values",
+        "node 1 has both a matrix",
+        "node 4: rotation",
+    ] {
+        assert!(
+            problems.iter().any(|p| p.contains(needle)),
+            "{needle:?} not in {problems:?}"
+        );
+    }
+    // And through the public loader: it loads.
+    assert!(load_path(&bad).is_ok());
+}
