@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 58 on the device, in one call (carry .devbin and .gl; scripts/device-bench.sh says how):
 # 1. quality against cost at 1920x1080 on Sponza and Sibenik (scripts/device-quality.sh): gtao,
-#    hemisphere, rtao and rtao-two-phase against the 1024-ray hemisphere truth, one frame, after
+#    hemisphere, hemisphere-dual, rtao and rtao-two-phase against the 1024-ray hemisphere truth, one frame, after
 #    16 still frames (history unclipped), with the denoiser, under a ray budget of half a ray a
 #    pixel and under a time budget;
 # 2. rtao-two-phase's rays traced per view (`render --debug-out`, stats.json);
@@ -25,7 +25,7 @@ export OBSCURA_CACHE_DIR=$out/cache
 
 # 1. Quality against cost.
 half=$((1920 * 1080 / 2))
-VIEWS="sponza sibenik" TECHNIQUES=gtao,hemisphere,rtao,rtao-two-phase OUT=$runs/quality \
+VIEWS="sponza sibenik" TECHNIQUES=gtao,hemisphere,hemisphere-dual,rtao,rtao-two-phase OUT=$runs/quality \
   VARIANTS="one=;still16=--temporal --temporal-no-clamp --timing-frames 15;denoised16=--temporal --temporal-no-clamp --denoise --timing-frames 15;budget16=--temporal --temporal-no-clamp --ray-budget $half --timing-frames 15;time16=--temporal --temporal-no-clamp --time-budget 0.6 --timing-frames 15" \
   bash "$here/device-quality.sh" > "$runs/quality.out" 2>&1
 
