@@ -51,19 +51,8 @@ impl Atrous {
         );
         let module = crate::gpu::shader_module(device, "atrous", &source);
         let rays = [("RAYS", f64::from(history_rays.unwrap_or(0)))];
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: None,
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &rays,
-                    ..Default::default()
-                },
-                cache: None,
-            })
-        };
+        let pipeline =
+            |entry: &str| crate::gpu::entry_pipeline(device, "atrous", &module, entry, &rays, None);
         let params = (0..settings.iterations)
             .map(|i| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -67,14 +67,7 @@ impl RayBudget {
         .join("\n");
         let module = crate::gpu::shader_module(device, "ray budget", &source);
         let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: None,
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
+            crate::gpu::entry_pipeline(device, "ray budget", &module, entry, &[], None)
         };
         let storage = |label, size: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {

@@ -588,12 +588,25 @@ pub(crate) fn pipeline_from_module(
     constants: &[(&str, f64)],
     layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
-    dump_constants(label, "main", constants);
+    entry_pipeline(device, label, module, "main", constants, layout)
+}
+
+/// [`pipeline_from_module`] at entry point `entry` (modules with several passes: the ray
+/// budget's, the à-trous filter's).
+pub(crate) fn entry_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+    constants: &[(&str, f64)],
+    layout: Option<&wgpu::PipelineLayout>,
+) -> wgpu::ComputePipeline {
+    dump_constants(label, entry, constants);
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout,
         module,
-        entry_point: Some("main"),
+        entry_point: Some(entry),
         compilation_options: wgpu::PipelineCompilationOptions {
             constants,
             // Shaders that use workgroup memory write it before reading it.
