@@ -486,11 +486,12 @@ impl AmbientOcclusion {
         let raw = self.raw.create_view(&Default::default());
         let bent = self.bent.create_view(&Default::default());
         // The ray budget picks this frame's rays from the history before the AO pass casts them.
-        let budget = self.temporal().and_then(TemporalAccumulation::ray_budget);
-        if let Some(temporal) = self.temporal() {
+        let temporal = self.temporal();
+        if let Some(temporal) = temporal {
             temporal.encode_budget(device, encoder, work, profiler.as_deref_mut());
         }
-        let ray_grant = budget
+        let ray_grant = temporal
+            .and_then(TemporalAccumulation::ray_budget)
             .map_or(&self.no_ray_grant, |b| b.grant_image())
             .create_view(&Default::default());
         let frame_group = work.group(device, &self.frame_layout, &raw, &bent, &ray_grant);

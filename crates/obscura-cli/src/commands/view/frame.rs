@@ -110,7 +110,8 @@ pub struct Frame {
     pub camera: Camera,
     /// `None`: the adapter has no timestamp queries.
     pub timings: Option<PaneTimings>,
-    /// Per pane (A, then B), under a ray budget: what the last frame granted.
+    /// Per pane (A, then B), under a ray budget: what a recent frame granted (refreshed one frame
+    /// in 30).
     pub budgets: Vec<Option<obscura::RayBudgetReport>>,
     /// Why the last debug view could not be shown (it shows the AO instead).
     pub view_note: Option<String>,
@@ -208,9 +209,11 @@ impl Frame {
         profile: bool,
     ) -> Result<()> {
         self.camera = *camera;
+        // The ray budget's panel refreshes on the frames asked to be timed, timestamps or not.
+        let refresh = profile;
         let profile = profile && self.timings.is_some();
         let mut timings = Vec::new();
-        self.budgets.clear();
+        let mut budgets = Vec::new();
         for pane in std::iter::once(&mut self.a).chain(self.b.as_mut()) {
             let Some(renderer) = pane.renderer.as_mut() else {
                 continue;
@@ -240,9 +243,14 @@ impl Frame {
                     continue;
                 }
             }
-            let ao = renderer.ambient_occlusion();
-            self.budgets
-                .push(ao.and_then(|ao| ao.read_ray_budget().ok()));
+            // Read back (a wait for the GPU) only one frame in 30, as the timings are.
+            if refresh {
+                let ao = renderer.ambient_occlusion();
+                budgets.push(ao.and_then(|ao| ao.read_ray_budget().ok()));
+            }
+        }
+        if refresh {
+            self.budgets = budgets;
         }
         if profile {
             self.timings = Some(timings);
