@@ -172,7 +172,10 @@ impl SceneArgs {
                 camera.up = self.up.unwrap_or(camera.up);
                 camera
             }
-            _ => scene.default_camera(aspect),
+            _ => match scene.cameras.first() {
+                Some(named) => named.camera,
+                None => auto_camera(scene, aspect),
+            },
         };
         if let Some(fov) = self.fov {
             camera.fov_y_deg = fov;
@@ -180,6 +183,32 @@ impl SceneArgs {
         camera.validate()?;
         Ok(camera)
     }
+}
+
+/// The camera of a scene that names none ([`obscura::bvh::framing::auto_camera`]: inside a room,
+/// otherwise framing the bounds), said on stderr in the file's coordinates so that it can be kept
+/// or changed with `--eye`/`--target`.
+fn auto_camera(scene: &Scene, aspect: f32) -> Camera {
+    let bvh = obscura::bvh::Bvh::build(scene);
+    let (camera, placement) = obscura::bvh::framing::auto_camera(scene, &bvh, aspect);
+    // Shortest round-trip digits, so that passing them back gives this very camera.
+    let file = |p: glam::Vec3| {
+        if scene.origin == DVec3::ZERO {
+            format!("{},{},{}", p.x, p.y, p.z)
+        } else {
+            let q = scene.origin + p.as_dvec3();
+            format!("{},{},{}", q.x, q.y, q.z)
+        }
+    };
+    eprintln!(
+        "note: '{}' names no camera: an automatic camera {} it, --eye {} --target {} --fov {}",
+        scene.name,
+        placement.name(),
+        file(camera.eye),
+        file(camera.target),
+        camera.fov_y_deg
+    );
+    camera
 }
 
 /// Technique parameters. Precedence: defaults < `--preset` < `--settings FILE` < the other flags
@@ -333,26 +362,71 @@ pub fn techniques_help() -> String {
 
 /// Say so when rays of the last frame overflowed the GPU traversal stack (their AO may be too
 /// bright): never silently wrong.
+/// The warning every command that shows timings gives on a CPU (software) adapter, such as
+/// Mesa's lavapipe: its numbers are the CPU's and rank nothing about a GPU.
+pub fn software_timings_warning(gpu: &obscura::Gpu) -> Option<String> {
+    (gpu.summary.device_type == "Cpu").then(|| {
+        format!(
+            "adapter '{}' is a CPU (software) device: these are not GPU timings; run on a GPU \
+             for numbers worth reporting",
+            gpu.summary.name
+        )
+    })
+}
+
 /// Makes `out` an existing, writable folder (created if missing) before any slow work; `holds`
-/// says what goes into it, for the message when `out` is a file.
-pub fn prepare_out_folder(out: &std::path::Path, holds: &str) -> Result<()> {
+/// says what goes into it, for the message when `out` is a file. The folders it had to create are
+/// removed again, if still empty, when the returned guard is dropped before [`OutFolder::keep`]:
+/// a run that fails on its input (a scene, a camera, a reference image) leaves no empty folder.
+pub fn prepare_out_folder(out: &std::path::Path, holds: &str) -> Result<OutFolder> {
     if out.is_file() {
         anyhow::bail!(
             "--out '{}' is a file: give a folder for {holds}",
             out.display()
         );
     }
+    // The folders create_dir_all will make, deepest first.
+    let created: Vec<std::path::PathBuf> = out
+        .ancestors()
+        .take_while(|p| !p.as_os_str().is_empty() && !p.exists())
+        .map(|p| p.to_path_buf())
+        .collect();
     std::fs::create_dir_all(out).with_context(|| {
         format!(
             "cannot create output folder '{}': check the path and permissions",
             out.display()
         )
     })?;
+    let folder = OutFolder { created };
     let probe = out.join(format!(".obscura-write-test-{}", std::process::id()));
     std::fs::write(&probe, b"")
         .with_context(|| format!("output folder '{}' is not writable", out.display()))?;
     let _ = std::fs::remove_file(&probe);
-    Ok(())
+    Ok(folder)
+}
+
+/// The output folders a command created; see [`prepare_out_folder`].
+#[must_use = "dropping it removes the folders it created: call keep() once the output is written"]
+pub struct OutFolder {
+    created: Vec<std::path::PathBuf>,
+}
+
+impl OutFolder {
+    /// The command wrote its output: the folders stay.
+    pub fn keep(mut self) {
+        self.created.clear();
+    }
+}
+
+impl Drop for OutFolder {
+    fn drop(&mut self) {
+        // remove_dir removes empty folders only: whatever was written stays.
+        for dir in &self.created {
+            if std::fs::remove_dir(dir).is_err() {
+                break;
+            }
+        }
+    }
 }
 
 /// Renders one frame of a frame loop (`path`, `bench`'s warm-up, `compare`'s timed frames,

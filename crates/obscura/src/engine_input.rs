@@ -13,6 +13,14 @@
 //! same matrix). The depth values must be NDC z in [0, 1], as wgpu (and Vulkan, D3D, Metal)
 //! store them; an OpenGL-style matrix (`perspective_rh_gl`, z in [−1, 1]) is not one wgpu draws
 //! with. Without normals they are reconstructed from the depth (see `normals.wgsl`).
+//!
+//! The depth (and normals) must cover the guard-banded framebuffer, `width + 2·guard_band` by
+//! `height + 2·guard_band` pixels, rendered with a projection whose frustum covers it too: AO
+//! samples near the image's edges read depth in the band, and without it they read nothing there.
+//! An engine keeps its visible framing by widening the field of view with
+//! [`crate::guard_banded_fov_y`] and using the framebuffer's aspect ratio, then shows the centre
+//! `width × height` pixels (the AO output is already that size). A guard band of 0 works with the
+//! engine's own projection unchanged, at the cost of darker or brighter AO near the edges.
 
 use crate::bindings::{self, entry};
 use crate::error::Error;
@@ -78,6 +86,8 @@ pub struct EngineFrame<'a> {
 /// # fn frame(gpu: &obscura::Gpu, depth: &wgpu::Texture, projection: glam::Mat4)
 /// #     -> Result<(), obscura::Error> {
 /// use obscura::*;
+/// // `projection` covers the 2048×1208 framebuffer: the game's 60° widened by
+/// // guard_banded_fov_y(60f32.to_radians(), 1080, 64), aspect 2048 / 1208.
 /// let screen = ScreenGeometry::from_projection(projection, 1920, 1080, 64)?;
 /// let input = EngineInput::new(gpu, screen);
 /// let ao = AmbientOcclusion::new(gpu, &AoSettings::default(), screen, SceneResources::default())?;

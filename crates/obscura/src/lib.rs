@@ -48,6 +48,6 @@ pub use error::{Error, SettingsError};
 pub use filter::ray_budget::{RayBudgetReport, TimeBudget};
 pub use gpu::{Gpu, GpuError, GpuOptions, PassProfiler};
 pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};
-pub use settings::{AoSettings, BlurSettings, Normalization, Technique, VaoSettings};
+pub use settings::{AoSettings, BlurSettings, Normalization, Preset, Technique, VaoSettings};
 pub use sources::SceneResources;
-pub use view::{default_guard_band, near_plane, FrameView, ScreenGeometry};
+pub use view::{default_guard_band, guard_banded_fov_y, near_plane, FrameView, ScreenGeometry};

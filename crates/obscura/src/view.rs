@@ -18,6 +18,32 @@ pub fn default_guard_band(height: u32) -> u32 {
     ((scaled / 16.0).ceil() as u32).max(1) * 16
 }
 
+/// The vertical field of view, radians, that an engine's projection needs so that a framebuffer
+/// with a guard band of `guard_band` pixels around a visible image `height` pixels tall keeps the
+/// visible image's own field of view `visible_fov_y` (radians): `2·atan(tan(fov/2)·(H + 2g)/H)`
+/// (the module comment). The aspect ratio of that projection is the framebuffer's,
+/// `(W + 2g) / (H + 2g)`; pixels stay square. With a guard band of 0 it is `visible_fov_y`.
+///
+/// ```
+/// use glam::camera::rh::proj::directx::perspective_infinite_reverse;
+/// use obscura::{guard_banded_fov_y, ScreenGeometry};
+///
+/// // The game shows 1920×1080 at 60° and renders its depth prepass 64 px wider on every side.
+/// let (w, h, g) = (1920, 1080, 64);
+/// let fov = guard_banded_fov_y(60f32.to_radians(), h, g);
+/// let aspect = (w + 2 * g) as f32 / (h + 2 * g) as f32;
+/// let projection = perspective_infinite_reverse(fov, aspect, 0.1);
+/// let screen = ScreenGeometry::from_projection(projection, w, h, g)?;
+/// // The visible image keeps its 60°: one visible pixel spans 2·tan(30°)/1080.
+/// let pixel = 2.0 * screen.tan_half_fov.y / screen.full_height() as f32;
+/// assert!((pixel - 2.0 * 30f32.to_radians().tan() / 1080.0).abs() < 1e-7);
+/// # Ok::<(), obscura::Error>(())
+/// ```
+pub fn guard_banded_fov_y(visible_fov_y: f32, height: u32, guard_band: u32) -> f32 {
+    let widen = (height + 2 * guard_band) as f32 / height.max(1) as f32;
+    2.0 * ((visible_fov_y * 0.5).tan() * widen).atan()
+}
+
 /// The near plane used for a scene: linear depth does not depend on it, so it only has to be
 /// small against the scene (1e-5 of its diagonal, whatever the scene's units: a fixed floor
 /// would clip a scene in kilometres or of a few millimetres in metres;

@@ -172,11 +172,8 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         }),
     };
     let gpu = obscura::Gpu::new(options)?;
-    if gpu.summary.device_type == "Cpu" {
-        eprintln!(
-            "warning: adapter '{}' is a CPU (software) device: these are not GPU timings; run on a GPU for numbers worth reporting",
-            gpu.summary.name
-        );
+    if let Some(warning) = crate::args::software_timings_warning(&gpu) {
+        eprintln!("warning: {warning}");
     }
     let mut results = Vec::new();
     let bvh = BvhCache::new();

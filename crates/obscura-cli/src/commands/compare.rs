@@ -331,7 +331,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
     for &t in &techniques {
         args.ao.settings(t)?;
     }
-    crate::args::prepare_out_folder(
+    let out_folder = crate::args::prepare_out_folder(
         &args.out,
         "the report (report.json, report.md, index.html and the images go into it)",
     )?;
@@ -365,6 +365,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
             bvh: BvhCache::new(),
         };
         compare_path(&gpu, &job, args.timing.timing_frames, &args.out)?;
+        out_folder.keep();
         return print_report(&args.out, techniques.len());
     }
     let camera = args.scene.camera(&scene, width as f32 / height as f32)?;
@@ -391,6 +392,7 @@ pub fn run(options: &obscura::GpuOptions, args: &CompareArgs) -> Result<()> {
         &args.out,
         &mut |_, _| Ok(()),
     )?;
+    out_folder.keep();
     print_report(&args.out, report.results.len())
 }
 

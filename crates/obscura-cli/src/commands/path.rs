@@ -55,6 +55,14 @@ impl PathChoice {
                 self.frames
             );
         }
+        if path.keyframes().len() < 2 {
+            // A still camera is a fair test (flicker without motion), so said, not refused.
+            eprintln!(
+                "warning: camera path '{}' has one keyframe: a still camera, all {} frames see \
+                 the same view (give two or more keyframes to move; docs/PATHS.md)",
+                path.name, self.frames
+            );
+        }
         Ok(path)
     }
 }
@@ -348,7 +356,7 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
     )?;
     let scene = args.scene.load()?;
     let path = args.choice.resolve(&scene, width as f32 / height as f32)?;
-    crate::args::prepare_out_folder(&args.out, "the frames")?;
+    let out_folder = crate::args::prepare_out_folder(&args.out, "the frames")?;
     let gpu = Gpu::new(options)?;
     let job = PathJob {
         scene: &scene,
@@ -367,6 +375,7 @@ pub fn run(options: &obscura::GpuOptions, args: &PathArgs) -> Result<()> {
     let run = render_path(&gpu, &job)?;
     let scores = run.scores()?;
     write_run(&run, &scores, &scene, args, width, height)?;
+    out_folder.keep();
     print_summary(&run, &scores);
     Ok(())
 }

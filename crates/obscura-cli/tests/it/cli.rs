@@ -626,6 +626,31 @@ fn compare_and_reference_reject_bad_input() {
         stderr(&o)
     );
     assert!(!stderr(&o).contains("panicked"));
+    // Input found bad after the folder was made (a scene that is not there, an unknown camera, a
+    // reference image that is not one) leaves no folder behind, nor the missing parents it made;
+    // an existing folder stays.
+    let existing = dir.path().join("existing");
+    std::fs::create_dir(&existing).unwrap();
+    let new = dir.path().join("new").join("report");
+    for out in [&new, &existing] {
+        for bad in [
+            &["--scene", "missing.glb"][..],
+            &["--camera", "nowhere"],
+            &["--reference-image", file.to_str().unwrap()],
+        ] {
+            let mut args = vec!["compare", "--size", "64x48", "--techniques", "vao"];
+            args.extend_from_slice(bad);
+            args.extend(["--out", out.to_str().unwrap()]);
+            let o = obscura(&args);
+            assert!(!o.status.success(), "{bad:?} should fail");
+            assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+        }
+    }
+    assert!(
+        !dir.path().join("new").exists(),
+        "a failed compare left its folder"
+    );
+    assert!(existing.is_dir());
 }
 
 #[test]
@@ -1957,4 +1982,63 @@ fn a_size_over_the_devices_buffer_limits_is_one_message() {
         assert!(err.contains(needle), "{needle:?} not in: {err}");
     }
     assert!(!err.contains("Validation Error"), "{err}");
+}
+
+#[test]
+fn a_scene_without_cameras_gets_a_printed_automatic_camera_inside_a_room() {
+    // A room 8 × 3 × 4 with a pillar, its faces wound to face the inside: the camera goes in
+    // (outside, its walls would show no occlusion at all), and the camera it prints renders the
+    // same image when passed back.
+    let dir = tempfile::tempdir().unwrap();
+    let mut obj = String::new();
+    for (x, y, z) in [(-4, 0, -2), (4, 0, -2), (4, 3, -2), (-4, 3, -2)] {
+        obj += &format!("v {x} {y} {z}\n");
+    }
+    for (x, y, z) in [(-4, 0, 2), (4, 0, 2), (4, 3, 2), (-4, 3, 2)] {
+        obj += &format!("v {x} {y} {z}\n");
+    }
+    obj += "v 0.5 0 -0.3\nv 0.9 0 -0.3\nv 0.9 0 0.1\nv 0.5 0 0.1\n";
+    obj += "v 0.5 3 -0.3\nv 0.9 3 -0.3\nv 0.9 3 0.1\nv 0.5 3 0.1\n";
+    // Room (inward): floor, ceiling, four walls; pillar (outward): four sides.
+    obj += "f 5 6 2 1\nf 3 7 8 4\nf 2 3 4 1\nf 8 7 6 5\nf 4 8 5 1\nf 6 7 3 2\n";
+    obj += "f 13 14 10 9\nf 14 15 11 10\nf 15 16 12 11\nf 16 13 9 12\n";
+    let scene = write(dir.path(), "room.obj", obj.as_bytes());
+    let render = |out: &Path, camera: &[&str]| {
+        let mut args = vec![
+            "render",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--size",
+            "64x48",
+        ];
+        args.extend_from_slice(camera);
+        args.extend(["--technique", "vao", "--out", out.to_str().unwrap()]);
+        let o = obscura(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let auto = dir.path().join("auto.png");
+    let note = render(&auto, &[]);
+    assert!(note.contains("an automatic camera inside it"), "{note}");
+    let value = |flag: &str| {
+        let rest = &note[note
+            .find(flag)
+            .unwrap_or_else(|| panic!("{flag} in {note}"))
+            + flag.len()..];
+        rest.split_whitespace().next().unwrap().to_string()
+    };
+    let (eye, target, fov) = (value("--eye "), value("--target "), value("--fov "));
+    let eye_x: f32 = eye.split(',').next().unwrap().parse().unwrap();
+    assert!(eye_x.abs() < 4.0, "eye {eye} outside the room");
+    let again = dir.path().join("again.png");
+    let note = render(&again, &["--eye", &eye, "--target", &target, "--fov", &fov]);
+    assert!(!note.contains("automatic"), "{note}");
+    let (_, _, a) = grey(&auto);
+    let (_, _, b) = grey(&again);
+    assert!(a == b, "the printed camera renders another image");
+    // Inside, the room's corners and the pillar occlude: not an all-white image.
+    assert!(
+        a.iter().any(|&v| v < 200),
+        "no occlusion in the automatic view"
+    );
 }

@@ -92,46 +92,54 @@ fn path_writes_frames_animations_and_temporal_metrics() {
 
 #[test]
 fn a_still_path_has_no_temporal_error() {
-    // Every keyframe the same camera: the frames are identical, so nothing changes between
-    // them, for the technique as for the reference.
+    // Every keyframe the same camera, or one keyframe: the frames are identical, so nothing
+    // changes between them, for the technique as for the reference. One keyframe is said.
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("still.json");
-    std::fs::write(
-        &file,
-        r#"{"name": "still", "keyframes": [
-            {"time": 0, "eye": [0.75, 0.5, 1.6], "target": [-0.1, 0.55, -0.5], "fov": 45},
-            {"time": 1, "eye": [0.75, 0.5, 1.6], "target": [-0.1, 0.55, -0.5], "fov": 45}]}"#,
-    )
-    .unwrap();
-    let out = dir.path().join("out");
-    ok(&obscura(
-        &[
-            "path",
-            "--scene",
-            "cornell",
-            "--path",
-            file.to_str().unwrap(),
-            "--frames",
-            "3",
-            "--size",
-            "64x48",
-            "--techniques",
-            "vao",
-            "--with-reference",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        dir.path(),
-    ));
-    let j = json(&out.join("path.json"));
-    assert_eq!(j["path"]["name"], "still");
-    let temporal = &j["techniques"][0]["temporal"];
-    assert!(
-        temporal["temporal_error"].as_f64().unwrap() < 1e-6,
-        "{temporal}"
-    );
-    assert_eq!(temporal["popping"], 0.0);
-    assert!(j["frames"][1]["matched"].as_f64().unwrap() > 0.99);
+    let keyframe = r#"{"eye": [0.75, 0.5, 1.6], "target": [-0.1, 0.55, -0.5], "fov": 45"#;
+    for (name, keyframes) in [
+        (
+            "still",
+            format!(r#"{keyframe}, "time": 0}}, {keyframe}, "time": 1}}"#),
+        ),
+        ("one", format!(r#"{keyframe}, "time": 0}}"#)),
+    ] {
+        let file = dir.path().join(format!("{name}.json"));
+        let json_text = format!(r#"{{"name": "{name}", "keyframes": [{keyframes}]}}"#);
+        std::fs::write(&file, json_text).unwrap();
+        let out = dir.path().join(name);
+        let o = obscura(
+            &[
+                "path",
+                "--scene",
+                "cornell",
+                "--path",
+                file.to_str().unwrap(),
+                "--frames",
+                "3",
+                "--size",
+                "64x48",
+                "--techniques",
+                "vao",
+                "--with-reference",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            dir.path(),
+        );
+        ok(&o);
+        let warned =
+            String::from_utf8_lossy(&o.stderr).contains("has one keyframe: a still camera");
+        assert_eq!(warned, name == "one", "{name}");
+        let j = json(&out.join("path.json"));
+        assert_eq!(j["path"]["name"], name);
+        let temporal = &j["techniques"][0]["temporal"];
+        assert!(
+            temporal["temporal_error"].as_f64().unwrap() < 1e-6,
+            "{temporal}"
+        );
+        assert_eq!(temporal["popping"], 0.0);
+        assert!(j["frames"][1]["matched"].as_f64().unwrap() > 0.99);
+    }
 }
 
 #[test]

@@ -23,6 +23,7 @@
 //!   traversal walks the same boxes and leaves with the same tests (four-wide, `wide.rs`), so the
 //!   CPU version is its reference.
 //! - `wide.rs`: the four-wide tree the GPU walks, collapsed from this BVH2.
+//! - `framing.rs`: an automatic camera for a scene that names none, placed by probing rays.
 //!
 //! # Rules a hit must pass (the scene contract, `scene/types.rs`)
 //! A candidate triangle hit with parameter `t` in `[t_min, t_max]` (inclusive, in units of
@@ -56,6 +57,7 @@
 
 pub mod build;
 mod cache;
+pub mod framing;
 pub mod gpu;
 mod traverse;
 mod triangle;

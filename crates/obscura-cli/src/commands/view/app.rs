@@ -448,6 +448,9 @@ impl ViewerApp {
             "{} ({}, {})",
             self.gpu.summary.name, self.gpu.summary.backend, self.gpu.summary.device_type
         ));
+        if let Some(warning) = crate::args::software_timings_warning(&self.gpu) {
+            ui.colored_label(ui.visuals().warn_fg_color, warning);
+        }
         ui.separator();
         ui.heading("GPU passes");
         match self.frame.as_ref().and_then(|f| f.timings.as_ref()) {

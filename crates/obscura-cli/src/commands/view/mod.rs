@@ -146,6 +146,9 @@ fn offscreen(options: &obscura::GpuOptions, start: StartState, frames: u32) -> R
     let (width, height) = start.size.unwrap_or((1920, 1080));
     let guard_band = start.guard_band(height);
     let gpu = Gpu::new(options)?;
+    if let Some(warning) = crate::args::software_timings_warning(&gpu) {
+        eprintln!("warning: {warning}");
+    }
     let camera = start.camera;
     let mut frame = Frame::new(
         gpu.clone(),
