@@ -10,7 +10,7 @@
 //! defect 1): where many boxes tie (duplicated triangles) or nest (a polygon fan, whose boxes all
 //! hold the shared vertex), every cluster picks the last of its equally good neighbours, few picks
 //! are mutual, an iteration merges a handful of pairs, and the build takes time quadratic in the
-//! triangle count (20,000 copies of one triangle: 25 s). [`ploc`] breaks ties towards the nearer
+//! triangle count (20,000 copies of one triangle: 25 s). `ploc` breaks ties towards the nearer
 //! neighbour and the aligned pair, and when an iteration still merges too few it pairs neighbours in
 //! Morton order, so the cluster count falls geometrically: O(n log n) for any input. Reinsertion
 //! also grows faster than n log n on such inputs (its searches cannot prune among overlapping
@@ -46,7 +46,7 @@ use crate::scene::Scene;
 ///   little more and cost another 1.5 s.
 ///
 /// The rest is obvhs's `slow_build` preset without spatial pre-splits (see the module doc). Our
-/// clustering ([`ploc`]) reads the reinsertion and collapse fields and searches [`PLOC_WINDOW`]
+/// clustering (`ploc`) reads the reinsertion and collapse fields and searches [`PLOC_WINDOW`]
 /// neighbours (obvhs's `High`); obvhs's whole build reads them all where a test asks for its tree
 /// ([`Shape::Obvhs`]).
 const PARAMS: BvhBuildParams = BvhBuildParams {
@@ -91,7 +91,7 @@ pub(super) fn triangle_vertices(scene: &Scene, i: usize) -> Option<[Vec3A; 3]> {
 /// Deepest tree [`crate::bvh::Bvh::build`] keeps from the SAH builder by default: inside the GPU
 /// traversal's 64-entry stack (`gpu::STACK_SIZE`) when the tree is walked two-wide, as it is where
 /// its four-wide walk could need more. SAH cannot separate triangles whose centroids coincide or
-/// line up far apart (a polygon fan, duplicated geometry, exponentially spaced parts); [`ploc`]
+/// line up far apart (a polygon fan, duplicated geometry, exponentially spaced parts); `ploc`
 /// then pairs them by force, O(log n) levels but not always within this bound (each iteration
 /// adds a level, and reinsertion may deepen the tree), and median splits take over.
 pub const MAX_DEPTH: usize = 48;
