@@ -228,7 +228,8 @@ fn upload(gpu: &Gpu, scene: &Scene, needs: Needs) -> Result<(GpuScene, Option<Gp
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &gpu.device.limits())?;
     let bvh = needs
         .bvh
-        .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene));
+        .then(|| GpuBvh::new(&gpu.device, &Bvh::build(scene), scene))
+        .transpose()?;
     Ok((gpu_scene, bvh))
 }
 

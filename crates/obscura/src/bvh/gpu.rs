@@ -4,6 +4,7 @@
 //! from [`GpuScene`].
 
 use super::Bvh;
+use crate::gpu::GpuError;
 use crate::raster::gpu_scene::GpuScene;
 use crate::scene::Scene;
 use wgpu::util::DeviceExt;
@@ -38,7 +39,10 @@ impl GpuBvh {
     /// where a four-wide walk could outgrow the GPU stack, with the triangles copied into leaf
     /// order. Logs a warning when even that could need more than the stack's [`STACK_SIZE`]
     /// entries (a tree deeper than the build's bound); overflowing rays are counted.
-    pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Self {
+    ///
+    /// Its buffers are checked against the device's limits first
+    /// ([`crate::gpu::check_scene_buffers`]).
+    pub fn new(device: &wgpu::Device, bvh: &Bvh, scene: &Scene) -> Result<Self, GpuError> {
         // An empty tree still binds: one node of unused slots, which no ray enters.
         let (mut nodes, mut stack_bound) = super::wide::widen(bvh.nodes(), 4);
         if stack_bound > STACK_SIZE {
@@ -48,6 +52,15 @@ impl GpuBvh {
             (nodes, stack_bound) = super::wide::widen(bvh.nodes(), 2);
         }
         let ids = bvh.primitive_indices();
+        crate::gpu::check_scene_buffers(
+            &device.limits(),
+            &scene.name,
+            &[
+                ("bvh nodes", std::mem::size_of_val(nodes.as_slice()) as u64),
+                ("bvh triangles", ids.len() as u64 * 16),
+                ("bvh primitive ids", std::mem::size_of_val(ids) as u64),
+            ],
+        )?;
         let triangles: Vec<[u32; 4]> = ids
             .iter()
             .map(|&t| {
@@ -64,13 +77,13 @@ impl GpuBvh {
         // Empty buffers (an empty scene) are padded to bind (gpu::storage_buffer_init).
         let storage =
             |label, contents: &[u8]| crate::gpu::storage_buffer_init(device, label, contents);
-        Self {
+        Ok(Self {
             nodes: storage("bvh nodes", bytemuck::cast_slice(&nodes)),
             triangles: storage("bvh triangles", bytemuck::cast_slice(&triangles)),
             primitive_ids: storage("bvh primitive ids", bytemuck::cast_slice(ids)),
             max_depth: bvh.max_depth(),
             stack_bound,
-        }
+        })
     }
 
     /// Layout entries of `shaders/common/bvh.wgsl`'s six bindings from `first` on (its

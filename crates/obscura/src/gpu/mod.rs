@@ -419,6 +419,25 @@ pub fn storage_buffer_init(device: &wgpu::Device, label: &str, contents: &[u8]) 
     })
 }
 
+/// The scene's storage buffers `(label, bytes)` fit a device with `limits` ([`check_storage_size`]);
+/// else one error naming the scene, the buffer and the limit, with the fix (the scene's size is
+/// at fault, not the image's).
+pub fn check_scene_buffers(
+    limits: &wgpu::Limits,
+    scene: &str,
+    buffers: &[(&'static str, u64)],
+) -> Result<(), GpuError> {
+    for &(buffer, bytes) in buffers {
+        check_storage_size(limits, buffer, bytes).map_err(|e| {
+            GpuError::Other(format!(
+                "scene '{scene}' is too large for this adapter: {e}; simplify the scene or split \
+                 it, or use an adapter with larger storage buffers"
+            ))
+        })?;
+    }
+    Ok(())
+}
+
 /// A compute pipeline from WGSL source with entry point `main`, an automatic layout and values
 /// for the shader's `override` constants.
 pub fn compute_pipeline_with(
@@ -699,6 +718,31 @@ pub fn texture_2d(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The scene's buffers (the G-buffer's and the BVH's) are checked in order; the first over a
+    /// limit names the scene, the buffer and the fix.
+    #[test]
+    fn scene_buffers_over_a_limit_name_the_scene_and_the_buffer() {
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: 128 << 20,
+            max_buffer_size: 256 << 20,
+            ..wgpu::Limits::default()
+        };
+        let fits = [("bvh nodes", 128 << 20), ("bvh triangles", 1)];
+        assert!(check_scene_buffers(&limits, "big", &fits).is_ok());
+        let over = [("bvh nodes", 1), ("bvh triangles", (128 << 20) + 1)];
+        let e = check_scene_buffers(&limits, "big", &over)
+            .unwrap_err()
+            .to_string();
+        for needle in [
+            "scene 'big'",
+            "bvh triangles buffer",
+            "129 MiB",
+            "simplify the scene",
+        ] {
+            assert!(e.contains(needle), "{needle:?} not in: {e}");
+        }
+    }
 
     #[test]
     fn storage_buffers_over_either_limit_are_refused_with_both_numbers() {

@@ -136,7 +136,8 @@ impl Renderer {
             .map_err(|e| sized(e.into(), gpu, settings, (width, height), guard_band))?;
         let bvh = needs
             .bvh
-            .then(|| GpuBvh::new(&gpu.device, &bvh.get(scene), scene));
+            .then(|| GpuBvh::new(&gpu.device, &bvh.get(scene), scene))
+            .transpose()?;
         gpu.check_errors()?;
         // The rasteriser named, so that `settings()` says which one `auto` chose (for the
         // larger need, a map limited to requested pixels: one setting for every row).

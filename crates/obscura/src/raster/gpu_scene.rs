@@ -88,6 +88,18 @@ impl GpuScene {
         scene: &Scene,
         limits: &wgpu::Limits,
     ) -> Result<Self, GpuError> {
+        // Before anything is made: 16 bytes a vertex (position; uv and normal) and a triangle
+        // (indices and material), in each of these buffers.
+        let sixteen = |n: usize| n as u64 * 16;
+        crate::gpu::check_scene_buffers(
+            limits,
+            &scene.name,
+            &[
+                ("positions", sixteen(scene.positions.len())),
+                ("vertex attributes", sixteen(scene.positions.len())),
+                ("triangles", sixteen(scene.triangles.len())),
+            ],
+        )?;
         let positions: Vec<[f32; 4]> = scene
             .positions
             .iter()
@@ -137,15 +149,6 @@ impl GpuScene {
         };
         let triangles = triangle_records(&file_order);
         let draw_triangles = triangle_records(&draw_order);
-
-        let max_binding = limits.max_storage_buffer_binding_size;
-        let largest = (positions.len() * 16).max(triangles.len() * 16) as u64;
-        if largest > max_binding {
-            return Err(GpuError::Other(format!(
-                "scene '{}' needs a {largest}-byte storage buffer, over this adapter's limit of {max_binding} bytes",
-                scene.name
-            )));
-        }
 
         // Textures share one array; smaller ones occupy the top-left corner of their layer.
         let (width, height) = scene

@@ -35,7 +35,7 @@ pub fn render_reference_gpu(
 ) -> Result<(Vec<f32>, u64), Error> {
     let device = &gpu.device;
     let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
-    let gpu_bvh = GpuBvh::new(device, bvh, scene);
+    let gpu_bvh = GpuBvh::new(device, bvh, scene)?;
     // The VAO estimator through the single-pass loop over the all-layers source (reference.wgsl).
     let (section, inputs) = crate::settings::AoSettings {
         vao: settings.vao,

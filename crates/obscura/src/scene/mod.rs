@@ -101,7 +101,8 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
 }
 
 /// The most triangles a scene file may make, counted over every placement of its meshes (glTF
-/// nodes and `EXT_mesh_gpu_instancing` instances) before any of its data is read, so that a small
+/// nodes and `EXT_mesh_gpu_instancing` instances; an OBJ's polygons as triangulated) before any of
+/// its data is read, so that a small
 /// file cannot fill memory (issue 62, defect 5). Real scenes pass easily: Sponza has about
 /// 260,000 triangles, the largest production scenes tens of millions; a loaded triangle costs
 /// about 100 bytes on the CPU (vertices, indices, BVH) before the GPU's copy, so the limit is
@@ -128,6 +129,19 @@ pub fn max_triangles() -> u64 {
             }
         },
         Err(_) => MAX_TRIANGLES,
+    }
+}
+
+/// The error of a scene file that would hold `what`, more than `limit` (say which limit, e.g.
+/// "50,000,000 triangles"), with the fix: one message for every loader.
+pub(crate) fn too_big(path: &Path, what: &str, limit: &str) -> SceneError {
+    SceneError::TooBig {
+        path: path.to_path_buf(),
+        message: format!(
+            "would hold {what}, more than the limit of {limit}: simplify the scene or split it, \
+             or raise the limit with the environment variable {MAX_TRIANGLES_VAR}=<triangles> \
+             where this machine has the memory (about 100 bytes a triangle)"
+        ),
     }
 }
 

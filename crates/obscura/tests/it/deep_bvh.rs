@@ -45,7 +45,7 @@ fn stack_overflow_is_reported() {
     let bvh = Bvh::build_obvhs_unbounded(&scene);
     let gpu = gpu();
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
-    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene);
+    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene).unwrap();
     println!(
         "chain BVH depth {}, stack bound {}",
         bvh.max_depth(),
@@ -112,7 +112,7 @@ fn a_polygon_fan_traces_without_overflow() {
         .collect();
     // (rays that overflowed, rays that found no hit)
     let trace = |bvh: &Bvh| {
-        let gpu_bvh = GpuBvh::new(&gpu.device, bvh, &scene);
+        let gpu_bvh = GpuBvh::new(&gpu.device, bvh, &scene).unwrap();
         let results = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &rays, QueryMode::AllHits).unwrap();
         (
             results.iter().filter(|r| r.stack_overflow != 0).count(),
@@ -132,7 +132,9 @@ fn a_polygon_fan_traces_without_overflow() {
     assert!(bounded.max_depth() <= obscura::bvh::build::MAX_DEPTH);
     // Whatever its shape, a bounded tree's walk fits the GPU stack (two-wide where four-wide
     // could not).
-    let bound = GpuBvh::new(&gpu.device, &bounded, &scene).stack_bound;
+    let bound = GpuBvh::new(&gpu.device, &bounded, &scene)
+        .unwrap()
+        .stack_bound;
     assert!(
         bound <= obscura::bvh::gpu::STACK_SIZE,
         "stack bound {bound}"
@@ -157,7 +159,7 @@ fn a_tree_too_deep_for_the_four_wide_walk_is_walked_two_wide() {
     );
     let gpu = gpu();
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
-    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene);
+    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, &scene).unwrap();
     assert!(
         gpu_bvh.stack_bound <= stack,
         "bound {}",

@@ -38,7 +38,7 @@ fn compare(scene: &Scene, rays: &[QueryRay]) -> (usize, usize) {
     let gpu = gpu();
     let bvh = Bvh::build(scene);
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, scene, &gpu.device.limits()).unwrap();
-    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, scene);
+    let gpu_bvh = GpuBvh::new(&gpu.device, &bvh, scene).unwrap();
     let closest = trace_batch(&gpu, &gpu_scene, &gpu_bvh, rays, QueryMode::ClosestHit).unwrap();
     let all = trace_batch(&gpu, &gpu_scene, &gpu_bvh, rays, QueryMode::AllHits).unwrap();
     gpu.finish().unwrap();
@@ -150,7 +150,7 @@ fn gpu_traversal_applies_the_alpha_test() {
     compare(&scene, &rays);
     let gpu = gpu();
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &scene, &gpu.device.limits()).unwrap();
-    let gpu_bvh = GpuBvh::new(&gpu.device, &Bvh::build(&scene), &scene);
+    let gpu_bvh = GpuBvh::new(&gpu.device, &Bvh::build(&scene), &scene).unwrap();
     let closest = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &rays, QueryMode::ClosestHit).unwrap();
     // dir.z = -1, so t is the depth: 3 through the transparent left half, 2 on the right half.
     assert!(
@@ -204,7 +204,7 @@ fn the_smallest_trees_trace_as_on_the_cpu() {
     let empty = quads("empty", &[]);
     let gpu = gpu();
     let gpu_scene = GpuScene::new(&gpu.device, &gpu.queue, &empty, &gpu.device.limits()).unwrap();
-    let gpu_bvh = GpuBvh::new(&gpu.device, &Bvh::build(&empty), &empty);
+    let gpu_bvh = GpuBvh::new(&gpu.device, &Bvh::build(&empty), &empty).unwrap();
     for mode in [QueryMode::ClosestHit, QueryMode::AllHits] {
         let results = trace_batch(&gpu, &gpu_scene, &gpu_bvh, &rays, mode).unwrap();
         assert!(

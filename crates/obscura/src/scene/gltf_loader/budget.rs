@@ -11,7 +11,7 @@ use gltf::mesh::{Mode, Semantic};
 use gltf::{Document, Node};
 
 use super::instancing;
-use crate::scene::{max_triangles, thousands, SceneError, MAX_TRIANGLES_VAR};
+use crate::scene::{max_triangles, thousands, too_big, SceneError};
 
 /// What the scene would hold once loaded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -94,14 +94,7 @@ fn primitive_size(prim: &gltf::Primitive) -> (u64, u64) {
 /// per triangle of it (an unindexed mesh has three a triangle), as many placements.
 pub(super) fn check(path: &Path, totals: Totals) -> Result<(), SceneError> {
     let limit = max_triangles();
-    let too_big = |what: String, limit_text: String| SceneError::TooBig {
-        path: path.to_path_buf(),
-        message: format!(
-            "would hold {what}, more than the limit of {limit_text}: simplify the scene or split \
-             it, or raise the limit with the environment variable {MAX_TRIANGLES_VAR}=<triangles> \
-             where this machine has the memory (about 100 bytes a triangle)"
-        ),
-    };
+    let too_big = |what: String, limit_text: String| too_big(path, &what, &limit_text);
     let placed = format!(
         "{} mesh instances ({} triangles, {} vertices)",
         thousands(totals.instances),

@@ -30,6 +30,13 @@ const MAX_INDEX: i64 = 1 << 31;
 /// Loads an `.obj` file. The result is not yet validated (the caller does that).
 pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let bytes = super::read_file(path)?;
+    let triangles = triangle_count(&bytes);
+    let limit = super::max_triangles();
+    if triangles > limit {
+        let what = format!("{} triangles", super::thousands(triangles));
+        let limit = format!("{} triangles", super::thousands(limit));
+        return Err(super::too_big(path, &what, &limit));
+    }
     let error = |message: String| SceneError::Obj {
         path: path.to_path_buf(),
         message,
@@ -248,6 +255,24 @@ fn from_bytes(path: &Path, bytes: &[u8], refused: &Refused) -> Result<Scene, Str
         });
     }
     Ok(scene)
+}
+
+/// The triangles the file's faces make once triangulated (a face of k corners makes k − 2),
+/// counted over the raw bytes before anything is parsed, so that the triangle limit
+/// ([`super::max_triangles`]) refuses a file before `tobj` fills memory with it. Each corner is at
+/// least two bytes, so the count is bounded by the file's size.
+fn triangle_count(bytes: &[u8]) -> u64 {
+    bytes
+        .split(|&b| b == b'\n')
+        .filter_map(|line| line.trim_ascii_start().strip_prefix(b"f"))
+        .filter(|rest| rest.first().is_some_and(u8::is_ascii_whitespace))
+        .map(|rest| {
+            let corners = rest
+                .split(u8::is_ascii_whitespace)
+                .filter(|w| !w.is_empty());
+            (corners.count() as u64).saturating_sub(2)
+        })
+        .sum()
 }
 
 /// Rejects face indices that `tobj` cannot handle safely: 0 (OBJ counts from 1), absolute indices

@@ -302,3 +302,25 @@ fn textures_are_found_beside_a_material_library_in_a_subfolder() {
     let t = &s.textures[s.materials[0].base_color_texture.unwrap() as usize];
     assert_eq!(t.rgba8, [255, 255, 255, 255, 255, 255, 255, 0]);
 }
+
+#[test]
+fn faces_are_counted_as_the_triangles_they_make() {
+    let text =
+        b"v 0 0 0\nf 1 2 3\n  f 1/1 2/2 3/3 4/4\r\nf\t1 2 3 4 5 6 7\nfo 1 2 3\nl 1 2 3 4\nf 1 2\n";
+    // 1 + 2 + 5; `fo` is not a face, a line is no triangle, a face of two corners makes none.
+    assert_eq!(super::triangle_count(text), 8);
+}
+
+#[test]
+fn a_polygon_of_fifty_million_corners_is_refused_before_it_is_parsed() {
+    // 100 MB: one face of 50,000,004 corners, 50,000,002 triangles once fanned, over the limit
+    // of 50,000,000 (tobj would hold gigabytes of indices before any other check).
+    let dir = temp_dir("obj-budget");
+    let mut text = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf".to_vec();
+    text.extend(b" 1 2 3 1".repeat(12_500_001));
+    let path = write(&dir, "fan.obj", &text);
+    let e = load_path(&path).unwrap_err();
+    assert!(e.contains("50,000,002 triangles"), "{e}");
+    assert!(e.contains("limit of 50,000,000 triangles"), "{e}");
+    assert!(e.contains("OBSCURA_MAX_TRIANGLES"), "{e}");
+}
