@@ -81,34 +81,39 @@ pub fn technique_help() -> String {
     )
 }
 
+/// `--help` headings of the options every command that renders shares (set per field: a
+/// struct's `next_help_heading` would carry over to the command's own options after it).
+const SCENE_HEADING: &str = "Scene and camera";
+const SETTINGS_HEADING: &str = "Presets, settings files and units";
+
 /// Which scene and from where.
 #[derive(Args, Clone, Debug)]
 pub struct SceneArgs {
     /// Built-in scene name (see `obscura scenes`) or a .gltf/.glb/.obj file.
-    #[arg(long, default_value = "stairs")]
+    #[arg(long, default_value = "stairs", help_heading = SCENE_HEADING)]
     pub scene: String,
     /// A named camera of the scene (default: its first, the close-up).
-    #[arg(long, conflicts_with_all = ["eye", "target"])]
+    #[arg(long, conflicts_with_all = ["eye", "target"], help_heading = SCENE_HEADING)]
     pub camera: Option<String>,
     /// Camera position x,y,z (with --target), in the scene file's coordinates.
-    #[arg(long, value_parser = parse_dvec3, requires = "target", allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_dvec3, requires = "target", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
     pub eye: Option<DVec3>,
     /// Point looked at x,y,z (with --eye), in the scene file's coordinates.
-    #[arg(long, value_parser = parse_dvec3, requires = "eye", allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_dvec3, requires = "eye", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
     pub target: Option<DVec3>,
     /// The image's up direction x,y,z (with --eye; default +Y, or ∓Z looking straight down or
     /// up): 0,0,1 for a scene modelled Z up, as CAD and 3ds Max exports are.
-    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
     pub up: Option<Vec3>,
     /// Vertical field of view of the visible image in degrees (default: the camera's, or 60).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help_heading = SCENE_HEADING)]
     pub fov: Option<f32>,
     /// Count both sides of every triangle (G-buffer, stochastic depth map and rays alike). The
     /// default keeps what the file says: glTF's per-material doubleSided; OBJ is double-sided.
-    #[arg(long, conflicts_with = "cull_back_faces")]
+    #[arg(long, conflicts_with = "cull_back_faces", help_heading = SCENE_HEADING)]
     pub double_sided: bool,
     /// Cull back faces of every material that is not alpha-tested, whatever the file says.
-    #[arg(long)]
+    #[arg(long, help_heading = SCENE_HEADING)]
     pub cull_back_faces: bool,
     /// The normal AO is computed around, in the G-buffer and the reference alike: 'face' (the
     /// triangle's, as the papers do) or 'shading' (the file's vertex normals interpolated, as
@@ -118,12 +123,12 @@ pub struct SceneArgs {
         default_value = "face",
         value_parser = PossibleValuesParser::new(["face", "shading"])
             .map(|s| s.parse::<Normals>().expect("a listed value"))
-    )]
+    , help_heading = SCENE_HEADING)]
     pub normals: Normals,
     /// Let the scene file read the files it refers to (glTF buffers and images, OBJ material
     /// libraries and textures) outside its own folder. Off by default, so that a scene from
     /// elsewhere reads nothing but what came with it.
-    #[arg(long)]
+    #[arg(long, help_heading = SCENE_HEADING)]
     pub allow_outside_files: bool,
 }
 
@@ -218,17 +223,17 @@ pub struct AoArgs {
     /// Quality preset for each technique (docs/SETTINGS.md lists what each sets; medium = the
     /// defaults).
     #[arg(long, value_parser = PossibleValuesParser::new(Preset::ALL.map(Preset::name))
-        .map(|s| s.parse::<Preset>().expect("a listed preset")))]
+        .map(|s| s.parse::<Preset>().expect("a listed preset")), help_heading = SETTINGS_HEADING)]
     pub preset: Option<Preset>,
     /// Settings file, .toml or .json (docs/SETTINGS.md): applied over the preset; the flags
     /// below override it.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", help_heading = SETTINGS_HEADING)]
     pub settings: Option<PathBuf>,
     /// One world radius R for every technique's estimator and for the ground truth (compare
     /// techniques at the same distance, or against an outside renderer's AO of that distance);
     /// each estimator reads R its own way (docs/SETTINGS.md). Applied over the preset and the
     /// file; the per-technique radius flags (--radius, --hbao-radius, …) override it.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help_heading = SETTINGS_HEADING)]
     pub ao_radius: Option<f32>,
     /// The length of one world unit of the scene: metres as a number (0.0254 for inches), or
     /// m, cm, mm, km, in, ft. The defaults and presets assume metres (glTF's unit); with
@@ -236,13 +241,13 @@ pub struct AoArgs {
     /// intensity; the blur's sharpness per world unit) is converted, so an outside scene in
     /// centimetres gets the same AO as in metres (`AoSettings::scaled`). A settings file and
     /// the flags below are read in the scene's own units, over the converted defaults.
-    #[arg(long, value_name = "UNIT", allow_hyphen_values = true)]
+    #[arg(long, value_name = "UNIT", allow_hyphen_values = true, help_heading = SETTINGS_HEADING)]
     pub units: Option<String>,
     /// Every settings field's flag (made from the library's knobs: `setting_flags`).
     #[command(flatten)]
     pub fields: SettingFlags,
     /// Guard band in pixels around the visible image (default: 64 at 1080p, scaled).
-    #[arg(long)]
+    #[arg(long, help_heading = SETTINGS_HEADING)]
     pub guard_band: Option<u32>,
 }
 

@@ -275,3 +275,31 @@ fn errors_name_flags_for_flags_and_fields_for_files() {
     );
     assert!(Cli::try_parse_from(["obscura", "--preset", "max"]).is_err());
 }
+
+/// `--help` groups the shared options under their own headings, and a command's own options
+/// after them keep theirs (a heading set on a struct would carry over to them).
+#[test]
+fn shared_options_have_their_headings_and_the_command_s_own_keep_theirs() {
+    #[derive(Parser)]
+    struct Both {
+        #[command(flatten)]
+        scene: SceneArgs,
+        #[arg(long)]
+        size: Option<String>,
+        #[command(flatten)]
+        ao: AoArgs,
+        #[arg(long)]
+        out: Option<String>,
+    }
+    let command = Both::command();
+    let heading = |long: &str| {
+        let arg = command.get_arguments().find(|a| a.get_long() == Some(long));
+        arg.unwrap_or_else(|| panic!("--{long}")).get_help_heading()
+    };
+    assert_eq!(heading("eye"), Some(SCENE_HEADING));
+    assert_eq!(heading("normals"), Some(SCENE_HEADING));
+    assert_eq!(heading("preset"), Some(SETTINGS_HEADING));
+    assert_eq!(heading("units"), Some(SETTINGS_HEADING));
+    assert_eq!(heading("size"), None);
+    assert_eq!(heading("out"), None);
+}
