@@ -43,7 +43,12 @@ fn run(args: &[&str], tools: &Path, driver: bool) -> Output {
     if driver {
         std::fs::write(icd.path().join("lvp_icd.x86_64.json"), "{}").unwrap();
     }
-    Command::new("bash")
+    // bash by its path: PATH holds only the stand-ins.
+    let bash = ["/bin/bash", "/usr/bin/bash"]
+        .into_iter()
+        .find(|p| Path::new(p).exists())
+        .expect("bash");
+    Command::new(bash)
         .arg(script())
         .args(args)
         .env("PATH", tools)
@@ -125,4 +130,25 @@ fn an_unknown_argument_is_refused() {
     let o = run(&["--for-test"], t.path(), true);
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("'--for-test'"), "{}", text(&o));
+}
+
+#[test]
+fn the_readme_and_ci_run_the_same_test_command() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let ci = std::fs::read_to_string(root.join(".ci/run")).unwrap();
+    let test_line = |text: &str| {
+        text.lines()
+            .find(|l| l.contains("cargo test --release --workspace"))
+            .map(str::to_owned)
+    };
+    let line = test_line(&readme).expect("the README's test command");
+    assert!(
+        line.starts_with("bash scripts/ensure-vulkan.sh --for-tests && "),
+        "{line}"
+    );
+    assert_eq!(test_line(&ci), Some(line));
+    // The demo's line installs no Xvfb.
+    let demo = readme.lines().find(|l| l.contains("-- demo")).unwrap();
+    assert!(!demo.contains("--for-tests"), "{demo}");
 }
