@@ -2,5 +2,6 @@
 //! module `NAME` (`tests/it/NAME.rs`). The error corpus stays in `tests/corpus`.
 
 mod cli;
+mod ensure_vulkan;
 mod path;
 mod view;

@@ -1,7 +1,7 @@
 //! `obscura view` end to end: the real window, under Xvfb (a virtual X display, so CI and
 //! machines without a screen run it too), runs a few frames, saves its image and exits; the image
 //! must show the scene, not an empty or uniform frame. Xvfb is a test requirement like Mesa's
-//! Vulkan driver: `scripts/ensure-vulkan.sh` installs both, and without it this test fails
+//! Vulkan driver: `scripts/ensure-vulkan.sh --for-tests` installs both, and without it this test fails
 //! saying so instead of passing without having run.
 
 use std::io::{BufRead, BufReader};
@@ -31,7 +31,7 @@ impl Xvfb {
         let Some(xvfb) = find_in_path("Xvfb") else {
             panic!(
                 "Xvfb is not installed, and the viewer test needs it (a virtual display for the \
-                 window): run `bash scripts/ensure-vulkan.sh`, which installs it with Mesa, or \
+                 window): run `bash scripts/ensure-vulkan.sh --for-tests`, which installs it, or \
                  `sudo apt-get install xvfb`"
             );
         };

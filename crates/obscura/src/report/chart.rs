@@ -12,6 +12,103 @@ const WIDTH: f64 = 640.0;
 const HEIGHT: f64 = 400.0;
 /// Left, right, top, bottom margins (axis labels and point labels need room).
 const MARGIN: [f64; 4] = [70.0, 120.0, 30.0, 50.0];
+/// Farthest a label's anchor sits from its dot, in px: further away it reads as another dot's.
+pub(super) const LABEL_REACH: f64 = 30.0;
+/// Width of one character and height of one line of the 11 px labels, roughly.
+const CHAR_W: f64 = 6.5;
+const LINE_H: f64 = 12.0;
+
+/// A dot's label: its text (the name, or a number listed beside the plot), anchor point and
+/// SVG `text-anchor`.
+struct Label {
+    text: String,
+    x: f64,
+    y: f64,
+    anchor: &'static str,
+    numbered: bool,
+}
+
+/// Box of a text of `chars` characters anchored at (x, y) (baseline): (left, top, right, bottom).
+fn text_box(x: f64, y: f64, chars: usize, anchor: &str) -> [f64; 4] {
+    let w = CHAR_W * chars as f64;
+    let left = match anchor {
+        "end" => x - w,
+        "middle" => x - w / 2.0,
+        _ => x,
+    };
+    [left, y - 9.0, left + w, y + 3.0]
+}
+
+fn overlaps(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
+/// A place for each dot's label within [`LABEL_REACH`] of it that covers no dot and no label
+/// placed before: its name where one fits, else a number (which fits more often; placed
+/// right of the dot when nothing is free, overlapping rather than moving away). Greedy, in
+/// the dots' order; labels stay within `bounds` (left, top, right, bottom).
+fn place_labels(dots: &[(f64, f64)], names: &[&str], bounds: [f64; 4]) -> Vec<Label> {
+    // Offsets (dx, dy of the baseline, anchor), nearest first.
+    let mut candidates = Vec::new();
+    for dy in [4.0, -8.0, 16.0, -20.0, 28.0] {
+        for (dx, anchor) in [(7.0, "start"), (-7.0, "end"), (0.0, "middle")] {
+            let d: f64 = f64::hypot(dx, dy - 4.0);
+            if f64::hypot(dx, dy) <= LABEL_REACH && (anchor != "middle" || dy.abs() > 6.0) {
+                candidates.push((d, dx, dy, anchor));
+            }
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut taken: Vec<[f64; 4]> = dots
+        .iter()
+        .map(|&(x, y)| [x - 4.0, y - 4.0, x + 4.0, y + 4.0])
+        .collect();
+    let mut next_number = 1;
+    let mut labels = Vec::new();
+    for (&(cx, cy), name) in dots.iter().zip(names) {
+        let free = |text: &str, taken: &[[f64; 4]]| {
+            candidates.iter().find_map(|&(_, dx, dy, anchor)| {
+                let b = text_box(cx + dx, cy + dy, text.chars().count(), anchor);
+                let inside = b[0] >= bounds[0]
+                    && b[1] >= bounds[1]
+                    && b[2] <= bounds[2]
+                    && b[3] <= bounds[3];
+                let own = [cx - 4.0, cy - 4.0, cx + 4.0, cy + 4.0];
+                (inside && !taken.iter().any(|t| *t != own && overlaps(t, &b))).then_some((
+                    cx + dx,
+                    cy + dy,
+                    anchor,
+                    b,
+                ))
+            })
+        };
+        let (text, numbered, (x, y, anchor, b)) = match free(name, &taken) {
+            Some(place) => (name.to_string(), false, place),
+            None => {
+                let number = next_number.to_string();
+                next_number += 1;
+                let place = free(&number, &taken).unwrap_or_else(|| {
+                    (
+                        cx + 7.0,
+                        cy + 4.0,
+                        "start",
+                        text_box(cx + 7.0, cy + 4.0, 2, "start"),
+                    )
+                });
+                (number, true, place)
+            }
+        };
+        taken.push(b);
+        labels.push(Label {
+            text,
+            x,
+            y,
+            anchor,
+            numbered,
+        });
+    }
+    labels
+}
 
 /// The techniques no other technique beats on both counts: none is at least as fast *and* at
 /// least as accurate (MSE) while strictly better on one. In the report's order; techniques
@@ -116,12 +213,38 @@ pub fn cost_chart_svg(report: &Report) -> Option<String> {
     let px = |v: f64| ml + x.at(v) * pw;
     let py = |v: f64| mt + (1.0 - y.at(v)) * ph;
     let front = pareto_front(&report.results);
+    // Every label sits next to its dot (issue 62: labels pushed down a line per collision ended
+    // far from their dots); a dot with no free place nearby gets a number, named in a list beside
+    // the plot.
+    let dots: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (px(p.1), py(p.2.max(floor))))
+        .collect();
+    let labels = place_labels(
+        &dots,
+        &points.iter().map(|p| p.0).collect::<Vec<_>>(),
+        [ml, 0.0, ml + pw, mt + ph + 2.0],
+    );
+    // The numbered dots' names, in columns down the right margin.
+    let numbered: Vec<(&str, &str)> = points
+        .iter()
+        .zip(&labels)
+        .filter(|(_, l)| l.numbered)
+        .map(|(p, l)| (l.text.as_str(), p.0))
+        .collect();
+    let rows = (((HEIGHT - mb) - (mt + 28.0)) / LINE_H).floor().max(1.0) as usize;
+    let column_w = numbered
+        .iter()
+        .map(|(n, name)| CHAR_W * (n.len() + name.len() + 1) as f64 + 12.0)
+        .fold(mr - 8.0, f64::max);
+    // Wider than WIDTH only when the list of numbered dots needs more than one column.
+    let width = ml + pw + 8.0 + numbered.len().div_ceil(rows).max(1) as f64 * column_w;
 
     let mut svg = String::new();
     let _ = writeln!(
         svg,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
-         viewBox=\"0 0 {WIDTH} {HEIGHT}\" font-family=\"sans-serif\" font-size=\"11\">"
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{HEIGHT}\" \
+         viewBox=\"0 0 {width} {HEIGHT}\" font-family=\"sans-serif\" font-size=\"11\">"
     );
     let _ = writeln!(
         svg,
@@ -183,27 +306,14 @@ pub fn cost_chart_svg(report: &Report) -> Option<String> {
             path.join(" ")
         );
     }
-    // Labels that would overlap one already placed move down a line (points of equal cost and
-    // error are common: the ray-traced techniques all sit at the reference).
-    let mut placed: Vec<(f64, f64, f64)> = Vec::new();
-    for (name, ms, mse) in &points {
-        let (cx, cy) = (px(*ms), py(mse.max(floor)));
-        let width = 6.5 * name.len() as f64;
-        let mut ly = cy + 4.0;
-        while placed
-            .iter()
-            .any(|&(x, y, w)| (ly - y).abs() < 12.0 && cx + 6.0 < x + w && x < cx + 6.0 + width)
-        {
-            ly += 12.0;
-        }
-        placed.push((cx + 6.0, ly, width));
+    for ((name, ms, mse), ((cx, cy), label)) in points.iter().zip(dots.iter().zip(&labels)) {
         let fill = if front.contains(name) { "#2a7" } else { "#36c" };
         let _ = writeln!(
             svg,
             "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"{fill}\"><title>{name}: \
              {ms:.3} ms, MSE {mse:.3e}</title></circle>\
-             <text x=\"{:.1}\" y=\"{ly:.1}\">{name}</text>",
-            cx + 6.0,
+             <text class=\"label\" x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"{}\">{}</text>",
+            label.x, label.y, label.anchor, label.text
         );
     }
     let _ = writeln!(
@@ -212,6 +322,14 @@ pub fn cost_chart_svg(report: &Report) -> Option<String> {
         ml + pw + 8.0,
         mt + 10.0
     );
+    for (i, (number, name)) in numbered.iter().enumerate() {
+        let _ = writeln!(
+            svg,
+            "<text x=\"{:.1}\" y=\"{:.1}\">{number} {name}</text>",
+            ml + pw + 8.0 + (i / rows) as f64 * column_w,
+            mt + 28.0 + (i % rows) as f64 * LINE_H
+        );
+    }
     svg.push_str("</svg>\n");
     Some(svg)
 }

@@ -14,7 +14,7 @@ use std::fmt::{self, Write};
 const PIXELATED_BELOW: u32 = 400;
 
 /// Escapes text for HTML element content and attribute values.
-fn escape(s: &str) -> String {
+pub(super) fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -29,7 +29,7 @@ fn escape(s: &str) -> String {
     out
 }
 
-fn css_rgb([r, g, b]: [u8; 3]) -> String {
+pub(super) fn css_rgb([r, g, b]: [u8; 3]) -> String {
     format!("rgb({r}, {g}, {b})")
 }
 

@@ -57,6 +57,9 @@
 //! directory are not supported: they share the temporary names.
 
 mod chart;
+pub mod demo_page;
+#[cfg(test)]
+mod demo_page_tests;
 mod files;
 mod heatmap;
 mod html;
@@ -636,7 +639,7 @@ pub fn metric_cells(r: &TechniqueResult, software_adapter: bool) -> [String; 7] 
     };
     let ms = match r.gpu_ms {
         // A CPU adapter's time says nothing about a GPU: shown, but marked.
-        Some(ms) if software_adapter => format!("({ms:.1} CPU)"),
+        Some(ms) if software_adapter => format!("{ms:.1} (CPU)"),
         Some(ms) => format!("{ms:.3}"),
         None => "–".to_owned(),
     };

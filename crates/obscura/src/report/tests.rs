@@ -884,7 +884,7 @@ fn fixed_point_cells_never_print_negative_zero() {
     assert_eq!(super::fixed4(f64::NAN), "n/a");
     let r = timed("x", 1e-3, Some(0.1234));
     assert_eq!(super::metric_cells(&r, false)[6], "0.123");
-    assert_eq!(super::metric_cells(&r, true)[6], "(0.1 CPU)");
+    assert_eq!(super::metric_cells(&r, true)[6], "0.1 (CPU)");
     assert_eq!(super::metric_cells(&timed("x", 1e-3, None), false)[6], "–");
 }
 
