@@ -48,7 +48,7 @@ bench() {
   fi
 }
 
-sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
+sponza=(--scene .devbin/scenes/crytek-sponza/sponza.glb --eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60 --normals face)
 for scene in crytek-sponza colonnade grass tower; do
   if [ "$scene" = crytek-sponza ]; then s=("${sponza[@]}"); else s=(--scene "$scene"); fi
   bench "$scene-$hd-base" "${s[@]}" --size "$hd" --techniques vao,vao-dual

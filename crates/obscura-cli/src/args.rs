@@ -115,12 +115,13 @@ pub struct SceneArgs {
     /// Cull back faces of every material that is not alpha-tested, whatever the file says.
     #[arg(long, help_heading = SCENE_HEADING)]
     pub cull_back_faces: bool,
-    /// The normal AO is computed around, in the G-buffer and the reference alike: 'face' (the
-    /// triangle's, as the papers do) or 'shading' (the file's vertex normals interpolated, as
-    /// engines and offline renderers do; face normals where a mesh has none).
+    /// The normal AO is computed around, in the G-buffer and the reference alike: 'shading' (the
+    /// file's vertex normals interpolated, as engines and offline renderers do; face normals
+    /// where a mesh has none, as the built-in scenes) or 'face' (the triangle's, as the papers
+    /// and their tables do).
     #[arg(
         long,
-        default_value = "face",
+        default_value = "shading",
         value_parser = PossibleValuesParser::new(["face", "shading"])
             .map(|s| s.parse::<Normals>().expect("a listed value"))
     , help_heading = SCENE_HEADING)]
@@ -237,8 +238,8 @@ pub struct AoArgs {
     pub ao_radius: Option<f32>,
     /// The length of one world unit of the scene: metres as a number (0.0254 for inches), or
     /// m, cm, mm, km, in, ft. The defaults and presets assume metres (glTF's unit); with
-    /// `--units cm` every one of their world lengths (the radii, thicknesses, SAO's bias and
-    /// intensity; the blur's sharpness per world unit) is converted, so an outside scene in
+    /// `--units cm` every one of their world lengths (the radii, thicknesses, SAO's bias; the
+    /// blur's sharpness per world unit) is converted, so an outside scene in
     /// centimetres gets the same AO as in metres (`AoSettings::scaled`). A settings file and
     /// the flags below are read in the scene's own units, over the converted defaults.
     #[arg(long, value_name = "UNIT", allow_hyphen_values = true, help_heading = SETTINGS_HEADING)]

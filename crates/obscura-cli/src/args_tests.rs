@@ -56,7 +56,8 @@ fn units_convert_the_defaults_world_lengths_and_flags_stay_in_scene_units() {
     let cm = settings(&["--units", "cm"]);
     assert_eq!(cm, metres.scaled(100.0));
     assert!((cm.vao.radius - 50.0).abs() < 1e-4, "{}", cm.vao.radius);
-    assert!((cm.sao.intensity - 100.0).abs() < 1e-3);
+    // SAO's intensity σ is dimensionless (issue 62): no unit converts it.
+    assert_eq!(cm.sao.intensity, metres.sao.intensity);
     assert!((cm.blur.sharpness - metres.blur.sharpness / 100.0).abs() < 1e-9);
     assert_eq!(settings(&["--units", "0.001"]), metres.scaled(1000.0));
     assert_eq!(settings(&["--units", "m"]), metres);

@@ -451,7 +451,11 @@ fn compare_writes_a_report_and_reuses_the_reference() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(v["scene"], "cornell");
-    assert_eq!(v["scene_options"], "sides as authored, normals face");
+    // A built-in scene has no vertex normals: face normals under the shading default.
+    assert_eq!(
+        v["scene_options"],
+        "sides as authored, normals face (no vertex normals)"
+    );
     assert_eq!(
         (v["width"].as_u64(), v["height"].as_u64()),
         (Some(64), Some(48))
@@ -1537,9 +1541,9 @@ fn normals_shading_uses_the_file_s_vertex_normals() {
     };
     let flat = render("flat.png", &without, &[]);
     assert_eq!(
-        render("face.png", &with, &[]),
+        render("face.png", &with, &["--normals", "face"]),
         flat,
-        "face normals by default"
+        "--normals face ignores the vertex normals"
     );
     assert_eq!(
         render("flat-shading.png", &without, &["--normals", "shading"]),
@@ -1548,6 +1552,12 @@ fn normals_shading_uses_the_file_s_vertex_normals() {
     );
     let shading = render("shading.png", &with, &["--normals", "shading"]);
     assert_ne!(shading, flat, "the leaning normals change the AO");
+    // Issue 62: shading normals are the default where the file has vertex normals.
+    assert_eq!(
+        render("default.png", &with, &[]),
+        shading,
+        "shading normals by default"
+    );
     let bad = obscura(&[
         "render",
         "--normals",

@@ -5,8 +5,10 @@
 // LOG_MAX_OFFSET 3 with K = 2, taps within q texels of the pixel read its level), so distant taps
 // read coarse, cache-friendly depths (§3). Every tap adds the Alchemy AO term with SAO's falloff,
 //     (R² − v·v)³ · max(0, (v·n − β)/(v·v + ε)),    ε = (0.2 R)² (SAO's code: 0.01, in metres),
-// and A = max(0, 1 − intensity/R⁶ · (5/N) · Σ) (the shipped normalisation: the sum has the
-// dimension of an inverse length, so `intensity` is a length; AoSettings::scaled scales it).
+// and A = max(0, 1 − σR/R⁶ · (5/N) · Σ): the shipped normalisation intensity/R⁶ · (5/N), whose
+// sum has the dimension of an inverse length, with its intensity (a length) written σR, σ
+// dimensionless, so that the obscurance follows R; R capped on screen (screen_space.wgsl) scales
+// all of R⁵ and ε alike (issue 62: with the intensity held, a capped R darkened as 1/R).
 //
 // Estimator contract (docs/ARCHITECTURE.md): a tap's value is its term, several depths combine by
 // the maximum, the accumulator sums; order-independent. Level reads: sources/depth_pyramid.wgsl.
@@ -18,14 +20,14 @@
 struct SaoParams {
     radius: f32,
     radius2: f32,
-    // intensity / R⁶ · 5 / N.
+    // σ · 5 / (N R⁵), for the uncapped R.
     scale: f32,
     bias: f32,
     spiral_turns: f32,
     // 1 / ln K and ln q: the level of a tap at d px is ⌊(ln d − ln q) / ln K⌋.
     inv_log_factor: f32,
     log_q: f32,
-    // ε against division by zero, (0.2 R)² (src/estimators/sao.rs).
+    // ε against division by zero, (0.2 R)² for the uncapped R (src/estimators/sao.rs).
     epsilon: f32,
     // Index x % 4 + 4 * (y % 4): x the rotation φ in radians.
     pattern: array<vec4<f32>, 16>,
@@ -81,7 +83,8 @@ fn estimator_occluder(p: EstimatorPixel, s: EstimatorSample, pos: vec3<f32>) -> 
     let vv = dot(v, v);
     let f = max(p.radius2 - vv, 0.0);
     var o: Occluder;
-    o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (params.epsilon + vv), 0.0);
+    let epsilon = params.epsilon * p.radius_scale * p.radius_scale;
+    o.value = f * f * f * max((dot(v, p.normal) - params.bias) / (epsilon + vv), 0.0);
     o.hidden = false;
     return o;
 }
@@ -108,9 +111,10 @@ fn estimator_accum_value(acc: EstimatorAccum, s: EstimatorSample, value: f32) ->
 }
 
 fn estimator_finish(p: EstimatorPixel, acc: EstimatorAccum) -> f32 {
-    // The normalisation is proportional to 1/R⁶ (src/estimators/sao.rs): (r²−v·v)³ scales as R⁶.
-    let s3 = p.radius_scale * p.radius_scale * p.radius_scale;
-    return max(0.0, 1.0 - acc.sum * (params.scale / (s3 * s3)));
+    // The normalisation is proportional to 1/R⁵ (src/estimators/sao.rs): (R² − v·v)³ scales as
+    // R⁶ and the term as 1/R.
+    let s2 = p.radius_scale * p.radius_scale;
+    return max(0.0, 1.0 - acc.sum * (params.scale / (s2 * s2 * p.radius_scale)));
 }
 
 // The debug image (`render --debug-out`): the mean pyramid level the taps read, level 0 black …

@@ -15,10 +15,16 @@ use std::f32::consts::{FRAC_PI_2, PI};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SectorActivation {
-    /// A sector the span touches.
-    #[default]
+    /// A sector the span touches (seed 003's listing). Any span, however thin, occludes a whole
+    /// sector: a sample a hair above a near-flat surface's tangent plane (tessellated curves,
+    /// depth rounding) greys open surfaces (issue 62: 0.03–0.04 below the truth on Sponza and
+    /// Sibenik).
     Ceil,
-    /// A sector the span covers at least half of.
+    /// A sector the span covers at least half of: the default, chosen by measurement against the
+    /// hemisphere ground truth on Sponza, Sibenik, stairs and colonnade at R = 0.5 and 1 (the
+    /// lowest mean MAE of the three, half ceil's error on open surfaces;
+    /// docs/lab/2026-12-06-rows-against-truth.md).
+    #[default]
     Round,
     /// A sector the span covers whole.
     Floor,
@@ -40,7 +46,7 @@ pub struct GtaoVbSettings {
     pub slices: u32,
     /// Steps on each side of a slice; slices × 2 × steps ≤ 32.
     pub steps: u32,
-    /// Which sectors a sample's angular span sets (default [`SectorActivation::Ceil`]).
+    /// Which sectors a sample's angular span sets (default [`SectorActivation::Round`]).
     pub activation: SectorActivation,
     /// Weigh each free sector by its cosine-weighted share of the slice, GTAO's integral (our
     /// extension: the ground truth's cosine-weighted AO); default `false`, seed 003's uniform
@@ -56,7 +62,7 @@ impl Default for GtaoVbSettings {
             exponent: 1.0,
             slices: 2,
             steps: 2,
-            activation: SectorActivation::Ceil,
+            activation: SectorActivation::Round,
             cosine_weighted: false,
         }
     }

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use std::f32::consts::TAU;
 
 /// Scalable Ambient Obscurance parameters (McGuire et al. 2012; defaults of its published code:
-/// 11 taps on 7 spiral turns, bias 0.01, intensity 1).
+/// 11 taps on 7 spiral turns, bias 0.01, intensity 1 at its example radius of 1 m).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SaoSettings {
@@ -21,9 +21,11 @@ pub struct SaoSettings {
     pub spiral_turns: f32,
     /// β, world units a tap must rise above the tangent plane before it occludes.
     pub bias: f32,
-    /// Scale of the summed obscurance, in world units: under SAO's shipped normalisation
-    /// intensity/R⁶ · 5/N the sum has the dimension of an inverse length, which the intensity
-    /// cancels ([`crate::AoSettings::scaled`] scales it with the radii).
+    /// σ, the dimensionless intensity: A = max(0, 1 − σR/R⁶ · 5/N · Σ). SAO's shipped
+    /// normalisation is intensity/R⁶ · 5/N, whose sum has the dimension of an inverse length:
+    /// its `intensity` is a length, σR here, so that the obscurance follows the radius (and
+    /// its on-screen cap) instead of growing as 1/R (issue 62). At SAO's example radius, 1 m,
+    /// σ = 1 is its shipped intensity 1.
     pub intensity: f32,
 }
 
@@ -65,14 +67,14 @@ impl SaoSettings {
         Knob::new(
             "sao.intensity",
             "--sao-intensity",
-            "SAO intensity (scale of the obscurance), in world units as SAO's normalisation has it.",
+            "SAO intensity σ (scale of the obscurance, dimensionless: SAO's intensity over R).",
             Kind::POSITIVE,
         )
-        .length()
         .doc(
-            "scale of the summed obscurance (A = 1 − intensity/R⁶ · 5/N · Σ, SAO's shipped \
-             normalisation, whose sum has the dimension of an inverse length: the intensity is a \
-             length, scaled with the radii)",
+            "σ, scale of the summed obscurance: A = 1 − σR/R⁶ · 5/N · Σ (SAO's shipped \
+             normalisation intensity/R⁶ · 5/N with its intensity, a length, written σR so that \
+             the obscurance follows the radius and its cap; σ = 1 is SAO's intensity 1 at its \
+             example radius 1 m)",
         ),
     ];
 }
@@ -93,15 +95,23 @@ pub(crate) const CONSTANTS: &[&str] = &["SAMPLE_COUNT", "LEVELS"];
 /// Taps within this many texels of the pixel read its level (SAO's LOG_MAX_OFFSET 3: 2³).
 pub const LEVEL_OFFSET_PX: f32 = 8.0;
 
-/// ε = (0.2 R)²: SAO's code adds ε = 0.01 to v·v against division by zero, a squared length in
-/// the metres it was written for; held at its value for our default R = 0.5 but made
-/// proportional to R², so that a scene in other units gives the same image (with
-/// `AoSettings::scaled`; tests/it/scale_invariance.rs).
+/// ε = (0.2 R)²: SAO's code adds ε = 0.01 to v·v against division by zero ("large epsilon to
+/// avoid overdarkening within cracks"), a squared length in metres; held at that value for our
+/// default R = 0.5 but made proportional to R², so that a scene in other units gives the same
+/// image (tests/it/scale_invariance.rs) and a radius capped on screen scales it with the rest.
+/// (Measured, issue 62: anchoring it at SAO's example radius instead, (0.1 R)², darkened every
+/// view at R = 1: Sponza's bias −0.076 → −0.132; docs/lab/2026-12-06-rows-against-truth.md.)
 pub const EPSILON_PER_RADIUS: f32 = 0.2;
 
 /// SAO's ε for radius R, (0.2 R)² ([`EPSILON_PER_RADIUS`]).
 pub fn epsilon(radius: f32) -> f32 {
     (EPSILON_PER_RADIUS * radius).powi(2)
+}
+
+/// The factor of the summed terms for radius R: σR/R⁶ · 5/N = σ · 5/(N R⁵) (SAO's
+/// intensity/R⁶ · 5/N with its intensity σR), so that A = max(0, 1 − factor · Σ).
+pub fn obscurance_scale(s: &SaoSettings, radius: f32) -> f32 {
+    s.intensity * 5.0 / (s.samples as f32 * radius.powi(5))
 }
 
 /// GPU mirror of `SaoParams` in the WGSL.
@@ -134,7 +144,7 @@ pub(crate) fn params(s: &SaoSettings, inputs: &super::SourceInputs) -> (Vec<u8>,
     let params = SaoParams {
         radius: s.radius,
         radius2: s.radius * s.radius,
-        scale: s.intensity / s.radius.powi(6) * 5.0 / s.samples as f32,
+        scale: obscurance_scale(s, s.radius),
         bias: s.bias,
         spiral_turns: s.spiral_turns,
         inv_log_factor: 1.0 / (inputs.pyramid_factor as f32).ln(),
@@ -175,7 +185,7 @@ pub fn cpu_sao(l: &Levels, s: &SaoSettings, levels: u32) -> (Vec<f32>, Vec<bool>
                 sum += f * f * f * ((v.dot(p.n) - s.bias) / (epsilon(s.radius) + vv)).max(0.0);
             }
         }
-        let ao = (1.0 - sum * s.intensity / s.radius.powi(6) * 5.0 / n).max(0.0);
+        let ao = (1.0 - sum * obscurance_scale(s, s.radius)).max(0.0);
         (ao, edge)
     })
 }

@@ -267,11 +267,11 @@ impl Scene {
         self.normal_mode == Normals::Shading && !self.normals.is_empty()
     }
 
-    /// The scene-wide choices a comparison depends on, for reports: sides and normals (and when
-    /// shading normals were asked for but the scene has none).
+    /// The scene-wide choices a comparison depends on, for reports: sides and normals (face
+    /// normals where shading normals, the default, find no vertex normals in the scene).
     pub fn options_description(&self) -> String {
         let normals = match (self.normal_mode, self.normals.is_empty()) {
-            (Normals::Shading, true) => "shading asked, none in the scene: face",
+            (Normals::Shading, true) => "face (no vertex normals)",
             (mode, _) => mode.name(),
         };
         format!("sides {}, normals {normals}", self.sidedness.name())
@@ -487,14 +487,13 @@ mod tests {
         assert!(s.materials.iter().all(|m| !m.double_sided));
         assert_eq!(
             s.options_description(),
-            "sides back faces culled, normals face"
-        );
-        s.set_normals(Normals::Shading);
-        assert_eq!(
-            s.options_description(),
-            "sides back faces culled, normals shading asked, none in the scene: face"
+            "sides back faces culled, normals face (no vertex normals)"
         );
         s.set_normals(Normals::Face);
+        assert_eq!(
+            s.options_description(),
+            "sides back faces culled, normals face"
+        );
         assert!(![double, authored].contains(&s.fingerprint()));
 
         let mut moved = tiny();
@@ -509,13 +508,10 @@ mod tests {
         let lean = Vec3::new(1.0, 0.0, 1.0).normalize();
         s.normals = vec![lean; 3];
         let (u, v) = (0.25, 0.25);
-        assert_eq!(
-            s.surface_normal(0, u, v, Vec3::Z),
-            Vec3::Z,
-            "face by default"
-        );
+        assert!(s.uses_shading_normals(), "shading by default");
+        s.set_normals(Normals::Face);
+        assert_eq!(s.surface_normal(0, u, v, Vec3::Z), Vec3::Z, "face asked");
         s.set_normals(Normals::Shading);
-        assert!(s.uses_shading_normals());
         assert!(s.surface_normal(0, u, v, Vec3::Z).distance(lean) < 1e-6);
         // Seen from behind (a double-sided surface): both turn to the viewer's side.
         assert!(s.surface_normal(0, u, v, Vec3::NEG_Z).distance(-lean) < 1e-6);

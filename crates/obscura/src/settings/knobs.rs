@@ -139,7 +139,7 @@ impl AoSettings {
     }
 
     /// The settings for the same scene in other units: every field in world units (a knob's
-    /// `scale` 1: the radii, GTAO-VB's thickness, SAO's bias and intensity, …) multiplied by
+    /// `scale` 1: the radii, GTAO-VB's thickness, SAO's bias, …) multiplied by
     /// `factor` and every one per world unit (`blur.sharpness`) divided by it; pixels, angles
     /// and fractions unchanged. A scene in centimetres with settings made for metres takes
     /// `settings.scaled(100.0)`; every technique then gives the same image

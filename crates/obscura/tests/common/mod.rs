@@ -306,30 +306,13 @@ pub fn hemisphere_metrics(
     settings: &AoSettings,
     radius: f32,
 ) -> (obscura::metrics::Summary, f64) {
-    use obscura::bvh::Bvh;
     use obscura::metrics::{mae, summarize, Image};
-    use obscura::reference::gpu::render_reference_gpu;
-    use obscura::reference::ground_truth::{ReferenceModel, ReferenceSettings};
     let (w, h) = (128, 80);
     let mut r = Renderer::new(gpu, scene, settings, w, h, 16).unwrap();
     r.render(&scene.cameras[0].camera, None).unwrap();
     let ao = r.read_ao().unwrap();
     let depth = r.read_gbuffer().unwrap().visible_depth(16);
-    let mut reference = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 256,
-        ..Default::default()
-    };
-    reference.vao.radius = radius;
-    let (truth, _) = render_reference_gpu(
-        gpu,
-        scene,
-        &Bvh::build(scene),
-        *r.view().unwrap(),
-        &reference,
-        &|_, _| {},
-    )
-    .unwrap();
+    let truth = hemisphere_truth(gpu, scene, *r.view().unwrap(), radius);
     let image = |d: &[f32]| Image::new(w as usize, h as usize, d.to_vec().leak()).unwrap();
     let ones = vec![1.0; ao.len()];
     (
@@ -373,6 +356,28 @@ pub fn mse_against_blurred_vao_truth_at(
             mse(&image(&r.read_ao().unwrap()), &image(&reference)).unwrap()
         })
         .collect()
+}
+
+/// The cosine-weighted hemisphere ground truth of radius `radius` (256 rays per pixel) of `view`,
+/// traced on the GPU: the visible image, row-major.
+pub fn hemisphere_truth(
+    gpu: &Gpu,
+    scene: &Scene,
+    view: obscura::FrameView,
+    radius: f32,
+) -> Vec<f32> {
+    use obscura::bvh::Bvh;
+    use obscura::reference::gpu::render_reference_gpu;
+    use obscura::reference::ground_truth::{ReferenceModel, ReferenceSettings};
+    let mut reference = ReferenceSettings {
+        model: ReferenceModel::Hemisphere,
+        spp: 256,
+        ..Default::default()
+    };
+    reference.vao.radius = radius;
+    render_reference_gpu(gpu, scene, &Bvh::build(scene), view, &reference, &|_, _| {})
+        .unwrap()
+        .0
 }
 
 /// [`hemisphere_metrics`]' MAE, and that of no occlusion.

@@ -36,6 +36,7 @@ mod ray_budget;
 mod ray_stochastic_depth;
 mod readme;
 mod reference;
+mod rows_against_truth;
 mod rt_vao;
 mod scale_invariance;
 mod settings_data;

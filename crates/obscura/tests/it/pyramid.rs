@@ -149,7 +149,7 @@ fn pyramid_hbao_step_closed_form(d: f32, h: f32, s: &PyramidHbaoSettings, reach:
 /// α_i = (i + 0.5)/N of the radius (horizontal distance α_i R: the view looks straight down) and
 /// angle 2π·α_i·τ + φ (φ the pixel's Bayer rotation; view x is world x); a tap on the block's
 /// top (α_i R cos θ > d) has v·n = h and v·v = (α_i R)² + h² and adds
-/// (R² − v·v)³ (h − β)/(v·v + ε); A = max(0, 1 − intensity/R⁶ · 5/N · Σ). Per pixel, as the
+/// (R² − v·v)³ (h − β)/(v·v + ε); A = max(0, 1 − σR/R⁶ · 5/N · Σ). Per pixel, as the
 /// clamp is not linear.
 fn sao_step_closed_form(d: f32, h: f32, s: &SaoSettings, pixel: UVec2) -> f32 {
     let (c, sn, _) = obscura::estimators::bayer_pattern(pixel.x, pixel.y, TAU);
@@ -168,7 +168,7 @@ fn sao_step_closed_form(d: f32, h: f32, s: &SaoSettings, pixel: UVec2) -> f32 {
             f * f * f * ((h - s.bias) / (sao::epsilon(s.radius) + vv)).max(0.0)
         })
         .sum();
-    (1.0 - s.intensity / r.powi(6) * 5.0 / n * sum).max(0.0)
+    (1.0 - sao::obscurance_scale(s, r) * sum).max(0.0)
 }
 
 #[test]
@@ -195,8 +195,9 @@ fn a_step_seen_from_above_matches_each_models_closed_form() {
 
         let mut s = technique_settings(Technique::Sao, false);
         s.pyramid.levels = 1;
-        // Less intensity than the default, so that the clamp at 0 does not hide the comparison.
-        (s.sao.samples, s.sao.intensity) = (64, 0.2);
+        // Less intensity than the default, so that the clamp at 0 does not hide the comparison
+        // (σR = 0.2 at R = 0.5).
+        (s.sao.samples, s.sao.intensity) = (64, 0.4);
         let (got, want) = step_ao(&s, d, h, |d, pixel| {
             sao_step_closed_form(d, h, &s.sao, pixel)
         });
@@ -298,9 +299,9 @@ fn sao_at_an_inside_corner_matches_its_model_with_exact_geometry() {
     // 0.366 against 0.377).
     let mut s = technique_settings(Technique::Sao, false);
     s.pyramid.levels = 1;
-    // SAO's intensity 1 saturates at a corner (A = 0 for model and kernel alike): a lower one
-    // keeps the comparison in range.
-    s.sao.intensity = 0.3;
+    // SAO's intensity saturates at a corner (A = 0 for model and kernel alike): a lower one
+    // keeps the comparison in range (σR = 0.3 at R = 0.5).
+    s.sao.intensity = 0.6;
     let sa = s.sao;
     let (got, want, count, _) = corner_ao_and_model(&s, |pixel, corner| {
         let centre = (pixel + corner.screen.guard_band).as_vec2() + 0.5;
@@ -323,7 +324,7 @@ fn sao_at_an_inside_corner_matches_its_model_with_exact_geometry() {
                 sum += f * f * f * ((v.dot(n) - sa.bias) / (sao::epsilon(sa.radius) + vv)).max(0.0);
             }
         }
-        (1.0 - sum * sa.intensity / sa.radius.powi(6) * 5.0 / taps).max(0.0)
+        (1.0 - sum * sao::obscurance_scale(&sa, sa.radius)).max(0.0)
     });
     println!("sao at the inside corner: GPU {got:.4}, model {want:.4} over {count} pixels");
     assert!(

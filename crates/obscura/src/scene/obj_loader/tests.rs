@@ -231,8 +231,20 @@ fn vertex_normals_are_read_where_every_vertex_has_one() {
         let expected = if p.y == 1.0 { lean } else { Vec3::Z };
         assert!(n.distance(expected) < 1e-6, "{p}: {n}");
     }
+    // Shading normals by default where the file has vertex normals (issue 62): the AO is computed
+    // around the interpolated normal, which leans towards +y at the third corner.
+    assert!(s.uses_shading_normals(), "shading normals by default");
+    let n = s.surface_normal(0, 0.0, 1.0, Vec3::Z);
+    assert!(n.distance(lean) < 1e-6, "{n}");
     let without = write(&dir, "without.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    assert!(load_path(&without).unwrap().normals.is_empty());
+    let flat = load_path(&without).unwrap();
+    assert!(flat.normals.is_empty());
+    // None to interpolate: face normals, and the report says why.
+    assert!(!flat.uses_shading_normals());
+    assert_eq!(flat.surface_normal(0, 0.0, 1.0, Vec3::Z), Vec3::Z);
+    assert!(flat
+        .options_description()
+        .ends_with("normals face (no vertex normals)"));
 }
 
 /// `map_d` masks cut materials out as glTF's MASK does: the mask's grey level (or its alpha
