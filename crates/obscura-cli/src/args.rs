@@ -96,14 +96,17 @@ pub struct SceneArgs {
     #[arg(long, conflicts_with_all = ["eye", "target"], help_heading = SCENE_HEADING)]
     pub camera: Option<String>,
     /// Camera position x,y,z (with --target), in the scene file's coordinates.
-    #[arg(long, value_parser = parse_dvec3, requires = "target", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
+    #[arg(long, value_parser = parse_dvec3, requires = "target", allow_hyphen_values = true,
+          help_heading = SCENE_HEADING)]
     pub eye: Option<DVec3>,
     /// Point looked at x,y,z (with --eye), in the scene file's coordinates.
-    #[arg(long, value_parser = parse_dvec3, requires = "eye", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
+    #[arg(long, value_parser = parse_dvec3, requires = "eye", allow_hyphen_values = true,
+          help_heading = SCENE_HEADING)]
     pub target: Option<DVec3>,
     /// The image's up direction x,y,z (with --eye; default +Y, or ∓Z looking straight down or
     /// up): 0,0,1 for a scene modelled Z up, as CAD and 3ds Max exports are.
-    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true, help_heading = SCENE_HEADING)]
+    #[arg(long, value_parser = parse_vec3, requires = "eye", allow_hyphen_values = true,
+          help_heading = SCENE_HEADING)]
     pub up: Option<Vec3>,
     /// Vertical field of view of the visible image in degrees (default: the camera's, or 60).
     #[arg(long, allow_hyphen_values = true, help_heading = SCENE_HEADING)]
@@ -123,8 +126,9 @@ pub struct SceneArgs {
         long,
         default_value = "shading",
         value_parser = PossibleValuesParser::new(["face", "shading"])
-            .map(|s| s.parse::<Normals>().expect("a listed value"))
-    , help_heading = SCENE_HEADING)]
+            .map(|s| s.parse::<Normals>().expect("a listed value")),
+        help_heading = SCENE_HEADING
+    )]
     pub normals: Normals,
     /// Let the scene file read the files it refers to (glTF buffers and images, OBJ material
     /// libraries and textures) outside its own folder. Off by default, so that a scene from
@@ -224,7 +228,8 @@ pub struct AoArgs {
     /// Quality preset for each technique (docs/SETTINGS.md lists what each sets; medium = the
     /// defaults).
     #[arg(long, value_parser = PossibleValuesParser::new(Preset::ALL.map(Preset::name))
-        .map(|s| s.parse::<Preset>().expect("a listed preset")), help_heading = SETTINGS_HEADING)]
+        .map(|s| s.parse::<Preset>().expect("a listed preset")),
+        help_heading = SETTINGS_HEADING)]
     pub preset: Option<Preset>,
     /// Settings file, .toml or .json (docs/SETTINGS.md): applied over the preset; the flags
     /// below override it.
@@ -242,7 +247,8 @@ pub struct AoArgs {
     /// blur's sharpness per world unit) is converted, so an outside scene in
     /// centimetres gets the same AO as in metres (`AoSettings::scaled`). A settings file and
     /// the flags below are read in the scene's own units, over the converted defaults.
-    #[arg(long, value_name = "UNIT", allow_hyphen_values = true, help_heading = SETTINGS_HEADING)]
+    #[arg(long, value_name = "UNIT", allow_hyphen_values = true,
+          help_heading = SETTINGS_HEADING)]
     pub units: Option<String>,
     /// Every settings field's flag (made from the library's knobs: `setting_flags`).
     #[command(flatten)]
