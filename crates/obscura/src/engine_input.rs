@@ -18,7 +18,7 @@
 //! `height + 2·guard_band` pixels, rendered with a projection whose frustum covers it too: AO
 //! samples near the image's edges read depth in the band, and without it they read nothing there.
 //! An engine keeps its visible framing by widening the field of view with
-//! [`crate::guard_banded_fov_y`] and using the framebuffer's aspect ratio, then shows the centre
+//! [`crate::view::guard_banded_fov_y`] and using the framebuffer's aspect ratio, then shows the centre
 //! `width × height` pixels (the AO output is already that size). A guard band of 0 works with the
 //! engine's own projection unchanged, at the cost of darker or brighter AO near the edges.
 

@@ -14,7 +14,7 @@ use super::html::{css_rgb, escape};
 use super::{fixed4, format_scale, metric_cells, reference_description, Report, TechniqueResult};
 use crate::reference::ground_truth::ReferenceModel;
 use crate::technique::Estimator;
-use crate::Technique;
+use crate::technique::Technique;
 use std::fmt::{self, Write};
 
 /// The reference a row is scored against: the `vao` model for rows whose estimator is VAO (the

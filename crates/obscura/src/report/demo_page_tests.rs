@@ -7,7 +7,7 @@ use super::demo_page::{
 };
 use super::{cost_chart_svg, ReferenceInfo, Report, TechniqueResult};
 use crate::reference::ground_truth::ReferenceModel;
-use crate::Technique;
+use crate::technique::Technique;
 
 fn row(name: &str, mae: f64, ms: f64) -> TechniqueResult {
     TechniqueResult {
