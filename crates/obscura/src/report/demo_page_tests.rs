@@ -122,9 +122,33 @@ fn the_verdict_names_the_lowest_mae_row_per_family_and_per_budget() {
     assert_eq!(fastest_third(&s), Some(1.2));
     let v = scene_verdict(&s, true);
     assert!(
-        v.contains("vao reference (rows whose estimator is VAO): the closest is rt-vao (MAE 0.0100, 9.0 ms (CPU))"),
+        v.contains("vao reference (rows whose estimator is VAO): the closest is rt-vao (MAE 0.0100, 9.0 ms (CPU));"),
         "{v}"
     );
+    assert!(
+        v.contains("; rtao traces rays through the scene's geometry as the reference does"),
+        "{v}"
+    );
+    // A screen-space row that wins is not said to trace.
+    let mut screen = reports.clone();
+    screen[1].results[0].mae = 0.01;
+    let w = scene_verdict(&scene("stairs", &screen), true);
+    assert!(
+        w.contains("closest is hbao+ (MAE 0.0100, 2.0 ms (CPU));") && !w.contains("hbao+ traces"),
+        "{w}"
+    );
+    // Beside a row that traces, the best of the rows without rays: sd-vao, hbao+.
+    for best in [
+        "sd-vao (MAE 0.0300, 4.0 ms (CPU))",
+        "hbao+ (MAE 0.0600, 2.0 ms (CPU))",
+    ] {
+        assert!(
+            v.contains(&format!(
+                "of the rows that trace none the closest is {best}."
+            )),
+            "{v}"
+        );
+    }
     // Within 1.2 ms only vao (0.05) of its family.
     assert!(
         v.contains("fastest third (≤ 1.2 ms (CPU)), vao (MAE 0.0500, 1.0 ms (CPU))"),
