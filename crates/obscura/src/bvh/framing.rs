@@ -117,7 +117,7 @@ pub fn auto_camera(scene: &Scene, bvh: &Bvh, aspect: f32) -> (Camera, Placement)
                     up: Vec3::Y,
                     fov_y_deg: outside.fov_y_deg,
                 };
-                let score = view_score(scene, bvh, &camera, aspect, t_min, t_max);
+                let score = view_score(scene, bvh, &camera, aspect, diagonal);
                 if best.as_ref().is_none_or(|(s, _)| score > *s) {
                     best = Some((score, camera));
                 }
@@ -133,14 +133,9 @@ pub fn auto_camera(scene: &Scene, bvh: &Bvh, aspect: f32) -> (Camera, Placement)
 /// How much a view shows: the share of its rays that hit a front face, times how far its median
 /// hit is against a quarter of the diagonal (capped at 1): a view that hits everything but only a
 /// pillar in front of the eye scores low, as does one into open space.
-fn view_score(
-    scene: &Scene,
-    bvh: &Bvh,
-    camera: &Camera,
-    aspect: f32,
-    t_min: f32,
-    t_max: f32,
-) -> f32 {
+/// `diagonal`: the scene's bounds' (rays run from 1e-5 of it to twice it, as the probes do).
+fn view_score(scene: &Scene, bvh: &Bvh, camera: &Camera, aspect: f32, diagonal: f32) -> f32 {
+    let (t_min, t_max) = (1e-5 * diagonal, 2.0 * diagonal);
     let forward = camera.forward();
     let right = forward.cross(camera.up).normalize();
     let up = right.cross(forward);
@@ -165,7 +160,6 @@ fn view_score(
     let hit_share = distances.len() as f32 / (columns * rows) as f32;
     distances.sort_by(f32::total_cmp);
     let median = distances[distances.len() / 2];
-    let diagonal = scene.bounds().diagonal();
     hit_share * (median / (0.25 * diagonal)).min(1.0)
 }
 
