@@ -821,12 +821,24 @@ fn debug_out_shows_the_raster_maps_own_band() {
     // Without its band the raster map has no such image.
     let plain = dir.path().join("no-band");
     std::fs::create_dir_all(&plain).unwrap();
-    let stats = sd_debug("sd-svao", &plain, &["--guard-band", "8"]);
+    let stats = sd_debug(
+        "sd-svao",
+        &plain,
+        &["--guard-band", "8", "--sd-map-guard-band", "0"],
+    );
     assert!(
         stats.get("guard_band_texels_requested").is_none(),
         "{stats}"
     );
     assert!(!plain.join("sd-svao").join("sd_request_map.png").exists());
+    // By default it has one: 512 px at 1080p scaled with the visible 64 px, rounded up to a
+    // multiple of 4: 32 px on each side of the 112×80 framebuffer.
+    let default = dir.path().join("default-band");
+    std::fs::create_dir_all(&default).unwrap();
+    let stats = sd_debug("sd-svao", &default, &["--guard-band", "8"]);
+    assert!(stats["guard_band_texels_requested"].as_u64().unwrap() > 0);
+    let (w, h, _) = grey(&default.join("sd-svao").join("sd_request_map.png"));
+    assert_eq!((w, h), (176, 144));
 }
 
 #[test]

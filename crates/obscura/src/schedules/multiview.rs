@@ -16,7 +16,7 @@ use crate::estimators::EstimatorPass;
 use crate::frame::{workgroups_32x8, FrameInputs};
 use crate::gpu::{Gpu, PassProfiler};
 use crate::raster::gpu_scene::GpuScene;
-use crate::settings::{AoSettings, MultiviewSettings, Resolution, StochasticDepthSettings};
+use crate::settings::{AoSettings, MultiviewSettings, Resolution};
 use crate::shaders;
 use crate::sources::stochastic_depth::{bindings_wgsl, read_layout_entries, StochasticDepthMap};
 use crate::sources::SourcePass;
@@ -119,16 +119,12 @@ impl Multiview {
             Resolution::Half => screen.half()?,
         };
         // The second view's map has no band of its own: its samples are placed in its frame.
-        let second_settings = StochasticDepthSettings {
-            guard_band: 0,
-            ..settings.stochastic_depth
-        };
         let map = StochasticDepthMap::new(
             &gpu.adapter,
             device,
-            &second_settings,
+            &settings.stochastic_depth,
             settings.peel_separation,
-            (second_screen.full_width(), second_screen.full_height()),
+            (second_screen.full_width(), second_screen.full_height(), 0),
             scene,
             None,
         )?

@@ -40,8 +40,15 @@ pub struct StochasticDepthSettings {
     /// The raster map's own guard band in pixels (ours; seed 002 §3.5 gives the ray-traced map
     /// one): the map is rasterised this far beyond the framebuffer on every side, every layer
     /// there, so samples that fall off the framebuffer read it instead of the framebuffer's edge.
-    /// 0 (the default) is off; at most 2048. It widens the map's raster pass by that much.
-    pub guard_band: u32,
+    /// 0 is off; at most 2048. It widens the map's raster pass by that much. `None` (the default;
+    /// a file that leaves it out, JSON `null`, `--sd-map-guard-band auto`): the ray-traced map's
+    /// 512 px at 1080p, scaled with the visible height
+    /// ([`StochasticDepthSettings::guard_band_for`]). On by default because the map's edge is
+    /// where it is least steady in motion: without it, every sample that leaves the framebuffer
+    /// falls back to the first layer's edge, and those pixels flicker as the camera moves
+    /// (docs/lab/2026-12-06-stochastic-map-band-selection-motion.md; its cost in BENCHMARKS.md,
+    /// issue 62).
+    pub guard_band: Option<u32>,
     /// What rasterises the map: compute passes (ours) where the GPU allows them (the default),
     /// or the GPU's rasteriser.
     pub rasterizer: SdRasterizer,
@@ -237,7 +244,7 @@ impl Default for StochasticDepthSettings {
             query: SdQuery::Needed,
             compensation: 1.0,
             selection: SdSelection::Stochastic,
-            guard_band: 0,
+            guard_band: None,
             rasterizer: SdRasterizer::Auto,
         }
     }
@@ -324,12 +331,30 @@ impl RaySdSettings {
     pub fn guard_band_for(&self, visible_height: u32, two_phase: bool) -> u32 {
         self.guard_band.unwrap_or_else(|| {
             if two_phase {
-                let scaled = 512.0 * f64::from(visible_height) / 1080.0;
-                (scaled / 4.0).ceil() as u32 * 4
+                authors_guard_band(visible_height)
             } else {
                 0
             }
         })
+    }
+}
+
+/// Seed 002 §3.5's map guard band, 512 px at 1080p, scaled with the visible height and rounded
+/// up to a multiple of 4 (whole texels at the ray-traced map's 1/4 resolution).
+fn authors_guard_band(visible_height: u32) -> u32 {
+    let scaled = 512.0 * f64::from(visible_height) / 1080.0;
+    (scaled / 4.0).ceil() as u32 * 4
+}
+
+impl StochasticDepthSettings {
+    /// The raster map's own guard band in pixels for a `visible_height` image: `guard_band`, or
+    /// where that is `None`, the ray-traced map's default (512 px at 1080p scaled with the
+    /// height, a multiple of 4) on every schedule. Unlike the ray-traced map's, the raster map's
+    /// band costs no rays on one-pass rows, only a wider raster pass (+0.37 ms at 1080p on an
+    /// H100 with the compute rasteriser, BENCHMARKS.md, issue 62).
+    pub fn guard_band_for(&self, visible_height: u32) -> u32 {
+        self.guard_band
+            .unwrap_or_else(|| authors_guard_band(visible_height))
     }
 }
 
@@ -430,8 +455,9 @@ impl StochasticDepthSettings {
             "the raster map's own guard band (ours, after seed 002 §3.5's for the ray-traced map): \
              the map is rasterised this far beyond the framebuffer on every side, every layer \
              there, so samples that fall off the framebuffer read it instead of the framebuffer's \
-             edge; two-phase rows request its pixels as they do the others; 0 (the default) is off",
-        ),
+             edge; two-phase rows request its pixels as they do the others; 0 is off",
+        )
+        .auto("512 px at 1080p scaled with the height, as the ray-traced map's"),
         Knob::new(
             "stochastic_depth.rasterizer",
             "--sd-rasterizer",

@@ -325,7 +325,7 @@ fn validation_names_fields_that_exist_and_no_flags() {
     push(&|s| s.stochastic_depth.samples = 3);
     push(&|s| s.stochastic_depth.alpha = Some(1.5));
     push(&|s| s.stochastic_depth.compensation = 0.5);
-    push(&|s| s.stochastic_depth.guard_band = 4096);
+    push(&|s| s.stochastic_depth.guard_band = Some(4096));
     push(&|s| s.ray_sd.reservoir = 9);
     push(&|s| s.ray_sd.max_count = 2);
     push(&|s| s.ray_sd.resolution = 3);
@@ -602,4 +602,23 @@ fn a_registry_entry_gives_an_estimator_flags_checks_presets_widgets_and_docs() {
     assert!(AoSettings::field_paths().contains(&"stub.radius".to_string()));
     s.set_every_radius(3.0);
     assert_eq!(s.stub.radius, 3.0);
+}
+
+#[test]
+fn the_raster_maps_band_defaults_to_the_ray_traced_maps_on_every_row() {
+    // 512 px at 1080p scaled with the visible height, a multiple of 4 (92 px at 192 px high),
+    // one-pass or not; a value given is kept, 0 included.
+    let mut s = AoSettings::default();
+    assert_eq!(s.stochastic_depth.guard_band, None);
+    assert_eq!(s.stochastic_depth.guard_band_for(1080), 512);
+    assert_eq!(s.stochastic_depth.guard_band_for(192), 92);
+    assert_eq!(s.stochastic_depth.guard_band_for(64), 32);
+    assert_eq!(
+        s.stochastic_depth.guard_band_for(192),
+        s.ray_sd.guard_band_for(192, true)
+    );
+    s.stochastic_depth.guard_band = Some(0);
+    assert_eq!(s.stochastic_depth.guard_band_for(1080), 0);
+    s.stochastic_depth.guard_band = Some(6);
+    assert_eq!(s.stochastic_depth.guard_band_for(1080), 6);
 }

@@ -210,7 +210,11 @@ impl SourcePass {
                     device,
                     &settings.stochastic_depth,
                     settings.peel_separation,
-                    full,
+                    (
+                        full.0,
+                        full.1,
+                        settings.stochastic_depth.guard_band_for(screen.height),
+                    ),
                     scene_gpu,
                     schedule
                         .two_phase()

@@ -756,7 +756,9 @@ fn the_raster_maps_own_guard_band_restores_occlusion_from_beyond_the_framebuffer
     let case = edge_band_case();
     let (w, h, frame_guard) = case.size;
     let run = |technique: Technique, band: u32| {
-        let r = case.render(&gpu, technique, |s| s.stochastic_depth.guard_band = band);
+        let r = case.render(&gpu, technique, |s| {
+            s.stochastic_depth.guard_band = Some(band)
+        });
         let requests = r.read_sd_request_texels().unwrap();
         let layers = r.read_stochastic_depth().unwrap().unwrap();
         (

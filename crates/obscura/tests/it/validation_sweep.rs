@@ -102,7 +102,7 @@ fn the_compute_rasterised_map_at_degenerate_and_odd_sizes() {
             for (guard_band, map_band) in [(0, 0), (48, 0), (0, 5)] {
                 let mut settings = technique_settings(technique, true);
                 settings.stochastic_depth.rasterizer = SdRasterizer::Compute;
-                settings.stochastic_depth.guard_band = map_band;
+                settings.stochastic_depth.guard_band = Some(map_band);
                 check(&gpu, &scene, &settings, size, guard_band).unwrap_or_else(|e| {
                     panic!("{technique} at {size:?}+{guard_band}, band {map_band}: {e}")
                 });

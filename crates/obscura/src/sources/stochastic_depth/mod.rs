@@ -18,11 +18,12 @@
 //! and the hardware draws only what they leave to it.
 //! The AO passes read the map through `read.wgsl` (the source contract).
 //!
-//! Optionally the map has its own guard band (`stochastic_depth.guard_band`; ours, after the
-//! ray-traced map's of seed 002 §3.5): it is rasterised with the same camera over a frame that
+//! By default the map has its own guard band (`stochastic_depth.guard_band`, 512 px at 1080p;
+//! ours, after the ray-traced map's of seed 002 §3.5): it is rasterised with the same camera over a frame that
 //! many pixels wider on every side ([`FrameView::widened`]), keeping every layer in the band,
 //! where there is no first layer, so that samples off the framebuffer read it
-//! (`read.wgsl`'s `guard_band_lookup`) instead of the framebuffer's edge.
+//! (`read.wgsl`'s `guard_band_lookup`) instead of the framebuffer's edge, which otherwise
+//! makes the map's edge the least steady part of it in motion (issue 62). `0` turns it off.
 
 mod compute_raster;
 mod reset;
@@ -303,7 +304,8 @@ pub struct StochasticDepthMap {
 
 impl StochasticDepthMap {
     /// A map for a `width`×`height` framebuffer (guard band included), and its own band of
-    /// `settings.guard_band` pixels beyond it. `separation`: how far
+    /// `band` pixels beyond it (`stochastic_depth.guard_band`, resolved by
+    /// [`StochasticDepthSettings::guard_band_for`]). `separation`: how far
     /// behind the first layer a fragment must lie to count as hidden. `requested`: rasterise only
     /// where an SD-request mask is set ([`StochasticDepthMap::render`]), by stencil, depth or
     /// discard.
@@ -312,7 +314,7 @@ impl StochasticDepthMap {
         device: &wgpu::Device,
         settings: &StochasticDepthSettings,
         separation: f32,
-        (width, height): (u32, u32),
+        (width, height, band): (u32, u32, u32),
         scene: &GpuScene,
         requested: Option<SdMask>,
     ) -> Result<Self, Error> {
@@ -341,7 +343,6 @@ impl StochasticDepthMap {
             .into());
         }
         let samples = layout.samples();
-        let band = settings.guard_band;
         let (map_width, map_height) = (width + 2 * band, height + 2 * band);
         // Whole 16-byte words for the clear (gpu::zero_fill).
         let bytes = crate::gpu::zero_fill::zero_fill_size(
@@ -844,6 +845,8 @@ mod tests {
             };
             s.stochastic_depth.samples = samples;
             s.stochastic_depth.selection = selection;
+            // The whole map, no band of its own (a banded map keeps its reset, below).
+            s.stochastic_depth.guard_band = Some(0);
             cases.push(s);
         }
         let mut non_empty = 0;
@@ -935,7 +938,7 @@ mod tests {
             technique: Technique::SdVao,
             ..AoSettings::default()
         };
-        s.stochastic_depth.guard_band = 4;
+        s.stochastic_depth.guard_band = Some(4);
         let scene = scene::builtin("stairs").unwrap();
         let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 8).unwrap();
         let before = GBUFFER_Z_FRAMES.with(|f| f.get());
