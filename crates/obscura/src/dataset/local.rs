@@ -128,8 +128,10 @@ pub fn init_out_dir(spec: &Spec, out: &Path) -> Result<Plan, DatasetError> {
         "shards": shards,
     });
     let text = serde_json::to_string_pretty(&record).expect("JSON") + "\n";
-    write_atomically(&path, |tmp| std::fs::write(tmp, &text).map_err(|e| e.to_string()))
-        .map_err(|e| DatasetError::Run(e.to_string()))?;
+    write_atomically(&path, |tmp| {
+        std::fs::write(tmp, &text).map_err(|e| e.to_string())
+    })
+    .map_err(|e| DatasetError::Run(e.to_string()))?;
     Ok(plan)
 }
 
@@ -206,9 +208,10 @@ pub fn run_local(
                     Ok(report) => reports.lock().unwrap().push(report),
                     Err(e) => {
                         failed.store(true, Ordering::SeqCst);
-                        error.lock().unwrap().get_or_insert(DatasetError::Run(format!(
-                            "shard {index}: {e}"
-                        )));
+                        error
+                            .lock()
+                            .unwrap()
+                            .get_or_insert(DatasetError::Run(format!("shard {index}: {e}")));
                         break;
                     }
                 }

@@ -171,9 +171,7 @@ pub fn cameras(
             let samples = path
                 .sample(s.views)
                 .map_err(|e| fail("cameras", e.to_string()))?;
-            Ok(views
-                .map(|v| with_fov(samples[v as usize].1))
-                .collect())
+            Ok(views.map(|v| with_fov(samples[v as usize].1)).collect())
         }
     }
 }

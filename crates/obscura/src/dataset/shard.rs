@@ -15,8 +15,8 @@ use crate::bvh::BvhCache;
 use crate::gpu::Gpu;
 use crate::output::{srgb_to_linear, write_atomically};
 use crate::pipeline::renderer::Renderer;
-use crate::reference::ground_truth::{render_reference, ReferenceSettings};
 use crate::reference::gpu::render_reference_gpu;
+use crate::reference::ground_truth::{render_reference, ReferenceSettings};
 use crate::settings::{AoSettings, Technique};
 use crate::view::FrameView;
 use serde_json::json;
@@ -57,11 +57,7 @@ pub struct ShardReport {
 
 /// The view file of dataset view `id`, relative to the output folder.
 pub fn view_file(spec: &Spec, shard: &ShardPlan, id: u64) -> String {
-    format!(
-        "{}/view-{id:06}.{}",
-        shard.name(),
-        spec.format.extension()
-    )
+    format!("{}/view-{id:06}.{}", shard.name(), spec.format.extension())
 }
 
 /// Whether `name` is a temporary file of [`write_atomically`] (`.NAME.PID.partial.EXT`).
@@ -72,7 +68,8 @@ pub fn is_partial(name: &str) -> bool {
 /// Checks that shard `shard` of `spec` is finished in `out`: `Err` says what is missing.
 pub fn verify(spec: &Spec, shard: &ShardPlan, out: &Path) -> Result<(), String> {
     let dir = out.join(shard.name());
-    let text = std::fs::read_to_string(dir.join(MANIFEST)).map_err(|_| "no manifest".to_string())?;
+    let text =
+        std::fs::read_to_string(dir.join(MANIFEST)).map_err(|_| "no manifest".to_string())?;
     let lines: Vec<&str> = text.lines().collect();
     if lines.len() != shard.views as usize {
         return Err(format!(
@@ -88,7 +85,9 @@ pub fn verify(spec: &Spec, shard: &ShardPlan, out: &Path) -> Result<(), String> 
         let id = shard.id_of(view);
         let file = view_file(spec, shard, id);
         if record["id"] != json!(id) || record["file"] != json!(file) {
-            return Err(format!("manifest line of view {id} does not match the plan"));
+            return Err(format!(
+                "manifest line of view {id} does not match the plan"
+            ));
         }
         if record["spec_sha256"] != json!(hash) {
             return Err("written under another spec".into());
@@ -147,8 +146,10 @@ pub fn clean(dir: &Path) -> Result<bool, DatasetError> {
 
 /// Writes `bytes` to `path` atomically.
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), DatasetError> {
-    write_atomically(path, |tmp| std::fs::write(tmp, bytes).map_err(|e| e.to_string()))
-        .map_err(|e| DatasetError::Run(e.to_string()))
+    write_atomically(path, |tmp| {
+        std::fs::write(tmp, bytes).map_err(|e| e.to_string())
+    })
+    .map_err(|e| DatasetError::Run(e.to_string()))
 }
 
 /// Runs shard `index` of `spec` on `gpu` into `out` (the dataset's folder), unless it is
@@ -187,9 +188,8 @@ pub fn run_shard(
     } else {
         ShardStatus::Written
     };
-    std::fs::create_dir_all(&dir).map_err(|e| {
-        DatasetError::Run(format!("cannot create '{}': {e}", dir.display()))
-    })?;
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| DatasetError::Run(format!("cannot create '{}': {e}", dir.display())))?;
     write_views(gpu, spec, &shard, out, progress)?;
     Ok(report(
         status,
@@ -244,7 +244,12 @@ fn write_views(
     let rows_record: serde_json::Map<String, serde_json::Value> = s
         .rows
         .iter()
-        .map(|r| (r.technique.name().to_string(), serde_json::to_value(r).expect("serialises")))
+        .map(|r| {
+            (
+                r.technique.name().to_string(),
+                serde_json::to_value(r).expect("serialises"),
+            )
+        })
         .collect();
     let (mut manifest, mut timings) = (String::new(), String::new());
     for (camera, view) in cameras.iter().zip(shard.view_indices()) {
@@ -265,21 +270,38 @@ fn write_views(
             seed: plan::truth_seed(spec, shard.scene, view),
             ..s.truth
         };
+        let mut truth = if record::stores_truth(spec) {
+            let frame = FrameView::new(*camera, w, h, guard, near);
+            let image = if on_cpu {
+                render_reference(&scene, &bvh, frame, &truth_settings, &|_| {})
+            } else {
+                render_reference_gpu(gpu, &scene, &bvh, frame, &truth_settings, &|_, _| {})?.0
+            };
+            lap("truth", &mut ms);
+            image
+        } else {
+            Vec::new()
+        };
+        // Read once, for depth and normals both.
+        let mut gbuffer = None;
         let mut arrays = Vec::new();
         for channel in &spec.store {
             let (components, values) = match channel {
                 Channel::Depth | Channel::Normals => {
-                    let g = renderers[0].read_gbuffer()?;
-                    let visible = visible(&g.depth, g.width, guard, w, h);
+                    if gbuffer.is_none() {
+                        gbuffer = Some(renderers[0].read_gbuffer()?);
+                    }
+                    let g = gbuffer.as_ref().expect("read above");
+                    let depth = visible(&g.depth, g.width, guard, w, h);
                     if *channel == Channel::Depth {
-                        (1, visible)
+                        (1, depth)
                     } else {
-                        let normals = visible_vec3(&g.normals, g.width, guard, w, h);
+                        let normals = visible(&g.normals, g.width, guard, w, h);
                         // Background: no surface, no normal (the G-buffer's clear value).
                         let values = normals
                             .iter()
-                            .zip(&visible)
-                            .flat_map(|(n, &d)| if d > 0.0 { *n } else { [0.0; 3] })
+                            .zip(&depth)
+                            .flat_map(|(n, &d)| if d > 0.0 { n.to_array() } else { [0.0; 3] })
                             .collect();
                         (3, values)
                     }
@@ -292,17 +314,7 @@ fn write_views(
                         .collect();
                     (3, values)
                 }
-                Channel::Truth => {
-                    let frame = FrameView::new(*camera, w, h, guard, near);
-                    let image = if on_cpu {
-                        render_reference(&scene, &bvh, frame, &truth_settings, &|_| {})
-                    } else {
-                        render_reference_gpu(gpu, &scene, &bvh, frame, &truth_settings, &|_, _| {})?
-                            .0
-                    };
-                    lap("truth", &mut ms);
-                    (1, image)
-                }
+                Channel::Truth => (1, std::mem::take(&mut truth)),
                 Channel::Ao(t) => {
                     let i = row_settings
                         .iter()
@@ -363,12 +375,5 @@ fn visible<T: Copy>(full: &[T], fw: u32, g: u32, w: u32, h: u32) -> Vec<T> {
             let row = ((y + g) * fw + g) as usize;
             full[row..row + w as usize].iter().copied()
         })
-        .collect()
-}
-
-fn visible_vec3(full: &[glam::Vec3], fw: u32, g: u32, w: u32, h: u32) -> Vec<[f32; 3]> {
-    visible(full, fw, g, w, h)
-        .iter()
-        .map(|v| v.to_array())
         .collect()
 }

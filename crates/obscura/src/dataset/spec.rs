@@ -66,9 +66,10 @@ impl Channel {
             "albedo" => Ok(Channel::Albedo),
             "truth" => Ok(Channel::Truth),
             other => match other.strip_prefix("ao:") {
-                Some(name) => name.parse().map(Channel::Ao).map_err(|e| {
-                    format!("{e} (write \"ao:\" and a technique, e.g. \"ao:gtao\")")
-                }),
+                Some(name) => name
+                    .parse()
+                    .map(Channel::Ao)
+                    .map_err(|e| format!("{e} (write \"ao:\" and a technique, e.g. \"ao:gtao\")")),
                 None => Err(format!(
                     "'{other}' is not a channel: use depth, normals, albedo, truth or ao:TECHNIQUE \
                      (e.g. \"ao:vao\")"
@@ -306,7 +307,10 @@ impl Spec {
             )
         })?;
         let [w, h] = file.size.ok_or_else(|| {
-            check.fail("size", "missing: give the views' size, e.g. size = [320, 240]")
+            check.fail(
+                "size",
+                "missing: give the views' size, e.g. size = [320, 240]",
+            )
         })?;
         let max = i64::from(MAX_SIZE);
         let width = check.count("size[0]", w, 1, max)?;
@@ -398,9 +402,7 @@ impl Spec {
             .spp
             .map(|s| check.count("truth.spp", s, 1, i64::from(MAX_SPP)))
             .transpose()?;
-        if model != ReferenceModel::Hemisphere
-            && (spp.is_some() || truth_file.falloff.is_some())
-        {
+        if model != ReferenceModel::Hemisphere && (spp.is_some() || truth_file.falloff.is_some()) {
             return Err(check.fail(
                 "truth",
                 "spp and falloff apply to model \"hemisphere\" only (the vao models trace every \
@@ -506,12 +508,7 @@ impl Spec {
                 .unwrap_or("shading")
                 .parse()
                 .map_err(|e: String| check.fail(at("normals"), e))?;
-            let views = check.count(
-                &at("views"),
-                s.views.unwrap_or(0),
-                1,
-                i64::from(MAX_VIEWS),
-            )?;
+            let views = check.count(&at("views"), s.views.unwrap_or(0), 1, i64::from(MAX_VIEWS))?;
             let cameras_text = s.cameras.unwrap_or_else(|| "random".into());
             let random = cameras_text == "random";
             if !random && (s.min_coverage.is_some() || s.clearance.is_some()) {

@@ -24,7 +24,12 @@ fn suffixes(name: &str) -> [&'static str; 3] {
 }
 
 /// The bytes of a view file holding `arrays`.
-pub fn encode(format: Format, width: u32, height: u32, arrays: &[Array]) -> Result<Vec<u8>, String> {
+pub fn encode(
+    format: Format,
+    width: u32,
+    height: u32,
+    arrays: &[Array],
+) -> Result<Vec<u8>, String> {
     match format {
         Format::Exr => exr_bytes(width, height, arrays),
         Format::Npz => npz_bytes(width, height, arrays),
@@ -45,7 +50,13 @@ fn exr_bytes(width: u32, height: u32, arrays: &[Array]) -> Result<Vec<u8>, Strin
             } else {
                 format!("{}.{}", a.name, suffixes(&a.name)[c])
             };
-            let values: Vec<f32> = a.values.iter().skip(c).step_by(a.components).copied().collect();
+            let values: Vec<f32> = a
+                .values
+                .iter()
+                .skip(c)
+                .step_by(a.components)
+                .copied()
+                .collect();
             channels.push(AnyChannel {
                 name: Text::from(name.as_str()),
                 sample_data: FlatSamples::F32(values),
