@@ -72,11 +72,11 @@ fn a_bad_spec_is_one_error_naming_the_field() {
             vec!["store[1]", "vaoo"],
         ),
         (
-            format!("store = [\"depth\"]\n[truth]\nspp = 4\n{ok}"),
+            format!("store = [\"depth\"]\n{ok}[truth]\nspp = 4\n"),
             vec!["truth", "add it to store"],
         ),
         (
-            format!("[truth]\nspp = 2000000\n{ok}"),
+            format!("{ok}[truth]\nspp = 2000000\n"),
             vec!["truth.spp", "1048576"],
         ),
         (
@@ -89,11 +89,11 @@ fn a_bad_spec_is_one_error_naming_the_field() {
             vec!["scenes[0].units"],
         ),
         (
-            format!("store = [\"ao:gtao\"]\n[settings.gtao]\ngtao.slices = 99\n{ok}"),
+            format!("store = [\"ao:gtao\"]\n{ok}[settings.gtao]\ngtao.slices = 99\n"),
             vec!["settings.gtao", "gtao.slices"],
         ),
         (
-            format!("store = [\"ao:gtao\"]\n[settings.hbao]\n{ok}"),
+            format!("store = [\"ao:gtao\"]\n{ok}[settings.hbao]\n"),
             vec!["settings.hbao", "no row"],
         ),
     ] {
@@ -102,9 +102,11 @@ fn a_bad_spec_is_one_error_naming_the_field() {
             assert!(err.contains(n), "'{n}' not in: {err}");
         }
     }
-    // Found by loading the scene, still before any GPU work: the scene has 2 cameras.
-    let spec =
-        Spec::from_toml_str(&ok.replace("views = 2", "views = 3\ncameras = \"scene\"")).unwrap();
+    // Found by loading the scene, still before any GPU work: the Cornell box has 2 cameras.
+    let three = ok
+        .replace("stairs", "cornell")
+        .replace("views = 2", "views = 3\ncameras = \"scene\"");
+    let spec = Spec::from_toml_str(&three).unwrap();
     let err = dataset::check_cameras(&spec).unwrap_err().to_string();
     assert!(
         err.contains("scenes[0].views") && err.contains("2 cameras"),
@@ -300,7 +302,7 @@ fn a_shard_runs_alone_and_a_killed_one_is_redone_without_leftovers() {
     // The archive: one .npy per stored array, shapes (H, W) and (H, W, 3), float32.
     let file = std::fs::File::open(shard.join("view-000004.npz")).unwrap();
     let mut zip = zip::ZipArchive::new(file).unwrap();
-    let mut entries: Vec<String> = zip.file_names().map(String::from).collect();
+    let mut entries: Vec<String> = zip.file_names().map(|n| n.unwrap().into_owned()).collect();
     entries.sort();
     assert_eq!(
         entries,
