@@ -5,7 +5,7 @@
 //! submits [`super::run_shard`] calls as tasks.
 
 use super::plan::{check_cameras, Plan};
-use super::record::{canonical_spec, sha256_hex, VERSION};
+use super::record::{canonical_spec, VERSION};
 use super::shard::{is_partial, run_shard, verify, ShardReport, ShardStatus, MANIFEST};
 use super::spec::Spec;
 use super::DatasetError;
@@ -169,7 +169,6 @@ pub fn finish(
     let mut text = serde_json::to_string_pretty(&summary).expect("JSON");
     text.push('\n');
     write(SUMMARY_JSON, &text)?;
-    let _ = sha256_hex; // (the merged manifest's lines carry each file's hash already)
     Ok(summary)
 }
 

@@ -5,7 +5,7 @@
 use super::DatasetError;
 use crate::reference::ground_truth::{ReferenceModel, ReferenceSettings};
 use crate::scene::{Normals, Sidedness};
-use crate::settings::{units_per_metre, AoSettings, Technique};
+use crate::settings::{line_column, units_per_metre, AoSettings, Technique};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -264,14 +264,6 @@ impl Checker<'_> {
         }
         Ok(value as f32)
     }
-}
-
-/// One line, 1-based column, of byte `offset` in `text`.
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
 }
 
 impl Spec {

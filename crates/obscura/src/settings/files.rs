@@ -36,8 +36,8 @@ struct ParseFailure {
     message: String,
 }
 
-/// One line, 1-based column, of byte `offset` in `text`.
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
+/// One line, 1-based column, of byte `offset` in `text` (also the dataset spec's errors).
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
