@@ -29,7 +29,7 @@ pub const MANIFEST: &str = "manifest.jsonl";
 pub const TIMINGS: &str = "timings.jsonl";
 
 /// What [`run_shard`] did.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ShardStatus {
     /// Written, where nothing of it was before.
@@ -40,8 +40,9 @@ pub enum ShardStatus {
     Skipped,
 }
 
-/// The outcome of one shard.
-#[derive(Clone, Debug, serde::Serialize)]
+/// The outcome of one shard (serde both ways: an executor in another process sends it back to
+/// its driver as JSON, which gives it to [`super::finish`]).
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct ShardReport {
     /// The shard's number.
     pub index: usize,
