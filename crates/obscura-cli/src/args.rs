@@ -258,26 +258,15 @@ pub struct AoArgs {
     pub guard_band: Option<u32>,
 }
 
-/// `--units`: world units per metre, from one unit's length in metres or the unit's name
-/// (in f64, so that `0.001` gives exactly 1000).
+/// `--units`: world units per metre ([`obscura::settings::units_per_metre`]).
 fn parse_units(units: &str) -> Result<f32> {
-    let metres: f64 = match units.trim() {
-        "m" => 1.0,
-        "cm" => 0.01,
-        "mm" => 0.001,
-        "km" => 1000.0,
-        "in" => 0.0254,
-        "ft" => 0.3048,
-        number => number.parse().unwrap_or(f64::NAN),
-    };
-    let per_metre = (1.0 / metres) as f32;
-    if !(metres > 0.0 && per_metre.is_finite() && per_metre > 0.0) {
-        bail!(
+    match obscura::settings::units_per_metre(units) {
+        Some(per_metre) => Ok(per_metre),
+        None => bail!(
             "invalid --units {units}: give one world unit's length in metres (e.g. 0.01) or one \
              of m, cm, mm, km, in, ft"
-        );
+        ),
     }
-    Ok(per_metre)
 }
 
 impl AoArgs {

@@ -45,6 +45,9 @@ enum Command {
     Demo(commands::demo::DemoArgs),
     /// Time every pass with GPU timestamp queries (medians over frames).
     Bench(commands::bench::BenchArgs),
+    /// Render a dataset from a spec (TOML, docs/DATASETS.md): views of many scenes with their
+    /// G-buffer, AO rows and ground truth, in resumable shards.
+    Dataset(commands::dataset::DatasetArgs),
     /// Compare two AO images: largest and mean absolute difference.
     Diff(commands::diff::DiffArgs),
     /// Interactive viewer: fly camera, every technique and setting, debug views, split screen,
@@ -81,6 +84,7 @@ fn main() -> ExitCode {
         Command::Path(a) => commands::path::run(&gpu_options, &a),
         Command::Demo(a) => commands::demo::run(&gpu_options, &a),
         Command::Bench(a) => commands::bench::run(&gpu_options, &a),
+        Command::Dataset(a) => commands::dataset::run(&gpu_options, &a),
         Command::Diff(a) => commands::diff::run(&a),
         Command::View(a) => commands::view::run(&gpu_options, &a),
     };

@@ -19,6 +19,7 @@
 
 pub mod bindings;
 pub mod bvh;
+pub mod dataset;
 pub mod engine_geometry;
 pub mod engine_input;
 pub mod error;

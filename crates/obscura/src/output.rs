@@ -281,7 +281,8 @@ fn write_ao_image(
     }
 }
 
-fn srgb_to_linear(c: f32) -> f32 {
+/// An sRGB-encoded value in [0, 1] as linear light.
+pub fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
     } else {

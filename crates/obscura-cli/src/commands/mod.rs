@@ -1,5 +1,6 @@
 pub mod bench;
 pub mod compare;
+pub mod dataset;
 pub mod demo;
 pub mod diff;
 pub mod info;

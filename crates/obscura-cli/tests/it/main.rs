@@ -2,6 +2,7 @@
 //! module `NAME` (`tests/it/NAME.rs`). The error corpus stays in `tests/corpus`.
 
 mod cli;
+mod dataset;
 mod ensure_vulkan;
 mod path;
 mod view;

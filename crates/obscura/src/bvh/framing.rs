@@ -68,7 +68,7 @@ pub fn auto_camera(scene: &Scene, bvh: &Bvh, aspect: f32) -> (Camera, Placement)
     let t_max = 2.0 * diagonal;
     let (mut hits, mut front, mut escape) = (0usize, 0usize, Vec3::ZERO);
     for i in 0..PROBE_RAYS {
-        let dir = fibonacci(i);
+        let dir = fibonacci(i, PROBE_RAYS);
         match bvh.closest_hit(scene, &Ray::new(centre, dir), t_min, t_max) {
             Some(hit) => {
                 hits += 1;
@@ -136,22 +136,12 @@ pub fn auto_camera(scene: &Scene, bvh: &Bvh, aspect: f32) -> (Camera, Placement)
 /// `diagonal`: the scene's bounds' (rays run from 1e-5 of it to twice it, as the probes do).
 fn view_score(scene: &Scene, bvh: &Bvh, camera: &Camera, aspect: f32, diagonal: f32) -> f32 {
     let (t_min, t_max) = (1e-5 * diagonal, 2.0 * diagonal);
-    let forward = camera.forward();
-    let right = forward.cross(camera.up).normalize();
-    let up = right.cross(forward);
-    let tan_y = (0.5 * camera.fov_y_deg.to_radians()).tan();
-    let tan_x = tan_y * aspect;
     let (columns, rows) = VIEW_RAYS;
     let mut distances = Vec::with_capacity(columns * rows);
-    for r in 0..rows {
-        for c in 0..columns {
-            let x = (2.0 * (c as f32 + 0.5) / columns as f32 - 1.0) * tan_x;
-            let y = (2.0 * (r as f32 + 0.5) / rows as f32 - 1.0) * tan_y;
-            let dir = (forward + right * x + up * y).normalize();
-            match bvh.closest_hit(scene, &Ray::new(camera.eye, dir), t_min, t_max) {
-                Some(hit) if hit.front_face => distances.push(hit.t),
-                _ => {}
-            }
+    for dir in view_ray_grid(camera, aspect, columns, rows) {
+        match bvh.closest_hit(scene, &Ray::new(camera.eye, dir.normalize()), t_min, t_max) {
+            Some(hit) if hit.front_face => distances.push(hit.t),
+            _ => {}
         }
     }
     if distances.is_empty() {
@@ -163,9 +153,32 @@ fn view_score(scene: &Scene, bvh: &Bvh, camera: &Camera, aspect: f32, diagonal: 
     hit_share * (median / (0.25 * diagonal)).min(1.0)
 }
 
-/// The `i`-th of [`PROBE_RAYS`] directions spread evenly over the sphere (golden-angle spiral).
-fn fibonacci(i: usize) -> Vec3 {
-    let n = PROBE_RAYS as f32;
+/// Directions (not normalised) through the centres of a `columns` × `rows` grid over the image
+/// of `camera` at aspect ratio `aspect`, row by row from the bottom: a coarse view of what the
+/// camera sees, for scoring views on the CPU.
+pub fn view_ray_grid(
+    camera: &Camera,
+    aspect: f32,
+    columns: usize,
+    rows: usize,
+) -> impl Iterator<Item = Vec3> {
+    let forward = camera.forward();
+    let right = forward.cross(camera.up).normalize();
+    let up = right.cross(forward);
+    let tan_y = (0.5 * camera.fov_y_deg.to_radians()).tan();
+    let tan_x = tan_y * aspect;
+    (0..rows).flat_map(move |r| {
+        (0..columns).map(move |c| {
+            let x = (2.0 * (c as f32 + 0.5) / columns as f32 - 1.0) * tan_x;
+            let y = (2.0 * (r as f32 + 0.5) / rows as f32 - 1.0) * tan_y;
+            forward + right * x + up * y
+        })
+    })
+}
+
+/// The `i`-th of `n` directions spread evenly over the sphere (golden-angle spiral).
+pub fn fibonacci(i: usize, n: usize) -> Vec3 {
+    let n = n as f32;
     let z = 1.0 - 2.0 * (i as f32 + 0.5) / n;
     let r = (1.0 - z * z).max(0.0).sqrt();
     let phi = i as f32 * std::f32::consts::PI * (3.0 - 5f32.sqrt());

@@ -242,6 +242,30 @@ impl Gpu {
     /// Pick an adapter (see [`GpuOptions`]) and create a device. Quiets Mesa's complaint about
     /// an unset `XDG_RUNTIME_DIR` first ([`quiet_headless_vulkan`]).
     pub fn new(options: &GpuOptions) -> Result<Self, GpuError> {
+        let adapter = Self::adapters(options)?.into_iter().next();
+        Self::from_adapter(adapter.expect("adapters() returns at least one"))
+    }
+
+    /// A device on every adapter of the kind [`Gpu::new`] would pick (the same device type
+    /// and backend as the best ranked one, after `options`' filters): the 8 GPUs of an 8-GPU
+    /// host, but not the software rasteriser beside them. The dataset runner's local executor
+    /// gives one to each of its workers. At least one, or an error as for [`Gpu::new`].
+    pub fn all(options: &GpuOptions) -> Result<Vec<Self>, GpuError> {
+        let adapters = Self::adapters(options)?;
+        let first = adapters[0].get_info();
+        adapters
+            .into_iter()
+            .filter(|a| {
+                let info = a.get_info();
+                info.device_type == first.device_type && info.backend == first.backend
+            })
+            .map(Self::from_adapter)
+            .collect()
+    }
+
+    /// The adapters `options` allow, best first ([`adapter_rank`]); never empty (an error says
+    /// what was asked for and what exists).
+    fn adapters(options: &GpuOptions) -> Result<Vec<wgpu::Adapter>, GpuError> {
         quiet_headless_vulkan();
         let backend_name = options.backend.clone().or_else(|| {
             std::env::var("OBSCURA_BACKEND")
@@ -283,7 +307,7 @@ impl Gpu {
             }
         }
         adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
-        let Some(adapter) = adapters.into_iter().next() else {
+        if adapters.is_empty() {
             let mut filter = String::new();
             if let Some(a) = &options.adapter {
                 filter += &format!(" matching '{a}'");
@@ -292,8 +316,8 @@ impl Gpu {
                 filter += &format!(" on backend '{b}'");
             }
             return Err(GpuError::NoAdapter { filter });
-        };
-        Self::from_adapter(adapter)
+        }
+        Ok(adapters)
     }
 
     fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {

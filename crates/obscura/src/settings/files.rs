@@ -36,8 +36,8 @@ struct ParseFailure {
     message: String,
 }
 
-/// One line, 1-based column, of byte `offset` in `text`.
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
+/// One line, 1-based column, of byte `offset` in `text` (also the dataset spec's errors).
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
@@ -150,12 +150,7 @@ impl AoSettings {
             // reported as "invalid type: null").
             SettingsFormat::Toml => {
                 let file: toml::Value = parse(&text, format).map_err(parse_error)?;
-                let mut merged =
-                    toml::Value::try_from(self).map_err(|e| merge_error(e.to_string()))?;
-                merge_toml(&mut merged, file);
-                merged.try_into().map_err(|e: toml::de::Error| {
-                    merge_error(e.message().trim().replace('\n', "; "))
-                })?
+                self.with_toml_unvalidated(file).map_err(merge_error)?
             }
         };
         settings.validate().map_err(|e| SettingsError::InFile {
@@ -163,6 +158,18 @@ impl AoSettings {
             problem: Box::new(e),
         })?;
         Ok(settings)
+    }
+
+    /// `self` with the fields of `table` (a settings file's TOML tree, e.g. a table inside
+    /// another TOML file such as a dataset spec) written over, not validated: the caller
+    /// validates and names where the table came from. An unknown field or a value of the wrong
+    /// type is an error with the parser's message.
+    pub fn with_toml_unvalidated(&self, table: toml::Value) -> Result<AoSettings, String> {
+        let mut merged = toml::Value::try_from(self).map_err(|e| e.to_string())?;
+        merge_toml(&mut merged, table);
+        merged
+            .try_into()
+            .map_err(|e: toml::de::Error| e.message().trim().replace('\n', "; "))
     }
 
     /// Every field as TOML (what a `.toml` settings file holds).

@@ -18,6 +18,7 @@ mod presets;
 mod stochastic_depth;
 #[cfg(test)]
 mod tests;
+mod units;
 mod validate;
 
 pub use crate::estimators::gtao::GTAO_MAX_SLICES;
@@ -28,6 +29,7 @@ pub use estimators::*;
 pub use files::*;
 pub use presets::*;
 pub use stochastic_depth::*;
+pub use units::units_per_metre;
 use validate::*;
 
 impl AoSettings {

@@ -8,6 +8,7 @@ mod common;
 mod bent_normals;
 mod blur;
 mod cpu_oracle;
+mod dataset;
 mod deep_bvh;
 mod double_sided;
 mod engine_geometry;

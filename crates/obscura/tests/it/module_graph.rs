@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The library's top-level modules, from the bottom layer up (docs/ARCHITECTURE.md).
-const LAYERS: [&[&str]; 10] = [
+const LAYERS: [&[&str]; 11] = [
     &["scene", "hash", "gpu", "bindings", "shaders", "knob"],
     // The kernels and their settings: they know neither the table nor the whole settings.
     &["estimators"],
@@ -26,6 +26,8 @@ const LAYERS: [&[&str]; 10] = [
     &["pipeline"],
     &["engine_input", "engine_geometry"],
     &["reference", "metrics", "report"],
+    // Datasets render rows and the ground truth and write them: above everything.
+    &["dataset"],
 ];
 
 fn src() -> PathBuf {
