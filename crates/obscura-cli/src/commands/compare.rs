@@ -1,7 +1,8 @@
 //! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
 
 use super::path::{check_no_camera, render_path, PathChoice, PathJob};
-use super::reference::{as_compared, compute_or_load, ReferenceArgs};
+use super::reference::{compute_or_load, ReferenceArgs};
+use obscura::reference::as_compared;
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;

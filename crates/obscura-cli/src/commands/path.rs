@@ -2,7 +2,8 @@
 //! reference when asked, as numbered images, animated previews and per-frame JSON with the
 //! temporal metrics (`obscura::metrics::temporal`). `compare --path` shares the rendering.
 
-use super::reference::{as_compared, compute_or_load, ReferenceArgs};
+use super::reference::{compute_or_load, ReferenceArgs};
+use obscura::reference::as_compared;
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use crate::progress::bar;
 use anyhow::{bail, Context, Result};

@@ -56,6 +56,7 @@
 //! one build among the renderers and references of one scene.
 
 pub mod build;
+pub mod camera_choice;
 mod cache;
 pub mod framing;
 pub mod gpu;

@@ -14,6 +14,7 @@ use std::str::FromStr;
 mod estimators;
 mod files;
 mod knobs;
+mod layers;
 mod presets;
 mod stochastic_depth;
 #[cfg(test)]
@@ -26,6 +27,7 @@ pub use crate::estimators::hbao::HBAO_MAX_DIRECTIONS;
 pub use crate::estimators::vao::Normalization;
 pub use estimators::*;
 pub use files::*;
+pub use layers::units_per_metre;
 pub use presets::*;
 pub use stochastic_depth::*;
 use validate::*;
