@@ -10,7 +10,9 @@ use crate::settings::{resolve, Given};
 use crate::view::{camera_of, Size};
 use numpy::PyArray2;
 use obscura::bvh::Bvh;
-use obscura::reference::ground_truth::{render_reference_counted, ReferenceModel, ReferenceSettings};
+use obscura::reference::ground_truth::{
+    render_reference_counted, ReferenceModel, ReferenceSettings,
+};
 use obscura::reference::{as_compared, cpu_tracer_by_default, gpu::render_reference_gpu};
 use obscura::report::{build_report, ReportInput, TechniqueImage};
 use obscura::scene::Scene as LibScene;
@@ -35,9 +37,7 @@ fn reference_options(
     units: Option<&str>,
     tracer: &str,
 ) -> PyResult<(ReferenceOptions, obscura::AoSettings)> {
-    let model: ReferenceModel = model
-        .parse()
-        .map_err(|e: String| input(e))?;
+    let model: ReferenceModel = model.parse().map_err(|e: String| input(e))?;
     if model != ReferenceModel::Hemisphere && (spp.is_some() || falloff || seed.is_some()) {
         return Err(input(
             "spp, falloff and seed apply to the hemisphere reference model only (the vao models \
@@ -45,7 +45,9 @@ fn reference_options(
         ));
     }
     if spp == Some(0) {
-        return Err(input("spp 0: the hemisphere reference needs at least 1 ray per pixel"));
+        return Err(input(
+            "spp 0: the hemisphere reference needs at least 1 ray per pixel",
+        ));
     }
     // The vao models' kernel and the blur the report compares through: the vao row's settings.
     let vao = resolve(Some("vao"), given, preset, units)?;
@@ -124,8 +126,16 @@ pub fn reference<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let size = Size::new(width, height, guard_band)?;
     let given = Given::from_py(settings)?;
-    let (options, _) =
-        reference_options(model, spp, falloff, seed, given.as_ref(), preset, units, tracer)?;
+    let (options, _) = reference_options(
+        model,
+        spp,
+        falloff,
+        seed,
+        given.as_ref(),
+        preset,
+        units,
+        tracer,
+    )?;
     let camera = camera_of(py, scene, camera, size)?.camera;
     let lib_scene = scene.get().scene.clone();
     let gpu = if options.cpu {
@@ -135,13 +145,7 @@ pub fn reference<'py>(
     };
     let image = py
         .detach(|| {
-            let view = FrameView::new(
-                camera,
-                size.width,
-                size.height,
-                size.guard_band,
-                obscura::near_plane(&lib_scene),
-            );
+            let view = size.frame_view(camera, &lib_scene);
             let bvh = Bvh::build(&lib_scene);
             trace(gpu.as_ref(), &lib_scene, &bvh, view, &options.settings)
         })
@@ -179,7 +183,9 @@ pub fn compare_json(
 ) -> PyResult<String> {
     let size = Size::new(width, height, guard_band)?;
     if techniques.is_empty() {
-        return Err(input("techniques is empty: name at least one (e.g. [\"vao\"])"));
+        return Err(input(
+            "techniques is empty: name at least one (e.g. [\"vao\"])",
+        ));
     }
     let given = Given::from_py(settings)?;
     let (options, vao) = reference_options(
@@ -228,13 +234,7 @@ pub fn compare_json(
         }
         let gbuffer = gbuffer.ok_or_else(|| obscura::Error::Input("no technique".into()))?;
         let depth = gbuffer.visible_depth(size.guard_band);
-        let view = FrameView::new(
-            camera,
-            size.width,
-            size.height,
-            size.guard_band,
-            obscura::near_plane(&lib_scene),
-        );
+        let view = size.frame_view(camera, &lib_scene);
         let traced = trace(
             trace_gpu.as_ref(),
             &lib_scene,
@@ -276,4 +276,3 @@ pub fn compare_json(
     });
     report.map_err(from_lib)
 }
-

@@ -9,7 +9,7 @@ use crate::settings::{resolve, Given};
 use crate::view::{camera_of, Size};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
 use obscura::engine_input::arrays::{ao_from_arrays, EngineArrays, NormalArray};
-use obscura::{Renderer, ScreenGeometry};
+use obscura::ScreenGeometry;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -61,14 +61,7 @@ pub fn render<'py>(
     let scene = scene.get().scene.clone();
     let ao = py
         .detach(|| -> Result<Vec<f32>, obscura::Error> {
-            let mut renderer = Renderer::new(
-                &gpu,
-                &scene,
-                &settings,
-                size.width,
-                size.height,
-                size.guard_band,
-            )?;
+            let mut renderer = size.renderer(&gpu, &scene, &settings)?;
             for _ in 0..frames {
                 renderer.render(&camera, None)?;
             }
@@ -101,14 +94,7 @@ pub fn gbuffer<'py>(
     let settings = obscura::AoSettings::default();
     let (g, view) = py
         .detach(|| -> Result<_, obscura::Error> {
-            let mut r = Renderer::new(
-                &gpu,
-                &scene,
-                &settings,
-                size.width,
-                size.height,
-                size.guard_band,
-            )?;
+            let mut r = size.renderer(&gpu, &scene, &settings)?;
             r.render(&camera, None)?;
             let view = *r
                 .view()
@@ -118,7 +104,10 @@ pub fn gbuffer<'py>(
         .map_err(from_lib)?;
     let out = PyDict::new(py);
     out.set_item("depth", arrays::image(py, g.depth, g.width, g.height)?)?;
-    out.set_item("normals", arrays::vectors(py, &g.normals, g.width, g.height)?)?;
+    out.set_item(
+        "normals",
+        arrays::vectors(py, &g.normals, g.width, g.height)?,
+    )?;
     out.set_item("projection", arrays::matrix(py, view.projection()))?;
     out.set_item("view_matrix", arrays::matrix(py, view.view_matrix()))?;
     out.set_item("guard_band", size.guard_band)?;
@@ -178,9 +167,10 @@ pub fn engine_ao<'py>(
                     n.shape()
                 )));
             }
-            Some(n.as_slice().map_err(|_| {
-                input("normals must be C-contiguous (numpy.ascontiguousarray)")
-            })?)
+            Some(
+                n.as_slice()
+                    .map_err(|_| input("normals must be C-contiguous (numpy.ascontiguousarray)"))?,
+            )
         }
     };
     let normals = match (normal_values, normal_space, view_matrix) {
@@ -188,7 +178,9 @@ pub fn engine_ao<'py>(
         (Some(n), "view", None) => NormalArray::View(bytemuck_vec3(n)),
         (Some(n), "world", Some(m)) => NormalArray::World(bytemuck_vec3(n), arrays::mat4(m)),
         (Some(_), "world", None) => {
-            return Err(input("world-space normals need view_matrix (world to view)"))
+            return Err(input(
+                "world-space normals need view_matrix (world to view)",
+            ))
         }
         (Some(_), "view", Some(_)) => {
             return Err(input(

@@ -148,9 +148,10 @@ pub fn resolve(
     units: Option<&str>,
 ) -> PyResult<AoSettings> {
     let asked = match technique {
-        Some(name) => Some(name.parse::<Technique>().map_err(|e| {
-            settings_error(e.to_string(), Some("technique".into()))
-        })?),
+        Some(name) => Some(
+            name.parse::<Technique>()
+                .map_err(|e| settings_error(e.to_string(), Some("technique".into())))?,
+        ),
         None => None,
     };
     let named = match given {
@@ -175,9 +176,10 @@ pub fn resolve(
         None => None,
     };
     let units = match units {
-        Some(u) => Some(obscura::settings::units_per_metre(u).map_err(|rule| {
-            settings_error(format!("invalid units {u}: {rule}"), None)
-        })?),
+        Some(u) => Some(
+            obscura::settings::units_per_metre(u)
+                .map_err(|rule| settings_error(format!("invalid units {u}: {rule}"), None))?,
+        ),
         None => None,
     };
     let base = AoSettings::base(technique, preset, units);

@@ -30,6 +30,39 @@ impl Size {
             guard_band: guard_band.unwrap_or_else(|| obscura::default_guard_band(height)),
         })
     }
+
+    /// The library's renderer of this size for `scene` and `settings`.
+    pub fn renderer(
+        &self,
+        gpu: &obscura::Gpu,
+        scene: &obscura::scene::Scene,
+        settings: &obscura::AoSettings,
+    ) -> Result<obscura::Renderer, obscura::Error> {
+        obscura::Renderer::new(
+            gpu,
+            scene,
+            settings,
+            self.width,
+            self.height,
+            self.guard_band,
+        )
+    }
+
+    /// The frame of `camera` at this size, with the scene's near plane (what the reference
+    /// traces and reports compare over).
+    pub fn frame_view(
+        &self,
+        camera: obscura::scene::Camera,
+        scene: &obscura::scene::Scene,
+    ) -> obscura::FrameView {
+        obscura::FrameView::new(
+            camera,
+            self.width,
+            self.height,
+            self.guard_band,
+            obscura::near_plane(scene),
+        )
+    }
 }
 
 /// `camera=`: a `Camera`, a name of one of the scene's cameras, or None (the first named

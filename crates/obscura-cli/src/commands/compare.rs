@@ -2,11 +2,11 @@
 
 use super::path::{check_no_camera, render_path, PathChoice, PathJob};
 use super::reference::{compute_or_load, ReferenceArgs};
-use obscura::reference::as_compared;
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
 use obscura::bvh::BvhCache;
+use obscura::reference::as_compared;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::{write_report, Report, ReportInput, TechniqueImage, TemporalInput};
 use obscura::scene::Scene;

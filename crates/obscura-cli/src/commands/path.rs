@@ -3,7 +3,6 @@
 //! temporal metrics (`obscura::metrics::temporal`). `compare --path` shares the rendering.
 
 use super::reference::{compute_or_load, ReferenceArgs};
-use obscura::reference::as_compared;
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use crate::progress::bar;
 use anyhow::{bail, Context, Result};
@@ -12,6 +11,7 @@ use obscura::bvh::BvhCache;
 use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
 use obscura::metrics::{self, Image};
 use obscura::raster::GBufferImage;
+use obscura::reference::as_compared;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::temporal::frame_delay_ms;
 use obscura::scene::{CameraPath, Scene};

@@ -56,8 +56,8 @@
 //! one build among the renderers and references of one scene.
 
 pub mod build;
-pub mod camera_choice;
 mod cache;
+pub mod camera_choice;
 pub mod framing;
 pub mod gpu;
 mod traverse;

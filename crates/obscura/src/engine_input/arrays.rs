@@ -69,7 +69,8 @@ pub fn ao_from_arrays(
         wgpu::TextureFormat::R32Float,
         bytemuck::cast_slice(frame.depth),
     );
-    let rgba = |n: &[[f32; 3]]| -> Vec<[f32; 4]> { n.iter().map(|v| [v[0], v[1], v[2], 0.0]).collect() };
+    let rgba =
+        |n: &[[f32; 3]]| -> Vec<[f32; 4]> { n.iter().map(|v| [v[0], v[1], v[2], 0.0]).collect() };
     let normal_texture = match frame.normals {
         NormalArray::Reconstruct => None,
         NormalArray::View(n) | NormalArray::World(n, _) => {
@@ -109,7 +110,12 @@ pub fn ao_from_arrays(
 }
 
 /// A sampled texture of `format` (`texels`: 4 or 16 bytes each) holding `bytes`.
-fn upload(gpu: &Gpu, (w, h): (u32, u32), format: wgpu::TextureFormat, bytes: &[u8]) -> wgpu::Texture {
+fn upload(
+    gpu: &Gpu,
+    (w, h): (u32, u32),
+    format: wgpu::TextureFormat,
+    bytes: &[u8],
+) -> wgpu::Texture {
     let texture = texture_2d(
         &gpu.device,
         "engine array",

@@ -35,7 +35,11 @@ impl AoSettings {
     /// world length converted for a scene with `units_per_metre` world units per metre
     /// ([`AoSettings::scaled`]; `None`: metres, nothing converted). A settings file or fields go
     /// over these, in the scene's own units.
-    pub fn base(technique: Technique, preset: Option<Preset>, units_per_metre: Option<f32>) -> Self {
+    pub fn base(
+        technique: Technique,
+        preset: Option<Preset>,
+        units_per_metre: Option<f32>,
+    ) -> Self {
         let s = match preset {
             Some(preset) => AoSettings::preset(technique, preset),
             None => AoSettings {
