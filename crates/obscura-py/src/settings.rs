@@ -46,8 +46,10 @@ impl Given {
         }
     }
 
-    /// The technique the settings name, if they do (a file is read for it).
-    fn technique(&self) -> PyResult<Option<Technique>> {
+    /// The technique the settings name, if they do (a file is read for it: it names one where
+    /// applied over `fallback`'s settings it leaves another, as the CLI reads a file over the
+    /// technique it was asked for).
+    fn technique(&self, fallback: Technique) -> PyResult<Option<Technique>> {
         match self {
             Given::Fields(fields) => {
                 let mut s = AoSettings::default();
@@ -62,8 +64,12 @@ impl Given {
                 Ok(None)
             }
             Given::File(path) => {
-                let s = AoSettings::from_file(path).map_err(from_settings)?;
-                Ok(Some(s.technique))
+                let base = AoSettings {
+                    technique: fallback,
+                    ..AoSettings::default()
+                };
+                let s = base.with_file(path).map_err(from_settings)?;
+                Ok((s.technique != fallback).then_some(s.technique))
             }
         }
     }
@@ -155,7 +161,7 @@ pub fn resolve(
         None => None,
     };
     let named = match given {
-        Some(g) => g.technique()?,
+        Some(g) => g.technique(asked.unwrap_or_default())?,
         None => None,
     };
     let technique = match (asked, named) {

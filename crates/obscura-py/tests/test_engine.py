@@ -21,7 +21,9 @@ def ndc_depth(g, projection, far):
     y = (1 - (np.arange(fh) + 0.5) / fh * 2)[:, None] * tan_y * depth
     view = np.stack([x, y, -depth, np.ones_like(depth)], axis=-1)
     clip = view @ np.asarray(projection, dtype=np.float64).T
-    z = clip[..., 2] / clip[..., 3]
+    # Sky pixels (depth 0) divide by w = 0; np.where replaces them with `far`.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = clip[..., 2] / clip[..., 3]
     return np.where(depth > 0, z, far).astype(np.float32)
 
 
