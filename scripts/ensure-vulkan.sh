@@ -3,7 +3,9 @@
 # install Mesa's software Vulkan driver (lavapipe: slow but real, enough for the demo and tests).
 # With --for-tests, also what the viewer's test (crates/obscura-cli/tests/it/view.rs) needs to
 # open a window without a screen: Xvfb (a virtual X display) and the X libraries winit loads at
-# run time. The demo needs neither.
+# run time; and Python's venv module, with which scripts/python-tests.sh makes the Python package's
+# virtual environment (Debian's python3 leaves it to the python3-venv package). The demo needs
+# none of these.
 #
 # Only what is missing is installed, and nothing at all (no root needed) when everything is
 # there. Installing needs root or sudo; without them the script says what to install and how.
@@ -52,6 +54,15 @@ if [ "$for_tests" = yes ]; then
     libXcursor.so.1:libxcursor1 libXrandr.so.2:libxrandr2 libXi.so.6:libxi6; do
     if ! grep -qF "${pair%%:*}" <<<"$libs"; then need+=("${pair#*:}"); fi
   done
+fi
+if [ "$for_tests" = yes ]; then
+  if ! command -v python3 >/dev/null 2>&1; then
+    echo "ensure-vulkan: no python3 found; python3 and python3-venv are needed (the Python package's tests)" >&2
+    need+=(python3 python3-venv)
+  elif ! python3 -c 'import venv, ensurepip' >/dev/null 2>&1; then
+    echo "ensure-vulkan: python3 cannot make virtual environments; python3-venv is needed (the Python package's tests)" >&2
+    need+=(python3-venv)
+  fi
 fi
 if [ "${#need[@]}" -eq 0 ]; then exit 0; fi
 

@@ -6,6 +6,7 @@ use anyhow::{bail, Context, Result};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use glam::{DVec3, Vec3};
+use obscura::bvh::camera_choice::CameraChoice;
 use obscura::scene::{self, Camera, Normals, Scene, Sidedness};
 use obscura::settings::{AoSettings, Preset, SettingsError};
 use obscura::Technique;
@@ -168,57 +169,22 @@ impl SceneArgs {
         }
     }
 
-    /// The camera these options describe, validated.
+    /// The camera these options describe, validated (the library's rule,
+    /// [`CameraChoice::choose`]); an automatic camera is said on stderr in the file's
+    /// coordinates, so that it can be kept or changed with `--eye`/`--target`.
     pub fn camera(&self, scene: &Scene, aspect: f32) -> Result<Camera> {
-        // Coordinates too large for f32 are the scene's fault, not the (framed) camera's: say so
-        // first. A zero extent is only a warning, which the renderer logs.
-        scene.check_extent()?;
-        let mut camera = match (&self.camera, self.eye, self.target) {
-            (Some(name), _, _) => scene.camera(name)?,
-            (None, Some(eye), Some(target)) => {
-                // The file's coordinates: a scene far from its origin was re-centred on load.
-                let (eye, target) = (scene.from_file_point(eye), scene.from_file_point(target));
-                let mut camera = Camera::new(eye, target, self.fov.unwrap_or(60.0))?;
-                camera.up = self.up.unwrap_or(camera.up);
-                camera
-            }
-            _ => match scene.cameras.first() {
-                Some(named) => named.camera,
-                None => auto_camera(scene, aspect),
-            },
+        let choice = CameraChoice {
+            name: self.camera.clone(),
+            eye_target: self.eye.zip(self.target),
+            up: self.up,
+            fov_y_deg: self.fov,
         };
-        if let Some(fov) = self.fov {
-            camera.fov_y_deg = fov;
+        let chosen = choice.choose(scene, aspect)?;
+        if let Some(note) = chosen.note(scene, true) {
+            eprintln!("note: {note}");
         }
-        camera.validate()?;
-        Ok(camera)
+        Ok(chosen.camera)
     }
-}
-
-/// The camera of a scene that names none ([`obscura::bvh::framing::auto_camera`]: inside a room,
-/// otherwise framing the bounds), said on stderr in the file's coordinates so that it can be kept
-/// or changed with `--eye`/`--target`.
-fn auto_camera(scene: &Scene, aspect: f32) -> Camera {
-    let bvh = obscura::bvh::Bvh::build(scene);
-    let (camera, placement) = obscura::bvh::framing::auto_camera(scene, &bvh, aspect);
-    // Shortest round-trip digits, so that passing them back gives this very camera.
-    let file = |p: glam::Vec3| {
-        if scene.origin == DVec3::ZERO {
-            format!("{},{},{}", p.x, p.y, p.z)
-        } else {
-            let q = scene.origin + p.as_dvec3();
-            format!("{},{},{}", q.x, q.y, q.z)
-        }
-    };
-    eprintln!(
-        "note: '{}' names no camera: an automatic camera {} it, --eye {} --target {} --fov {}",
-        scene.name,
-        placement.name(),
-        file(camera.eye),
-        file(camera.target),
-        camera.fov_y_deg
-    );
-    camera
 }
 
 /// Technique parameters. Precedence: defaults < `--preset` < `--settings FILE` < the other flags
@@ -258,36 +224,24 @@ pub struct AoArgs {
     pub guard_band: Option<u32>,
 }
 
-/// `--units`: world units per metre ([`obscura::settings::units_per_metre`]).
-fn parse_units(units: &str) -> Result<f32> {
-    match obscura::settings::units_per_metre(units) {
-        Some(per_metre) => Ok(per_metre),
-        None => bail!(
-            "invalid --units {units}: give one world unit's length in metres (e.g. 0.01) or one \
-             of m, cm, mm, km, in, ft"
-        ),
-    }
-}
-
 impl AoArgs {
     /// `--units` as world units per metre; 1 without it.
     pub fn units_per_metre(&self) -> Result<f32> {
-        self.units.as_deref().map_or(Ok(1.0), parse_units)
+        match self.units.as_deref() {
+            None => Ok(1.0),
+            Some(units) => obscura::settings::units_per_metre(units)
+                .map_err(|rule| anyhow::anyhow!("invalid --units {units}: {rule}")),
+        }
     }
 
     /// The settings of `technique`: its preset (or the defaults), the settings file over it,
     /// then the flags given; validated, errors naming the flag (or the file's field).
     pub fn settings(&self, technique: Technique) -> Result<AoSettings> {
-        let mut s = match self.preset {
-            Some(preset) => AoSettings::preset(technique, preset),
-            None => AoSettings {
-                technique,
-                ..AoSettings::default()
-            },
+        let units = match self.units {
+            Some(_) => Some(self.units_per_metre()?),
+            None => None,
         };
-        if self.units.is_some() {
-            s = s.scaled(self.units_per_metre()?);
-        }
+        let mut s = AoSettings::base(technique, self.preset, units);
         if let Some(path) = &self.settings {
             s = s.with_file(path)?;
             if s.technique != technique {

@@ -31,6 +31,8 @@ use crate::view::ScreenGeometry;
 use glam::Mat4;
 use wgpu::util::DeviceExt;
 
+pub mod arrays;
+
 /// How the engine's normals are stored.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum NormalEncoding {

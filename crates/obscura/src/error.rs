@@ -61,6 +61,15 @@ pub enum SettingsError {
         /// Why, and the values that work here.
         reason: String,
     },
+    /// A settings field path that names no field (fields given by path:
+    /// [`AoSettings::with_fields`](crate::settings::AoSettings::with_fields)).
+    #[error("unknown settings field '{field}': {hint}")]
+    UnknownField {
+        /// The path as given.
+        field: String,
+        /// The fields of its section, or where they are listed.
+        hint: String,
+    },
     /// A preset name that is not one of [`Preset::ALL`](crate::settings::Preset::ALL).
     #[error("unknown preset '{0}': use low, medium, high or ultra")]
     UnknownPreset(String),

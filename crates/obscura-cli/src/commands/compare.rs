@@ -1,11 +1,12 @@
 //! `obscura compare`: techniques against a ray-traced reference, with an HTML report.
 
 use super::path::{check_no_camera, render_path, PathChoice, PathJob};
-use super::reference::{as_compared, compute_or_load, ReferenceArgs};
+use super::reference::{compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use anyhow::{Context, Result};
 use clap::Args;
 use obscura::bvh::BvhCache;
+use obscura::reference::as_compared;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::{write_report, Report, ReportInput, TechniqueImage, TemporalInput};
 use obscura::scene::Scene;

@@ -2,7 +2,7 @@
 //! reference when asked, as numbered images, animated previews and per-frame JSON with the
 //! temporal metrics (`obscura::metrics::temporal`). `compare --path` shares the rendering.
 
-use super::reference::{as_compared, compute_or_load, ReferenceArgs};
+use super::reference::{compute_or_load, ReferenceArgs};
 use crate::args::{parse_size, parse_technique_list, AoArgs, SceneArgs, TechniqueList};
 use crate::progress::bar;
 use anyhow::{bail, Context, Result};
@@ -11,6 +11,7 @@ use obscura::bvh::BvhCache;
 use obscura::metrics::temporal::{path_metrics, PathFrame, PathMetrics};
 use obscura::metrics::{self, Image};
 use obscura::raster::GBufferImage;
+use obscura::reference::as_compared;
 use obscura::reference::ground_truth::ReferenceModel;
 use obscura::report::temporal::frame_delay_ms;
 use obscura::scene::{CameraPath, Scene};

@@ -40,12 +40,12 @@ pub struct ReferenceArgs {
 }
 
 impl ReferenceArgs {
-    /// Where to trace: `gpu` unless `--cpu`, or unless it is a software (CPU) adapter and `--gpu`
-    /// was not given (measured in issue 14: lavapipe traced Sponza in 52.7 s, the CPU tracer in
-    /// 6.1 s on the same two cores, same image). Says so when it falls back.
+    /// Where to trace: `gpu` unless `--cpu`, or unless the library prefers the CPU on this
+    /// adapter ([`obscura::reference::cpu_tracer_by_default`]: a software one) and `--gpu` was
+    /// not given. Says so when it falls back.
     pub fn tracer<'g>(&self, gpu: Option<&'g obscura::Gpu>) -> Option<&'g obscura::Gpu> {
         let gpu = gpu.filter(|_| !self.cpu)?;
-        if gpu.summary.device_type == "Cpu" && !self.gpu {
+        if obscura::reference::cpu_tracer_by_default(gpu) && !self.gpu {
             eprintln!(
                 "note: tracing the reference on the CPU: adapter '{}' is a software device, where \
                  the CPU tracer is faster (--gpu to trace on it anyway)",
@@ -173,23 +173,6 @@ pub fn compute_or_load(
         }
     }
     Ok(image)
-}
-
-/// The reference as reports compare it: the vao models keep the kernel's per-pixel rotation
-/// noise, so they go through the techniques' bilateral blur (`blur`, on the same G-buffer) so
-/// that only hidden geometry differs; the hemisphere model as traced.
-pub fn as_compared(
-    image: Vec<f32>,
-    model: ReferenceModel,
-    blur: &obscura::BlurSettings,
-    gbuffer: &obscura::raster::GBufferImage,
-    view: &FrameView,
-) -> Vec<f32> {
-    if model != ReferenceModel::Hemisphere && blur.enabled {
-        obscura::reference::cpu_blur::cpu_blur(&image, gbuffer, &view.screen(), blur)
-    } else {
-        image
-    }
 }
 
 fn rayon_threads() -> usize {

@@ -98,6 +98,14 @@ fn xvfb_only_for_the_tests() {
     assert!(o.status.success(), "{out}");
     assert!(out.contains("xvfb"), "{out}");
     assert!(!out.contains("mesa-vulkan-drivers"), "{out}");
+    // The Python package's tests make a virtual environment: no python3 among the stand-ins.
+    assert!(out.contains("python3 python3-venv"), "{out}");
+    let o = run(&["--dry-run"], t.path(), false);
+    assert!(
+        !text(&o).contains("python3"),
+        "the demo needs no Python: {}",
+        text(&o)
+    );
 }
 
 #[test]

@@ -57,6 +57,7 @@
 
 pub mod build;
 mod cache;
+pub mod camera_choice;
 pub mod framing;
 pub mod gpu;
 mod traverse;

@@ -471,15 +471,8 @@ impl Spec {
             };
             let units_per_metre = match &s.units {
                 None => 1.0,
-                Some(u) => units_per_metre(u).ok_or_else(|| {
-                    check.fail(
-                        at("units"),
-                        format!(
-                            "'{u}': give one world unit's length in metres (e.g. \"0.01\") or \
-                             one of m, cm, mm, km, in, ft"
-                        ),
-                    )
-                })?,
+                Some(u) => units_per_metre(u)
+                    .map_err(|rule| check.fail(at("units"), format!("'{u}': {rule}")))?,
             };
             let sidedness = match s.sides.as_deref().unwrap_or("authored") {
                 "authored" => Sidedness::AsAuthored,

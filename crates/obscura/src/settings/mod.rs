@@ -14,11 +14,11 @@ use std::str::FromStr;
 mod estimators;
 mod files;
 mod knobs;
+mod layers;
 mod presets;
 mod stochastic_depth;
 #[cfg(test)]
 mod tests;
-mod units;
 mod validate;
 
 pub use crate::estimators::gtao::GTAO_MAX_SLICES;
@@ -27,9 +27,9 @@ pub use crate::estimators::hbao::HBAO_MAX_DIRECTIONS;
 pub use crate::estimators::vao::Normalization;
 pub use estimators::*;
 pub use files::*;
+pub use layers::units_per_metre;
 pub use presets::*;
 pub use stochastic_depth::*;
-pub use units::units_per_metre;
 use validate::*;
 
 impl AoSettings {
