@@ -29,8 +29,10 @@ fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
   -r crates/obscura-py/requirements-dev.txt
 # The CLI the tests compare with (built by `cargo test --release --workspace`; built here if
-# this script runs alone).
-cargo build --release -p obscura-cli --quiet
+# this script runs alone). `--workspace`, not `-p obscura-cli`: features are resolved over the
+# whole workspace (this crate's pyo3 included) as the test command resolves them, so this reuses
+# its build instead of compiling every dependency again with other features.
+cargo build --release --workspace --bins --quiet
 # maturin develop: builds the abi3 wheel's module and installs it into the venv (and sets
 # PYO3_BUILD_EXTENSION_MODULE, so libpython is not linked).
 VIRTUAL_ENV="$PWD/$venv" PATH="$PWD/$venv/bin:$PATH" \
