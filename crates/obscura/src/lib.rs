@@ -19,6 +19,8 @@
 
 pub mod bindings;
 pub mod bvh;
+// Not on the web: its executors run shards on threads (one per GPU) and write files.
+#[cfg(not(target_arch = "wasm32"))]
 pub mod dataset;
 pub mod engine_geometry;
 pub mod engine_input;
