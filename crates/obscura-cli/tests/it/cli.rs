@@ -4,14 +4,15 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn obscura(args: &[&str]) -> Output {
+/// Runs the binary with `args` (also used by the other modules).
+pub(crate) fn obscura(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_obscura"))
         .args(args)
         .output()
         .expect("run obscura")
 }
 
-fn stderr(o: &Output) -> String {
+pub(crate) fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 

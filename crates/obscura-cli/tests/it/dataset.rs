@@ -2,19 +2,8 @@
 //! an interrupted run resumed writes only the missing shard, and a bad spec fails with one error
 //! before anything is written.
 
+use crate::cli::{obscura, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn obscura(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_obscura"))
-        .args(args)
-        .output()
-        .expect("run obscura")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 fn example() -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
