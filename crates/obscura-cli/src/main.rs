@@ -22,6 +22,10 @@ struct Cli {
     /// the ground truth run: the AO passes refuse it with what to use instead.
     #[arg(long, global = true)]
     backend: Option<String>,
+    /// Use the N-th GPU (from 0) in PCI bus order, as nvidia-smi numbers them (on a host with
+    /// several GPUs of one kind; `dataset --devices` uses the first N).
+    #[arg(long, global = true, value_name = "N")]
+    gpu_index: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -74,6 +78,7 @@ fn main() -> ExitCode {
     let gpu_options = obscura::GpuOptions {
         adapter: cli.adapter,
         backend: cli.backend,
+        ordinal: cli.gpu_index,
     };
     let result = match cli.command {
         Command::Info(a) => commands::info::run(&gpu_options, &a),

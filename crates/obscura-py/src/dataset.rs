@@ -106,7 +106,11 @@ pub fn dataset_run_local(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
     let spec = spec(&spec_path)?;
-    let options = GpuOptions { adapter, backend };
+    let options = GpuOptions {
+        adapter,
+        backend,
+        ..Default::default()
+    };
     let report = reporter(progress);
     let summary = py
         .detach(|| dataset::run_local(&spec, &out, &options, devices, &report))

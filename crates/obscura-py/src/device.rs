@@ -12,7 +12,9 @@ use std::sync::OnceLock;
 ///
 /// ``adapter``: use the first adapter whose name contains this (case-insensitive), as
 /// ``obscura --adapter``. ``backend``: ``"vulkan"``, ``"metal"``, ``"dx12"`` or ``"gl"``, as
-/// ``obscura --backend``. Raises ``GpuError`` when no such adapter exists.
+/// ``obscura --backend``. ``ordinal``: the N-th GPU (from 0) in PCI bus order, as ``nvidia-smi``
+/// and NVML number them, so as Ray's GPU ids do (``obscura --gpu-index``). Raises ``GpuError`` when no
+/// such adapter exists.
 #[pyclass(module = "obscura._native", frozen)]
 pub struct Device {
     pub gpu: Gpu,
@@ -21,9 +23,18 @@ pub struct Device {
 #[pymethods]
 impl Device {
     #[new]
-    #[pyo3(signature = (adapter=None, backend=None))]
-    fn new(py: Python<'_>, adapter: Option<String>, backend: Option<String>) -> PyResult<Self> {
-        let options = GpuOptions { adapter, backend };
+    #[pyo3(signature = (adapter=None, backend=None, ordinal=None))]
+    fn new(
+        py: Python<'_>,
+        adapter: Option<String>,
+        backend: Option<String>,
+        ordinal: Option<usize>,
+    ) -> PyResult<Self> {
+        let options = GpuOptions {
+            adapter,
+            backend,
+            ordinal,
+        };
         let gpu = py
             .detach(|| Gpu::new(&options))
             .map_err(|e| GpuError::new_err(e.to_string()))?;
@@ -63,7 +74,7 @@ fn default_device(py: Python<'_>) -> PyResult<Py<Device>> {
     if let Some(d) = DEFAULT.get() {
         return Ok(d.clone_ref(py));
     }
-    let device = Py::new(py, Device::new(py, None, None)?)?;
+    let device = Py::new(py, Device::new(py, None, None, None)?)?;
     // Two threads may both make one; the first stored is kept by everyone.
     Ok(DEFAULT.get_or_init(|| device).clone_ref(py))
 }

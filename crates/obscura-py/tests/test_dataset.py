@@ -101,3 +101,20 @@ def test_ray_writes_the_local_bytes_and_retries_a_killed_worker(
     assert summary["shards"] == 4 and summary["skipped"] == 0
     assert sorted(manifest_ids(out)) == list(range(8))
     assert digests(out) == digests(by_python)
+
+
+def test_a_ray_gpu_id_picks_that_gpu_in_bus_order():
+    from obscura import dataset
+
+    default = obscura.default_device()
+    # No id (num_gpus=0): the default device; GPU 0: the first GPU in PCI bus order, which on a
+    # one-adapter machine is the default one; made once per worker process.
+    assert dataset._worker_device([]).name == default.name
+    first = dataset._worker_device([0])
+    assert first.name == default.name and dataset._worker_device(["0"]) is first
+    # An id past this machine's GPUs: one error naming the GPUs there are.
+    with pytest.raises(obscura.GpuError, match="GPU 9 was asked for") as e:
+        dataset._worker_device([9])
+    assert default.name in str(e.value)
+    with pytest.raises(obscura.DatasetError, match="not a GPU number"):
+        dataset._worker_device(["GPU-5a1b"])

@@ -42,9 +42,15 @@ class DatasetError(ObscuraError):
     """A dataset spec's field (named in the message) or a failed dataset run."""
 
 class Device:
-    """A GPU device, chosen as ``obscura --adapter/--backend`` choose one."""
+    """A GPU device, chosen as ``obscura --adapter/--backend/--gpu-index`` choose one. ``ordinal``: the
+    N-th GPU in PCI bus order (as ``nvidia-smi`` and Ray's GPU ids count them)."""
 
-    def __init__(self, adapter: Optional[str] = None, backend: Optional[str] = None) -> None: ...
+    def __init__(
+        self,
+        adapter: Optional[str] = None,
+        backend: Optional[str] = None,
+        ordinal: Optional[int] = None,
+    ) -> None: ...
     @property
     def name(self) -> str: ...
     @property

@@ -81,11 +81,39 @@ def _run_on_ray(spec, out, address, num_gpus, max_retries):
 
 def _shard_task(spec: str, index: int, out: str):
     """One shard in a Ray worker: its report (JSON text) and the device's name."""
-    device = _native.default()
+    import ray
+
+    device = _worker_device(ray.get_gpu_ids())
     report = _native.dataset_run_shard(
         spec, index, out, device=device, progress=_kill_switch(index)
     )
     return report, device.name
+
+
+# A Ray worker process runs many shards: each GPU's device (and its adapter's shader cache) is
+# made once per process, not once per task.
+_WORKER_DEVICES: Dict[Any, Any] = {}
+
+
+def _worker_device(gpu_ids) -> "_native.Device":
+    """The device of the GPU Ray gave this task. Ray's GPU ids count a node's GPUs as
+    ``nvidia-smi`` and NVML do (PCI bus order), and the Vulkan adapters are matched in that order
+    (``Device(ordinal=…)``): ``CUDA_VISIBLE_DEVICES``, which Ray sets, narrows CUDA, not Vulkan.
+    No GPU id (a task with ``num_gpus=0``, a CPU-only cluster): the default device."""
+    key = str(gpu_ids[0]) if gpu_ids else None
+    if key not in _WORKER_DEVICES:
+        if key is None:
+            _WORKER_DEVICES[key] = _native.default()
+        else:
+            try:
+                ordinal = int(key)
+            except ValueError:
+                raise _native.DatasetError(
+                    f"Ray gave this task GPU {key!r}, not a GPU number: start the Ray node with "
+                    "CUDA_VISIBLE_DEVICES as numbers (0,1,…), not UUIDs"
+                ) from None
+            _WORKER_DEVICES[key] = _native.Device(ordinal=ordinal)
+    return _WORKER_DEVICES[key]
 
 
 def _kill_switch(index: int):

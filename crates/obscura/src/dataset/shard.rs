@@ -15,8 +15,9 @@ use crate::bvh::BvhCache;
 use crate::gpu::Gpu;
 use crate::output::{srgb_to_linear, write_atomically};
 use crate::pipeline::renderer::Renderer;
-use crate::reference::gpu::render_reference_gpu;
+use crate::reference::gpu::GpuReferenceTracer;
 use crate::reference::ground_truth::{render_reference, ReferenceSettings};
+use crate::scene::Camera;
 use crate::settings::{AoSettings, Technique};
 use crate::view::FrameView;
 use serde_json::json;
@@ -239,6 +240,13 @@ fn write_views(
         Tracer::Gpu => false,
     };
     let tracer = record::tracer_name(spec.tracer, on_cpu);
+    // The scene and BVH go to the GPU and the tracer's shader is compiled once per shard, not
+    // once per view.
+    let gpu_tracer = if record::stores_truth(spec) && !on_cpu {
+        Some(GpuReferenceTracer::new(gpu, &scene, &bvh, s.truth.vao)?)
+    } else {
+        None
+    };
     let load_ms = load_start.elapsed().as_secs_f64() * 1e3;
     let near = crate::view::near_plane(&scene);
     let hash = spec.hash();
@@ -252,90 +260,25 @@ fn write_views(
             )
         })
         .collect();
-    let (mut manifest, mut timings) = (String::new(), String::new());
-    for (camera, view) in cameras.iter().zip(shard.view_indices()) {
-        let id = shard.id_of(view);
-        let mut ms = serde_json::Map::new();
+    // The GPU work of view n+1 overlaps the encoding, hashing and writing of view n: the
+    // rendering loop below hands each view's arrays to this writer thread (at most two views
+    // wait), which writes them in order and keeps the manifest and timings.
+    let adapter = &gpu.summary.name;
+    let write_one = |view: Rendered| -> Result<(String, String), DatasetError> {
+        let Rendered {
+            id,
+            view,
+            camera,
+            arrays,
+            truth,
+            mut ms,
+        } = view;
         let mut clock = Instant::now();
-        let mut lap = |name: &str, ms: &mut serde_json::Map<String, serde_json::Value>| {
-            ms.insert(name.into(), json!(clock.elapsed().as_secs_f64() * 1e3));
-            clock = Instant::now();
-        };
-        let mut ao = Vec::new();
-        for (renderer, settings) in renderers.iter_mut().zip(&row_settings) {
-            renderer.render(camera, None)?;
-            ao.push(renderer.read_ao()?);
-            lap(&format!("ao:{}", settings.technique), &mut ms);
-        }
-        let truth_settings = ReferenceSettings {
-            seed: plan::truth_seed(spec, shard.scene, view),
-            ..s.truth
-        };
-        let mut truth = if record::stores_truth(spec) {
-            let frame = FrameView::new(*camera, w, h, guard, near);
-            let image = if on_cpu {
-                render_reference(&scene, &bvh, frame, &truth_settings, &|_| {})
-            } else {
-                render_reference_gpu(gpu, &scene, &bvh, frame, &truth_settings, &|_, _| {})?.0
-            };
-            lap("truth", &mut ms);
-            image
-        } else {
-            Vec::new()
-        };
-        // Read once, for depth and normals both.
-        let mut gbuffer = None;
-        let mut arrays = Vec::new();
-        for channel in &spec.store {
-            let (components, values) = match channel {
-                Channel::Depth | Channel::Normals => {
-                    if gbuffer.is_none() {
-                        gbuffer = Some(renderers[0].read_gbuffer()?);
-                    }
-                    let g = gbuffer.as_ref().expect("read above");
-                    let depth = visible(&g.depth, g.width, guard, w, h);
-                    if *channel == Channel::Depth {
-                        (1, depth)
-                    } else {
-                        let normals = visible(&g.normals, g.width, guard, w, h);
-                        // Background: no surface, no normal (the G-buffer's clear value).
-                        let values = normals
-                            .iter()
-                            .zip(&depth)
-                            .flat_map(|(n, &d)| if d > 0.0 { n.to_array() } else { [0.0; 3] })
-                            .collect();
-                        (3, values)
-                    }
-                }
-                Channel::Albedo => {
-                    let albedo = renderers[0].read_albedo()?;
-                    let values = albedo
-                        .iter()
-                        .flat_map(|c| [0, 1, 2].map(|i| srgb_to_linear(f32::from(c[i]) / 255.0)))
-                        .collect();
-                    (3, values)
-                }
-                Channel::Truth => (1, std::mem::take(&mut truth)),
-                Channel::Ao(t) => {
-                    let i = row_settings
-                        .iter()
-                        .position(|r| r.technique == *t)
-                        .expect("every ao row has a renderer");
-                    (1, std::mem::take(&mut ao[i]))
-                }
-            };
-            arrays.push(Array {
-                name: channel.array_name(),
-                components,
-                values,
-            });
-        }
-        lap("read", &mut ms);
         let bytes = encode(spec.format, w, h, &arrays).map_err(DatasetError::Run)?;
-        lap("encode", &mut ms);
+        lap(&mut clock, "encode", &mut ms);
         let file = view_file(spec, shard, id);
         write_file(&out.join(&file), &bytes)?;
-        lap("write", &mut ms);
+        lap(&mut clock, "write", &mut ms);
         let line = json!({
             "id": id,
             "shard": shard.index,
@@ -347,26 +290,161 @@ fn write_views(
             "bytes": bytes.len(),
             "size": [w, h],
             "guard_band": guard,
-            "camera": camera_record(camera, near),
+            "camera": camera_record(&camera, near),
             "arrays": record::array_names(spec),
-            "truth": record::stores_truth(spec).then(|| truth_record(&truth_settings, tracer)),
+            "truth": truth.map(|t| truth_record(&t, tracer)),
             "rows": rows_record,
-            "adapter": gpu.summary.name,
+            "adapter": adapter,
             "spec_sha256": hash,
             "obscura": VERSION,
         });
-        manifest.push_str(&line.to_string());
-        manifest.push('\n');
-        timings.push_str(&json!({"id": id, "file": file, "ms": ms}).to_string());
-        timings.push('\n');
-        progress(1);
-    }
+        let timing = json!({"id": id, "file": file, "ms": ms});
+        Ok((line.to_string(), timing.to_string()))
+    };
+    let (manifest, mut timings) = std::thread::scope(|scope| {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Rendered>(2);
+        let writer = scope.spawn(move || {
+            let (mut manifest, mut timings) = (String::new(), String::new());
+            for view in receive {
+                let (line, timing) = write_one(view)?;
+                manifest.push_str(&line);
+                manifest.push('\n');
+                timings.push_str(&timing);
+                timings.push('\n');
+                progress(1);
+            }
+            Ok::<_, DatasetError>((manifest, timings))
+        });
+        let rendered = (|| {
+            for (camera, view) in cameras.iter().zip(shard.view_indices()) {
+                let id = shard.id_of(view);
+                let mut ms = serde_json::Map::new();
+                let mut clock = Instant::now();
+                let mut ao = Vec::new();
+                for (renderer, settings) in renderers.iter_mut().zip(&row_settings) {
+                    renderer.render(camera, None)?;
+                    ao.push(renderer.read_ao()?);
+                    lap(&mut clock, &format!("ao:{}", settings.technique), &mut ms);
+                }
+                let truth_settings = ReferenceSettings {
+                    seed: plan::truth_seed(spec, shard.scene, view),
+                    ..s.truth
+                };
+                let mut truth = if record::stores_truth(spec) {
+                    let frame = FrameView::new(*camera, w, h, guard, near);
+                    let image = match &gpu_tracer {
+                        Some(tracer) => tracer.trace(frame, &truth_settings, &|_, _| {})?.0,
+                        None => render_reference(&scene, &bvh, frame, &truth_settings, &|_| {}),
+                    };
+                    lap(&mut clock, "truth", &mut ms);
+                    image
+                } else {
+                    Vec::new()
+                };
+                let arrays = read_arrays(spec, &mut renderers, &row_settings, &mut ao, &mut truth)?;
+                lap(&mut clock, "read", &mut ms);
+                let view = Rendered {
+                    id,
+                    view,
+                    camera: *camera,
+                    arrays,
+                    truth: record::stores_truth(spec).then_some(truth_settings),
+                    ms,
+                };
+                if send.send(view).is_err() {
+                    // The writer stopped on an error: it is returned below.
+                    break;
+                }
+            }
+            Ok::<_, DatasetError>(())
+        })();
+        drop(send);
+        let written = writer.join().expect("the dataset writer thread panicked");
+        rendered.and(written)
+    })?;
     timings.push_str(&json!({"shard": shard.index, "load_ms": load_ms}).to_string());
     timings.push('\n');
     let dir = out.join(shard.name());
     write_file(&dir.join(TIMINGS), timings.as_bytes())?;
     // Last: its presence (verified) is what marks the shard finished.
     write_file(&dir.join(MANIFEST), manifest.as_bytes())
+}
+
+/// One view rendered and read back, on its way to the writer thread.
+struct Rendered {
+    id: u64,
+    view: u32,
+    camera: Camera,
+    arrays: Vec<Array>,
+    /// The truth's settings (its seed is the view's), when the spec stores it.
+    truth: Option<ReferenceSettings>,
+    /// Milliseconds per step so far.
+    ms: serde_json::Map<String, serde_json::Value>,
+}
+
+/// Records the time since `clock` under `name` in `ms`, and restarts the clock.
+fn lap(clock: &mut Instant, name: &str, ms: &mut serde_json::Map<String, serde_json::Value>) {
+    ms.insert(name.into(), json!(clock.elapsed().as_secs_f64() * 1e3));
+    *clock = Instant::now();
+}
+
+/// The arrays `spec` stores for one view, in its order: the G-buffer's channels read from the
+/// first renderer (once for depth and normals both), `truth` and the rows' `ao` moved in.
+fn read_arrays(
+    spec: &Spec,
+    renderers: &mut [Renderer],
+    row_settings: &[AoSettings],
+    ao: &mut [Vec<f32>],
+    truth: &mut Vec<f32>,
+) -> Result<Vec<Array>, DatasetError> {
+    let (w, h, guard) = (spec.width, spec.height, spec.guard_band());
+    let mut gbuffer = None;
+    let mut arrays = Vec::new();
+    for channel in &spec.store {
+        let (components, values) = match channel {
+            Channel::Depth | Channel::Normals => {
+                if gbuffer.is_none() {
+                    gbuffer = Some(renderers[0].read_gbuffer()?);
+                }
+                let g = gbuffer.as_ref().expect("read above");
+                let depth = visible(&g.depth, g.width, guard, w, h);
+                if *channel == Channel::Depth {
+                    (1, depth)
+                } else {
+                    let normals = visible(&g.normals, g.width, guard, w, h);
+                    // Background: no surface, no normal (the G-buffer's clear value).
+                    let values = normals
+                        .iter()
+                        .zip(&depth)
+                        .flat_map(|(n, &d)| if d > 0.0 { n.to_array() } else { [0.0; 3] })
+                        .collect();
+                    (3, values)
+                }
+            }
+            Channel::Albedo => {
+                let albedo = renderers[0].read_albedo()?;
+                let values = albedo
+                    .iter()
+                    .flat_map(|c| [0, 1, 2].map(|i| srgb_to_linear(f32::from(c[i]) / 255.0)))
+                    .collect();
+                (3, values)
+            }
+            Channel::Truth => (1, std::mem::take(truth)),
+            Channel::Ao(t) => {
+                let i = row_settings
+                    .iter()
+                    .position(|r| r.technique == *t)
+                    .expect("every ao row has a renderer");
+                (1, std::mem::take(&mut ao[i]))
+            }
+        };
+        arrays.push(Array {
+            name: channel.array_name(),
+            components,
+            values,
+        });
+    }
+    Ok(arrays)
 }
 
 /// The visible `w × h` of a framebuffer image `fw` wide with a guard band of `g`.

@@ -22,6 +22,12 @@ pub struct GpuOptions {
     /// Restrict to one backend (`vulkan`, `metal`, `dx12`, `gl`). Falls back to the
     /// `OBSCURA_BACKEND` environment variable.
     pub backend: Option<String>,
+    /// Pick the N-th (from 0) of the adapters [`Gpu::all`] would use, in PCI bus order: the
+    /// order in which `nvidia-smi`, NVML and so Ray's and CUDA's (with
+    /// `CUDA_DEVICE_ORDER=PCI_BUS_ID`) GPU ids count a host's GPUs. It is how a Ray task given GPU
+    /// id N finds that GPU among the Vulkan adapters, which `CUDA_VISIBLE_DEVICES` does not
+    /// narrow.
+    pub ordinal: Option<usize>,
 }
 
 /// What can go wrong with the GPU, each message saying what to do about it.
@@ -46,6 +52,20 @@ pub enum GpuError {
         /// The adapter name asked for.
         filter: String,
         /// Every adapter found, as `name (backend)`.
+        available: Vec<String>,
+    },
+    /// [`GpuOptions::ordinal`] past the GPUs found.
+    #[error(
+        "GPU {ordinal} was asked for (counted from 0, in PCI bus order), but this machine has \
+         {} such adapter(s): {}: ask for one of those, or check that the GPU's Vulkan driver is \
+         installed on this node",
+        available.len(),
+        available.join("; ")
+    )]
+    NoSuchOrdinal {
+        /// The ordinal asked for.
+        ordinal: usize,
+        /// The GPUs there are, in PCI bus order, as `name (bus id)`.
         available: Vec<String>,
     },
     /// A backend name (`--backend`, `OBSCURA_BACKEND`) that is not vulkan, metal, dx12 or gl.
@@ -207,6 +227,55 @@ fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
     backend * 10 + device
 }
 
+/// `adapters` (best first, [`adapter_rank`]) narrowed to the device type and backend of the
+/// first, in PCI bus order ([`bus_order`]).
+fn same_kind_in_bus_order(adapters: Vec<wgpu::Adapter>) -> Vec<wgpu::Adapter> {
+    let first = adapters[0].get_info();
+    let mut same: Vec<wgpu::Adapter> = adapters
+        .into_iter()
+        .filter(|a| {
+            let info = a.get_info();
+            info.device_type == first.device_type && info.backend == first.backend
+        })
+        .collect();
+    let ids: Vec<String> = same
+        .iter()
+        .map(|a| a.get_info().device_pci_bus_id)
+        .collect();
+    let order = bus_order(&ids);
+    let mut slots: Vec<Option<wgpu::Adapter>> = same.drain(..).map(Some).collect();
+    order
+        .into_iter()
+        .map(|i| slots[i].take().expect("a permutation"))
+        .collect()
+}
+
+/// The order of adapters by their PCI bus ids (`domain:bus:device.function`, compared as
+/// numbers, so `0000:1b:00.0` < `0000:9a:00.0` < `0001:00:00.0`), where every adapter reports
+/// one; else their given order (an adapter without PCI bus information: a software or virtual
+/// one, a driver without `VK_EXT_pci_bus_info`). A permutation of `0..ids.len()`.
+fn bus_order(ids: &[String]) -> Vec<usize> {
+    let keys: Option<Vec<Vec<u64>>> = ids.iter().map(|id| parse_pci_bus_id(id)).collect();
+    let mut order: Vec<usize> = (0..ids.len()).collect();
+    if let Some(keys) = keys {
+        order.sort_by(|&a, &b| keys[a].cmp(&keys[b]));
+    }
+    order
+}
+
+/// `domain:bus:device.function` (hexadecimal fields, any width: Vulkan's `0000:1b:00.0`,
+/// nvidia-smi's `00000000:1B:00.0`) as numbers; `None` if it is not one.
+fn parse_pci_bus_id(id: &str) -> Option<Vec<u64>> {
+    let fields: Vec<&str> = id.split([':', '.']).collect();
+    if fields.len() != 4 {
+        return None;
+    }
+    fields
+        .iter()
+        .map(|f| u64::from_str_radix(f, 16).ok())
+        .collect()
+}
+
 /// Mesa's Vulkan window-system layer prints `XDG_RUNTIME_DIR is invalid or not set in the
 /// environment` (twice: once per instance obscura probes) when the variable is unset or empty
 /// (headless machines, containers, CI), which reads as an error although obscura opens no
@@ -242,23 +311,35 @@ impl Gpu {
     /// Pick an adapter (see [`GpuOptions`]) and create a device. Quiets Mesa's complaint about
     /// an unset `XDG_RUNTIME_DIR` first ([`quiet_headless_vulkan`]).
     pub fn new(options: &GpuOptions) -> Result<Self, GpuError> {
-        let adapter = Self::adapters(options)?.into_iter().next();
+        let adapters = Self::adapters(options)?;
+        let adapter = match options.ordinal {
+            None => adapters.into_iter().next(),
+            Some(ordinal) => {
+                let mut gpus = same_kind_in_bus_order(adapters);
+                if ordinal >= gpus.len() {
+                    let available = gpus
+                        .iter()
+                        .map(|a| {
+                            let info = a.get_info();
+                            format!("{} ({})", info.name, info.device_pci_bus_id)
+                        })
+                        .collect();
+                    return Err(GpuError::NoSuchOrdinal { ordinal, available });
+                }
+                Some(gpus.swap_remove(ordinal))
+            }
+        };
         Self::from_adapter(adapter.expect("adapters() returns at least one"))
     }
 
     /// A device on every adapter of the kind [`Gpu::new`] would pick (the same device type
-    /// and backend as the best ranked one, after `options`' filters): the 8 GPUs of an 8-GPU
-    /// host, but not the software rasteriser beside them. The dataset runner's local executor
-    /// gives one to each of its workers. At least one, or an error as for [`Gpu::new`].
+    /// and backend as the best ranked one, after `options`' filters), in PCI bus order: the 8
+    /// GPUs of an 8-GPU host, but not the software rasteriser beside them. The dataset runner's
+    /// local executor gives one to each of its workers. At least one, or an error as for
+    /// [`Gpu::new`]. `options.ordinal` is not applied here.
     pub fn all(options: &GpuOptions) -> Result<Vec<Self>, GpuError> {
-        let adapters = Self::adapters(options)?;
-        let first = adapters[0].get_info();
-        adapters
+        same_kind_in_bus_order(Self::adapters(options)?)
             .into_iter()
-            .filter(|a| {
-                let info = a.get_info();
-                info.device_type == first.device_type && info.backend == first.backend
-            })
             .map(Self::from_adapter)
             .collect()
     }
@@ -816,5 +897,55 @@ mod tests {
         ] {
             assert!(backend_supported("any", backend).is_ok(), "{backend:?}");
         }
+    }
+
+    #[test]
+    fn adapters_are_ordered_by_pci_bus_as_nvidia_smi_counts_them() {
+        let ids = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        // Numeric, not textual: bus 0x9a after 0x1b, domain before bus, any field width.
+        let order = bus_order(&ids(&[
+            "0000:9a:00.0",
+            "0001:00:00.0",
+            "0000:1b:00.0",
+            "0000:1B:00.1",
+        ]));
+        assert_eq!(order, vec![2, 3, 0, 1]);
+        assert_eq!(
+            parse_pci_bus_id("00000000:1B:00.0"),
+            parse_pci_bus_id("0000:1b:00.0")
+        );
+        // One adapter without a bus id (lavapipe reports none): enumeration order is kept.
+        assert_eq!(
+            bus_order(&ids(&["0000:9a:00.0", "", "0000:1b:00.0"])),
+            vec![0, 1, 2]
+        );
+        assert_eq!(parse_pci_bus_id("not a bus"), None);
+    }
+
+    #[test]
+    fn an_ordinal_past_the_gpus_names_the_ones_there() {
+        let options = GpuOptions {
+            ordinal: Some(7),
+            ..Default::default()
+        };
+        let error = Gpu::new(&options)
+            .err()
+            .expect("no machine here has 8 GPUs");
+        let text = error.to_string();
+        assert!(
+            matches!(error, GpuError::NoSuchOrdinal { ordinal: 7, .. }),
+            "{text}"
+        );
+        assert!(text.contains("GPU 7 was asked for"), "{text}");
+        // The adapter that is there (lavapipe on CI) is named.
+        let first = Gpu::new(&GpuOptions::default()).unwrap();
+        assert!(text.contains(&first.summary.name), "{text}");
+        // Ordinal 0 is the adapter `new` picks by default.
+        let zero = Gpu::new(&GpuOptions {
+            ordinal: Some(0),
+            ..Default::default()
+        })
+        .unwrap();
+        assert_eq!(zero.summary.name, first.summary.name);
     }
 }
