@@ -128,7 +128,7 @@ PY
     fi
     s=$(spec "$scene" truth)
     echo "== R $scene" >>"$log"
-    PYTHONPATH="$work/py:$work/site" PYTHONUNBUFFERED=1 python3 - "$s" "$work/r-$scene" >>"$log" 2>&1 <<'PY'
+    PYTHONPATH="$work/py:$work/site${PYTHONPATH:+:$PYTHONPATH}" PYTHONUNBUFFERED=1 python3 - "$s" "$work/r-$scene" >>"$log" 2>&1 <<'PY'
 import json, sys, time
 import obscura.dataset
 spec, base = sys.argv[1:]

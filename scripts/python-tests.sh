@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # The Python package's tests (crates/obscura-py, docs/PYTHON.md): makes the project's own virtual
-# environment .venv (git-ignored) if missing, installs the pinned build and test tools
-# (crates/obscura-py/requirements-dev.txt), builds the wheel with maturin into it (release
-# profile, the workspace's target/ folder: the library is not built again when `cargo test
-# --release --workspace` built it with the same features) and runs pytest on
-# crates/obscura-py/tests. The tests run the CLI binary the cargo tests built
+# environment .venv (git-ignored) if missing, installs the pinned test tools
+# (crates/obscura-py/requirements-dev.txt), builds the package's native module with cargo and
+# installs the package into the venv in development mode, then runs pytest on
+# crates/obscura-py/tests. The tests run the CLI binary of the same build
 # (target/release/obscura) to hold Python's results to the CLI's, bit for bit.
+#
+# Why cargo and not maturin here: maturin (how wheels are made, docs/PYTHON.md) resolves the
+# features of crates/obscura-py alone, and those differ from the whole workspace's (the CLI's
+# eframe turns on more of wgpu's), so it compiled wgpu and the library a second time after the
+# test build: minutes of CI's two cores. `cargo build --workspace` resolves them as `cargo test
+# --workspace` does, so after the README's test command it compiles only the module's own crate.
+# What maturin develop would add is the same thing: the module copied into the package's folder
+# (python/obscura/_native.abi3.so) and that folder put on the venv's path (a .pth file).
 #
 # Needs python3 with its venv module (Debian: python3-venv, which `ensure-vulkan.sh --for-tests`
 # installs when missing) and the package index (PyPI) the first time. PYTHON picks another
@@ -28,14 +35,14 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
   -r crates/obscura-py/requirements-dev.txt
-# The CLI the tests compare with (built by `cargo test --release --workspace`; built here if
-# this script runs alone). `--workspace`, not `-p obscura-cli`: features are resolved over the
-# whole workspace (this crate's pyo3 included) as the test command resolves them, so this reuses
-# its build instead of compiling every dependency again with other features.
-cargo build --release --workspace --bins --quiet
-# maturin develop: builds the abi3 wheel's module and installs it into the venv (and sets
-# PYO3_BUILD_EXTENSION_MODULE, so libpython is not linked).
-VIRTUAL_ENV="$PWD/$venv" PATH="$PWD/$venv/bin:$PATH" \
-  "$venv/bin/maturin" develop --release --quiet \
-  --manifest-path crates/obscura-py/Cargo.toml
+# The CLI the tests compare with and the module, with the workspace's features (above).
+cargo build --release --workspace --bins --lib --quiet
+package=crates/obscura-py/python
+# Copied to a temporary name and renamed: a Python process that has the old module loaded keeps
+# its mapping.
+cp target/release/libobscura_py.so "$package/obscura/.native.tmp"
+mv -f "$package/obscura/.native.tmp" "$package/obscura/_native.abi3.so"
+"$venv/bin/python" -m pip uninstall --quiet --yes obscura >/dev/null 2>&1 || true
+site=$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+echo "$PWD/$package" >"$site/obscura.pth"
 "$venv/bin/python" -m pytest -q crates/obscura-py/tests "$@"
