@@ -384,33 +384,6 @@ impl Drop for OutFolder {
     }
 }
 
-/// Renders one frame of a frame loop (`path`, `bench`'s warm-up, `compare`'s timed frames,
-/// the viewer). Under a time budget (`hemisphere.time_budget`) the frame is timed and the ray
-/// budget follows its GPU time ([`obscura::TimeBudget`]); its timings are returned then.
-pub fn render_frame(
-    gpu: &obscura::Gpu,
-    renderer: &mut obscura::Renderer,
-    camera: &obscura::scene::Camera,
-) -> Result<Option<obscura::gpu::FrameTimings>> {
-    let settings = renderer.settings();
-    if !(settings.hemisphere.time_budget > 0.0 && settings.ray_budget_active()) {
-        renderer.render(camera, None)?;
-        return Ok(None);
-    }
-    let mut profiler = obscura::PassProfiler::new(gpu, 1).map_err(|e| {
-        anyhow::anyhow!(
-            "--time-budget follows the GPU's timestamps, and {e}: use --ray-budget (rays a \
-             frame) instead"
-        )
-    })?;
-    renderer.render(camera, Some(&mut profiler))?;
-    let timings = profiler.read(gpu)?.pop().unwrap_or_default();
-    if let Some(ao) = renderer.ambient_occlusion() {
-        ao.follow_time_budget(&timings)?;
-    }
-    Ok(Some(timings))
-}
-
 pub fn warn_stack_overflows(renderer: &obscura::Renderer) -> Result<()> {
     let overflows = renderer.read_stack_overflows()?;
     if overflows > 0 {

@@ -3,7 +3,7 @@
 
 use crate::arrays;
 use crate::device::{gpu_of, Device};
-use crate::errors::{from_lib, input, settings_error};
+use crate::errors::{from_lib, input};
 use crate::scene::Scene;
 use crate::settings::{resolve, Given};
 use crate::view::{camera_of, Size};
@@ -47,23 +47,16 @@ pub fn render<'py>(
     }
     let given = Given::from_py(settings)?;
     let settings = resolve(technique, given.as_ref(), preset, units)?;
-    if settings.hemisphere.time_budget > 0.0 && settings.ray_budget_active() {
-        // The CLI's controller times every frame with GPU timestamps; not offered here yet.
-        return Err(settings_error(
-            "hemisphere.time_budget is not available from Python: use hemisphere.ray_budget \
-             (rays a frame)"
-                .into(),
-            Some("hemisphere.time_budget".into()),
-        ));
-    }
     let camera = camera_of(py, scene, camera, size)?.camera;
     let gpu = gpu_of(py, device)?;
     let scene = scene.get().scene.clone();
     let ao = py
         .detach(|| -> Result<Vec<f32>, obscura::Error> {
             let mut renderer = size.renderer(&gpu, &scene, &settings)?;
+            // Frame after frame as the CLI's `render --frames`: under hemisphere.time_budget
+            // each frame is timed and the next one's ray budget follows it.
             for _ in 0..frames {
-                renderer.render(&camera, None)?;
+                renderer.render_frame(&camera)?;
             }
             renderer.read_ao()
         })

@@ -124,3 +124,18 @@ def test_settings_dict_file_and_preset_resolve_as_the_library(tmp_path):
     assert obscura.settings("gtao", units="cm")["gtao"]["radius"] == pytest.approx(
         100 * obscura.settings("gtao")["gtao"]["radius"]
     )
+
+
+def test_a_time_budget_steers_the_rays_frame_after_frame(stairs):
+    # hemisphere.time_budget follows each frame's GPU time, as `render --frames` does: a budget
+    # far below any frame's time takes the rays of later frames away, a budget far above it
+    # leaves them, so after a few frames the two images differ; after one frame (nothing
+    # followed yet) they are the same.
+    def ao(budget_ms, frames):
+        settings = {"temporal.enabled": True, "hemisphere.time_budget": budget_ms}
+        return obscura.render(stairs, "rtao", settings, width=64, height=48, frames=frames)
+
+    assert same_bits(ao(1e-6, 1), ao(1e6, 1))
+    starved, fed = ao(1e-6, 4), ao(1e6, 4)
+    assert starved.dtype == np.float32 and np.all((starved >= 0) & (starved <= 1))
+    assert float(np.mean(np.abs(starved - fed))) > 1e-3

@@ -185,7 +185,7 @@ pub fn run(options: &obscura::GpuOptions, args: &BenchArgs) -> Result<()> {
         let progress = bar(u64::from(args.warmup + args.frames), technique.name());
         // Under a time budget the warm-up frames settle the ray budget; the timed frames keep it.
         for _ in 0..args.warmup {
-            crate::args::render_frame(&gpu, &mut renderer, &camera)?;
+            renderer.render_frame(&camera)?;
             gpu.finish()?;
             progress.inc(1);
         }

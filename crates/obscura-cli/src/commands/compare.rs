@@ -299,7 +299,7 @@ fn gpu_ms(
         // A time budget follows each frame's timings: one profiler a frame.
         let mut totals = Vec::new();
         for _ in 0..frames {
-            let timings = crate::args::render_frame(gpu, renderer, camera)?.unwrap_or_default();
+            let timings = renderer.render_frame(camera)?.unwrap_or_default();
             totals.push(obscura::TimeBudget::ao_ms(&timings));
         }
         return Ok(Some(super::bench::median(totals)));

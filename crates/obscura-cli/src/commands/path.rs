@@ -187,7 +187,7 @@ pub fn render_path(gpu: &Gpu, job: &PathJob) -> Result<PathRun> {
         let (mut renderer, settings) = job.renderer(gpu, technique)?;
         let mut images = Vec::with_capacity(samples.len());
         for (_, camera) in &samples {
-            crate::args::render_frame(gpu, &mut renderer, camera)?;
+            renderer.render_frame(camera)?;
             images.push(renderer.read_ao()?);
             if gbuffers.len() < samples.len() {
                 gbuffers.push(renderer.read_gbuffer()?);

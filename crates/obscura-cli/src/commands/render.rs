@@ -74,7 +74,7 @@ pub fn run(options: &obscura::GpuOptions, args: &RenderArgs) -> Result<()> {
     let gpu = obscura::Gpu::new(options)?;
     let mut renderer = Renderer::new(&gpu, &scene, &settings, width, height, guard_band)?;
     for _ in 0..args.frames {
-        crate::args::render_frame(&gpu, &mut renderer, &camera)?;
+        renderer.render_frame(&camera)?;
     }
     let ao = renderer.read_ao()?;
     crate::args::warn_stack_overflows(&renderer)?;

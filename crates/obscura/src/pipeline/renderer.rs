@@ -2,8 +2,8 @@
 
 use super::{AmbientOcclusion, FrameTextures};
 use crate::bvh::{gpu::GpuBvh, BvhCache};
-use crate::error::Error;
-use crate::gpu::{read_texture_f32, read_texture_rgba8, Gpu, PassProfiler};
+use crate::error::{Error, SettingsError};
+use crate::gpu::{read_texture_f32, read_texture_rgba8, FrameTimings, Gpu, PassProfiler};
 use crate::raster::GBufferImage;
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
 use crate::scene::{Camera, Scene};
@@ -161,6 +161,37 @@ impl Renderer {
             ao: None,
             view: None,
         })
+    }
+
+    /// Renders one frame of a frame loop (`render --frames`, `path`, `bench`'s warm-up, the
+    /// viewer, Python's `render(frames=)`). Under a time budget (`hemisphere.time_budget`) the
+    /// frame is timed with GPU timestamps and the next frame's ray budget follows its time
+    /// ([`crate::TimeBudget`]); its timings are returned then, else `None`. A time budget on an
+    /// adapter without timestamp queries is an error naming the field and the fix.
+    pub fn render_frame(&mut self, camera: &Camera) -> Result<Option<FrameTimings>, Error> {
+        let settings = &self.settings;
+        if !(settings.hemisphere.time_budget > 0.0 && settings.ray_budget_active()) {
+            self.render(camera, None)?;
+            return Ok(None);
+        }
+        let gpu = self.gpu.clone();
+        let mut profiler = PassProfiler::new(&gpu, 1).map_err(|e| {
+            Error::Settings(SettingsError::Unsupported {
+                field: "hemisphere.time_budget",
+                value: settings.hemisphere.time_budget.to_string(),
+                adapter: gpu.summary.name.clone(),
+                reason: format!(
+                    "it follows the GPU's timestamps ({e}): use hemisphere.ray_budget (rays a \
+                     frame, --ray-budget) instead"
+                ),
+            })
+        })?;
+        self.render(camera, Some(&mut profiler))?;
+        let timings = profiler.read(&gpu)?.pop().unwrap_or_default();
+        if let Some(ao) = &self.ao {
+            ao.follow_time_budget(&timings)?;
+        }
+        Ok(Some(timings))
     }
 
     /// Record and submit one frame seen from `camera`.

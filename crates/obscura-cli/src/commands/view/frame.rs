@@ -228,7 +228,7 @@ impl Frame {
                     .map_err(anyhow::Error::from)
                     .and_then(|()| Ok(Some(profiler.read(&self.gpu)?.pop().unwrap_or_default())))
             } else {
-                crate::args::render_frame(&self.gpu, renderer, camera)
+                renderer.render_frame(camera).map_err(anyhow::Error::from)
             };
             match rendered {
                 Ok(frame_timings) => {
