@@ -13,7 +13,7 @@ use obscura::bvh::Bvh;
 use obscura::reference::ground_truth::{
     render_reference_counted, ReferenceModel, ReferenceSettings,
 };
-use obscura::reference::{as_compared, cpu_tracer_by_default, gpu::render_reference_gpu};
+use obscura::reference::{as_compared, cache, cpu_tracer_by_default, gpu::render_reference_gpu};
 use obscura::report::{build_report, ReportInput, TechniqueImage};
 use obscura::scene::Scene as LibScene;
 use obscura::{FrameView, Gpu, Renderer, Technique};
@@ -72,18 +72,35 @@ fn reference_options(
     Ok((ReferenceOptions { settings, cpu }, vao))
 }
 
-/// Traces the reference of `view` (on `gpu` unless `cpu`).
+/// Traces the reference of `view` (on `gpu`, else on the CPU). With `cache`, reads it from the
+/// CLI's reference cache ([`obscura::reference::cache`]: the same key, so either side reuses the
+/// other's images) when there, and stores it there after tracing. `bvh` is built on demand, so
+/// a cached image costs no BVH build.
 fn trace(
     gpu: Option<&Gpu>,
     scene: &LibScene,
-    bvh: &Bvh,
+    bvh: &dyn Fn() -> std::sync::Arc<Bvh>,
     view: FrameView,
     settings: &ReferenceSettings,
+    cache: bool,
 ) -> Result<Vec<f32>, obscura::Error> {
-    match gpu {
-        Some(gpu) => Ok(render_reference_gpu(gpu, scene, bvh, view, settings, &|_, _| {})?.0),
-        None => Ok(render_reference_counted(scene, bvh, view, settings, &|_| {}).0),
+    let dir = cache::cache_dir();
+    let key = cache::key(scene, &view, settings);
+    if cache {
+        if let Some(image) = cache::load(&dir, &key, (view.width * view.height) as usize) {
+            return Ok(image);
+        }
     }
+    let bvh = bvh();
+    let image = match gpu {
+        Some(gpu) => render_reference_gpu(gpu, scene, &bvh, view, settings, &|_, _| {})?.0,
+        None => render_reference_counted(scene, &bvh, view, settings, &|_| {}).0,
+    };
+    if cache {
+        // A cache that cannot be written costs the next call a trace, nothing else.
+        let _ = cache::store(&dir, &key, &image);
+    }
+    Ok(image)
 }
 
 /// The GPU to trace on: none with ``tracer="cpu"``, none on a software adapter with
@@ -101,11 +118,13 @@ fn tracer_gpu(tracer: &str, gpu: &Gpu) -> Option<Gpu> {
 /// (cosine-weighted rays within R: ``spp`` rays per pixel, default 1024, ``falloff``,
 /// ``seed``); the vao models read the vao row's settings (``settings``, ``preset``, ``units``).
 /// ``tracer``: ``"auto"`` (the CPU on a software adapter, as the CLI), ``"cpu"`` or ``"gpu"``.
-/// Returns float32 (height, width), C-contiguous. Not cached (the CLI caches).
+/// ``cache=True``: reuse and fill the CLI's reference cache (``OBSCURA_CACHE_DIR``, else
+/// ``~/.cache/obscura/references``), keyed by the scene's contents, the view and the settings.
+/// Returns float32 (height, width), C-contiguous.
 #[pyfunction]
 #[pyo3(signature = (scene, model="vao", *, camera=None, width=640, height=360, guard_band=None,
     spp=None, falloff=false, seed=None, settings=None, preset=None, units=None, tracer="auto",
-    device=None))]
+    cache=false, device=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn reference<'py>(
     py: Python<'py>,
@@ -122,6 +141,7 @@ pub fn reference<'py>(
     preset: Option<&str>,
     units: Option<&str>,
     tracer: &str,
+    cache: bool,
     device: Option<&Bound<'py, Device>>,
 ) -> PyResult<Bound<'py, PyArray2<f32>>> {
     let size = Size::new(width, height, guard_band)?;
@@ -146,8 +166,8 @@ pub fn reference<'py>(
     let image = py
         .detach(|| {
             let view = size.frame_view(camera, &lib_scene);
-            let bvh = Bvh::build(&lib_scene);
-            trace(gpu.as_ref(), &lib_scene, &bvh, view, &options.settings)
+            let bvh = || std::sync::Arc::new(Bvh::build(&lib_scene));
+            trace(gpu.as_ref(), &lib_scene, &bvh, view, &options.settings, cache)
         })
         .map_err(from_lib)?;
     arrays::image(py, image, size.width, size.height)
@@ -157,11 +177,11 @@ pub fn reference<'py>(
 /// --timing-frames 0`` does, and returns its report (``report.json``'s content) as a dict:
 /// ``results`` holds each technique's ``mse``, ``mae``, ``psnr``, ``ssim``, ``halo_bright``,
 /// ``halo_dark`` and the settings it ran with. Arguments as ``render`` and ``reference``
-/// (``reference_model`` is ``reference``'s ``model``).
+/// (``reference_model`` is ``reference``'s ``model``; ``cache`` as ``reference``'s).
 #[pyfunction]
 #[pyo3(signature = (scene, techniques, *, reference_model="vao", camera=None, width=640,
     height=360, guard_band=None, settings=None, preset=None, units=None, spp=None, falloff=false,
-    seed=None, tracer="auto", device=None))]
+    seed=None, tracer="auto", cache=false, device=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn compare_json(
     py: Python<'_>,
@@ -179,6 +199,7 @@ pub fn compare_json(
     falloff: bool,
     seed: Option<u64>,
     tracer: &str,
+    cache: bool,
     device: Option<&Bound<'_, Device>>,
 ) -> PyResult<String> {
     let size = Size::new(width, height, guard_band)?;
@@ -238,9 +259,10 @@ pub fn compare_json(
         let traced = trace(
             trace_gpu.as_ref(),
             &lib_scene,
-            &bvh.get(&lib_scene),
+            &|| bvh.get(&lib_scene),
             view,
             &options.settings,
+            cache,
         )?;
         let reference = as_compared(traced, options.settings.model, &vao.blur, &gbuffer, &view);
         let input = ReportInput {

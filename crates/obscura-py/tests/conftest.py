@@ -16,7 +16,7 @@ CLI = ROOT / "target" / "release" / "obscura"
 def cli():
     """Runs `obscura ARGS...`; returns the completed process (never raises on failure)."""
     if not CLI.exists():
-        pytest.fail(f"{CLI} is missing: build it with cargo build --release -p obscura-cli")
+        pytest.fail(f"{CLI} is missing: build it with cargo build --release --workspace")
 
     def run(*args):
         return subprocess.run(

@@ -95,6 +95,27 @@ def test_reference_equals_the_cli(cli, stairs, tmp_path):
     assert same_bits(ref, obscura.read_ao(out))
 
 
+def test_reference_cache_is_the_clis(cli, stairs, tmp_path, monkeypatch):
+    # cache=True fills the CLI's reference cache and the CLI reuses it (same key, same bits);
+    # without it nothing is written there.
+    monkeypatch.setenv("OBSCURA_CACHE_DIR", str(tmp_path / "cache"))
+    args = dict(width=48, height=32, spp=8)
+    obscura.reference(stairs, "hemisphere", **args)
+    assert not (tmp_path / "cache").exists()
+    ref = obscura.reference(stairs, "hemisphere", cache=True, **args)
+    assert len(list((tmp_path / "cache").iterdir())) >= 1
+    out = tmp_path / "ref.exr"
+    run = cli(
+        "reference", "--scene", "stairs", "--size", "48x32", "--model", "hemisphere",
+        "--spp", "8", "--out", out,
+    )
+    assert run.returncode == 0, run.stderr
+    assert "reused from the cache" in run.stderr, run.stderr
+    assert same_bits(ref, obscura.read_ao(out))
+    # And the Python side reads what is there: the same image again.
+    assert same_bits(obscura.reference(stairs, "hemisphere", cache=True, **args), ref)
+
+
 def test_compare_returns_the_cli_report_metrics(cli, stairs, tmp_path):
     run = cli(
         "compare", "--scene", "stairs", "--size", "64x40", "--techniques", "vao,gtao",

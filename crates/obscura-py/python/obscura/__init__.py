@@ -89,7 +89,7 @@ def compare(scene: Scene, techniques: Sequence[str], **kwargs: Any) -> Dict[str,
     ``halo_dark`` (a non-finite metric is None) and the settings it ran with. Keyword arguments:
     ``reference_model`` (``"vao"``, ``"vao-mean"``, ``"hemisphere"``), ``camera``, ``width``,
     ``height``, ``guard_band``, ``settings``, ``preset``, ``units``, ``spp``, ``falloff``,
-    ``seed``, ``tracer``, ``device``, as for ``render`` and ``reference``.
+    ``seed``, ``tracer``, ``cache``, ``device``, as for ``render`` and ``reference``.
     """
     if isinstance(techniques, str):
         techniques = [techniques]

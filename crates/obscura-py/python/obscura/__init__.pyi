@@ -156,6 +156,7 @@ def reference(
     preset: Optional[str] = None,
     units: Optional[str] = None,
     tracer: str = "auto",
+    cache: bool = False,
     device: Optional[Device] = None,
 ) -> Image: ...
 def compare(
@@ -174,6 +175,7 @@ def compare(
     falloff: bool = False,
     seed: Optional[int] = None,
     tracer: str = "auto",
+    cache: bool = False,
     device: Optional[Device] = None,
 ) -> Dict[str, Any]: ...
 def engine_ao(
