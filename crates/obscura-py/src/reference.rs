@@ -167,7 +167,14 @@ pub fn reference<'py>(
         .detach(|| {
             let view = size.frame_view(camera, &lib_scene);
             let bvh = || std::sync::Arc::new(Bvh::build(&lib_scene));
-            trace(gpu.as_ref(), &lib_scene, &bvh, view, &options.settings, cache)
+            trace(
+                gpu.as_ref(),
+                &lib_scene,
+                &bvh,
+                view,
+                &options.settings,
+                cache,
+            )
         })
         .map_err(from_lib)?;
     arrays::image(py, image, size.width, size.height)
