@@ -17,11 +17,13 @@ use crate::output::{srgb_to_linear, write_atomically};
 use crate::pipeline::renderer::Renderer;
 use crate::reference::gpu::GpuReferenceTracer;
 use crate::reference::ground_truth::{render_reference, ReferenceSettings};
-use crate::scene::Camera;
+use crate::scene::{Camera, Scene};
 use crate::settings::{AoSettings, Technique};
 use crate::view::FrameView;
 use serde_json::json;
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The shard's manifest: one JSON line per view.
@@ -199,6 +201,42 @@ pub fn run_shard(
     ))
 }
 
+thread_local! {
+    /// The scene this thread loaded for its last shard, with its BVH ([`last_scene`]).
+    static LAST_SCENE: RefCell<Option<(String, Arc<Scene>, BvhCache)>> = const { RefCell::new(None) };
+}
+
+/// Scene `index` of `spec` loaded, and a BVH cache for it: the ones this thread's previous
+/// shard used when that shard was of the same scene (same source, options and, for a file, the
+/// same size and modification time), else loaded now, replacing them. A scene's shards are
+/// consecutive, and every executor runs a worker's shards on one thread (the local executor's
+/// per-GPU threads, a Ray worker's task thread), so the scene is read and its BVH built about
+/// once per worker instead of once per shard: with 32 views a shard on an H100 the load took
+/// more time than the rays. A thread keeps one scene, until another replaces it.
+fn last_scene(spec: &Spec, index: usize) -> Result<(Arc<Scene>, BvhCache), DatasetError> {
+    let s = &spec.scenes[index];
+    let stamp = std::fs::metadata(&s.source)
+        .ok()
+        .map(|m| (m.len(), m.modified().ok()));
+    let key = format!(
+        "{}|{}|{:?}|{:?}|{stamp:?}",
+        s.source, s.allow_outside_files, s.sidedness, s.normals
+    );
+    if let Some((scene, bvh)) = LAST_SCENE.with_borrow(|last| {
+        last.as_ref()
+            .filter(|(k, _, _)| *k == key)
+            .map(|(_, scene, bvh)| (scene.clone(), bvh.clone()))
+    }) {
+        return Ok((scene, bvh));
+    }
+    // Dropped first: two large scenes are never held at once.
+    LAST_SCENE.set(None);
+    let scene = Arc::new(plan::load_scene(spec, index)?);
+    let bvh = BvhCache::new();
+    LAST_SCENE.set(Some((key, scene.clone(), bvh.clone())));
+    Ok((scene, bvh))
+}
+
 /// Renders and writes every view of `shard`, then its timings and manifest.
 fn write_views(
     gpu: &Gpu,
@@ -209,10 +247,10 @@ fn write_views(
 ) -> Result<(), DatasetError> {
     let load_start = Instant::now();
     let s = &spec.scenes[shard.scene];
-    let scene = plan::load_scene(spec, shard.scene)?;
-    let bvh_cache = BvhCache::new();
-    let bvh = bvh_cache.get(&scene);
-    let cameras = plan::cameras(spec, shard.scene, &scene, &bvh, shard.view_indices())?;
+    let (scene, bvh_cache) = last_scene(spec, shard.scene)?;
+    let scene = &*scene;
+    let bvh = bvh_cache.get(scene);
+    let cameras = plan::cameras(spec, shard.scene, scene, &bvh, shard.view_indices())?;
     let (w, h, guard) = (spec.width, spec.height, spec.guard_band());
     // One renderer per stored row; without rows, one of VAO for the G-buffer channels.
     let mut row_settings = s.rows.clone();
@@ -232,7 +270,7 @@ fn write_views(
     }
     let mut renderers = row_settings
         .iter()
-        .map(|settings| Renderer::with_bvh_cache(gpu, &scene, settings, w, h, guard, &bvh_cache))
+        .map(|settings| Renderer::with_bvh_cache(gpu, scene, settings, w, h, guard, &bvh_cache))
         .collect::<Result<Vec<_>, _>>()?;
     let on_cpu = match spec.tracer {
         Tracer::Auto => gpu.summary.device_type == "Cpu",
@@ -243,12 +281,12 @@ fn write_views(
     // The scene and BVH go to the GPU and the tracer's shader is compiled once per shard, not
     // once per view.
     let gpu_tracer = if record::stores_truth(spec) && !on_cpu {
-        Some(GpuReferenceTracer::new(gpu, &scene, &bvh, s.truth.vao)?)
+        Some(GpuReferenceTracer::new(gpu, scene, &bvh, s.truth.vao)?)
     } else {
         None
     };
     let load_ms = load_start.elapsed().as_secs_f64() * 1e3;
-    let near = crate::view::near_plane(&scene);
+    let near = crate::view::near_plane(scene);
     let hash = spec.hash();
     let rows_record: serde_json::Map<String, serde_json::Value> = s
         .rows
@@ -334,7 +372,7 @@ fn write_views(
                     let frame = FrameView::new(*camera, w, h, guard, near);
                     let image = match &gpu_tracer {
                         Some(tracer) => tracer.trace(frame, &truth_settings, &|_, _| {})?.0,
-                        None => render_reference(&scene, &bvh, frame, &truth_settings, &|_| {}),
+                        None => render_reference(scene, &bvh, frame, &truth_settings, &|_| {}),
                     };
                     lap(&mut clock, "truth", &mut ms);
                     image
@@ -455,4 +493,36 @@ fn visible<T: Copy>(full: &[T], fw: u32, g: u32, w: u32, h: u32) -> Vec<T> {
             full[row..row + w as usize].iter().copied()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(normals: &str) -> Spec {
+        Spec::from_toml_str(&format!(
+            "size = [32, 24]\nstore = [\"depth\"]\n\n[[scenes]]\nname = \"stairs\"\nviews = 2\nnormals = \"{normals}\"\n"
+        ))
+        .unwrap()
+    }
+
+    #[test]
+    fn a_threads_next_shard_of_the_same_scene_reuses_it_and_another_scene_replaces_it() {
+        let (a, bvh) = last_scene(&spec("face"), 0).unwrap();
+        let (b, _) = last_scene(&spec("face"), 0).unwrap();
+        assert!(Arc::ptr_eq(&a, &b), "the same scene was loaded again");
+        // The BVH cache comes along: built once for both shards.
+        bvh.get(&a);
+        let (_, bvh_again) = last_scene(&spec("face"), 0).unwrap();
+        bvh_again.get(&a);
+        assert_eq!(bvh_again.builds(), 1);
+        // Other load options: another scene, loaded anew.
+        let (c, _) = last_scene(&spec("shading"), 0).unwrap();
+        assert!(!Arc::ptr_eq(&a, &c));
+        // Another thread loads its own.
+        let d = std::thread::spawn(|| last_scene(&spec("shading"), 0).unwrap().0)
+            .join()
+            .unwrap();
+        assert!(!Arc::ptr_eq(&c, &d));
+    }
 }
