@@ -3,8 +3,15 @@
 # and the Ray executor's overhead over the local one (docs/DATASETS.md, BENCHMARKS.md "Datasets").
 # Run from the repository root on the device machine with .devbin/ and .gl/ carried
 # (scripts/device-bench.sh says how), plus for PART R (Python and Ray):
-#   .devbin/py/_native.abi3.so.xz  the Python module built here (scripts/python-tests.sh builds it)
-#   .devbin/py/site.tar.xz         Ray and what it needs beyond the device's Python packages
+#   .devbin/py/_native.abi3.so.xz  the Python module built here (scripts/python-tests.sh builds
+#                                  it: target/release/libobscura_py.so, stripped, xz)
+#   .devbin/py/site.tar.xz         Ray for the device's Python (3.12) and what it needs beyond the
+#                                  device's packages: `pip download --no-deps --only-binary=:all:
+#                                  --python-version 3.12 --platform manylinux2014_x86_64` of ray,
+#                                  jsonschema, jsonschema-specifications, referencing and rpds-py,
+#                                  unzipped into one folder, ray/jars, ray/rllib, ray/llm and
+#                                  ray/dashboard/client removed and the binaries stripped (so it
+#                                  fits the 64 MiB a call carries: about 25 MiB as tar.xz)
 # Parts (PART, default "ABR"):
 #   A  raw `reference --model hemisphere` at SIZE and SPP, RUNS times per scene (its own printed
 #      trace time: scene and BVH upload, pipeline and rays; the BVH build is not in it);

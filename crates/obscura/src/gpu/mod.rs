@@ -65,7 +65,8 @@ pub enum GpuError {
     NoSuchOrdinal {
         /// The ordinal asked for.
         ordinal: usize,
-        /// The GPUs there are, in PCI bus order, as `name (bus id)`.
+        /// The GPUs there are, in PCI bus order, as `name (bus id)` (the name alone where the
+        /// driver reports no bus id).
         available: Vec<String>,
     },
     /// A backend name (`--backend`, `OBSCURA_BACKEND`) that is not vulkan, metal, dx12 or gl.
@@ -321,7 +322,10 @@ impl Gpu {
                         .iter()
                         .map(|a| {
                             let info = a.get_info();
-                            format!("{} ({})", info.name, info.device_pci_bus_id)
+                            match info.device_pci_bus_id.as_str() {
+                                "" => info.name,
+                                bus => format!("{} ({bus})", info.name),
+                            }
                         })
                         .collect();
                     return Err(GpuError::NoSuchOrdinal { ordinal, available });
