@@ -1,18 +1,16 @@
 #!/usr/bin/env bash
 # The Python package's tests (crates/obscura-py, docs/PYTHON.md): makes the project's own virtual
-# environment .venv (git-ignored) if missing, installs the pinned test tools
-# (crates/obscura-py/requirements-dev.txt), builds the package's native module with cargo and
-# installs the package into the venv in development mode, then runs pytest on
-# crates/obscura-py/tests. The tests run the CLI binary of the same build
-# (target/release/obscura) to hold Python's results to the CLI's, bit for bit.
+# environment .venv (git-ignored) if missing, installs the pinned test tools and maturin
+# (crates/obscura-py/requirements-dev.txt), builds the package's abi3 wheel with maturin into
+# target/wheels, installs that wheel into the venv, then runs pytest on crates/obscura-py/tests.
+# The tests run the CLI binary of the same build (target/release/obscura) to hold Python's results
+# to the CLI's, bit for bit.
 #
-# Why cargo and not maturin here: maturin (how wheels are made, docs/PYTHON.md) resolves the
-# features of crates/obscura-py alone, and those differ from the whole workspace's (the CLI's
-# eframe turns on more of wgpu's), so it compiled wgpu and the library a second time after the
-# test build: minutes of CI's two cores. `cargo build --workspace` resolves them as `cargo test
-# --workspace` does, so after the README's test command it compiles only the module's own crate.
-# What maturin develop would add is the same thing: the module copied into the package's folder
-# (python/obscura/_native.abi3.so) and that folder put on the venv's path (a .pth file).
+# After the README's test command (cargo test --workspace) this compiles little: the CLI is
+# already built, and maturin's `-p obscura-py` build resolves every shared dependency with the
+# workspace's features (crates/obscura-py/Cargo.toml pins the ones only other members turned on),
+# so it reuses those artifacts and compiles only pyo3, numpy and the module's own crate (its
+# environment differs from cargo's: pyo3's build script sees maturin's interpreter).
 #
 # Needs python3 with its venv module (Debian: python3-venv, which `ensure-vulkan.sh --for-tests`
 # installs when missing) and the package index (PyPI) the first time. PYTHON picks another
@@ -35,14 +33,23 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
   -r crates/obscura-py/requirements-dev.txt
-# The CLI the tests compare with and the module, with the workspace's features (above).
-cargo build --release --workspace --bins --lib --quiet
-package=crates/obscura-py/python
-# Copied to a temporary name and renamed: a Python process that has the old module loaded keeps
-# its mapping.
-cp target/release/libobscura_py.so "$package/obscura/.native.tmp"
-mv -f "$package/obscura/.native.tmp" "$package/obscura/_native.abi3.so"
-"$venv/bin/python" -m pip uninstall --quiet --yes obscura >/dev/null 2>&1 || true
+# The CLI the tests compare with, with the workspace's features (reused from the test build).
+cargo build --release --workspace --bins --quiet
+package=crates/obscura-py
+# What an older version of this script left: the module copied into the source folder and that
+# folder put on the venv's path. Removed, so that only the installed wheel is imported and the
+# module is not packed into the wheel a second time.
+rm -f "$package/python/obscura/"_native*.so "$package/python/obscura/.native.tmp"
 site=$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
-echo "$PWD/$package" >"$site/obscura.pth"
+rm -f "$site/obscura.pth"
+wheels=target/wheels
+rm -f "$wheels"/obscura-*.whl
+# --strip: the release profile keeps debug information (for profilers), which would make the
+# wheel about 90 MB instead of about 20.
+"$venv/bin/maturin" build --release --strip --quiet --manifest-path "$package/Cargo.toml" \
+  --interpreter "$venv/bin/python" --out "$wheels"
+wheel=$(ls "$wheels"/obscura-*.whl)
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-deps \
+  --force-reinstall "$wheel"
+echo "python-tests: installed $wheel" >&2
 "$venv/bin/python" -m pytest -q crates/obscura-py/tests "$@"
