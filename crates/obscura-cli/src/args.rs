@@ -182,9 +182,9 @@ impl SceneArgs {
                 camera.up = self.up.unwrap_or(camera.up);
                 camera
             }
-            _ => match scene.cameras.first() {
-                Some(named) => named.camera,
-                None => auto_camera(scene, aspect),
+            _ => match obscura::bvh::framing::default_camera(scene, aspect) {
+                (camera, Some(placement)) => say_auto_camera(scene, &camera, placement),
+                (camera, None) => camera,
             },
         };
         if let Some(fov) = self.fov {
@@ -198,9 +198,11 @@ impl SceneArgs {
 /// The camera of a scene that names none ([`obscura::bvh::framing::auto_camera`]: inside a room,
 /// otherwise framing the bounds), said on stderr in the file's coordinates so that it can be kept
 /// or changed with `--eye`/`--target`.
-fn auto_camera(scene: &Scene, aspect: f32) -> Camera {
-    let bvh = obscura::bvh::Bvh::build(scene);
-    let (camera, placement) = obscura::bvh::framing::auto_camera(scene, &bvh, aspect);
+fn say_auto_camera(
+    scene: &Scene,
+    camera: &Camera,
+    placement: obscura::bvh::framing::Placement,
+) -> Camera {
     // Shortest round-trip digits, so that passing them back gives this very camera.
     let file = |p: glam::Vec3| {
         if scene.origin == DVec3::ZERO {
@@ -218,7 +220,7 @@ fn auto_camera(scene: &Scene, aspect: f32) -> Camera {
         file(camera.target),
         camera.fov_y_deg
     );
-    camera
+    *camera
 }
 
 /// Technique parameters. Precedence: defaults < `--preset` < `--settings FILE` < the other flags

@@ -123,6 +123,17 @@ impl AoSettings {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
+        self.with_text(&text, format, path)
+    }
+
+    /// [`AoSettings::with_file`] of a settings file's text already in memory (a web page's
+    /// settings), `path` naming it in messages.
+    pub fn with_text(
+        &self,
+        text: &str,
+        format: SettingsFormat,
+        path: &Path,
+    ) -> Result<AoSettings, SettingsError> {
         let parse_error = |f: ParseFailure| SettingsError::Parse {
             path: path.to_path_buf(),
             line: f.line,
