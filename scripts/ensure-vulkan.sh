@@ -3,26 +3,30 @@
 # install Mesa's software Vulkan driver (lavapipe: slow but real, enough for the demo and tests).
 # With --for-tests, also what the viewer's test (crates/obscura-cli/tests/it/view.rs) needs to
 # open a window without a screen: Xvfb (a virtual X display) and the X libraries winit loads at
-# run time. The demo needs neither.
+# run time. The demo needs neither. With --for-web, what the browser tests (scripts/web-tests.sh)
+# need: Debian's Chromium (its headless mode runs WebGPU on the CPU, SwiftShader) and Node.js
+# with npm (the test driver); no browser is ever downloaded.
 #
 # Only what is missing is installed, and nothing at all (no root needed) when everything is
 # there. Installing needs root or sudo; without them the script says what to install and how.
 # A busy package manager (unattended upgrades on a fresh machine) is waited for, up to
 # ENSURE_VULKAN_LOCK_WAIT seconds (default 600).
 #
-# Usage: ensure-vulkan.sh [--for-tests] [--dry-run]
+# Usage: ensure-vulkan.sh [--for-tests] [--for-web] [--dry-run]
 #   --dry-run  print the install command instead of running it (tests/it/ensure_vulkan.rs).
 # ENSURE_VULKAN_ICD_DIRS (space-separated folders) replaces the folders searched for a Vulkan
 # driver manifest, for that test.
 set -euo pipefail
 for_tests=no
+for_web=no
 dry_run=no
 for arg in "$@"; do
   case "$arg" in
     --for-tests) for_tests=yes ;;
+    --for-web) for_web=yes ;;
     --dry-run) dry_run=yes ;;
     *)
-      echo "ensure-vulkan: unknown argument '$arg': use --for-tests (also what the tests need) and/or --dry-run" >&2
+      echo "ensure-vulkan: unknown argument '$arg': use --for-tests (also what the tests need), --for-web (also what the browser tests need) and/or --dry-run" >&2
       exit 2
       ;;
   esac
@@ -51,6 +55,15 @@ if [ "$for_tests" = yes ]; then
   for pair in libX11.so.6:libx11-6 libX11-xcb.so.1:libx11-xcb1 libxkbcommon-x11.so.0:libxkbcommon-x11-0 \
     libXcursor.so.1:libxcursor1 libXrandr.so.2:libxrandr2 libXi.so.6:libxi6; do
     if ! grep -qF "${pair%%:*}" <<<"$libs"; then need+=("${pair#*:}"); fi
+  done
+fi
+if [ "$for_web" = yes ]; then
+  # Program, Debian package.
+  for pair in chromium:chromium node:nodejs npm:npm; do
+    if ! command -v "${pair%%:*}" >/dev/null 2>&1; then
+      echo "ensure-vulkan: no ${pair%%:*} found; ${pair#*:} is needed (the browser tests)" >&2
+      need+=("${pair#*:}")
+    fi
   done
 fi
 if [ "${#need[@]}" -eq 0 ]; then exit 0; fi
