@@ -242,7 +242,7 @@ async function main() {
   for (const r of state.rows) {
     const tr = body.insertRow();
     tr.insertCell().textContent = r.name;
-    tr.insertCell().textContent = r.hiddenDepth ? r.source : 'nothing (depth buffer only)';
+    tr.insertCell().textContent = r.hiddenDepth ? r.source : `nothing: ${r.source}, depth buffer only`;
     tr.insertCell().textContent = r.summary;
   }
   wire();
