@@ -173,6 +173,8 @@ try {
   await shown.waitForFunction(() => window.obscuraPage.state.frames[1] && !window.obscuraPage.state.busy, null, { timeout: 120_000 });
   check((await pageErrors(shown)).length === 0, `the split page showed errors: ${await pageErrors(shown)}`);
   await shown.screenshot({ path: path.join(args.out, 'page.png'), fullPage: true });
+  // The controls and the image only (docs/web-page.png is one of these).
+  await shown.screenshot({ path: path.join(args.out, 'page-top.png'), clip: { x: 0, y: 0, width: 1100, height: 600 } });
   step('screenshot');
 } finally {
   fs.writeFileSync(path.join(args.out, 'results.json'), JSON.stringify(results, null, 2));

@@ -72,6 +72,6 @@ impl Frame {
 
     /// The AO as the float EXR file `obscura render --out x.exr` writes.
     pub fn exr(&self) -> Result<Vec<u8>, JsError> {
-        crate::ao_to_exr(self.width, self.height, &self.ao)
+        crate::api::ao_to_exr(self.width, self.height, &self.ao)
     }
 }

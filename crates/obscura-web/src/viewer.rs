@@ -1,7 +1,7 @@
 //! The page's handle on the GPU and the loaded scene: makes renderers and renders frames.
 
+use crate::api::js_error;
 use crate::frame::Frame;
-use crate::js_error;
 use crate::request::RenderRequest;
 use obscura::bvh::BvhCache;
 use obscura::scene::{Camera, Scene};
