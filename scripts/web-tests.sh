@@ -11,8 +11,10 @@ cd "$(dirname "$0")/.."
 started=$SECONDS
 bash scripts/ensure-vulkan.sh --for-web
 bash scripts/build-web.sh target/web/site
-# The CLI the page is compared with (`cargo test` built it already: nothing to do then).
-cargo build -q --release -p obscura-cli
+# The CLI the page is compared with (`cargo test --workspace` built it already: nothing to do
+# then). `--workspace`, not `-p obscura-cli`: features resolve over the whole workspace as the test
+# command resolves them, so the test build is reused instead of compiled again.
+cargo build -q --release --workspace --bins
 # Installed again only when the lock file changed since the last install.
 if ! cmp -s web/tests/package-lock.json web/tests/node_modules/.installed-lock.json 2>/dev/null; then
   (cd web/tests && npm ci --no-audit --no-fund --loglevel=error &&
