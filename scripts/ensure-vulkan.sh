@@ -5,26 +5,30 @@
 # open a window without a screen: Xvfb (a virtual X display) and the X libraries winit loads at
 # run time; and Python's venv module, with which scripts/python-tests.sh makes the Python package's
 # virtual environment (Debian's python3 leaves it to the python3-venv package). The demo needs
-# none of these.
+# none of these. With --for-web, what the browser tests (scripts/web-tests.sh) need: Debian's
+# Chromium (its headless mode runs WebGPU on the CPU, SwiftShader) and Node.js with npm (the test
+# driver); no browser is ever downloaded.
 #
 # Only what is missing is installed, and nothing at all (no root needed) when everything is
 # there. Installing needs root or sudo; without them the script says what to install and how.
 # A busy package manager (unattended upgrades on a fresh machine) is waited for, up to
 # ENSURE_VULKAN_LOCK_WAIT seconds (default 600).
 #
-# Usage: ensure-vulkan.sh [--for-tests] [--dry-run]
+# Usage: ensure-vulkan.sh [--for-tests] [--for-web] [--dry-run]
 #   --dry-run  print the install command instead of running it (tests/it/ensure_vulkan.rs).
 # ENSURE_VULKAN_ICD_DIRS (space-separated folders) replaces the folders searched for a Vulkan
 # driver manifest, for that test.
 set -euo pipefail
 for_tests=no
+for_web=no
 dry_run=no
 for arg in "$@"; do
   case "$arg" in
     --for-tests) for_tests=yes ;;
+    --for-web) for_web=yes ;;
     --dry-run) dry_run=yes ;;
     *)
-      echo "ensure-vulkan: unknown argument '$arg': use --for-tests (also what the tests need) and/or --dry-run" >&2
+      echo "ensure-vulkan: unknown argument '$arg': use --for-tests (also what the tests need), --for-web (also what the browser tests need) and/or --dry-run" >&2
       exit 2
       ;;
   esac
@@ -63,6 +67,15 @@ if [ "$for_tests" = yes ]; then
     echo "ensure-vulkan: python3 cannot make virtual environments; python3-venv is needed (the Python package's tests)" >&2
     need+=(python3-venv)
   fi
+fi
+if [ "$for_web" = yes ]; then
+  # Program, Debian package.
+  for pair in chromium:chromium node:nodejs npm:npm; do
+    if ! command -v "${pair%%:*}" >/dev/null 2>&1; then
+      echo "ensure-vulkan: no ${pair%%:*} found; ${pair#*:} is needed (the browser tests)" >&2
+      need+=("${pair#*:}")
+    fi
+  done
 fi
 if [ "${#need[@]}" -eq 0 ]; then exit 0; fi
 

@@ -268,17 +268,35 @@ fn write_ao_image(
                 image::save_buffer(tmp, &bytes, width, height, color).map_err(|e| e.to_string())
             })
         }
-        ImageFormat::Exr => write_atomically(path, |tmp| {
-            use exr::prelude::{Image, SpecificChannels, WritableImage};
-            let channels = SpecificChannels::build()
-                .with_channel("Y")
-                .with_pixel_fn(|p| (ao[p.y() * width as usize + p.x()],));
-            Image::from_channels((width as usize, height as usize), channels)
-                .write()
-                .to_file(tmp)
-                .map_err(|e| e.to_string())
-        }),
+        ImageFormat::Exr => {
+            let bytes = ao_exr_bytes(width, height, ao)?;
+            write_atomically(path, |tmp| {
+                std::fs::write(tmp, &bytes).map_err(|e| e.to_string())
+            })
+        }
     }
+}
+
+/// The float EXR file [`write_ao`] writes (one channel `Y`), in memory: what a web page offers
+/// for download and hands its tests, to compare with the CLI's file (`obscura diff`).
+pub fn ao_exr_bytes(width: u32, height: u32, ao: &[f32]) -> Result<Vec<u8>, Error> {
+    use exr::prelude::{Image, SpecificChannels, WritableImage};
+    let pixels = width as usize * height as usize;
+    if ao.len() != pixels {
+        return Err(Error::Input(format!(
+            "an AO image of {width}x{height} has {pixels} values, not {}",
+            ao.len()
+        )));
+    }
+    let channels = SpecificChannels::build()
+        .with_channel("Y")
+        .with_pixel_fn(|p| (ao[p.y() * width as usize + p.x()],));
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    Image::from_channels((width as usize, height as usize), channels)
+        .write()
+        .to_buffered(&mut bytes)
+        .map_err(|e| Error::Input(format!("cannot encode the AO as EXR: {e}")))?;
+    Ok(bytes.into_inner())
 }
 
 /// An sRGB-encoded value in [0, 1] as linear light.

@@ -725,6 +725,14 @@ impl Source {
         }
     }
 
+    /// Whether it gives the estimator geometry the depth buffer hides: a second layer, the
+    /// scene's triangles (rays, stochastic depth maps). The first layer, screen-space rays and
+    /// the depth pyramid only re-read the depth buffer.
+    pub fn sees_hidden_geometry(self) -> bool {
+        let needs = self.needs();
+        needs.second_layer || needs.triangles || needs.stochastic_depth_map
+    }
+
     /// Whether it is a stochastic depth map ([`SourceCaps::maps_hidden_depth`]).
     pub fn maps_hidden_depth(self) -> bool {
         self.caps().maps_hidden_depth

@@ -133,6 +133,25 @@ fn without_root_or_sudo_one_message_says_what_to_install() {
 }
 
 #[test]
+fn the_browser_and_node_only_for_the_web_tests() {
+    let t = tools(0, &["apt-get"]);
+    let o = run(&["--for-web", "--dry-run"], t.path(), true);
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    assert!(out.contains("install -y -qq chromium nodejs npm"), "{out}");
+    assert!(!out.contains("mesa-vulkan-drivers"), "{out}");
+    // Present: nothing to install, no root needed.
+    let t = tools(1000, &["chromium", "node", "npm"]);
+    let o = run(&["--for-web", "--dry-run"], t.path(), true);
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(text(&o), "");
+    // The other modes never ask for a browser.
+    let t = tools(0, &["apt-get"]);
+    let out = text(&run(&["--dry-run"], t.path(), false));
+    assert!(!out.contains("chromium"), "{out}");
+}
+
+#[test]
 fn an_unknown_argument_is_refused() {
     let t = tools(0, &[]);
     let o = run(&["--for-test"], t.path(), true);
@@ -155,6 +174,8 @@ fn the_readme_and_ci_run_the_same_test_command() {
         line.starts_with("bash scripts/ensure-vulkan.sh --for-tests && "),
         "{line}"
     );
+    // The browser tests run after the Rust ones (issue 60).
+    assert!(line.contains(" && bash scripts/web-tests.sh"), "{line}");
     assert_eq!(test_line(&ci), Some(line));
     // The demo's line installs no Xvfb.
     let demo = readme.lines().find(|l| l.contains("-- demo")).unwrap();

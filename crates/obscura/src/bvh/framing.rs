@@ -53,6 +53,19 @@ impl Placement {
     }
 }
 
+/// The camera a view of `scene` starts from when none is asked for (the CLI's without `--camera`
+/// or `--eye`, the web page's): the scene's first named camera, else [`auto_camera`] (building
+/// the BVH it traces), whose placement is returned to be reported.
+pub fn default_camera(scene: &Scene, aspect: f32) -> (Camera, Option<Placement>) {
+    match scene.cameras.first() {
+        Some(named) => (named.camera, None),
+        None => {
+            let (camera, placement) = auto_camera(scene, &Bvh::build(scene), aspect);
+            (camera, Some(placement))
+        }
+    }
+}
+
 /// An automatic camera for `scene` (traced with `bvh`, built from it) and an image of aspect
 /// ratio `aspect`: inside when the scene is a room around its centre, otherwise the outside
 /// framing. Deterministic.

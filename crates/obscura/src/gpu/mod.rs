@@ -7,8 +7,8 @@ pub mod zero_fill;
 
 pub use profiler::{FrameFragments, FrameTimings, PassProfiler};
 pub use readback::{
-    read_buffer, read_buffer_copy, read_texture_bytes, read_texture_f32, read_texture_layer_bytes,
-    read_texture_rgba8,
+    read_buffer, read_buffer_async, read_buffer_copy, read_texture_bytes, read_texture_bytes_async,
+    read_texture_f32, read_texture_f32_async, read_texture_layer_bytes, read_texture_rgba8,
 };
 
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -406,19 +406,33 @@ impl Gpu {
     }
 
     fn from_adapter(adapter: wgpu::Adapter) -> Result<Self, GpuError> {
+        let limits = adapter.limits();
+        pollster::block_on(Self::from_adapter_async(adapter, limits))
+    }
+
+    /// A device on `adapter` with the features obscura uses that it has and `limits` (the
+    /// adapter's own, as [`Gpu::new`] asks for, or fewer: a web page may ask for WebGPU's
+    /// defaults, `wgpu::Limits::default()`, to see what runs on every browser). Async because a
+    /// browser creates devices asynchronously (it cannot be waited for there); native callers
+    /// may block on it.
+    pub async fn from_adapter_async(
+        adapter: wgpu::Adapter,
+        limits: wgpu::Limits,
+    ) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let features = adapter.features() & WANTED_FEATURES;
-        let limits = adapter.limits();
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("obscura"),
-            required_features: features,
-            required_limits: limits.clone(),
-            ..Default::default()
-        }))
-        .map_err(|source| GpuError::Device {
-            adapter: info.name.clone(),
-            source,
-        })?;
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("obscura"),
+                required_features: features,
+                required_limits: limits,
+                ..Default::default()
+            })
+            .await
+            .map_err(|source| GpuError::Device {
+                adapter: info.name.clone(),
+                source,
+            })?;
         Ok(Self::from_device(adapter, device, queue))
     }
 

@@ -285,7 +285,7 @@ impl PassProfiler {
     }
 
     /// The recorded frames' timestamp ticks, each frame's from the start of its slot.
-    fn ticks(&self, gpu: &Gpu) -> Result<Vec<u64>, GpuError> {
+    async fn ticks(&self, gpu: &Gpu) -> Result<Vec<u64>, GpuError> {
         let size = SLOT_BYTES * u64::from(self.frame);
         if size == 0 {
             return Ok(Vec::new());
@@ -299,14 +299,19 @@ impl PassProfiler {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &staging, 0, size);
         gpu.queue.submit([encoder.finish()]);
-        Ok(bytemuck::pod_collect_to_vec(&super::read_buffer(
-            gpu, &staging,
-        )?))
+        Ok(bytemuck::pod_collect_to_vec(
+            &super::read_buffer_async(gpu, &staging).await?,
+        ))
     }
 
     /// Read every recorded frame's pass times (milliseconds).
     pub fn read(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
         Ok(self.read_with_spans(gpu)?.0)
+    }
+
+    /// [`Self::read`] without blocking (the only way in a browser).
+    pub async fn read_async(&self, gpu: &Gpu) -> Result<Vec<FrameTimings>, GpuError> {
+        Ok(self.read_with_spans_async(gpu).await?.0)
     }
 
     /// Every recorded frame's pass times and span (milliseconds), from one readback. The span
@@ -315,7 +320,14 @@ impl PassProfiler {
     /// copies, waits); measured on the H200, a depth buffer written and then sampled cost about
     /// 0.15 ms there that no pass's time showed (BENCHMARKS.md, issue 16).
     pub fn read_with_spans(&self, gpu: &Gpu) -> Result<(Vec<FrameTimings>, Vec<f64>), GpuError> {
-        let ticks = self.ticks(gpu)?;
+        pollster::block_on(self.read_with_spans_async(gpu))
+    }
+
+    async fn read_with_spans_async(
+        &self,
+        gpu: &Gpu,
+    ) -> Result<(Vec<FrameTimings>, Vec<f64>), GpuError> {
+        let ticks = self.ticks(gpu).await?;
         let stride = (SLOT_BYTES / 8) as usize;
         let ms = |t: u64| t as f64 * self.period_ns / 1e6;
         Ok(self

@@ -1,6 +1,15 @@
 //! Copy textures back to the CPU (tests, image output, the CPU oracle's inputs).
+//!
+//! Each read is an async function at heart, because a browser maps buffers only from its event
+//! loop (WebGPU: wgpu's `poll` cannot wait there, the page must yield); the blocking functions
+//! native code uses wait on it with `pollster`, which on native returns as soon as the device
+//! poll inside has run the mapping's callback.
 
 use super::{Gpu, GpuError};
+use std::future::Future;
+use std::pin::Pin;
+use std::sync::{Arc, Mutex};
+use std::task::{Context, Poll, Waker};
 
 /// Read a whole 2D texture with `bytes_per_texel` bytes per texel into a tightly packed vector.
 pub fn read_texture_bytes(
@@ -13,6 +22,29 @@ pub fn read_texture_bytes(
 
 /// [`read_texture_bytes`] of array layer `layer`.
 pub fn read_texture_layer_bytes(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    layer: u32,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>, GpuError> {
+    pollster::block_on(read_texture_layer_bytes_async(
+        gpu,
+        texture,
+        layer,
+        bytes_per_texel,
+    ))
+}
+
+/// [`read_texture_bytes`] without blocking (the only way on the web).
+pub async fn read_texture_bytes_async(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>, GpuError> {
+    read_texture_layer_bytes_async(gpu, texture, 0, bytes_per_texel).await
+}
+
+async fn read_texture_layer_bytes_async(
     gpu: &Gpu,
     texture: &wgpu::Texture,
     layer: u32,
@@ -55,7 +87,7 @@ pub fn read_texture_layer_bytes(
         },
     );
     gpu.queue.submit([encoder.finish()]);
-    let data = read_buffer(gpu, &buffer)?;
+    let data = read_buffer_async(gpu, &buffer).await?;
     let mut out = Vec::with_capacity((row * height) as usize);
     for y in 0..height as usize {
         let start = y * padded as usize;
@@ -80,9 +112,26 @@ pub fn read_buffer_copy(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, Gpu
 
 /// Wait for the GPU, then copy a `MAP_READ` buffer's contents out.
 pub fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    pollster::block_on(read_buffer_async(gpu, buffer))
+}
+
+/// [`read_buffer`] without blocking: resolves when the buffer is mapped (on native at once, the
+/// device poll in [`Gpu::finish`] having waited; in a browser when its event loop maps it).
+pub async fn read_buffer_async(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
     let slice = buffer.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |_| {});
+    let mapped = Mapped::default();
+    let done = mapped.0.clone();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let mut state = done.lock().unwrap();
+        state.result = Some(result.map_err(|e| e.to_string()));
+        if let Some(waker) = state.waker.take() {
+            waker.wake();
+        }
+    });
     gpu.finish()?;
+    mapped
+        .await
+        .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?;
     let data = slice
         .get_mapped_range()
         .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?
@@ -91,13 +140,48 @@ pub fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError
     Ok(data)
 }
 
+/// The outcome of one `map_async`, as a future (a one-shot channel; a crate for it would be a
+/// dependency for twenty lines).
+#[derive(Default)]
+struct Mapped(Arc<Mutex<MapState>>);
+
+#[derive(Default)]
+struct MapState {
+    result: Option<Result<(), String>>,
+    waker: Option<Waker>,
+}
+
+impl Future for Mapped {
+    type Output = Result<(), String>;
+
+    fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
+        let mut state = self.0.lock().unwrap();
+        match state.result.take() {
+            Some(result) => Poll::Ready(result),
+            None => {
+                state.waker = Some(cx.waker().clone());
+                Poll::Pending
+            }
+        }
+    }
+}
+
 /// Read a texture of 32-bit float channels (`R32Float`: 1, `Rgba32Float`: 4, …).
 pub fn read_texture_f32(
     gpu: &Gpu,
     texture: &wgpu::Texture,
     channels: u32,
 ) -> Result<Vec<f32>, GpuError> {
-    let bytes = read_texture_bytes(gpu, texture, 4 * channels)?;
+    pollster::block_on(read_texture_f32_async(gpu, texture, channels))
+}
+
+/// [`read_texture_f32`] without blocking (the only way on the web).
+pub async fn read_texture_f32_async(
+    gpu: &Gpu,
+    texture: &wgpu::Texture,
+    channels: u32,
+) -> Result<Vec<f32>, GpuError> {
+    let bytes = read_texture_bytes_async(gpu, texture, 4 * channels).await?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))
 }
 

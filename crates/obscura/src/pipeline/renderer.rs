@@ -3,7 +3,7 @@
 use super::{AmbientOcclusion, FrameTextures};
 use crate::bvh::{gpu::GpuBvh, BvhCache};
 use crate::error::{Error, SettingsError};
-use crate::gpu::{read_texture_f32, read_texture_rgba8, FrameTimings, Gpu, PassProfiler};
+use crate::gpu::{read_texture_f32, read_texture_f32_async, FrameTimings, Gpu, PassProfiler};
 use crate::raster::GBufferImage;
 use crate::raster::{gbuffer::GBuffer, gpu_scene::GpuScene};
 use crate::scene::{Camera, Scene};
@@ -309,7 +309,12 @@ impl Renderer {
 
     /// Final AO of the visible image, row-major.
     pub fn read_ao(&self) -> Result<Vec<f32>, Error> {
-        Ok(read_texture_f32(&self.gpu, self.last_ao()?.output(), 1)?)
+        pollster::block_on(self.read_ao_async())
+    }
+
+    /// [`Self::read_ao`] without blocking (the only way in a browser).
+    pub async fn read_ao_async(&self) -> Result<Vec<f32>, Error> {
+        Ok(read_texture_f32_async(&self.gpu, self.last_ao()?.output(), 1).await?)
     }
 
     /// Rays of the last frame whose BVH traversal overflowed its stack (0 without rays).
@@ -468,8 +473,14 @@ impl Renderer {
 
     /// Depth and normals of the whole framebuffer.
     pub fn read_gbuffer(&self) -> Result<GBufferImage, Error> {
-        let depth = read_texture_f32(&self.gpu, &self.gbuffer.depth, 1)?;
-        let bytes = crate::gpu::read_texture_bytes(&self.gpu, &self.gbuffer.normals, 8)?;
+        pollster::block_on(self.read_gbuffer_async())
+    }
+
+    /// [`Self::read_gbuffer`] without blocking (the only way in a browser).
+    pub async fn read_gbuffer_async(&self) -> Result<GBufferImage, Error> {
+        let depth = read_texture_f32_async(&self.gpu, &self.gbuffer.depth, 1).await?;
+        let bytes =
+            crate::gpu::read_texture_bytes_async(&self.gpu, &self.gbuffer.normals, 8).await?;
         let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
         let normals = halves
             .chunks_exact(4)
@@ -486,12 +497,17 @@ impl Renderer {
     /// Base colour (sRGB-encoded RGBA8) of the visible image of the last frame (rendered now, by
     /// its own pass: the frame itself does not write it).
     pub fn read_albedo(&self) -> Result<Vec<[u8; 4]>, Error> {
+        pollster::block_on(self.read_albedo_async())
+    }
+
+    /// [`Self::read_albedo`] without blocking (the only way in a browser).
+    pub async fn read_albedo_async(&self) -> Result<Vec<[u8; 4]>, Error> {
         self.last_ao()?;
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
         self.gbuffer
             .render_albedo(&self.gpu.device, &mut encoder, &self.scene);
         self.gpu.queue.submit([encoder.finish()]);
-        let full = read_texture_rgba8(&self.gpu, &self.gbuffer.albedo)?;
+        let full = crate::gpu::read_texture_bytes_async(&self.gpu, &self.gbuffer.albedo, 4).await?;
         let fw = self.gbuffer.albedo.width() as usize;
         let g = self.guard_band as usize;
         let mut out = Vec::with_capacity((self.width * self.height) as usize);

@@ -25,11 +25,23 @@ impl GBufferImage {
 
     /// Linear depth of the visible region (guard band cropped), row-major.
     pub fn visible_depth(&self, guard_band: u32) -> Vec<f32> {
-        let (w, h) = (self.width - 2 * guard_band, self.height - 2 * guard_band);
-        (0..h)
-            .flat_map(|y| (0..w).map(move |x| UVec2::new(x, y) + guard_band))
+        self.visible_pixels(guard_band)
             .map(|p| self.depth_at(p))
             .collect()
+    }
+
+    /// View-space normals of the visible region (guard band cropped), row-major (zero on the
+    /// background).
+    pub fn visible_normals(&self, guard_band: u32) -> Vec<Vec3> {
+        self.visible_pixels(guard_band)
+            .map(|p| self.normals[(p.y * self.width + p.x) as usize])
+            .collect()
+    }
+
+    /// The framebuffer pixels of the visible region, row by row.
+    fn visible_pixels(&self, guard_band: u32) -> impl Iterator<Item = UVec2> {
+        let (w, h) = (self.width - 2 * guard_band, self.height - 2 * guard_band);
+        (0..h).flat_map(move |y| (0..w).map(move |x| UVec2::new(x, y) + guard_band))
     }
 }
 

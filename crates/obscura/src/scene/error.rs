@@ -70,6 +70,20 @@ pub enum SceneError {
         source: std::io::Error,
     },
 
+    /// A scene given as bytes (a browser's dropped file) refers to another file, and there is no
+    /// folder to read it from.
+    #[error(
+        "'{}' refers to the file '{uri}', which cannot be read: it was loaded from memory, with no \
+         folder around it. Use a .glb, or a .gltf whose buffers and images are embedded (data: URIs)",
+        scene.display()
+    )]
+    NoFolder {
+        /// The scene's name.
+        scene: PathBuf,
+        /// The reference, as the file writes it.
+        uri: String,
+    },
+
     /// The glTF loader rejected the file.
     #[error(
         "'{}' is not a usable glTF 2.0 file: {message}: re-export it (glTF 2.0, .gltf or .glb) or \

@@ -61,10 +61,8 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
         return builtin(spec);
     }
     let path = Path::new(spec);
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let mut scene = match ext.as_deref() {
+    let ext = extension(path);
+    let scene = match ext.as_deref() {
         Some("gltf") | Some("glb") => gltf_loader::load(path, options)?,
         Some("obj") => obj_loader::load(path, options)?,
         // No extension and no such file: most likely a mistyped built-in name.
@@ -79,6 +77,32 @@ pub fn load_with(spec: &str, options: &LoadOptions) -> Result<Scene, SceneError>
             })
         }
     };
+    finish(scene)
+}
+
+/// A glTF scene from its bytes (a `.glb`, or a `.gltf` whose buffers and images are embedded):
+/// what a browser has of a dropped file. `name` (its file name) chooses the format by its
+/// extension and names it in messages. Validated, as [`load`]'s.
+pub fn load_bytes(name: &str, bytes: &[u8]) -> Result<Scene, SceneError> {
+    let path = Path::new(name);
+    let ext = extension(path);
+    match ext.as_deref() {
+        Some("gltf") | Some("glb") => finish(gltf_loader::load_bytes(path, bytes)?),
+        _ => Err(SceneError::UnsupportedFormat {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+/// `path`'s extension in lower case: formats are matched case-insensitively.
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+}
+
+/// What every loaded scene goes through: normals kept only where the file has some, validation,
+/// and the note on re-centred coordinates.
+fn finish(mut scene: Scene) -> Result<Scene, SceneError> {
     // Loaders give every vertex a normal slot (zero: none); a file without any keeps none.
     if scene.normals.iter().all(|n| *n == glam::Vec3::ZERO) {
         scene.normals.clear();

@@ -123,6 +123,17 @@ impl AoSettings {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
+        self.with_text(&text, format, path)
+    }
+
+    /// [`AoSettings::with_file`] of a settings file's text already in memory (a web page's
+    /// settings), `path` naming it in messages.
+    pub fn with_text(
+        &self,
+        text: &str,
+        format: SettingsFormat,
+        path: &Path,
+    ) -> Result<AoSettings, SettingsError> {
         let parse_error = |f: ParseFailure| SettingsError::Parse {
             path: path.to_path_buf(),
             line: f.line,
@@ -130,7 +141,7 @@ impl AoSettings {
             message: f.message,
         };
         // Typed first, for the parser's positions on unknown fields and wrong types ...
-        parse::<AoSettings>(&text, format).map_err(parse_error)?;
+        parse::<AoSettings>(text, format).map_err(parse_error)?;
         // ... then as a tree, to keep the fields the file leaves out.
         let merge_error = |message: String| SettingsError::Parse {
             path: path.to_path_buf(),
@@ -140,7 +151,7 @@ impl AoSettings {
         };
         let settings: AoSettings = match format {
             SettingsFormat::Json => {
-                let file: serde_json::Value = parse(&text, format).map_err(parse_error)?;
+                let file: serde_json::Value = parse(text, format).map_err(parse_error)?;
                 let mut merged = to_value(self);
                 merge(&mut merged, file);
                 serde_json::from_value(merged).map_err(|e| merge_error(e.to_string()))?
@@ -149,7 +160,7 @@ impl AoSettings {
             // that validation reports the value as written (issue 62: `radius = nan` was
             // reported as "invalid type: null").
             SettingsFormat::Toml => {
-                let file: toml::Value = parse(&text, format).map_err(parse_error)?;
+                let file: toml::Value = parse(text, format).map_err(parse_error)?;
                 self.with_toml_unvalidated(file).map_err(merge_error)?
             }
         };

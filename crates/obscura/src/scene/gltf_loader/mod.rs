@@ -43,6 +43,20 @@ use skinning::VertexPlacement;
 /// as warnings, [`spec::MAX_PRINTED`] at most.
 pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let (scene, problems) = load_with_problems(path, options)?;
+    log_problems(path, &problems);
+    Ok(scene)
+}
+
+/// [`load`] of a file's bytes already in memory (a browser's dropped file), named `name` in
+/// messages: a `.glb` or a `.gltf` whose buffers and images are embedded (`data:` URIs), since
+/// there is no folder to read others from.
+pub(crate) fn load_bytes(name: &Path, bytes: &[u8]) -> Result<Scene, SceneError> {
+    let (scene, problems) = parse(name, bytes, None)?;
+    log_problems(name, &problems);
+    Ok(scene)
+}
+
+fn log_problems(path: &Path, problems: &[String]) {
     for problem in problems.iter().take(spec::MAX_PRINTED) {
         log::warn!(
             "{}: not valid glTF 2.0 (loaded anyway): {problem}",
@@ -57,7 +71,6 @@ pub(crate) fn load(path: &Path, options: &LoadOptions) -> Result<Scene, SceneErr
             problems.len() - spec::MAX_PRINTED
         );
     }
-    Ok(scene)
 }
 
 /// [`load`], returning the problems against the specification ([`spec::problems`]) instead of
@@ -67,13 +80,23 @@ fn load_with_problems(
     options: &LoadOptions,
 ) -> Result<(Scene, Vec<String>), SceneError> {
     let bytes = super::read_file(path)?;
+    parse(path, &bytes, Some(options))
+}
+
+/// The scene in `bytes`; `files` says how referenced files are read (`None`: none can be, the
+/// bytes came from memory).
+fn parse(
+    path: &Path,
+    bytes: &[u8],
+    files: Option<&LoadOptions>,
+) -> Result<(Scene, Vec<String>), SceneError> {
     let error = |message: String| SceneError::Gltf {
         path: path.to_path_buf(),
         message,
     };
     // Backstop only: the checks are meant to keep the `gltf` crate from panicking, but a panic in
     // a dependency on some input nobody thought of must still end as an error, not a crash.
-    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, &bytes, options))) {
+    match catch_unwind(AssertUnwindSafe(|| from_bytes(path, bytes, files))) {
         Ok(Ok(scene)) => Ok(scene),
         Ok(Err(Failure::Message(message))) => Err(error(message)),
         Ok(Err(Failure::Scene(e))) => Err(e),
@@ -101,7 +124,7 @@ impl From<String> for Failure {
 fn check_referenced_files(
     path: &Path,
     doc: &Document,
-    options: &LoadOptions,
+    files: Option<&LoadOptions>,
 ) -> Result<(), SceneError> {
     let base = files::folder(path);
     let json = doc.as_json();
@@ -112,7 +135,15 @@ fn check_referenced_files(
         .chain(json.images.iter().filter_map(|i| i.uri.as_deref()));
     for uri in uris {
         if let Some(file) = files::gltf_uri_file(base, uri) {
-            files::check(path, uri, &file, options)?;
+            match files {
+                Some(options) => files::check(path, uri, &file, options)?,
+                None => {
+                    return Err(SceneError::NoFolder {
+                        scene: path.to_path_buf(),
+                        uri: uri.to_string(),
+                    })
+                }
+            }
         }
     }
     Ok(())
@@ -121,7 +152,7 @@ fn check_referenced_files(
 fn from_bytes(
     path: &Path,
     bytes: &[u8],
-    options: &LoadOptions,
+    files: Option<&LoadOptions>,
 ) -> Result<(Scene, Vec<String>), Failure> {
     checks::glb_header(bytes)?;
     // Parse, check what gltf-json's validation itself would index blindly, then validate.
@@ -136,7 +167,7 @@ fn from_bytes(
     let problems = spec::problems(&doc);
     // Before any data is read: what the file would make must fit (budget.rs).
     budget::check(path, budget::count(&doc, roots(&doc))).map_err(Failure::Scene)?;
-    check_referenced_files(path, &doc, options).map_err(Failure::Scene)?;
+    check_referenced_files(path, &doc, files).map_err(Failure::Scene)?;
     let base = files::folder(path);
     let buffers = gltf::import_buffers(&doc, Some(base), gltf.blob)
         .map_err(|e| format!("loading buffers: {e}"))?;
