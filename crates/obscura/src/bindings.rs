@@ -256,9 +256,11 @@ pub fn layout(
     label: &str,
     entries: &[wgpu::BindGroupLayoutEntry],
 ) -> wgpu::BindGroupLayout {
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries,
+    crate::gpu::kept_bind_group_layout(device, entries, || {
+        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries,
+        })
     })
 }
 
@@ -308,10 +310,12 @@ pub fn compute_pipeline(
     layouts: &[Option<&wgpu::BindGroupLayout>],
 ) -> wgpu::ComputePipeline {
     let module = crate::gpu::shader_module(device, label, source);
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: layouts,
-        immediate_size: 0,
+    let layout = crate::gpu::kept_pipeline_layout(device, layouts, || {
+        device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: layouts,
+            immediate_size: 0,
+        })
     });
     crate::gpu::pipeline_from_module(device, label, &module, constants, Some(&layout))
 }

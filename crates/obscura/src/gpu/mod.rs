@@ -1,6 +1,11 @@
 //! Headless GPU context: adapter selection, device creation with the features obscura uses when
 //! the adapter has them, and validation errors turned into `Result`s instead of panics.
 
+mod memo;
+/// Layouts made once per device (`memo`), for `bindings`.
+pub(crate) use memo::{
+    bind_group_layout as kept_bind_group_layout, pipeline_layout as kept_pipeline_layout,
+};
 mod profiler;
 mod readback;
 pub mod zero_fill;
@@ -11,7 +16,7 @@ pub use readback::{
     read_texture_f32, read_texture_f32_async, read_texture_layer_bytes, read_texture_rgba8,
 };
 
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// Where the GPU context comes from.
@@ -201,6 +206,9 @@ pub struct Gpu {
     /// What the adapter is and can do, read once at creation.
     pub summary: AdapterSummary,
     errors: Arc<Mutex<Vec<String>>>,
+    /// What the device keeps for every renderer made on it (`memo`), released with the last
+    /// clone of this `Gpu`.
+    kept: Arc<memo::Kept>,
 }
 
 /// Backends from a name (`OBSCURA_BACKEND` / `--backend`).
@@ -446,10 +454,13 @@ impl Gpu {
         let features = device.features();
         let limits = device.limits();
         let errors = Arc::new(Mutex::new(Vec::new()));
-        let sink = errors.clone();
+        let errors_raised = Arc::new(AtomicU64::new(0));
+        let (sink, count) = (errors.clone(), errors_raised.clone());
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            count.fetch_add(1, Ordering::SeqCst);
             sink.lock().unwrap().push(e.to_string());
         }));
+        let kept = Arc::new(memo::Kept::new(&device, errors_raised));
         let depth_msaa_sample_counts = {
             let f = adapter.get_texture_format_features(wgpu::TextureFormat::Depth32Float);
             [1, 2, 4, 8, 16]
@@ -484,6 +495,7 @@ impl Gpu {
             queue,
             summary,
             errors,
+            kept,
         }
     }
 
@@ -495,6 +507,13 @@ impl Gpu {
     /// describes a GL adapter.
     pub fn check_backend(&self) -> Result<(), GpuError> {
         backend_supported(&self.summary.name, self.adapter.get_info().backend)
+    }
+
+    /// Runs `f` (a constructor of renderers or passes) with this device's table of shader
+    /// modules, layouts and compute pipelines (`memo`): what `f` makes that an earlier
+    /// constructor on this `Gpu` made already is reused instead of compiled again.
+    pub(crate) fn keeping<R>(&self, f: impl FnOnce() -> R) -> R {
+        memo::within(&self.kept, f)
     }
 
     /// Wait for all submitted work, then report any validation error raised since the last check.
@@ -594,9 +613,11 @@ pub fn shader_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
 /// The WGSL module `source` with all of wgpu's runtime checks (the raster passes').
 pub fn checked_module(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
     dump_wgsl(label, source);
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
+    memo::module(device, source, "all checks", || {
+        device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        })
     })
 }
 
@@ -695,8 +716,10 @@ unsafe fn trusted_module(
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     };
-    // SAFETY: forwarded to the caller.
-    unsafe { device.create_shader_module_trusted(desc, checks) }
+    memo::module(device, source, &format!("{checks:?}"), || {
+        // SAFETY: forwarded to the caller.
+        unsafe { device.create_shader_module_trusted(desc, checks) }
+    })
 }
 
 /// [`compute_pipeline_with`] without the bounds checks wgpu adds to every array and texture access.
@@ -744,17 +767,28 @@ pub(crate) fn entry_pipeline(
     layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
     dump_constants(label, entry, constants);
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout,
-        module,
-        entry_point: Some(entry),
-        compilation_options: wgpu::PipelineCompilationOptions {
-            constants,
-            // Shaders that use workgroup memory write it before reading it.
-            zero_initialize_workgroup_memory: false,
-        },
-        cache: None,
+    let key = memo::PipelineKey {
+        module: module.clone(),
+        entry: entry.to_owned(),
+        constants: constants
+            .iter()
+            .map(|&(name, value)| (name.to_owned(), value.to_bits()))
+            .collect(),
+        layout: layout.cloned(),
+    };
+    memo::compute_pipeline(device, key, || {
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout,
+            module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                // Shaders that use workgroup memory write it before reading it.
+                zero_initialize_workgroup_memory: false,
+            },
+            cache: None,
+        })
     })
 }
 

@@ -369,15 +369,42 @@ pub fn hemisphere_truth(
     use obscura::bvh::Bvh;
     use obscura::reference::gpu::render_reference_gpu;
     use obscura::reference::ground_truth::{ReferenceModel, ReferenceSettings};
-    let mut reference = ReferenceSettings {
-        model: ReferenceModel::Hemisphere,
-        spp: 256,
-        ..Default::default()
+    use std::collections::HashMap;
+    use std::sync::{Arc, Mutex, OnceLock};
+    // Several tests compare their rows with the same truth (each built-in scene's first camera at
+    // the same size, most estimators' default radius): each is traced once per test process, by
+    // whichever test asks first (the others asking for it wait for that one; a different truth is
+    // not held up). The trace is deterministic, so a kept truth is the one a test would trace.
+    type Cell = Arc<OnceLock<Vec<f32>>>;
+    static TRUTHS: OnceLock<Mutex<HashMap<String, Cell>>> = OnceLock::new();
+    // The scene's geometry is part of the key: tests change built-in scenes under their names.
+    let geometry = {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        bytemuck::cast_slice::<_, u8>(&scene.positions).hash(&mut h);
+        bytemuck::cast_slice::<_, u8>(&scene.triangles).hash(&mut h);
+        h.finish()
     };
-    reference.vao.radius = radius;
-    render_reference_gpu(gpu, scene, &Bvh::build(scene), view, &reference, &|_, _| {})
+    let key = format!("{} {geometry:x} {view:?} {}", scene.name, radius.to_bits());
+    let cell = TRUTHS
+        .get_or_init(Default::default)
+        .lock()
         .unwrap()
-        .0
+        .entry(key)
+        .or_default()
+        .clone();
+    cell.get_or_init(|| {
+        let mut reference = ReferenceSettings {
+            model: ReferenceModel::Hemisphere,
+            spp: 256,
+            ..Default::default()
+        };
+        reference.vao.radius = radius;
+        render_reference_gpu(gpu, scene, &Bvh::build(scene), view, &reference, &|_, _| {})
+            .unwrap()
+            .0
+    })
+    .clone()
 }
 
 /// [`hemisphere_metrics`]' MAE, and that of no occlusion.
