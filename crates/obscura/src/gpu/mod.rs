@@ -460,6 +460,9 @@ impl Gpu {
             count.fetch_add(1, Ordering::SeqCst);
             sink.lock().unwrap().push(e.to_string());
         }));
+        // On wasm32 wgpu's handles are neither Send nor Sync (and so neither is `Gpu`), and the
+        // table stays empty there (`memo`): the lint's concern does not arise.
+        #[allow(clippy::arc_with_non_send_sync)]
         let kept = Arc::new(memo::Kept::new(&device, errors_raised));
         let depth_msaa_sample_counts = {
             let f = adapter.get_texture_format_features(wgpu::TextureFormat::Depth32Float);
