@@ -21,6 +21,10 @@
 //! nothing is kept. A creation during which the device raised a validation error is not kept,
 //! so that a failure is reported again the next time, as it was the first. On the web (wasm32)
 //! nothing is kept: there, errors arrive later, asynchronously.
+//!
+//! Nothing is evicted: every distinct pipeline (each set of override constants a setting such as a
+//! sample count makes) stays until its `Gpu` goes. Those sets are few, and a pipeline is small
+//! beside the images a renderer allocates.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
