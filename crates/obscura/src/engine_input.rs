@@ -138,11 +138,8 @@ const DEPTH_FORMATS: [wgpu::TextureFormat; 5] = [
 impl EngineInput {
     /// The passes for `screen` (e.g. from [`ScreenGeometry::from_projection`]).
     pub fn new(gpu: &Gpu, screen: ScreenGeometry) -> Self {
-        gpu.keeping(|| Self::build(gpu, screen))
-    }
-
-    /// [`EngineInput::new`] inside the device's table of pipelines ([`Gpu::keeping`]).
-    fn build(gpu: &Gpu, screen: ScreenGeometry) -> Self {
+        // Pipelines an earlier constructor on this Gpu made are reused (gpu::memo).
+        let _kept = gpu.keeping();
         let device = &gpu.device;
         let view = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("engine input view"),

@@ -13,8 +13,8 @@
 //! and layouts the same pipeline.
 //!
 //! What is kept belongs to a [`Gpu`](super::Gpu) (shared by its clones, released with the last
-//! one) and is used inside [`Gpu::keeping`](super::Gpu::keeping), which the constructors of
-//! renderers and passes enter: the creation functions below find it there, as they are handed a
+//! one) and is used in the scope [`Gpu::keeping`](super::Gpu::keeping) opens, which the
+//! constructors of renderers and passes open first: the creation functions below find it there, as they are handed a
 //! `wgpu::Device` only. (wgpu's handles compare by an id that is unique only within one
 //! `wgpu::Instance`, so a process-wide table keyed by device could mix up two devices of two
 //! instances; a scope names the device's own table.) Outside a scope, or for another device,
@@ -83,25 +83,33 @@ impl Kept {
 }
 
 thread_local! {
-    /// The table of the innermost [`within`] on this thread.
+    /// The table of this thread's innermost [`Scope`].
     static CURRENT: RefCell<Option<Arc<Kept>>> = const { RefCell::new(None) };
 }
 
-/// Runs `f` with `kept` as this thread's table (the one before restored after, also when `f`
-/// panics).
-pub(crate) fn within<R>(kept: &Arc<Kept>, f: impl FnOnce() -> R) -> R {
-    struct Restore(Option<Arc<Kept>>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            CURRENT.with(|c| *c.borrow_mut() = self.0.take());
-        }
+/// This thread's table from [`enter`] until dropped, when the one before is back (scopes nest).
+/// Not `Send`: it restores the thread it was made on.
+pub(crate) struct Scope {
+    previous: Option<Arc<Kept>>,
+    _this_thread: std::marker::PhantomData<*const ()>,
+}
+
+/// Makes `kept` this thread's table until the returned scope is dropped.
+pub(crate) fn enter(kept: &Arc<Kept>) -> Scope {
+    Scope {
+        previous: CURRENT.with(|c| c.borrow_mut().replace(kept.clone())),
+        _this_thread: std::marker::PhantomData,
     }
-    let _restore = Restore(CURRENT.with(|c| c.borrow_mut().replace(kept.clone())));
-    f()
+}
+
+impl Drop for Scope {
+    fn drop(&mut self) {
+        CURRENT.with(|c| *c.borrow_mut() = self.previous.take());
+    }
 }
 
 /// The value kept for `key` in the map `map` picks, or `make`'s, kept when this thread is
-/// inside [`within`] for `device` (compared by wgpu's id, unique within one instance: every
+/// inside a [`Scope`] for `device` (compared by wgpu's id, unique within one instance: every
 /// creation inside a scope is on the scope's device) and the device raised no error while `make` ran. The lock is
 /// not held while `make` runs: two threads may make the same thing at once, and then the first
 /// one kept is used from then on.
@@ -191,19 +199,22 @@ mod tests {
     #[test]
     fn a_gpu_makes_the_same_pipeline_once_and_only_inside_its_scope() {
         let gpu = Gpu::new(&GpuOptions::default()).unwrap();
-        let (a, b, c) = gpu.keeping(|| {
-            (
-                pipeline(&gpu, 2.0),
-                pipeline(&gpu, 2.0),
-                pipeline(&gpu, 3.0),
-            )
-        });
+        let scope = gpu.keeping();
+        let (a, b, c) = (
+            pipeline(&gpu, 2.0),
+            pipeline(&gpu, 2.0),
+            pipeline(&gpu, 3.0),
+        );
+        drop(scope);
         assert!(a == b, "the second request gets the first pipeline");
         assert!(a != c, "other constants, another pipeline");
         assert_eq!(gpu.kept.pipelines(), 2);
         // Later constructors on the same Gpu (or a clone) reuse it.
         let clone = gpu.clone();
-        assert!(clone.keeping(|| pipeline(&clone, 2.0)) == a);
+        {
+            let _scope = clone.keeping();
+            assert!(pipeline(&clone, 2.0) == a);
+        }
         // Outside a scope nothing is kept or reused.
         let outside = pipeline(&gpu, 2.0);
         assert!(outside != a);
@@ -215,10 +226,14 @@ mod tests {
         let other = Gpu::new(&GpuOptions::default()).unwrap();
         assert_eq!(other.kept.pipelines(), 0);
         // Scopes nest, and the outer one is back after the inner ends.
-        gpu.keeping(|| {
-            other.keeping(|| pipeline(&other, 2.0));
+        {
+            let _outer = gpu.keeping();
+            {
+                let _inner = other.keeping();
+                pipeline(&other, 2.0);
+            }
             assert!(pipeline(&gpu, 3.0) == c);
-        });
+        }
         assert_eq!(other.kept.pipelines(), 1);
         gpu.finish().unwrap();
         other.finish().unwrap();
@@ -232,17 +247,9 @@ mod tests {
         // error of the pipeline's creation. (Its label differs from the module's, so no
         // constants file names that entry point beside the dumped module.)
         for attempt in 0..2 {
-            gpu.keeping(|| {
-                let module = crate::gpu::shader_module(&gpu.device, "memo test", SOURCE);
-                crate::gpu::entry_pipeline(
-                    &gpu.device,
-                    "memo refused",
-                    &module,
-                    "absent",
-                    &[],
-                    None,
-                )
-            });
+            let _scope = gpu.keeping();
+            let module = crate::gpu::shader_module(&gpu.device, "memo test", SOURCE);
+            crate::gpu::entry_pipeline(&gpu.device, "memo refused", &module, "absent", &[], None);
             let error = gpu.finish().unwrap_err().to_string();
             assert!(error.contains("memo refused"), "attempt {attempt}: {error}");
         }

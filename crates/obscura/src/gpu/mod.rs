@@ -512,11 +512,12 @@ impl Gpu {
         backend_supported(&self.summary.name, self.adapter.get_info().backend)
     }
 
-    /// Runs `f` (a constructor of renderers or passes) with this device's table of shader
-    /// modules, layouts and compute pipelines (`memo`): what `f` makes that an earlier
-    /// constructor on this `Gpu` made already is reused instead of compiled again.
-    pub(crate) fn keeping<R>(&self, f: impl FnOnce() -> R) -> R {
-        memo::within(&self.kept, f)
+    /// Opens this device's table of shader modules, layouts and compute pipelines (`memo`) on
+    /// this thread until the scope is dropped: what a constructor of renderers or passes makes
+    /// inside it that an earlier one on this `Gpu` made already is reused instead of compiled
+    /// again.
+    pub(crate) fn keeping(&self) -> memo::Scope {
+        memo::enter(&self.kept)
     }
 
     /// Wait for all submitted work, then report any validation error raised since the last check.

@@ -106,17 +106,8 @@ impl AmbientOcclusion {
         scene: SceneResources,
         estimator_debug: bool,
     ) -> Result<Self, Error> {
-        gpu.keeping(|| Self::build_kept(gpu, settings, screen, scene, estimator_debug))
-    }
-
-    /// [`AmbientOcclusion::build`] inside the device's table of pipelines ([`Gpu::keeping`]).
-    fn build_kept(
-        gpu: &Gpu,
-        settings: &AoSettings,
-        screen: ScreenGeometry,
-        scene: SceneResources,
-        estimator_debug: bool,
-    ) -> Result<Self, Error> {
+        // Pipelines an earlier constructor on this Gpu made are reused (gpu::memo).
+        let _kept = gpu.keeping();
         settings.validate()?;
         gpu.check_backend()?;
         let device = &gpu.device;

@@ -99,19 +99,8 @@ impl Renderer {
         guard_band: u32,
         bvh: &BvhCache,
     ) -> Result<Self, Error> {
-        gpu.keeping(|| Self::build(gpu, scene, settings, width, height, guard_band, bvh))
-    }
-
-    /// [`Renderer::with_bvh_cache`] inside the device's table of pipelines ([`Gpu::keeping`]).
-    fn build(
-        gpu: &Gpu,
-        scene: &Scene,
-        settings: &AoSettings,
-        width: u32,
-        height: u32,
-        guard_band: u32,
-        bvh: &BvhCache,
-    ) -> Result<Self, Error> {
+        // Pipelines an earlier constructor on this Gpu made are reused (gpu::memo).
+        let _kept = gpu.keeping();
         settings.validate()?;
         gpu.check_backend()?;
         if let Some(warning) = scene

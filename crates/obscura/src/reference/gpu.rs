@@ -62,16 +62,8 @@ impl<'a> GpuReferenceTracer<'a> {
         bvh: &Bvh,
         vao: VaoSettings,
     ) -> Result<GpuReferenceTracer<'a>, Error> {
-        gpu.keeping(|| Self::build(gpu, scene, bvh, vao))
-    }
-
-    /// [`GpuReferenceTracer::new`] inside the device's table of pipelines ([`Gpu::keeping`]).
-    fn build(
-        gpu: &'a Gpu,
-        scene: &Scene,
-        bvh: &Bvh,
-        vao: VaoSettings,
-    ) -> Result<GpuReferenceTracer<'a>, Error> {
+        // Pipelines an earlier constructor on this Gpu made are reused (gpu::memo).
+        let _kept = gpu.keeping();
         let device = &gpu.device;
         let gpu_scene = GpuScene::new(device, &gpu.queue, scene, &device.limits())?;
         let gpu_bvh = GpuBvh::new(device, bvh, scene)?;
