@@ -110,9 +110,10 @@ impl Drop for Scope {
 
 /// The value kept for `key` in the map `map` picks, or `make`'s, kept when this thread is
 /// inside a [`Scope`] for `device` (compared by wgpu's id, unique within one instance: every
-/// creation inside a scope is on the scope's device) and the device raised no error while `make` ran. The lock is
-/// not held while `make` runs: two threads may make the same thing at once, and then the first
-/// one kept is used from then on.
+/// creation inside a scope is on the scope's device) and the device raised no error while
+/// `make` ran (an error another thread raised meanwhile also counts: then nothing is kept). The
+/// lock is not held while `make` runs: two threads may make the same thing at once, and then
+/// the first one kept is used from then on.
 fn kept_or_make<K: Eq + Hash, V: Clone>(
     device: &wgpu::Device,
     map: impl Fn(&mut Maps) -> &mut HashMap<K, V>,
