@@ -8,7 +8,7 @@
 //! through VK_KHR_pipeline_executable_properties (NVIDIA: register count, binary size; Mesa's
 //! drivers: instruction counts and more).
 //!
-//! The SPIR-V is written by naga as wgpu 30's Vulkan backend writes it for obscura's AO passes
+//! The SPIR-V is written by naga as wgpu 29's Vulkan backend writes it for obscura's AO passes
 //! (`gpu::shader_module`: bounds checks on, loop bounding off, `override`s resolved for the
 //! pipeline's entry point: `main`, or the one its constants file names), so the driver sees the
 //! same program up to naga's choice of ids. After the driver's own lines, each pass gets the

@@ -4,6 +4,7 @@ pub mod atrous;
 pub mod bilateral;
 pub mod half_resolution;
 pub mod ray_budget;
+mod shared_cell;
 pub mod temporal;
 
 use crate::frame::FrameInputs;
@@ -22,8 +23,9 @@ pub struct FilterImages<'a> {
 }
 
 /// A pass from one AO image to the next (`R32Float`, visible size), with the frame's inputs at
-/// hand (depth for edge-aware weights, the screen geometry).
-pub trait AoFilter {
+/// hand (depth for edge-aware weights, the screen geometry). Send and Sync where wgpu's handles
+/// are (not on the web), so that an `AmbientOcclusion` can live in an engine's render world.
+pub trait AoFilter: wgpu::WasmNotSendSync {
     /// Record the filter's passes from `images.input` to `images.output`, timed by `profiler`
     /// when given.
     fn encode(

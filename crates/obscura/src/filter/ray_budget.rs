@@ -40,7 +40,7 @@ pub struct RayBudget {
     result: wgpu::Buffer,
     grant_image: wgpu::Texture,
     rays: u32,
-    budget: std::cell::Cell<u32>,
+    budget: super::shared_cell::SharedCell<u32>,
 }
 
 /// Keys of the selection's histogram (16 bits: 10 of priority, 6 of hash).
@@ -103,7 +103,7 @@ impl RayBudget {
                     | wgpu::TextureUsages::COPY_SRC,
             ),
             rays,
-            budget: std::cell::Cell::new(budget),
+            budget: super::shared_cell::SharedCell::new(budget),
         }
     }
 

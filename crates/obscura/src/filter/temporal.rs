@@ -7,7 +7,7 @@
 //! The filter keeps the previous camera itself: [`TemporalAccumulation::set_camera`] is called
 //! once per frame (by [`crate::AmbientOcclusion::set_camera`]), before the frame is encoded.
 
-use std::cell::Cell;
+use super::shared_cell::SharedCell;
 
 use super::ray_budget::RayBudget;
 use super::FilterImages;
@@ -72,9 +72,9 @@ pub struct TemporalAccumulation {
     history: [wgpu::TextureView; 2],
     settings: TemporalSettings,
     /// The camera of the last frame (`None`: no history yet).
-    previous: Cell<Option<FrameView>>,
+    previous: SharedCell<Option<FrameView>>,
     /// Frames since creation or the last reset; picks the history image and the pattern offset.
-    frame: Cell<u32>,
+    frame: SharedCell<u32>,
     /// `hemisphere.ray_budget`: which pixels cast rays this frame, from this history.
     budget: Option<RayBudget>,
 }
@@ -137,8 +137,8 @@ impl TemporalAccumulation {
             view: view.clone(),
             history,
             settings: *settings,
-            previous: Cell::new(None),
-            frame: Cell::new(0),
+            previous: SharedCell::new(None),
+            frame: SharedCell::new(0),
             budget: budget
                 .map(|b| RayBudget::new(device, &source, width, height, b.rays, b.budget)),
         }

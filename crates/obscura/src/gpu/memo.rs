@@ -69,6 +69,16 @@ impl Kept {
         }
     }
 
+    /// The counter the device's error handler adds to ([`crate::Gpu::from_device`] installs it).
+    pub(crate) fn errors_raised(&self) -> Arc<AtomicU64> {
+        self.errors_raised.clone()
+    }
+
+    /// Drops everything kept (what `Gpu::forget_kept` does).
+    pub(crate) fn forget(&self) {
+        *self.maps() = Maps::default();
+    }
+
     /// Locked; a thread that panicked while holding the lock left the maps whole (nothing here
     /// panics midway through a change), so the lock is taken anyway.
     fn maps(&self) -> std::sync::MutexGuard<'_, Maps> {

@@ -450,16 +450,31 @@ impl Gpu {
     /// errors the device does not capture are collected for [`Gpu::check_errors`]: this installs
     /// the device's uncaptured-error handler.
     pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
+        let gpu = Self::sharing_device(adapter, device, queue);
+        let (sink, count) = (gpu.errors.clone(), gpu.kept.errors_raised());
+        gpu.device
+            .on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+                count.fetch_add(1, Ordering::SeqCst);
+                sink.lock().unwrap().push(e.to_string());
+            }));
+        gpu
+    }
+
+    /// Wrap a device whose uncaptured-error handler belongs to the engine (Bevy's render
+    /// recovery installs one): unlike [`Self::from_device`] this leaves the handler alone, so
+    /// validation errors of obscura's passes reach the engine, and [`Self::check_errors`] and
+    /// [`Self::finish`] report none. Catch set-up errors with an error scope instead
+    /// (`device.push_error_scope`), as `bevy_obscura` does.
+    pub fn sharing_device(
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> Self {
         let info = adapter.get_info();
         let features = device.features();
         let limits = device.limits();
         let errors = Arc::new(Mutex::new(Vec::new()));
         let errors_raised = Arc::new(AtomicU64::new(0));
-        let (sink, count) = (errors.clone(), errors_raised.clone());
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            count.fetch_add(1, Ordering::SeqCst);
-            sink.lock().unwrap().push(e.to_string());
-        }));
         // On wasm32 wgpu's handles are neither Send nor Sync (and so neither is `Gpu`), and the
         // table stays empty there (`memo`): the lint's concern does not arise.
         #[allow(clippy::arc_with_non_send_sync)]
@@ -516,6 +531,14 @@ impl Gpu {
     /// this thread until the scope is dropped: what a constructor of renderers or passes makes
     /// inside it that an earlier one on this `Gpu` made already is reused instead of compiled
     /// again.
+    /// Drops the shader modules, layouts and pipelines this device keeps for its renderers
+    /// (`gpu::memo`). Needed only with [`Self::sharing_device`]: there obscura does not see the
+    /// device's errors, so a creation that raised one (caught by the caller's error scope) may
+    /// have been kept; forget it before trying again.
+    pub fn forget_kept(&self) {
+        self.kept.forget();
+    }
+
     pub(crate) fn keeping(&self) -> memo::Scope {
         memo::enter(&self.kept)
     }

@@ -132,10 +132,7 @@ pub async fn read_buffer_async(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u
     mapped
         .await
         .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Other(format!("mapping a readback buffer failed: {e}")))?
-        .to_vec();
+    let data = slice.get_mapped_range().to_vec();
     buffer.unmap();
     Ok(data)
 }

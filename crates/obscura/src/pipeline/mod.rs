@@ -79,7 +79,7 @@ pub struct AmbientOcclusion {
     /// `resolution = "half"`: the half frame and the passes around the technique.
     half: Option<HalfResolution>,
     /// [`AmbientOcclusion::set_camera`] was called (rows that trace or rasterise need it).
-    camera_set: std::cell::Cell<bool>,
+    camera_set: std::sync::atomic::AtomicBool,
 }
 
 impl AmbientOcclusion {
@@ -263,7 +263,7 @@ impl AmbientOcclusion {
             ),
             filters,
             half,
-            camera_set: std::cell::Cell::new(false),
+            camera_set: std::sync::atomic::AtomicBool::new(false),
         })
     }
 
@@ -294,7 +294,8 @@ impl AmbientOcclusion {
         }
         let buffer = self.half.as_ref().map_or(&self.view, HalfResolution::view);
         queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
-        self.camera_set.set(true);
+        self.camera_set
+            .store(true, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// Temporal accumulation, when `temporal.enabled`.
@@ -429,14 +430,18 @@ impl AmbientOcclusion {
     ) -> Result<(), Error> {
         let device = &self.gpu.device;
         let needs = self.settings.technique.needs();
-        if (needs.triangles || needs.bvh) && !self.camera_set.get() {
+        if (needs.triangles || needs.bvh)
+            && !self.camera_set.load(std::sync::atomic::Ordering::Relaxed)
+        {
             return Err(Error::Input(format!(
                 "technique '{}' traces or rasterises the scene from the camera: call \
                  AmbientOcclusion::set_camera before the first encode",
                 self.settings.technique
             )));
         }
-        if self.settings.temporal.enabled && !self.camera_set.get() {
+        if self.settings.temporal.enabled
+            && !self.camera_set.load(std::sync::atomic::Ordering::Relaxed)
+        {
             return Err(Error::Input(
                 "temporal accumulation reprojects its history by the camera motion: call \
                  AmbientOcclusion::set_camera before every encode"

@@ -194,8 +194,6 @@ struct ViewerApp {
     pending_size: Option<((u32, u32), Instant)>,
     message: Option<String>,
     error: Option<String>,
-    /// The whole window, once eframe has captured it (`--screenshot`).
-    window_image: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
 }
 
 impl ViewerApp {
@@ -224,7 +222,6 @@ impl ViewerApp {
             pending_size: None,
             message: None,
             error: None,
-            window_image: Arc::default(),
             frame: None,
             texture: None,
             gpu,
@@ -618,15 +615,16 @@ impl ViewerApp {
                 self.fail(ctx, e);
                 return;
             }
-            let slot = self.window_image.clone();
-            ctx.request_screenshot(move |image| {
-                if let Ok(mut s) = slot.lock() {
-                    *s = Some(image);
-                }
-            });
+            ctx.send_viewport_cmd(egui::ViewportCommand::Screenshot(Default::default()));
             return;
         }
-        let image = self.window_image.lock().ok().and_then(|mut s| s.take());
+        // eframe answers the command with an input event a frame or two later.
+        let image = ctx.input(|input| {
+            input.events.iter().find_map(|event| match event {
+                egui::Event::Screenshot { image, .. } => Some(image.clone()),
+                _ => None,
+            })
+        });
         if let Some(image) = image {
             let window = path.with_extension("window.png");
             let [w, h] = image.size;

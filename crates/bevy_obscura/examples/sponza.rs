@@ -1,0 +1,536 @@
+//! A Bevy app that lights a glTF scene with obscura's AO or with Bevy's own SSAO, side by side in
+//! time: in a window, a key switches the row; headless, it times each choice and writes
+//! screenshots, as the peer benchmark of BENCHMARKS.md does for Bevy alone.
+//!
+//! ```sh
+//! # a window; Tab / Shift+Tab: next / previous choice, 1–4: preset low … ultra
+//! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb
+//! # headless: each choice for 200 frames after 30 of warm-up, GPU times and screenshots
+//! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb --headless \
+//!     --size 1920x1080 --frames 200 --warmup 30 --out bench-out
+//! ```
+//!
+//! Without `--scene` it shows obscura's built-in `stairs`. The default camera is the Sponza view
+//! of BENCHMARKS.md (`--eye -9.5,1.8,-0.4 --target 0,3.5,0.6 --fov 60`).
+
+use bevy::app::PluginsState;
+use bevy::asset::{AssetPlugin, RenderAssetUsages};
+use bevy::camera::RenderTarget;
+use bevy::diagnostic::DiagnosticsStore;
+use bevy::gltf::GltfAssetLabel;
+use bevy::image::Image;
+use bevy::input::ButtonInput;
+use bevy::light::GlobalAmbientLight;
+use bevy::pbr::{ScreenSpaceAmbientOcclusion, ScreenSpaceAmbientOcclusionQualityLevel};
+use bevy::prelude::*;
+use bevy::render::diagnostic::RenderDiagnosticsPlugin;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
+use bevy::render::renderer::RenderDevice;
+use bevy::render::settings::{Backends, RenderCreation, WgpuSettings};
+use bevy::render::{pipelined_rendering::PipelinedRenderingPlugin, RenderPlugin};
+use bevy::window::{ExitCondition, WindowPlugin};
+use bevy::winit::WinitPlugin;
+use bevy::world_serialization::WorldAssetRoot;
+use bevy_obscura::{ObscuraAo, ObscuraPlugin};
+use obscura::settings::Preset;
+use std::path::PathBuf;
+
+/// What lights the frame's ambient term.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Choice {
+    /// Bevy's SSAO at one of its quality levels.
+    Bevy(ScreenSpaceAmbientOcclusionQualityLevel),
+    /// A row of obscura's table at a preset.
+    Obscura(&'static str, Preset),
+}
+
+impl Choice {
+    /// The choices the issue compares, Bevy's first.
+    const ALL: [Choice; 9] = [
+        Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::Medium),
+        Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::High),
+        Choice::Obscura("vao", Preset::Medium),
+        Choice::Obscura("gtao", Preset::Medium),
+        Choice::Obscura("gtao", Preset::High),
+        Choice::Obscura("gtao-vb", Preset::Medium),
+        Choice::Obscura("sd-hbao+", Preset::Medium),
+        Choice::Obscura("hemisphere", Preset::Medium),
+        Choice::Obscura("rtao", Preset::Medium),
+    ];
+
+    fn name(self) -> String {
+        match self {
+            Choice::Bevy(q) => format!("bevy-ssao-{}", format!("{q:?}").to_lowercase()),
+            Choice::Obscura(row, preset) => format!("{row}-{}", preset.name()),
+        }
+    }
+
+    /// Puts the choice on the camera.
+    fn apply(self, camera: &mut EntityWorldMut) {
+        camera.remove::<(ObscuraAo, ScreenSpaceAmbientOcclusion)>();
+        match self {
+            Choice::Bevy(quality_level) => {
+                camera.insert(ScreenSpaceAmbientOcclusion {
+                    quality_level,
+                    ..default()
+                });
+            }
+            Choice::Obscura(row, preset) => {
+                camera.insert(ObscuraAo::new(
+                    row.parse().expect("a row of the table"),
+                    preset,
+                ));
+            }
+        }
+    }
+}
+
+struct Args {
+    scene: Option<PathBuf>,
+    size: (u32, u32),
+    eye: Vec3,
+    target: Vec3,
+    fov: f32,
+    headless: bool,
+    frames: u32,
+    warmup: u32,
+    out: PathBuf,
+    only: Option<String>,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut a = Args {
+        scene: None,
+        size: (1280, 720),
+        eye: Vec3::new(-9.5, 1.8, -0.4),
+        target: Vec3::new(0.0, 3.5, 0.6),
+        fov: 60.0,
+        headless: false,
+        frames: 200,
+        warmup: 30,
+        out: PathBuf::from("sponza-out"),
+        only: None,
+    };
+    let mut it = std::env::args().skip(1);
+    let vec3 = |s: String| -> Result<Vec3, String> {
+        let v: Vec<f32> = s
+            .split(',')
+            .map(|x| x.trim().parse().map_err(|_| format!("'{s}' is not x,y,z")))
+            .collect::<Result<_, _>>()?;
+        (v.len() == 3)
+            .then(|| Vec3::new(v[0], v[1], v[2]))
+            .ok_or(format!("'{s}' is not x,y,z"))
+    };
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or(format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--scene" => a.scene = Some(value()?.into()),
+            "--size" => {
+                let v = value()?;
+                let (w, h) = v
+                    .split_once('x')
+                    .ok_or(format!("--size '{v}' is not WxH"))?;
+                a.size = (
+                    w.parse().map_err(|_| format!("--size '{v}'"))?,
+                    h.parse().map_err(|_| format!("--size '{v}'"))?,
+                );
+            }
+            "--eye" => a.eye = vec3(value()?)?,
+            "--target" => a.target = vec3(value()?)?,
+            "--fov" => {
+                a.fov = value()?
+                    .parse()
+                    .map_err(|_| "--fov takes degrees".to_string())?
+            }
+            "--headless" => a.headless = true,
+            "--frames" => {
+                a.frames = value()?
+                    .parse()
+                    .map_err(|_| "--frames takes a count".to_string())?
+            }
+            "--warmup" => {
+                a.warmup = value()?
+                    .parse()
+                    .map_err(|_| "--warmup takes a count".to_string())?
+            }
+            "--out" => a.out = value()?.into(),
+            "--only" => a.only = Some(value()?),
+            other => {
+                return Err(format!(
+                    "unknown flag '{other}' (see the example's top comment)"
+                ))
+            }
+        }
+    }
+    if a.size.0 == 0 || a.size.1 == 0 || a.frames == 0 {
+        return Err("--size and --frames must be positive".into());
+    }
+    Ok(a)
+}
+
+fn main() {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(2);
+        }
+    };
+    if let Some(scene) = &args.scene {
+        if !scene.is_file() {
+            eprintln!(
+                "error: --scene '{}' is not a file: give a .glb or .gltf",
+                scene.display()
+            );
+            std::process::exit(2);
+        }
+    }
+    let result = if args.headless {
+        headless(&args)
+    } else {
+        windowed(&args)
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
+}
+
+/// Bevy's plugins for this app: assets from the scene's folder, Vulkan, GPU time spans.
+fn app(args: &Args, headless: bool) -> App {
+    let asset_root = args
+        .scene
+        .as_ref()
+        .and_then(|s| s.parent())
+        .map(|p| p.to_string_lossy().into_owned())
+        .unwrap_or_else(|| ".".into());
+    let mut app = App::new();
+    let plugins = DefaultPlugins
+        .set(AssetPlugin {
+            file_path: asset_root,
+            ..default()
+        })
+        .set(RenderPlugin {
+            synchronous_pipeline_compilation: headless,
+            render_creation: RenderCreation::Automatic(Box::new(WgpuSettings {
+                backends: Some(Backends::VULKAN),
+                ..default()
+            })),
+            ..default()
+        });
+    if headless {
+        app.add_plugins(
+            plugins
+                .set(WindowPlugin {
+                    primary_window: None,
+                    exit_condition: ExitCondition::DontExit,
+                    ..default()
+                })
+                .disable::<WinitPlugin>()
+                .disable::<PipelinedRenderingPlugin>(),
+        );
+    } else {
+        app.add_plugins(plugins);
+    }
+    app.add_plugins((ObscuraPlugin, RenderDiagnosticsPlugin))
+        .insert_resource(GlobalAmbientLight {
+            color: Color::WHITE,
+            brightness: 1500.0,
+            ..default()
+        });
+    app
+}
+
+/// The scene and a sun; the camera with `target`. Returns the camera and the scene's asset
+/// while it loads.
+fn spawn_world(
+    app: &mut App,
+    args: &Args,
+    target: Option<RenderTarget>,
+) -> (Entity, Option<UntypedHandle>) {
+    let world = app.world_mut();
+    let loading = match &args.scene {
+        Some(path) => {
+            let name = path
+                .file_name()
+                .expect("a file")
+                .to_string_lossy()
+                .into_owned();
+            let scene = world
+                .resource::<AssetServer>()
+                .load(GltfAssetLabel::Scene(0).from_asset(name));
+            world.spawn(WorldAssetRoot(scene.clone()));
+            Some(scene.untyped())
+        }
+        None => {
+            spawn_builtin(world, "stairs");
+            None
+        }
+    };
+    world.spawn((
+        DirectionalLight {
+            illuminance: 8000.0,
+            shadow_maps_enabled: true,
+            ..default()
+        },
+        Transform::from_xyz(2.0, 10.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    let mut camera = world.spawn((
+        Camera3d::default(),
+        Projection::Perspective(PerspectiveProjection {
+            fov: args.fov.to_radians(),
+            aspect_ratio: args.size.0 as f32 / args.size.1 as f32,
+            ..default()
+        }),
+        Transform::from_translation(args.eye).looking_at(args.target, Vec3::Y),
+        Msaa::Off,
+    ));
+    if let Some(target) = target {
+        camera.insert(target);
+    }
+    (camera.id(), loading)
+}
+
+/// obscura's built-in scene as one white mesh with face normals.
+fn spawn_builtin(world: &mut World, name: &str) {
+    let scene = obscura::scene::load(name).expect("a built-in scene");
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for t in &scene.triangles {
+        let [a, b, c] = t.map(|i| scene.positions[i as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        for p in [a, b, c] {
+            positions.push(p.to_array());
+            normals.push(n.to_array());
+        }
+    }
+    let mut mesh = Mesh::new(
+        bevy::mesh::PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    );
+    mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+    mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+    let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+    let material = world
+        .resource_mut::<Assets<StandardMaterial>>()
+        .add(StandardMaterial {
+            cull_mode: None,
+            double_sided: true,
+            ..default()
+        });
+    world.spawn((Mesh3d(mesh), MeshMaterial3d(material)));
+}
+
+#[derive(Resource)]
+struct Switcher {
+    camera: Entity,
+    index: usize,
+}
+
+fn windowed(args: &Args) -> Result<(), String> {
+    let mut app = app(args, false);
+    let (camera, _) = spawn_world(&mut app, args, None);
+    let first = Choice::ALL[3];
+    first.apply(&mut app.world_mut().entity_mut(camera));
+    println!(
+        "{} (Tab: next, Shift+Tab: previous, 1-4: preset)",
+        first.name()
+    );
+    app.insert_resource(Switcher { camera, index: 3 })
+        .add_systems(Update, switch);
+    app.run();
+    Ok(())
+}
+
+/// Tab / Shift+Tab cycles the choices, 1–4 sets an obscura row's preset.
+fn switch(world: &mut World) {
+    let keys = world.resource::<ButtonInput<KeyCode>>();
+    let shift = keys.pressed(KeyCode::ShiftLeft) || keys.pressed(KeyCode::ShiftRight);
+    let step =
+        keys.just_pressed(KeyCode::Tab)
+            .then_some(if shift { Choice::ALL.len() - 1 } else { 1 });
+    let preset = [
+        KeyCode::Digit1,
+        KeyCode::Digit2,
+        KeyCode::Digit3,
+        KeyCode::Digit4,
+    ]
+    .iter()
+    .position(|k| keys.just_pressed(*k))
+    .map(|i| Preset::ALL[i]);
+    let switcher = world.resource::<Switcher>();
+    let (camera, mut index) = (switcher.camera, switcher.index);
+    let mut choice = Choice::ALL[index];
+    match (step, preset, choice) {
+        (Some(step), _, _) => {
+            index = (index + step) % Choice::ALL.len();
+            choice = Choice::ALL[index];
+        }
+        (None, Some(p), Choice::Obscura(row, _)) => choice = Choice::Obscura(row, p),
+        _ => return,
+    }
+    world.resource_mut::<Switcher>().index = index;
+    choice.apply(&mut world.entity_mut(camera));
+    println!("{}", choice.name());
+    if let Ok(mut window) = world.query::<&mut Window>().single_mut(world) {
+        window.title = format!("bevy_obscura: {}", choice.name());
+    }
+}
+
+fn headless(args: &Args) -> Result<(), String> {
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("--out '{}': {e}", args.out.display()))?;
+    let mut app = app(args, true);
+    while app.plugins_state() == PluginsState::Adding {
+        bevy::tasks::tick_global_task_pools_on_main_thread();
+    }
+    app.finish();
+    app.cleanup();
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width: args.size.0,
+            height: args.size.1,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
+    let image = app.world_mut().resource_mut::<Assets<Image>>().add(image);
+    let target = RenderTarget::Image(image.clone().into());
+    let (camera, loading) = spawn_world(&mut app, args, Some(target));
+    // Let the scene load (meshes, textures) before timing anything.
+    if let Some(scene) = loading {
+        let mut frames = 0;
+        while !app
+            .world()
+            .resource::<AssetServer>()
+            .is_loaded_with_dependencies(&scene)
+        {
+            frame(&mut app);
+            frames += 1;
+            if frames > 10_000 {
+                return Err("the scene did not load in 10000 frames".into());
+            }
+        }
+    }
+    let mut report = Vec::new();
+    for choice in Choice::ALL
+        .iter()
+        .filter(|c| args.only.as_ref().is_none_or(|o| *o == c.name()))
+    {
+        choice.apply(&mut app.world_mut().entity_mut(camera));
+        let mut samples: std::collections::BTreeMap<String, Vec<f64>> = Default::default();
+        for i in 0..args.warmup + args.frames {
+            frame(&mut app);
+            if i < args.warmup {
+                continue;
+            }
+            for d in app.world().resource::<DiagnosticsStore>().iter() {
+                let path = d.path().as_str();
+                if path.starts_with("render/") && path.ends_with("/elapsed_gpu") {
+                    if let Some(m) = d.measurement() {
+                        samples.entry(path.to_string()).or_default().push(m.value);
+                    }
+                }
+            }
+        }
+        let medians: Vec<String> = samples
+            .iter_mut()
+            .map(|(path, v)| {
+                v.sort_by(f64::total_cmp);
+                format!("\"{path}\": {:.4}", v[v.len() / 2])
+            })
+            .collect();
+        println!("{}: {}", choice.name(), medians.join(", "));
+        report.push(format!(
+            "  \"{}\": {{{}}}",
+            choice.name(),
+            medians.join(", ")
+        ));
+        save_screenshots(&app, camera, &image, &args.out.join(choice.name()))?;
+    }
+    let adapter = app
+        .world()
+        .resource::<bevy::render::renderer::RenderAdapterInfo>();
+    let json = format!(
+        "{{\n  \"adapter\": \"{}\",\n  \"driver\": \"{} {}\",\n  \"size\": [{}, {}],\n  \"frames\": {},\n  \"warmup\": {},\n  \"median_ms\": {{\n{}\n  }}\n}}\n",
+        adapter.name, adapter.driver, adapter.driver_info, args.size.0, args.size.1, args.frames, args.warmup,
+        report.join(",\n")
+    );
+    let path = args.out.join("times.json");
+    std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+fn frame(app: &mut App) {
+    app.update();
+    let device = app.world().resource::<RenderDevice>();
+    let _ = device
+        .wgpu_device()
+        .poll(wgpu::PollType::wait_indefinitely());
+}
+
+/// `NAME.png` (the lit frame) and `NAME.ao.png` (the AO its lighting read).
+fn save_screenshots(
+    app: &App,
+    camera: Entity,
+    image: &Handle<Image>,
+    stem: &std::path::Path,
+) -> Result<(), String> {
+    use bevy::render::render_asset::RenderAssets;
+    use bevy::render::texture::GpuImage;
+    let render_world = app.sub_app(bevy::render::RenderApp).world();
+    let view = app
+        .world()
+        .get::<bevy::render::sync_world::RenderEntity>(camera)
+        .ok_or("no render entity")?
+        .id();
+    let ao = bevy_obscura::read_view_ao(render_world, view)?;
+    let gray: Vec<u8> = ao
+        .values
+        .iter()
+        .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+        .collect();
+    let save =
+        |path: std::path::PathBuf, w: u32, h: u32, bytes: Vec<u8>, color: image::ColorType| {
+            image::save_buffer(&path, &bytes, w, h, color)
+                .map_err(|e| format!("{}: {e}", path.display()))
+        };
+    save(
+        stem.with_extension("ao.png"),
+        ao.width,
+        ao.height,
+        gray,
+        image::ColorType::L8,
+    )?;
+    let gpu_image = render_world
+        .resource::<RenderAssets<GpuImage>>()
+        .get(image.id())
+        .ok_or("the frame is not on the GPU")?;
+    let gpu = obscura::Gpu::sharing_device(
+        (**render_world
+            .resource::<bevy::render::renderer::RenderAdapter>()
+            .0)
+            .clone(),
+        render_world
+            .resource::<RenderDevice>()
+            .wgpu_device()
+            .clone(),
+        (**render_world
+            .resource::<bevy::render::renderer::RenderQueue>()
+            .0)
+            .clone(),
+    );
+    let rgba =
+        obscura::gpu::read_texture_rgba8(&gpu, &gpu_image.texture).map_err(|e| e.to_string())?;
+    save(
+        stem.with_extension("png"),
+        gpu_image.texture.width(),
+        gpu_image.texture.height(),
+        rgba,
+        image::ColorType::Rgba8,
+    )
+}

@@ -1,0 +1,336 @@
+//! The render world: per camera, obscura's `EngineInput` and `AmbientOcclusion` made (again when
+//! the settings, the projection, the size or the geometry change), run between Bevy's prepass
+//! and its main pass, and written into the SSAO texture Bevy's PBR shaders read.
+//!
+//! Order within a frame:
+//! 1. `prepare` (`RenderSystems::PrepareResources`): make or keep each camera's row, give it
+//!    the camera.
+//! 2. `skip_bevy_ssao` (`RenderSystems::Render`, before Bevy's render system): takes Bevy's SSAO
+//!    bind groups off each camera whose row is ready, so Bevy's `ssao` system, which needs them,
+//!    passes that camera over.
+//! 3. `encode` (the `Core3d` schedule, after the prepass, before the main pass): the row's passes
+//!    and the copy into Bevy's texture.
+
+use crate::convert::{mat4, AoCopy};
+use crate::geometry::{reads_geometry, GatheredGeometry, RenderGeometry};
+use crate::ObscuraAo;
+use bevy::app::App;
+use bevy::core_pipeline::prepass::ViewPrepassTextures;
+use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
+use bevy::ecs::prelude::*;
+use bevy::log::error;
+use bevy::pbr::{ScreenSpaceAmbientOcclusionResources, SsaoBindGroups};
+use bevy::render::camera::ExtractedCamera;
+use bevy::render::diagnostic::RecordDiagnostics;
+use bevy::render::renderer::{
+    render_system, RenderAdapter, RenderContext, RenderDevice, RenderQueue, ViewQuery,
+};
+use bevy::render::view::ExtractedView;
+use bevy::render::{Render, RenderApp, RenderSystems};
+use obscura::settings::AoSettings;
+use obscura::{
+    AmbientOcclusion, EngineFrame, EngineInput, EngineNormals, FrameView, Gpu, NormalEncoding,
+    ScreenGeometry,
+};
+use std::collections::HashMap;
+
+pub(crate) fn build(_app: &mut App) {}
+
+pub(crate) fn finish(app: &mut App) {
+    let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
+        return;
+    };
+    render_app
+        .init_resource::<Views>()
+        .add_systems(Render, prepare.in_set(RenderSystems::PrepareResources))
+        .add_systems(
+            Render,
+            skip_bevy_ssao
+                .in_set(RenderSystems::Render)
+                .before(render_system),
+        )
+        .add_systems(
+            Core3d,
+            encode
+                .after(Core3dSystems::Prepass)
+                .before(Core3dSystems::MainPass),
+        );
+}
+
+/// What one camera ran last frame, in the render world (read it from
+/// `app.sub_app(RenderApp).world()`, as the tests do).
+#[derive(Component, Clone, Debug, Default)]
+pub struct ObscuraViewReport {
+    /// The settings the row was made with.
+    pub settings: Option<AoSettings>,
+    /// Why the row could not be made or run (Bevy's SSAO ran instead), if it could not.
+    pub error: Option<String>,
+}
+
+/// Every camera's row, and what they share.
+#[derive(Resource, Default)]
+pub struct Views {
+    gpu: Option<Gpu>,
+    copy: Option<AoCopy>,
+    geometry: RenderGeometry,
+    rows: HashMap<Entity, Row>,
+}
+
+impl Views {
+    /// obscura's handle on Bevy's device (for tests that read obscura's textures back).
+    pub fn gpu(&self) -> Option<&Gpu> {
+        self.gpu.as_ref()
+    }
+
+    /// A camera's AO as obscura wrote it (R32Float, the view's size), if its row ran.
+    pub fn output(&self, view: Entity) -> Option<&wgpu::Texture> {
+        match &self.rows.get(&view)?.made {
+            Ok(made) => Some(made.ao.output()),
+            Err(_) => None,
+        }
+    }
+}
+
+/// One camera's row: what it was made for, and the result.
+struct Row {
+    key: RowKey,
+    made: Result<Made, String>,
+    /// Set by `prepare` when the view was seen this frame.
+    seen: bool,
+}
+
+#[derive(PartialEq)]
+struct RowKey {
+    settings: AoSettings,
+    projection: glam::Mat4,
+    size: (u32, u32),
+    /// The geometry's (layout, placement), for the rows that read it.
+    geometry: Option<(u64, u64)>,
+}
+
+struct Made {
+    input: EngineInput,
+    ao: AmbientOcclusion,
+    projection: glam::Mat4,
+    view_from_world: glam::Mat4,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn prepare(
+    mut commands: Commands,
+    mut views: ResMut<Views>,
+    adapter: Res<RenderAdapter>,
+    device: Res<RenderDevice>,
+    queue: Res<RenderQueue>,
+    gathered: Option<Res<GatheredGeometry>>,
+    cameras: Query<(Entity, &ObscuraAo, &ExtractedView, &ExtractedCamera)>,
+) {
+    let views = &mut *views;
+    let gpu = views
+        .gpu
+        .get_or_insert_with(|| {
+            Gpu::sharing_device(
+                (**adapter.0).clone(),
+                device.wgpu_device().clone(),
+                (**queue.0).clone(),
+            )
+        })
+        .clone();
+    if views.copy.is_none() {
+        match AoCopy::new(device.wgpu_device(), bevy_ssao_format(&adapter)) {
+            Ok(copy) => views.copy = Some(copy),
+            Err(e) => {
+                error!("obscura: {e}; Bevy's SSAO runs instead");
+                return;
+            }
+        }
+    }
+    for row in views.rows.values_mut() {
+        row.seen = false;
+    }
+    for (entity, ao, view, camera) in &cameras {
+        let Some(size) = camera.physical_viewport_size else {
+            continue;
+        };
+        let settings = ao.resolved();
+        let projection = mat4(view.clip_from_view);
+        let view_from_world = mat4(view.world_from_view.to_matrix().inverse());
+        let needs = settings.technique.needs();
+        let mut geometry_error = None;
+        let geometry = if reads_geometry(needs) {
+            match gathered.as_deref() {
+                Some(gathered) if gathered.wanted => {
+                    match views.geometry.update(&gpu, gathered, needs) {
+                        Ok(_) => Some(views.geometry.version()),
+                        Err(e) => {
+                            geometry_error = Some(format!("the scene's meshes: {e}"));
+                            None
+                        }
+                    }
+                }
+                _ => None,
+            }
+        } else {
+            None
+        };
+        let key = RowKey {
+            settings,
+            projection,
+            size: (size.x, size.y),
+            geometry,
+        };
+        let row = views.rows.get(&entity);
+        if row.is_none_or(|r| r.key != key) {
+            let made = match geometry_error {
+                Some(e) => Err(e),
+                None => make(&gpu, &key, &views.geometry),
+            };
+            if let Err(e) = &made {
+                error!("obscura: camera {entity}: {e}; Bevy's SSAO runs instead");
+            }
+            views.rows.insert(
+                entity,
+                Row {
+                    key,
+                    made,
+                    seen: true,
+                },
+            );
+        }
+        let row = views.rows.get_mut(&entity).expect("inserted above");
+        row.seen = true;
+        if let Ok(made) = &mut row.made {
+            made.view_from_world = view_from_world;
+            // Orthographic views have no camera position; their (screen-space) rows need none.
+            if let Ok(frame_view) =
+                FrameView::from_matrices(view_from_world, made.input.screen(), near(projection))
+            {
+                made.ao.set_camera(&gpu.queue, &frame_view);
+            }
+        }
+        commands.entity(entity).insert(ObscuraViewReport {
+            settings: Some(settings),
+            error: row.made.as_ref().err().cloned(),
+        });
+    }
+    views.rows.retain(|_, row| row.seen);
+}
+
+/// The format Bevy gives its SSAO texture: `R16Float` where the adapter can store to it, else
+/// `R32Float` (Bevy 0.19's `SsaoPipelines`, which keeps the choice to itself).
+fn bevy_ssao_format(adapter: &RenderAdapter) -> wgpu::TextureFormat {
+    let r16 = adapter
+        .get_texture_format_features(wgpu::TextureFormat::R16Float)
+        .allowed_usages
+        .contains(wgpu::TextureUsages::STORAGE_BINDING);
+    if r16 {
+        wgpu::TextureFormat::R16Float
+    } else {
+        wgpu::TextureFormat::R32Float
+    }
+}
+
+/// The near plane of a projection (Bevy's perspective: infinite reversed-Z, `near` at [3][2]).
+fn near(projection: glam::Mat4) -> f32 {
+    projection.w_axis.z.abs().max(1e-6)
+}
+
+/// Makes a camera's row, with obscura's set-up errors caught by an error scope (they must not
+/// reach Bevy's device-error handler, which would start its render recovery).
+fn make(gpu: &Gpu, key: &RowKey, geometry: &RenderGeometry) -> Result<Made, String> {
+    let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let made = (|| {
+        let screen = ScreenGeometry::from_projection(key.projection, key.size.0, key.size.1, 0)
+            .map_err(|e| e.to_string())?;
+        let resources = match key.geometry {
+            Some(_) => geometry.resources(),
+            None => Default::default(),
+        };
+        let ao = AmbientOcclusion::new(gpu, &key.settings, screen, resources)
+            .map_err(|e| e.to_string())?;
+        let input = EngineInput::new(gpu, screen);
+        Ok(Made {
+            input,
+            ao,
+            projection: key.projection,
+            view_from_world: glam::Mat4::IDENTITY,
+        })
+    })();
+    let raised = pollster::block_on(scope.pop());
+    match (made, raised) {
+        (Ok(made), None) => Ok(made),
+        (Err(e), _) => Err(e),
+        (Ok(_), Some(e)) => {
+            gpu.forget_kept();
+            Err(format!("the GPU refused a pass: {e}"))
+        }
+    }
+}
+
+/// Takes Bevy's SSAO bind groups off the cameras whose obscura row is ready: Bevy's `ssao`
+/// system needs them, so its three passes skip those cameras.
+fn skip_bevy_ssao(
+    mut commands: Commands,
+    views: Res<Views>,
+    cameras: Query<Entity, (With<SsaoBindGroups>, With<ObscuraAo>)>,
+) {
+    for entity in &cameras {
+        if views.rows.get(&entity).is_some_and(|r| r.made.is_ok()) {
+            commands.entity(entity).remove::<SsaoBindGroups>();
+        }
+    }
+}
+
+/// The row's passes, then the copy into the texture Bevy's lighting reads.
+fn encode(
+    view: ViewQuery<(
+        &ObscuraAo,
+        &ViewPrepassTextures,
+        &ScreenSpaceAmbientOcclusionResources,
+    )>,
+    views: Res<Views>,
+    mut ctx: RenderContext,
+) {
+    let entity = view.entity();
+    let (_, prepass, ssao) = view.into_inner();
+    let Some(Ok(made)) = views.rows.get(&entity).map(|r| &r.made) else {
+        return;
+    };
+    let (Some(depth), Some(normals), Some(gpu)) = (
+        prepass.depth.as_ref(),
+        prepass.normal.as_ref(),
+        views.gpu.as_ref(),
+    ) else {
+        return;
+    };
+    let target = &ssao.screen_space_ambient_occlusion_texture.texture;
+    let diagnostics = ctx.diagnostic_recorder();
+    let diagnostics = diagnostics.as_deref();
+    let span = diagnostics.time_span(ctx.command_encoder(), "obscura_ao");
+    let encoder = ctx.command_encoder();
+    let frame = EngineFrame {
+        depth: &depth.texture.texture,
+        projection: made.projection,
+        normals: EngineNormals::World {
+            texture: &normals.texture.texture,
+            // Bevy's prepass writes n * 0.5 + 0.5 into an Rgb10a2Unorm target.
+            encoding: NormalEncoding::Biased,
+            view_from_world: made.view_from_world,
+        },
+    };
+    let ran = made
+        .input
+        .encode(encoder, &frame)
+        .and_then(|textures| made.ao.encode(encoder, textures, None));
+    match (ran, views.copy.as_ref()) {
+        (Ok(()), Some(copy)) if copy.format() == target.format() => {
+            copy.encode(&gpu.device, encoder, made.ao.output(), target)
+        }
+        (Ok(()), _) => error!(
+            "obscura: Bevy's SSAO texture is {:?}, not the format the copy was made for",
+            target.format()
+        ),
+        (Err(e), _) => error!("obscura: camera {entity}: {e}"),
+    }
+    span.end(ctx.command_encoder());
+}

@@ -1,0 +1,238 @@
+//! A headless Bevy app on the test machine's adapter (lavapipe in CI), pumped frame by frame,
+//! with obscura's built-in scenes turned into Bevy meshes and the render world in reach.
+
+use bevy::app::PluginsState;
+use bevy::asset::RenderAssetUsages;
+use bevy::camera::RenderTarget;
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::image::Image;
+use bevy::light::GlobalAmbientLight;
+use bevy::mesh::{Mesh, PrimitiveTopology};
+use bevy::prelude::*;
+use bevy::render::diagnostic::RenderDiagnosticsPlugin;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
+use bevy::render::renderer::{RenderAdapter, RenderDevice, RenderQueue};
+use bevy::render::settings::{Backends, RenderCreation, WgpuSettings};
+use bevy::render::sync_world::RenderEntity;
+use bevy::render::texture::GpuImage;
+use bevy::render::{pipelined_rendering::PipelinedRenderingPlugin, RenderApp, RenderPlugin};
+use bevy::window::{ExitCondition, WindowPlugin};
+use bevy::winit::WinitPlugin;
+use bevy_obscura::{read_view_ao, ObscuraPlugin, ViewAo};
+use obscura::scene::Scene;
+use std::sync::Mutex;
+
+/// One Bevy app at a time: each holds a lavapipe device, and the tests run on two cores.
+pub static ONE_APP: Mutex<()> = Mutex::new(());
+
+pub struct Harness {
+    pub app: App,
+}
+
+impl Harness {
+    /// An app with Bevy's default plugins (no window, no winit, no pipelined rendering) and
+    /// obscura's plugin, a black clear colour and only ambient light, so that the lit frame is
+    /// albedo × ambient × AO.
+    pub fn new() -> Self {
+        obscura::gpu::quiet_headless_vulkan();
+        let mut app = App::new();
+        let plugins = DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(RenderPlugin {
+                synchronous_pipeline_compilation: true,
+                render_creation: RenderCreation::Automatic(Box::new(WgpuSettings {
+                    backends: Some(Backends::VULKAN),
+                    ..default()
+                })),
+                ..default()
+            })
+            .disable::<WinitPlugin>()
+            .disable::<PipelinedRenderingPlugin>();
+        // Bevy's log goes to stderr with BEVY_OBSCURA_TEST_LOG set (its subscriber is global:
+        // one per process, so off by default).
+        if std::env::var_os("BEVY_OBSCURA_TEST_LOG").is_some() {
+            app.add_plugins(plugins);
+        } else {
+            app.add_plugins(plugins.disable::<bevy::log::LogPlugin>());
+        }
+        app.add_plugins((ObscuraPlugin, RenderDiagnosticsPlugin))
+            .insert_resource(ClearColor(Color::BLACK))
+            .insert_resource(GlobalAmbientLight {
+                color: Color::WHITE,
+                brightness: 1000.0,
+                ..default()
+            });
+        while app.plugins_state() == PluginsState::Adding {
+            bevy::tasks::tick_global_task_pools_on_main_thread();
+        }
+        app.finish();
+        app.cleanup();
+        Self { app }
+    }
+
+    /// The scene's triangles as white meshes with face normals (each triangle its own three
+    /// vertices): one mesh of the double-sided materials' triangles, drawn from both sides, and
+    /// one of the rest, whose back faces are culled, as obscura counts them.
+    pub fn spawn_scene(&mut self, scene: &Scene) {
+        for double_sided in [false, true] {
+            let mut positions = Vec::new();
+            let mut normals = Vec::new();
+            for (t, m) in scene.triangles.iter().zip(&scene.triangle_materials) {
+                if scene.materials[*m as usize].double_sided != double_sided {
+                    continue;
+                }
+                let [a, b, c] = t.map(|i| scene.positions[i as usize]);
+                let n = (b - a).cross(c - a).normalize_or_zero();
+                for p in [a, b, c] {
+                    positions.push(p.to_array());
+                    normals.push(n.to_array());
+                }
+            }
+            if positions.is_empty() {
+                continue;
+            }
+            let mut mesh = Mesh::new(
+                PrimitiveTopology::TriangleList,
+                RenderAssetUsages::default(),
+            );
+            mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+            mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+            self.spawn_mesh_sided(mesh, Transform::IDENTITY, double_sided);
+        }
+    }
+
+    /// A white, double-sided mesh.
+    pub fn spawn_mesh(&mut self, mesh: Mesh, transform: Transform) -> Entity {
+        self.spawn_mesh_sided(mesh, transform, true)
+    }
+
+    /// A white mesh, its back faces culled unless `double_sided`.
+    pub fn spawn_mesh_sided(
+        &mut self,
+        mesh: Mesh,
+        transform: Transform,
+        double_sided: bool,
+    ) -> Entity {
+        let world = self.app.world_mut();
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world
+            .resource_mut::<Assets<StandardMaterial>>()
+            .add(StandardMaterial {
+                base_color: Color::WHITE,
+                perceptual_roughness: 1.0,
+                reflectance: 0.0,
+                double_sided,
+                cull_mode: (!double_sided).then_some(bevy::render::render_resource::Face::Back),
+                ..default()
+            });
+        world
+            .spawn((Mesh3d(mesh), MeshMaterial3d(material), transform))
+            .id()
+    }
+
+    /// A camera at obscura's `camera`, rendering into a new `width × height` image, with the
+    /// given extra components (`ObscuraAo`, `ScreenSpaceAmbientOcclusion`, or none).
+    pub fn spawn_camera(
+        &mut self,
+        camera: &obscura::scene::Camera,
+        near: f32,
+        (width, height): (u32, u32),
+        extra: impl Bundle,
+    ) -> (Entity, Handle<Image>) {
+        let mut image = Image::new_uninit(
+            Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            TextureDimension::D2,
+            TextureFormat::Rgba8UnormSrgb,
+            RenderAssetUsages::RENDER_WORLD,
+        );
+        image.texture_descriptor.usage |=
+            TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
+        let world = self.app.world_mut();
+        let image = world.resource_mut::<Assets<Image>>().add(image);
+        let eye = Vec3::from_array(camera.eye.to_array());
+        let target = Vec3::from_array(camera.target.to_array());
+        let up = Vec3::from_array(camera.up.to_array());
+        let entity = world
+            .spawn((
+                Camera3d::default(),
+                RenderTarget::Image(image.clone().into()),
+                Projection::Perspective(PerspectiveProjection {
+                    fov: camera.fov_y_deg.to_radians(),
+                    near,
+                    aspect_ratio: width as f32 / height as f32,
+                    ..default()
+                }),
+                Transform::from_translation(eye).looking_at(target, up),
+                Msaa::Off,
+                Tonemapping::None,
+                extra,
+            ))
+            .id();
+        (entity, image)
+    }
+
+    /// Runs `n` frames, waiting for the GPU after each.
+    pub fn frames(&mut self, n: u32) {
+        for _ in 0..n {
+            self.app.update();
+            let device = self.app.world().resource::<RenderDevice>();
+            device
+                .wgpu_device()
+                .poll(wgpu::PollType::wait_indefinitely())
+                .expect("the GPU finished the frame");
+        }
+    }
+
+    /// The render world's entity for a main-world camera.
+    pub fn render_entity(&self, camera: Entity) -> Entity {
+        self.app
+            .world()
+            .get::<RenderEntity>(camera)
+            .expect("the camera is synced to the render world")
+            .id()
+    }
+
+    pub fn render_world(&self) -> &World {
+        self.app.sub_app(RenderApp).world()
+    }
+
+    /// The AO the camera's lighting read in the last frame.
+    pub fn view_ao(&self, camera: Entity) -> ViewAo {
+        read_view_ao(self.render_world(), self.render_entity(camera)).expect("the view's AO")
+    }
+
+    /// The camera's lit frame, RGBA8 (sRGB), as rendered in the last frame.
+    pub fn lit_frame(&self, image: &Handle<Image>) -> Vec<[u8; 4]> {
+        let world = self.render_world();
+        let gpu_image = world
+            .resource::<RenderAssets<GpuImage>>()
+            .get(image.id())
+            .expect("the target image is on the GPU");
+        let gpu = obscura::Gpu::sharing_device(
+            (**world.resource::<RenderAdapter>().0).clone(),
+            world.resource::<RenderDevice>().wgpu_device().clone(),
+            (**world.resource::<RenderQueue>().0).clone(),
+        );
+        let bytes =
+            obscura::gpu::read_texture_rgba8(&gpu, &gpu_image.texture).expect("read the frame");
+        bytes
+            .chunks_exact(4)
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect()
+    }
+}
+
+/// Mean absolute difference.
+pub fn mae(a: &[f32], b: &[f32]) -> f32 {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum::<f32>() / a.len() as f32
+}
