@@ -10,13 +10,15 @@
 //!     --size 1920x1080 --frames 200 --warmup 30 --out bench-out
 //! ```
 //!
-//! Without `--scene` it shows obscura's built-in `stairs`. The default camera is the Sponza view
+//! obscura's rows run with every radius at `--ao-radius` (default 0.5 world units, the radius of
+//! BENCHMARKS.md's ground truths). Without `--scene` it shows obscura's built-in `stairs`. The default camera is the Sponza view
 //! of BENCHMARKS.md (`--eye -9.5,1.8,-0.4 --target 0,3.5,0.6 --fov 60`).
 
 use bevy::app::PluginsState;
 use bevy::asset::{AssetPlugin, RenderAssetUsages};
 use bevy::camera::RenderTarget;
-use bevy::diagnostic::DiagnosticsStore;
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::gltf::GltfAssetLabel;
 use bevy::image::Image;
 use bevy::input::ButtonInput;
@@ -32,7 +34,7 @@ use bevy::window::{ExitCondition, WindowPlugin};
 use bevy::winit::WinitPlugin;
 use bevy::world_serialization::WorldAssetRoot;
 use bevy_obscura::{ObscuraAo, ObscuraPlugin};
-use obscura::settings::Preset;
+use obscura::settings::{AoSettings, Preset};
 use std::path::PathBuf;
 
 /// What lights the frame's ambient term.
@@ -65,21 +67,23 @@ impl Choice {
         }
     }
 
-    /// Puts the choice on the camera.
-    fn apply(self, camera: &mut EntityWorldMut) {
-        camera.remove::<(ObscuraAo, ScreenSpaceAmbientOcclusion)>();
+    /// Puts the choice on the camera, an obscura row with every radius `radius` (world units).
+    /// `ScreenSpaceAmbientOcclusion` stays on the camera throughout (`ObscuraAo` requires it):
+    /// removing it would drop the render world's SSAO texture.
+    fn apply(self, camera: &mut EntityWorldMut, radius: f32) {
         match self {
             Choice::Bevy(quality_level) => {
+                camera.remove::<ObscuraAo>();
                 camera.insert(ScreenSpaceAmbientOcclusion {
                     quality_level,
                     ..default()
                 });
             }
             Choice::Obscura(row, preset) => {
-                camera.insert(ObscuraAo::new(
-                    row.parse().expect("a row of the table"),
-                    preset,
-                ));
+                let technique = row.parse().expect("a row of the table");
+                let mut settings = AoSettings::preset(technique, preset);
+                settings.set_every_radius(radius);
+                camera.insert(ObscuraAo::with_settings(settings));
             }
         }
     }
@@ -96,6 +100,9 @@ struct Args {
     warmup: u32,
     out: PathBuf,
     only: Option<String>,
+    radius: f32,
+    /// `--eye` or `--target` given (else a built-in scene is seen from its own camera).
+    camera_given: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -110,6 +117,8 @@ fn parse_args() -> Result<Args, String> {
         warmup: 30,
         out: PathBuf::from("sponza-out"),
         only: None,
+        radius: 0.5,
+        camera_given: false,
     };
     let mut it = std::env::args().skip(1);
     let vec3 = |s: String| -> Result<Vec3, String> {
@@ -135,8 +144,8 @@ fn parse_args() -> Result<Args, String> {
                     h.parse().map_err(|_| format!("--size '{v}'"))?,
                 );
             }
-            "--eye" => a.eye = vec3(value()?)?,
-            "--target" => a.target = vec3(value()?)?,
+            "--eye" => (a.eye, a.camera_given) = (vec3(value()?)?, true),
+            "--target" => (a.target, a.camera_given) = (vec3(value()?)?, true),
             "--fov" => {
                 a.fov = value()?
                     .parse()
@@ -155,6 +164,12 @@ fn parse_args() -> Result<Args, String> {
             }
             "--out" => a.out = value()?.into(),
             "--only" => a.only = Some(value()?),
+            "--ao-radius" => {
+                a.radius = value()?.parse().map_err(|_| "--ao-radius takes world units".to_string())?;
+                if !(a.radius.is_finite() && a.radius > 0.0) {
+                    return Err("--ao-radius must be a positive number of world units".into());
+                }
+            }
             other => {
                 return Err(format!(
                     "unknown flag '{other}' (see the example's top comment)"
@@ -249,6 +264,7 @@ fn spawn_world(
     target: Option<RenderTarget>,
 ) -> (Entity, Option<UntypedHandle>) {
     let world = app.world_mut();
+    let mut transform = Transform::from_translation(args.eye).looking_at(args.target, Vec3::Y);
     let loading = match &args.scene {
         Some(path) => {
             let name = path
@@ -263,7 +279,7 @@ fn spawn_world(
             Some(scene.untyped())
         }
         None => {
-            spawn_builtin(world, "stairs");
+            spawn_builtin(world, "stairs", &mut transform, args);
             None
         }
     };
@@ -282,8 +298,10 @@ fn spawn_world(
             aspect_ratio: args.size.0 as f32 / args.size.1 as f32,
             ..default()
         }),
-        Transform::from_translation(args.eye).looking_at(args.target, Vec3::Y),
+        transform,
         Msaa::Off,
+        // Bevy's default (TonyMcMapface) needs the `tonemapping_luts` feature; ACES needs none.
+        Tonemapping::AcesFitted,
     ));
     if let Some(target) = target {
         camera.insert(target);
@@ -291,9 +309,15 @@ fn spawn_world(
     (camera.id(), loading)
 }
 
-/// obscura's built-in scene as one white mesh with face normals.
-fn spawn_builtin(world: &mut World, name: &str) {
+/// obscura's built-in scene as one white mesh with face normals; `camera` becomes the scene's
+/// own camera unless the command line gave one.
+fn spawn_builtin(world: &mut World, name: &str, camera: &mut Transform, args: &Args) {
     let scene = obscura::scene::load(name).expect("a built-in scene");
+    if !args.camera_given {
+        let c = scene.default_camera(args.size.0 as f32 / args.size.1 as f32);
+        let v = |v: glam::Vec3| Vec3::new(v.x, v.y, v.z);
+        *camera = Transform::from_translation(v(c.eye)).looking_at(v(c.target), v(c.up));
+    }
     let mut positions = Vec::new();
     let mut normals = Vec::new();
     for t in &scene.triangles {
@@ -325,18 +349,23 @@ fn spawn_builtin(world: &mut World, name: &str) {
 struct Switcher {
     camera: Entity,
     index: usize,
+    radius: f32,
 }
 
 fn windowed(args: &Args) -> Result<(), String> {
     let mut app = app(args, false);
     let (camera, _) = spawn_world(&mut app, args, None);
     let first = Choice::ALL[3];
-    first.apply(&mut app.world_mut().entity_mut(camera));
+    first.apply(&mut app.world_mut().entity_mut(camera), args.radius);
     println!(
         "{} (Tab: next, Shift+Tab: previous, 1-4: preset)",
         first.name()
     );
-    app.insert_resource(Switcher { camera, index: 3 })
+    app.insert_resource(Switcher {
+        camera,
+        index: 3,
+        radius: args.radius,
+    })
         .add_systems(Update, switch);
     app.run();
     Ok(())
@@ -359,7 +388,7 @@ fn switch(world: &mut World) {
     .position(|k| keys.just_pressed(*k))
     .map(|i| Preset::ALL[i]);
     let switcher = world.resource::<Switcher>();
-    let (camera, mut index) = (switcher.camera, switcher.index);
+    let (camera, mut index, radius) = (switcher.camera, switcher.index, switcher.radius);
     let mut choice = Choice::ALL[index];
     match (step, preset, choice) {
         (Some(step), _, _) => {
@@ -370,7 +399,7 @@ fn switch(world: &mut World) {
         _ => return,
     }
     world.resource_mut::<Switcher>().index = index;
-    choice.apply(&mut world.entity_mut(camera));
+    choice.apply(&mut world.entity_mut(camera), radius);
     println!("{}", choice.name());
     if let Ok(mut window) = world.query::<&mut Window>().single_mut(world) {
         window.title = format!("bevy_obscura: {}", choice.name());
@@ -420,20 +449,24 @@ fn headless(args: &Args) -> Result<(), String> {
         .iter()
         .filter(|c| args.only.as_ref().is_none_or(|o| *o == c.name()))
     {
-        choice.apply(&mut app.world_mut().entity_mut(camera));
+        choice.apply(&mut app.world_mut().entity_mut(camera), args.radius);
         let mut samples: std::collections::BTreeMap<String, Vec<f64>> = Default::default();
         for i in 0..args.warmup + args.frames {
             frame(&mut app);
-            if i < args.warmup {
-                continue;
-            }
-            for d in app.world().resource::<DiagnosticsStore>().iter() {
-                let path = d.path().as_str();
-                if path.starts_with("render/") && path.ends_with("/elapsed_gpu") {
-                    if let Some(m) = d.measurement() {
-                        samples.entry(path.to_string()).or_default().push(m.value);
-                    }
+            // Each span's measurement of this frame, then the history cleared, so that a pass
+            // that stopped running (Bevy's SSAO after a switch) leaves no stale value behind.
+            let mut store = app.world_mut().resource_mut::<DiagnosticsStore>();
+            let paths: Vec<DiagnosticPath> = store
+                .iter()
+                .map(|d| d.path().clone())
+                .filter(|p| p.as_str().starts_with("render/") && p.as_str().ends_with("/elapsed_gpu"))
+                .collect();
+            for path in paths {
+                let Some(d) = store.get_mut(&path) else { continue };
+                if let Some(m) = d.measurement().filter(|_| i >= args.warmup) {
+                    samples.entry(path.as_str().to_string()).or_default().push(m.value);
                 }
+                d.clear_history();
             }
         }
         let medians: Vec<String> = samples
