@@ -165,7 +165,9 @@ fn parse_args() -> Result<Args, String> {
             "--out" => a.out = value()?.into(),
             "--only" => a.only = Some(value()?),
             "--ao-radius" => {
-                a.radius = value()?.parse().map_err(|_| "--ao-radius takes world units".to_string())?;
+                a.radius = value()?
+                    .parse()
+                    .map_err(|_| "--ao-radius takes world units".to_string())?;
                 if !(a.radius.is_finite() && a.radius > 0.0) {
                     return Err("--ao-radius must be a positive number of world units".into());
                 }
@@ -366,7 +368,7 @@ fn windowed(args: &Args) -> Result<(), String> {
         index: 3,
         radius: args.radius,
     })
-        .add_systems(Update, switch);
+    .add_systems(Update, switch);
     app.run();
     Ok(())
 }
@@ -459,12 +461,19 @@ fn headless(args: &Args) -> Result<(), String> {
             let paths: Vec<DiagnosticPath> = store
                 .iter()
                 .map(|d| d.path().clone())
-                .filter(|p| p.as_str().starts_with("render/") && p.as_str().ends_with("/elapsed_gpu"))
+                .filter(|p| {
+                    p.as_str().starts_with("render/") && p.as_str().ends_with("/elapsed_gpu")
+                })
                 .collect();
             for path in paths {
-                let Some(d) = store.get_mut(&path) else { continue };
+                let Some(d) = store.get_mut(&path) else {
+                    continue;
+                };
                 if let Some(m) = d.measurement().filter(|_| i >= args.warmup) {
-                    samples.entry(path.as_str().to_string()).or_default().push(m.value);
+                    samples
+                        .entry(path.as_str().to_string())
+                        .or_default()
+                        .push(m.value);
                 }
                 d.clear_history();
             }

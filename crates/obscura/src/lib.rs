@@ -54,18 +54,3 @@ pub use pipeline::{renderer::Renderer, AmbientOcclusion, FrameTextures};
 pub use settings::{AoSettings, BlurSettings, Normalization, Preset, Technique, VaoSettings};
 pub use sources::SceneResources;
 pub use view::{default_guard_band, guard_banded_fov_y, near_plane, FrameView, ScreenGeometry};
-
-/// Engines keep obscura's per-view state in their render worlds, whose resources must be Send
-/// and Sync (Bevy's): a compile-time check, failing to build when a field breaks it.
-#[cfg(all(test, not(target_arch = "wasm32")))]
-mod send_and_sync {
-    #[test]
-    fn the_types_an_engine_keeps_are_send_and_sync() {
-        fn check<T: Send + Sync>() {}
-        check::<crate::Gpu>();
-        check::<crate::AmbientOcclusion>();
-        check::<crate::EngineInput>();
-        check::<crate::EngineGeometry>();
-        check::<crate::Renderer>();
-    }
-}

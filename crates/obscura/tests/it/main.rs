@@ -40,6 +40,7 @@ mod reference;
 mod rows_against_truth;
 mod rt_vao;
 mod scale_invariance;
+mod send_and_sync;
 mod settings_data;
 mod shading_normals;
 mod source_twins;
