@@ -15,17 +15,19 @@ frames=${FRAMES:-200}
 warmup=${WARMUP:-30}
 spp=${SPP:-1024}
 size=${SIZE:-1920x1080}
+# Unpacked afresh each call: the device keeps ignored files of earlier calls.
 for f in obscura bevy_sponza bevy_ssao_bench; do
-  [ -f ".devbin/$f" ] || { xz -dkc ".devbin/$f.xz" > ".devbin/$f" && chmod +x ".devbin/$f"; }
+  xz -dc ".devbin/$f.xz" > "/tmp/$f" && chmod +x "/tmp/$f"
 done
+bin=/tmp/obscura
 scene=${sponza[1]}
 view=(--eye=-9.5,1.8,-0.4 --target=0,3.5,0.6 --fov 60)
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$out/gpu.txt" 2>&1
-./.devbin/bevy_sponza --scene "$scene" --headless --size "$size" --frames "$frames" \
+/tmp/bevy_sponza --scene "$scene" --headless --size "$size" --frames "$frames" \
   --warmup "$warmup" --out "$out/app" > "$out/app.txt" 2>&1
 cp "$out/app/times.json" "$out/app.json" 2>/dev/null
 for q in medium high; do
-  ./.devbin/bevy_ssao_bench "$scene" --size "$size" --quality $q --frames "$frames" \
+  /tmp/bevy_ssao_bench "$scene" --size "$size" --quality $q --frames "$frames" \
     --warmup "$warmup" > "$out/peer-$q.txt" 2>&1
 done
 "$bin" reference --scene "$scene" "${view[@]}" --size "$size" --guard-band 0 --model hemisphere \

@@ -48,9 +48,11 @@ enum Choice {
 
 impl Choice {
     /// The choices the issue compares, Bevy's first.
-    const ALL: [Choice; 9] = [
+    const ALL: [Choice; 11] = [
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::Medium),
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::High),
+        Choice::Obscura("vao", Preset::Low),
+        Choice::Obscura("gtao", Preset::Low),
         Choice::Obscura("vao", Preset::Medium),
         Choice::Obscura("gtao", Preset::Medium),
         Choice::Obscura("gtao", Preset::High),
@@ -215,11 +217,12 @@ fn main() {
 
 /// Bevy's plugins for this app: assets from the scene's folder, Vulkan, GPU time spans.
 fn app(args: &Args, headless: bool) -> App {
+    // Absolute: Bevy resolves a relative root against the executable's folder.
     let asset_root = args
         .scene
         .as_ref()
-        .and_then(|s| s.parent())
-        .map(|p| p.to_string_lossy().into_owned())
+        .and_then(|s| std::fs::canonicalize(s).ok())
+        .and_then(|s| s.parent().map(|p| p.to_string_lossy().into_owned()))
         .unwrap_or_else(|| ".".into());
     let mut app = App::new();
     let plugins = DefaultPlugins
@@ -357,7 +360,7 @@ struct Switcher {
 fn windowed(args: &Args) -> Result<(), String> {
     let mut app = app(args, false);
     let (camera, _) = spawn_world(&mut app, args, None);
-    let first = Choice::ALL[3];
+    let first = Choice::ALL[6];
     first.apply(&mut app.world_mut().entity_mut(camera), args.radius);
     println!(
         "{} (Tab: next, Shift+Tab: previous, 1-4: preset)",
@@ -365,7 +368,7 @@ fn windowed(args: &Args) -> Result<(), String> {
     );
     app.insert_resource(Switcher {
         camera,
-        index: 3,
+        index: 6,
         radius: args.radius,
     })
     .add_systems(Update, switch);
@@ -439,6 +442,10 @@ fn headless(args: &Args) -> Result<(), String> {
             .resource::<AssetServer>()
             .is_loaded_with_dependencies(&scene)
         {
+            let state = app.world().resource::<AssetServer>().load_state(&scene);
+            if let bevy::asset::LoadState::Failed(e) = state {
+                return Err(format!("the scene did not load: {e}"));
+            }
             frame(&mut app);
             frames += 1;
             if frames > 10_000 {

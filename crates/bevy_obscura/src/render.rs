@@ -306,8 +306,9 @@ fn encode(
     let target = &ssao.screen_space_ambient_occlusion_texture.texture;
     let diagnostics = ctx.diagnostic_recorder();
     let diagnostics = diagnostics.as_deref();
+    // The whole row, and inside it obscura's input conversion, the row's own passes and the
+    // copy into Bevy's texture (`render/obscura_ao/{input,row,copy}/elapsed_gpu`).
     let span = diagnostics.time_span(ctx.command_encoder(), "obscura_ao");
-    let encoder = ctx.command_encoder();
     let frame = EngineFrame {
         depth: &depth.texture.texture,
         projection: made.projection,
@@ -318,13 +319,20 @@ fn encode(
             view_from_world: made.view_from_world,
         },
     };
-    let ran = made
-        .input
-        .encode(encoder, &frame)
-        .and_then(|textures| made.ao.encode(encoder, textures, None));
+    let part = diagnostics.time_span(ctx.command_encoder(), "input");
+    let textures = made.input.encode(ctx.command_encoder(), &frame);
+    part.end(ctx.command_encoder());
+    let ran = textures.and_then(|textures| {
+        let part = diagnostics.time_span(ctx.command_encoder(), "row");
+        let ran = made.ao.encode(ctx.command_encoder(), textures, None);
+        part.end(ctx.command_encoder());
+        ran
+    });
     match (ran, views.copy.as_ref()) {
         (Ok(()), Some(copy)) if copy.format() == target.format() => {
-            copy.encode(&gpu.device, encoder, made.ao.output(), target)
+            let part = diagnostics.time_span(ctx.command_encoder(), "copy");
+            copy.encode(&gpu.device, ctx.command_encoder(), made.ao.output(), target);
+            part.end(ctx.command_encoder());
         }
         (Ok(()), _) => error!(
             "obscura: Bevy's SSAO texture is {:?}, not the format the copy was made for",
