@@ -1,6 +1,8 @@
 //! Between Bevy and obscura: matrices (Bevy 0.19 uses glam 0.32, obscura glam 0.34; the same
 //! column-major layout), and the AO copy into Bevy's SSAO texture (`shaders/ao_copy.wgsl`).
 
+use obscura::bindings::{self, entry};
+
 /// A Bevy matrix as obscura's.
 pub(crate) fn mat4(m: bevy::math::Mat4) -> glam::Mat4 {
     glam::Mat4::from_cols_array(&m.to_cols_array())
@@ -30,31 +32,11 @@ impl AoCopy {
             label: Some("obscura ao copy"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("obscura ao copy"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
-            ],
-        });
+        let layout = bindings::layout(
+            device,
+            "obscura ao copy",
+            &[entry::texture(0), entry::storage_texture(1, format)],
+        );
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("obscura ao copy"),
             bind_group_layouts: &[Some(&layout)],
@@ -88,24 +70,17 @@ impl AoCopy {
         ao: &wgpu::Texture,
         target: &wgpu::Texture,
     ) {
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("obscura ao copy"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(
-                        &ao.create_view(&Default::default()),
-                    ),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(
-                        &target.create_view(&Default::default()),
-                    ),
-                },
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let (ao, target_view) = (view(ao), view(target));
+        let bind_group = bindings::group(
+            device,
+            "obscura ao copy",
+            &self.layout,
+            &[
+                (0, wgpu::BindingResource::TextureView(&ao)),
+                (1, wgpu::BindingResource::TextureView(&target_view)),
             ],
-        });
+        );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("obscura ao copy"),
             timestamp_writes: None,

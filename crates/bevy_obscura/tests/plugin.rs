@@ -215,3 +215,50 @@ fn the_lit_frame_differs_from_bevys_ssao_frame_only_where_the_ao_does() {
         "the lighting reads obscura's AO"
     );
 }
+
+#[test]
+fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let scene = obscura::scene::load("stairs").unwrap();
+    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
+    let near = obscura::view::near_plane(&scene);
+    let mut h = Harness::new();
+    h.spawn_scene(&scene);
+    let mut bad = AoSettings::preset(Technique::Gtao, Preset::High);
+    bad.gtao.radius = -1.0;
+    let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(bad));
+    h.frames(2);
+    let report = h
+        .render_world()
+        .get::<ObscuraViewReport>(h.render_entity(cam))
+        .cloned()
+        .expect("the plugin reports on the camera");
+    let error = report.error.expect("the bad radius is reported");
+    assert!(error.contains("gtao.radius"), "{error}");
+    // Bevy's SSAO filled the texture instead: occlusion, and not obscura's image.
+    let ao = h.view_ao(cam).values;
+    let own = own_render(
+        &scene,
+        &camera,
+        &AoSettings::preset(Technique::Gtao, Preset::High),
+    );
+    assert!(
+        ao.iter().filter(|&&v| v < 0.9).count() > ao.len() / 20,
+        "Bevy's SSAO ran"
+    );
+    assert!(mae(&ao, &own) > 0.01, "the AO is Bevy's, not obscura's");
+
+    // Mended at run time: obscura's row from the next frame on.
+    h.app
+        .world_mut()
+        .entity_mut(cam)
+        .insert(ObscuraAo::new(Technique::Gtao, Preset::High));
+    h.frames(2);
+    let report = h
+        .render_world()
+        .get::<ObscuraViewReport>(h.render_entity(cam))
+        .cloned()
+        .unwrap();
+    assert_eq!(report.error, None);
+    assert!(mae(&h.view_ao(cam).values, &own) <= 2e-3);
+}

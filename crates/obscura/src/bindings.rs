@@ -225,28 +225,29 @@ pub mod entry {
         )
     }
 
-    /// A write-only `rgba16float` storage texture.
-    pub fn storage_texture_rgba16f(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    /// A write-only 2D storage texture of `format`.
+    pub fn storage_texture(
+        binding: u32,
+        format: wgpu::TextureFormat,
+    ) -> wgpu::BindGroupLayoutEntry {
         compute(
             binding,
             wgpu::BindingType::StorageTexture {
                 access: wgpu::StorageTextureAccess::WriteOnly,
-                format: wgpu::TextureFormat::Rgba16Float,
+                format,
                 view_dimension: wgpu::TextureViewDimension::D2,
             },
         )
     }
 
+    /// A write-only `rgba16float` storage texture.
+    pub fn storage_texture_rgba16f(binding: u32) -> wgpu::BindGroupLayoutEntry {
+        storage_texture(binding, wgpu::TextureFormat::Rgba16Float)
+    }
+
     /// A write-only `r32float` storage texture.
     pub fn storage_texture_r32f(binding: u32) -> wgpu::BindGroupLayoutEntry {
-        compute(
-            binding,
-            wgpu::BindingType::StorageTexture {
-                access: wgpu::StorageTextureAccess::WriteOnly,
-                format: wgpu::TextureFormat::R32Float,
-                view_dimension: wgpu::TextureViewDimension::D2,
-            },
-        )
+        storage_texture(binding, wgpu::TextureFormat::R32Float)
     }
 }
 

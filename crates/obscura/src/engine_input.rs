@@ -146,16 +146,7 @@ impl EngineInput {
             contents: bytemuck::bytes_of(&screen.uniform()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let storage = |binding, format| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::StorageTexture {
-                access: wgpu::StorageTextureAccess::WriteOnly,
-                format,
-                view_dimension: wgpu::TextureViewDimension::D2,
-            },
-            count: None,
-        };
+        let storage = entry::storage_texture;
         let depth_layout = bindings::layout(
             device,
             "engine depth",
