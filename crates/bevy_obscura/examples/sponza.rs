@@ -314,7 +314,7 @@ fn spawn_world(
     (camera.id(), loading)
 }
 
-/// obscura's built-in scene as one white mesh with face normals; `camera` becomes the scene's
+/// obscura's built-in scene as white meshes (`bevy_obscura::scene_meshes`); `camera` becomes the scene's
 /// own camera unless the command line gave one.
 fn spawn_builtin(world: &mut World, name: &str, camera: &mut Transform, args: &Args) {
     let scene = obscura::scene::load(name).expect("a built-in scene");
@@ -323,31 +323,17 @@ fn spawn_builtin(world: &mut World, name: &str, camera: &mut Transform, args: &A
         let v = |v: glam::Vec3| Vec3::new(v.x, v.y, v.z);
         *camera = Transform::from_translation(v(c.eye)).looking_at(v(c.target), v(c.up));
     }
-    let mut positions = Vec::new();
-    let mut normals = Vec::new();
-    for t in &scene.triangles {
-        let [a, b, c] = t.map(|i| scene.positions[i as usize]);
-        let n = (b - a).cross(c - a).normalize_or_zero();
-        for p in [a, b, c] {
-            positions.push(p.to_array());
-            normals.push(n.to_array());
-        }
+    for (mesh, double_sided) in bevy_obscura::scene_meshes(&scene) {
+        let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
+        let material = world
+            .resource_mut::<Assets<StandardMaterial>>()
+            .add(StandardMaterial {
+                cull_mode: (!double_sided).then_some(bevy::render::render_resource::Face::Back),
+                double_sided,
+                ..default()
+            });
+        world.spawn((Mesh3d(mesh), MeshMaterial3d(material)));
     }
-    let mut mesh = Mesh::new(
-        bevy::mesh::PrimitiveTopology::TriangleList,
-        RenderAssetUsages::default(),
-    );
-    mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
-    mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
-    let mesh = world.resource_mut::<Assets<Mesh>>().add(mesh);
-    let material = world
-        .resource_mut::<Assets<StandardMaterial>>()
-        .add(StandardMaterial {
-            cull_mode: None,
-            double_sided: true,
-            ..default()
-        });
-    world.spawn((Mesh3d(mesh), MeshMaterial3d(material)));
 }
 
 #[derive(Resource)]

@@ -55,10 +55,12 @@ mod convert;
 mod geometry;
 mod readback;
 mod render;
+mod scene;
 
 pub use geometry::ObscuraIgnore;
 pub use readback::{read_view_ao, ViewAo};
 pub use render::{ObscuraViewReport, Views};
+pub use scene::scene_meshes;
 
 /// Adds obscura's AO to every camera with [`ObscuraAo`]. Needs Bevy's `PbrPlugin` (part of
 /// `DefaultPlugins`), which brings the SSAO texture the plugin writes.

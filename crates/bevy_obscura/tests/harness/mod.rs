@@ -7,7 +7,7 @@ use bevy::camera::RenderTarget;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::image::Image;
 use bevy::light::GlobalAmbientLight;
-use bevy::mesh::{Mesh, PrimitiveTopology};
+use bevy::mesh::Mesh;
 use bevy::prelude::*;
 use bevy::render::diagnostic::RenderDiagnosticsPlugin;
 use bevy::render::render_asset::RenderAssets;
@@ -75,33 +75,10 @@ impl Harness {
         Self { app }
     }
 
-    /// The scene's triangles as white meshes with face normals (each triangle its own three
-    /// vertices): one mesh of the double-sided materials' triangles, drawn from both sides, and
-    /// one of the rest, whose back faces are culled, as obscura counts them.
+    /// The scene's triangles as white meshes (`bevy_obscura::scene_meshes`), back faces culled
+    /// where obscura counts only front faces.
     pub fn spawn_scene(&mut self, scene: &Scene) {
-        for double_sided in [false, true] {
-            let mut positions = Vec::new();
-            let mut normals = Vec::new();
-            for (t, m) in scene.triangles.iter().zip(&scene.triangle_materials) {
-                if scene.materials[*m as usize].double_sided != double_sided {
-                    continue;
-                }
-                let [a, b, c] = t.map(|i| scene.positions[i as usize]);
-                let n = (b - a).cross(c - a).normalize_or_zero();
-                for p in [a, b, c] {
-                    positions.push(p.to_array());
-                    normals.push(n.to_array());
-                }
-            }
-            if positions.is_empty() {
-                continue;
-            }
-            let mut mesh = Mesh::new(
-                PrimitiveTopology::TriangleList,
-                RenderAssetUsages::default(),
-            );
-            mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
-            mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+        for (mesh, double_sided) in bevy_obscura::scene_meshes(scene) {
             self.spawn_mesh_sided(mesh, Transform::IDENTITY, double_sided);
         }
     }
