@@ -515,8 +515,6 @@ fn save_screenshots(
     image: &Handle<Image>,
     stem: &std::path::Path,
 ) -> Result<(), String> {
-    use bevy::render::render_asset::RenderAssets;
-    use bevy::render::texture::GpuImage;
     let render_world = app.sub_app(bevy::render::RenderApp).world();
     let view = app
         .world()
@@ -541,30 +539,11 @@ fn save_screenshots(
         gray,
         image::ColorType::L8,
     )?;
-    let gpu_image = render_world
-        .resource::<RenderAssets<GpuImage>>()
-        .get(image.id())
-        .ok_or("the frame is not on the GPU")?;
-    let gpu = obscura::Gpu::sharing_device(
-        (**render_world
-            .resource::<bevy::render::renderer::RenderAdapter>()
-            .0)
-            .clone(),
-        render_world
-            .resource::<RenderDevice>()
-            .wgpu_device()
-            .clone(),
-        (**render_world
-            .resource::<bevy::render::renderer::RenderQueue>()
-            .0)
-            .clone(),
-    );
-    let rgba =
-        obscura::gpu::read_texture_rgba8(&gpu, &gpu_image.texture).map_err(|e| e.to_string())?;
+    let (width, height, rgba) = bevy_obscura::read_target_rgba8(render_world, image)?;
     save(
         stem.with_extension("png"),
-        gpu_image.texture.width(),
-        gpu_image.texture.height(),
+        width,
+        height,
         rgba,
         image::ColorType::Rgba8,
     )

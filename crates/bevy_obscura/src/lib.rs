@@ -58,7 +58,7 @@ mod render;
 mod scene;
 
 pub use geometry::ObscuraIgnore;
-pub use readback::{read_view_ao, ViewAo};
+pub use readback::{read_target_rgba8, read_view_ao, render_gpu, ViewAo};
 pub use render::{ObscuraViewReport, Views};
 pub use scene::scene_meshes;
 
@@ -70,7 +70,6 @@ impl Plugin for ObscuraPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins(ExtractComponentPlugin::<ObscuraAo>::default());
         geometry::build(app);
-        render::build(app);
     }
 
     fn finish(&self, app: &mut App) {

@@ -3,10 +3,14 @@
 //! same texture.
 
 use crate::convert::AoCopy;
+use bevy::asset::Handle;
 use bevy::ecs::entity::Entity;
 use bevy::ecs::world::World;
+use bevy::image::Image;
 use bevy::pbr::ScreenSpaceAmbientOcclusionResources;
+use bevy::render::render_asset::RenderAssets;
 use bevy::render::renderer::{RenderAdapter, RenderDevice, RenderQueue};
+use bevy::render::texture::GpuImage;
 use obscura::Gpu;
 
 /// One view's AO, 1 = unoccluded, row-major, top row first.
@@ -34,14 +38,7 @@ pub fn read_view_ao(render_world: &World, view: Entity) -> Result<ViewAo, String
             )
         })?;
     let texture = &resources.screen_space_ambient_occlusion_texture.texture;
-    let gpu = Gpu::sharing_device(
-        (**render_world.resource::<RenderAdapter>().0).clone(),
-        render_world
-            .resource::<RenderDevice>()
-            .wgpu_device()
-            .clone(),
-        (**render_world.resource::<RenderQueue>().0).clone(),
-    );
+    let gpu = render_gpu(render_world);
     // Bevy's texture cannot be a copy source: copy it through a compute pass (the plugin's own
     // copy, into an R32Float texture that can be).
     let copy = AoCopy::new(&gpu.device, wgpu::TextureFormat::R32Float)?;
@@ -64,4 +61,38 @@ pub fn read_view_ao(render_world: &World, view: Entity) -> Result<ViewAo, String
         height: texture.height(),
         values,
     })
+}
+
+/// obscura's handle on the render world's device (Bevy's), leaving Bevy's error handler alone.
+pub fn render_gpu(render_world: &World) -> Gpu {
+    sharing(
+        render_world.resource::<RenderAdapter>(),
+        render_world.resource::<RenderDevice>(),
+        render_world.resource::<RenderQueue>(),
+    )
+}
+
+/// [`render_gpu`] from the three resources (the plugin's systems hold them as parameters).
+pub(crate) fn sharing(adapter: &RenderAdapter, device: &RenderDevice, queue: &RenderQueue) -> Gpu {
+    Gpu::sharing_device(
+        (**adapter.0).clone(),
+        device.wgpu_device().clone(),
+        (**queue.0).clone(),
+    )
+}
+
+/// A camera's image target as rendered in the last frame: its width, height and RGBA8 texels,
+/// row-major. The image needs `COPY_SRC` among its usages. Waits for the GPU.
+pub fn read_target_rgba8(
+    render_world: &World,
+    image: &Handle<Image>,
+) -> Result<(u32, u32, Vec<u8>), String> {
+    let gpu_image = render_world
+        .resource::<RenderAssets<GpuImage>>()
+        .get(image.id())
+        .ok_or("the image is not on the GPU: render a frame first")?;
+    let texture = &gpu_image.texture;
+    let bytes = obscura::gpu::read_texture_rgba8(&render_gpu(render_world), texture)
+        .map_err(|e| e.to_string())?;
+    Ok((texture.width(), texture.height(), bytes))
 }

@@ -34,8 +34,6 @@ use obscura::{
 };
 use std::collections::HashMap;
 
-pub(crate) fn build(_app: &mut App) {}
-
 pub(crate) fn finish(app: &mut App) {
     let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
         return;
@@ -128,13 +126,7 @@ fn prepare(
     let views = &mut *views;
     let gpu = views
         .gpu
-        .get_or_insert_with(|| {
-            Gpu::sharing_device(
-                (**adapter.0).clone(),
-                device.wgpu_device().clone(),
-                (**queue.0).clone(),
-            )
-        })
+        .get_or_insert_with(|| crate::readback::sharing(&adapter, &device, &queue))
         .clone();
     if views.copy.is_none() {
         match AoCopy::new(device.wgpu_device(), bevy_ssao_format(&adapter)) {

@@ -9,7 +9,7 @@ use bevy::diagnostic::{DiagnosticPath, DiagnosticsStore};
 use bevy::mesh::{Mesh, Meshable};
 use bevy::pbr::ScreenSpaceAmbientOcclusion;
 use bevy::prelude::*;
-use bevy_obscura::{ObscuraAo, ObscuraViewReport};
+use bevy_obscura::ObscuraAo;
 use harness::{mae, Harness, ONE_APP};
 use obscura::settings::{AoSettings, Preset};
 use obscura::{Gpu, GpuOptions, Renderer, Technique};
@@ -48,11 +48,7 @@ fn the_ao_bevy_reads_is_obscuras_own_render_of_the_same_camera_and_row() {
         let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::new(technique, preset));
         h.frames(3);
 
-        let report = h
-            .render_world()
-            .get::<ObscuraViewReport>(h.render_entity(cam))
-            .cloned()
-            .expect("the plugin reports on the camera");
+        let report = h.report(cam);
         assert_eq!(report.error, None, "{row}");
         let plugin = h.view_ao(cam);
         assert_eq!((plugin.width, plugin.height), SIZE);
@@ -228,11 +224,7 @@ fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
     bad.gtao.radius = -1.0;
     let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(bad));
     h.frames(2);
-    let report = h
-        .render_world()
-        .get::<ObscuraViewReport>(h.render_entity(cam))
-        .cloned()
-        .expect("the plugin reports on the camera");
+    let report = h.report(cam);
     let error = report.error.expect("the bad radius is reported");
     assert!(error.contains("gtao.radius"), "{error}");
     // Bevy's SSAO filled the texture instead: occlusion, and not obscura's image.
@@ -254,11 +246,7 @@ fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
         .entity_mut(cam)
         .insert(ObscuraAo::new(Technique::Gtao, Preset::High));
     h.frames(2);
-    let report = h
-        .render_world()
-        .get::<ObscuraViewReport>(h.render_entity(cam))
-        .cloned()
-        .unwrap();
+    let report = h.report(cam);
     assert_eq!(report.error, None);
     assert!(mae(&h.view_ao(cam).values, &own) <= 2e-3);
 }

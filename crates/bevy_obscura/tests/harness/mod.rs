@@ -10,16 +10,14 @@ use bevy::light::GlobalAmbientLight;
 use bevy::mesh::Mesh;
 use bevy::prelude::*;
 use bevy::render::diagnostic::RenderDiagnosticsPlugin;
-use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
-use bevy::render::renderer::{RenderAdapter, RenderDevice, RenderQueue};
+use bevy::render::renderer::RenderDevice;
 use bevy::render::settings::{Backends, RenderCreation, WgpuSettings};
 use bevy::render::sync_world::RenderEntity;
-use bevy::render::texture::GpuImage;
 use bevy::render::{pipelined_rendering::PipelinedRenderingPlugin, RenderApp, RenderPlugin};
 use bevy::window::{ExitCondition, WindowPlugin};
 use bevy::winit::WinitPlugin;
-use bevy_obscura::{read_view_ao, ObscuraPlugin, ViewAo};
+use bevy_obscura::{read_target_rgba8, read_view_ao, ObscuraPlugin, ObscuraViewReport, ViewAo};
 use obscura::scene::Scene;
 use std::sync::Mutex;
 
@@ -189,22 +187,19 @@ impl Harness {
 
     /// The camera's lit frame, RGBA8 (sRGB), as rendered in the last frame.
     pub fn lit_frame(&self, image: &Handle<Image>) -> Vec<[u8; 4]> {
-        let world = self.render_world();
-        let gpu_image = world
-            .resource::<RenderAssets<GpuImage>>()
-            .get(image.id())
-            .expect("the target image is on the GPU");
-        let gpu = obscura::Gpu::sharing_device(
-            (**world.resource::<RenderAdapter>().0).clone(),
-            world.resource::<RenderDevice>().wgpu_device().clone(),
-            (**world.resource::<RenderQueue>().0).clone(),
-        );
-        let bytes =
-            obscura::gpu::read_texture_rgba8(&gpu, &gpu_image.texture).expect("read the frame");
+        let (_, _, bytes) = read_target_rgba8(self.render_world(), image).expect("the frame");
         bytes
             .chunks_exact(4)
             .map(|c| [c[0], c[1], c[2], c[3]])
             .collect()
+    }
+
+    /// What the plugin reported on the camera in the last frame.
+    pub fn report(&self, camera: Entity) -> ObscuraViewReport {
+        self.render_world()
+            .get::<ObscuraViewReport>(self.render_entity(camera))
+            .cloned()
+            .expect("the plugin reports on the camera")
     }
 }
 
