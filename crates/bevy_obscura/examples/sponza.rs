@@ -3,7 +3,7 @@
 //! screenshots, as the peer benchmark of BENCHMARKS.md does for Bevy alone.
 //!
 //! ```sh
-//! # a window; Tab / Shift+Tab: next / previous choice, 1–4: preset low … ultra
+//! # a window; Tab / Shift+Tab: next / previous choice, 1–4: preset low … ultra, H: half resolution
 //! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb
 //! # headless: each choice for 200 frames after 30 of warm-up, GPU times and screenshots
 //! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb --headless \
@@ -34,38 +34,45 @@ use bevy::window::{ExitCondition, WindowPlugin};
 use bevy::winit::WinitPlugin;
 use bevy::world_serialization::WorldAssetRoot;
 use bevy_obscura::{ObscuraAo, ObscuraPlugin};
-use obscura::settings::{AoSettings, Preset};
+use obscura::settings::{AoSettings, Preset, Resolution};
 use std::path::PathBuf;
+
+const FULL: Resolution = Resolution::Full;
 
 /// What lights the frame's ambient term.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Choice {
     /// Bevy's SSAO at one of its quality levels.
     Bevy(ScreenSpaceAmbientOcclusionQualityLevel),
-    /// A row of obscura's table at a preset.
-    Obscura(&'static str, Preset),
+    /// A row of obscura's table at a preset and resolution.
+    Obscura(&'static str, Preset, Resolution),
 }
 
 impl Choice {
     /// The choices the issue compares, Bevy's first.
-    const ALL: [Choice; 11] = [
+    const ALL: [Choice; 13] = [
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::Medium),
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::High),
-        Choice::Obscura("vao", Preset::Low),
-        Choice::Obscura("gtao", Preset::Low),
-        Choice::Obscura("vao", Preset::Medium),
-        Choice::Obscura("gtao", Preset::Medium),
-        Choice::Obscura("gtao", Preset::High),
-        Choice::Obscura("gtao-vb", Preset::Medium),
-        Choice::Obscura("sd-hbao+", Preset::Medium),
-        Choice::Obscura("hemisphere", Preset::Medium),
-        Choice::Obscura("rtao", Preset::Medium),
+        Choice::Obscura("vao", Preset::Low, Resolution::Half),
+        Choice::Obscura("gtao", Preset::Low, Resolution::Half),
+        Choice::Obscura("vao", Preset::Low, FULL),
+        Choice::Obscura("gtao", Preset::Low, FULL),
+        Choice::Obscura("vao", Preset::Medium, FULL),
+        Choice::Obscura("gtao", Preset::Medium, FULL),
+        Choice::Obscura("gtao", Preset::High, FULL),
+        Choice::Obscura("gtao-vb", Preset::Medium, FULL),
+        Choice::Obscura("sd-hbao+", Preset::Medium, FULL),
+        Choice::Obscura("hemisphere", Preset::Medium, FULL),
+        Choice::Obscura("rtao", Preset::Medium, FULL),
     ];
 
     fn name(self) -> String {
         match self {
             Choice::Bevy(q) => format!("bevy-ssao-{}", format!("{q:?}").to_lowercase()),
-            Choice::Obscura(row, preset) => format!("{row}-{}", preset.name()),
+            Choice::Obscura(row, preset, FULL) => format!("{row}-{}", preset.name()),
+            Choice::Obscura(row, preset, resolution) => {
+                format!("{row}-{}-{resolution}", preset.name())
+            }
         }
     }
 
@@ -81,9 +88,10 @@ impl Choice {
                     ..default()
                 });
             }
-            Choice::Obscura(row, preset) => {
+            Choice::Obscura(row, preset, resolution) => {
                 let technique = row.parse().expect("a row of the table");
                 let mut settings = AoSettings::preset(technique, preset);
+                settings.resolution = resolution;
                 settings.set_every_radius(radius);
                 camera.insert(ObscuraAo::with_settings(settings));
             }
@@ -362,7 +370,8 @@ fn windowed(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// Tab / Shift+Tab cycles the choices, 1–4 sets an obscura row's preset.
+/// Tab / Shift+Tab cycles the choices, 1–4 sets an obscura row's preset, H switches it between
+/// full and half resolution.
 fn switch(world: &mut World) {
     let keys = world.resource::<ButtonInput<KeyCode>>();
     let shift = keys.pressed(KeyCode::ShiftLeft) || keys.pressed(KeyCode::ShiftRight);
@@ -378,6 +387,7 @@ fn switch(world: &mut World) {
     .iter()
     .position(|k| keys.just_pressed(*k))
     .map(|i| Preset::ALL[i]);
+    let half = keys.just_pressed(KeyCode::KeyH);
     let switcher = world.resource::<Switcher>();
     let (camera, mut index, radius) = (switcher.camera, switcher.index, switcher.radius);
     let mut choice = Choice::ALL[index];
@@ -386,7 +396,11 @@ fn switch(world: &mut World) {
             index = (index + step) % Choice::ALL.len();
             choice = Choice::ALL[index];
         }
-        (None, Some(p), Choice::Obscura(row, _)) => choice = Choice::Obscura(row, p),
+        (None, Some(p), Choice::Obscura(row, _, r)) => choice = Choice::Obscura(row, p, r),
+        (None, None, Choice::Obscura(row, p, r)) if half => {
+            let other = if r == FULL { Resolution::Half } else { FULL };
+            choice = Choice::Obscura(row, p, other);
+        }
         _ => return,
     }
     world.resource_mut::<Switcher>().index = index;

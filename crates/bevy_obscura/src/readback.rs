@@ -2,7 +2,6 @@
 //! peer benchmark's `--ao-screenshot`), and comparisons with Bevy's own SSAO, which writes the
 //! same texture.
 
-use crate::convert::AoCopy;
 use bevy::asset::Handle;
 use bevy::ecs::entity::Entity;
 use bevy::ecs::world::World;
@@ -11,6 +10,7 @@ use bevy::pbr::ScreenSpaceAmbientOcclusionResources;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::renderer::{RenderAdapter, RenderDevice, RenderQueue};
 use bevy::render::texture::GpuImage;
+use obscura::bindings::{self, entry};
 use obscura::Gpu;
 
 /// One view's AO, 1 = unoccluded, row-major, top row first.
@@ -39,9 +39,8 @@ pub fn read_view_ao(render_world: &World, view: Entity) -> Result<ViewAo, String
         })?;
     let texture = &resources.screen_space_ambient_occlusion_texture.texture;
     let gpu = render_gpu(render_world);
-    // Bevy's texture cannot be a copy source: copy it through a compute pass (the plugin's own
-    // copy, into an R32Float texture that can be).
-    let copy = AoCopy::new(&gpu.device, wgpu::TextureFormat::R32Float)?;
+    // Bevy's own texture cannot be a copy source: copy it through a compute pass into an
+    // R32Float texture that can be.
     let readable = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("obscura view ao readback"),
         size: texture.size(),
@@ -52,15 +51,66 @@ pub fn read_view_ao(render_world: &World, view: Entity) -> Result<ViewAo, String
         usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
-    let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    copy.encode(&gpu.device, &mut encoder, texture, &readable);
-    gpu.queue.submit([encoder.finish()]);
+    gpu.queue
+        .submit([copy_to_r32float(&gpu.device, texture, &readable)]);
     let values = obscura::gpu::read_texture_f32(&gpu, &readable, 1).map_err(|e| e.to_string())?;
     Ok(ViewAo {
         width: texture.width(),
         height: texture.height(),
         values,
     })
+}
+
+/// One compute dispatch copying `from` (an SSAO texture: R16Float, R32Float) into `to`
+/// (R32Float storage, the same size) (`shaders/ssao_readback.wgsl`).
+fn copy_to_r32float(
+    device: &wgpu::Device,
+    from: &wgpu::Texture,
+    to: &wgpu::Texture,
+) -> wgpu::CommandBuffer {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("obscura ssao readback"),
+        source: wgpu::ShaderSource::Wgsl(include_str!("shaders/ssao_readback.wgsl").into()),
+    });
+    let layout = bindings::layout(
+        device,
+        "obscura ssao readback",
+        &[
+            entry::texture(0),
+            entry::storage_texture(1, wgpu::TextureFormat::R32Float),
+        ],
+    );
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("obscura ssao readback"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("obscura ssao readback"),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some("copy_ao"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+    let (from_view, to_view) = (view(from), view(to));
+    let bind_group = bindings::group(
+        device,
+        "obscura ssao readback",
+        &layout,
+        &[
+            (0, wgpu::BindingResource::TextureView(&from_view)),
+            (1, wgpu::BindingResource::TextureView(&to_view)),
+        ],
+    );
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let mut pass = encoder.begin_compute_pass(&Default::default());
+    pass.set_pipeline(&pipeline);
+    pass.set_bind_group(0, &bind_group, &[]);
+    pass.dispatch_workgroups(to.width().div_ceil(8), to.height().div_ceil(8), 1);
+    drop(pass);
+    encoder.finish()
 }
 
 /// obscura's handle on the render world's device (Bevy's), leaving Bevy's error handler alone.

@@ -5,13 +5,16 @@
 //! Order within a frame:
 //! 1. `prepare` (`RenderSystems::PrepareResources`): make or keep each camera's row, give it
 //!    the camera.
-//! 2. `skip_bevy_ssao` (`RenderSystems::Render`, before Bevy's render system): takes Bevy's SSAO
+//! 2. `hand_over_ao` (`RenderSystems::PrepareBindGroups`, before Bevy's mesh view bind groups
+//!    are made): puts the row's output texture in the place of the SSAO texture Bevy allocated,
+//!    so Bevy's lighting reads obscura's AO where it is written (no copy).
+//! 3. `skip_bevy_ssao` (`RenderSystems::Render`, before Bevy's render system): takes Bevy's SSAO
 //!    bind groups off each camera whose row is ready, so Bevy's `ssao` system, which needs them,
 //!    passes that camera over.
-//! 3. `encode` (the `Core3d` schedule, after the prepass, before the main pass): the row's passes
-//!    and the copy into Bevy's texture.
+//! 4. `encode` (the `Core3d` schedule, after the prepass, before the main pass): the row's
+//!    passes.
 
-use crate::convert::{mat4, AoCopy};
+use crate::convert::mat4;
 use crate::geometry::{reads_geometry, GatheredGeometry, RenderGeometry};
 use crate::ObscuraAo;
 use bevy::app::App;
@@ -19,12 +22,15 @@ use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
 use bevy::ecs::prelude::*;
 use bevy::log::error;
-use bevy::pbr::{ScreenSpaceAmbientOcclusionResources, SsaoBindGroups};
+use bevy::pbr::{
+    prepare_mesh_view_bind_groups, ScreenSpaceAmbientOcclusionResources, SsaoBindGroups,
+};
 use bevy::render::camera::ExtractedCamera;
 use bevy::render::diagnostic::RecordDiagnostics;
 use bevy::render::renderer::{
     render_system, RenderAdapter, RenderContext, RenderDevice, RenderQueue, ViewQuery,
 };
+use bevy::render::texture::CachedTexture;
 use bevy::render::view::ExtractedView;
 use bevy::render::{Render, RenderApp, RenderSystems};
 use obscura::settings::AoSettings;
@@ -41,6 +47,12 @@ pub(crate) fn finish(app: &mut App) {
     render_app
         .init_resource::<Views>()
         .add_systems(Render, prepare.in_set(RenderSystems::PrepareResources))
+        .add_systems(
+            Render,
+            hand_over_ao
+                .in_set(RenderSystems::PrepareBindGroups)
+                .before(prepare_mesh_view_bind_groups),
+        )
         .add_systems(
             Render,
             skip_bevy_ssao
@@ -69,7 +81,6 @@ pub struct ObscuraViewReport {
 #[derive(Resource, Default)]
 pub struct Views {
     gpu: Option<Gpu>,
-    copy: Option<AoCopy>,
     geometry: RenderGeometry,
     rows: HashMap<Entity, Row>,
 }
@@ -109,6 +120,9 @@ struct RowKey {
 struct Made {
     input: EngineInput,
     ao: AmbientOcclusion,
+    /// `ao`'s output as Bevy's lighting binds it (its sample type is unfilterable float, so
+    /// obscura's R32Float fits as it is).
+    for_bevy: CachedTexture,
     projection: glam::Mat4,
     view_from_world: glam::Mat4,
 }
@@ -128,15 +142,6 @@ fn prepare(
         .gpu
         .get_or_insert_with(|| crate::readback::sharing(&adapter, &device, &queue))
         .clone();
-    if views.copy.is_none() {
-        match AoCopy::new(device.wgpu_device(), bevy_ssao_format(&adapter)) {
-            Ok(copy) => views.copy = Some(copy),
-            Err(e) => {
-                error!("obscura: {e}; Bevy's SSAO runs instead");
-                return;
-            }
-        }
-    }
     for row in views.rows.values_mut() {
         row.seen = false;
     }
@@ -208,20 +213,6 @@ fn prepare(
     views.rows.retain(|_, row| row.seen);
 }
 
-/// The format Bevy gives its SSAO texture: `R16Float` where the adapter can store to it, else
-/// `R32Float` (Bevy 0.19's `SsaoPipelines`, which keeps the choice to itself).
-fn bevy_ssao_format(adapter: &RenderAdapter) -> wgpu::TextureFormat {
-    let r16 = adapter
-        .get_texture_format_features(wgpu::TextureFormat::R16Float)
-        .allowed_usages
-        .contains(wgpu::TextureUsages::STORAGE_BINDING);
-    if r16 {
-        wgpu::TextureFormat::R16Float
-    } else {
-        wgpu::TextureFormat::R32Float
-    }
-}
-
 /// The near plane of a projection (Bevy's perspective: infinite reversed-Z, `near` at [3][2]).
 fn near(projection: glam::Mat4) -> f32 {
     projection.w_axis.z.abs().max(1e-6)
@@ -241,9 +232,15 @@ fn make(gpu: &Gpu, key: &RowKey, geometry: &RenderGeometry) -> Result<Made, Stri
         let ao = AmbientOcclusion::new(gpu, &key.settings, screen, resources)
             .map_err(|e| e.to_string())?;
         let input = EngineInput::new(gpu, screen);
+        let output = ao.output().clone();
+        let for_bevy = CachedTexture {
+            default_view: output.create_view(&Default::default()).into(),
+            texture: output.into(),
+        };
         Ok(Made {
             input,
             ao,
+            for_bevy,
             projection: key.projection,
             view_from_world: glam::Mat4::IDENTITY,
         })
@@ -255,6 +252,19 @@ fn make(gpu: &Gpu, key: &RowKey, geometry: &RenderGeometry) -> Result<Made, Stri
         (Ok(_), Some(e)) => {
             gpu.forget_kept();
             Err(format!("the GPU refused a pass: {e}"))
+        }
+    }
+}
+
+/// Gives Bevy's lighting each ready row's output texture in place of the SSAO texture Bevy
+/// allocated (Bevy's `prepare_ssao_textures` sets it every frame, before this runs).
+fn hand_over_ao(
+    views: Res<Views>,
+    mut cameras: Query<(Entity, &mut ScreenSpaceAmbientOcclusionResources), With<ObscuraAo>>,
+) {
+    for (entity, mut ssao) in &mut cameras {
+        if let Some(Ok(made)) = views.rows.get(&entity).map(|r| &r.made) {
+            ssao.screen_space_ambient_occlusion_texture = made.for_bevy.clone();
         }
     }
 }
@@ -273,33 +283,24 @@ fn skip_bevy_ssao(
     }
 }
 
-/// The row's passes, then the copy into the texture Bevy's lighting reads.
+/// The row's passes, writing the texture Bevy's lighting reads (`hand_over_ao`).
 fn encode(
-    view: ViewQuery<(
-        &ObscuraAo,
-        &ViewPrepassTextures,
-        &ScreenSpaceAmbientOcclusionResources,
-    )>,
+    view: ViewQuery<(&ObscuraAo, &ViewPrepassTextures)>,
     views: Res<Views>,
     mut ctx: RenderContext,
 ) {
     let entity = view.entity();
-    let (_, prepass, ssao) = view.into_inner();
+    let (_, prepass) = view.into_inner();
     let Some(Ok(made)) = views.rows.get(&entity).map(|r| &r.made) else {
         return;
     };
-    let (Some(depth), Some(normals), Some(gpu)) = (
-        prepass.depth.as_ref(),
-        prepass.normal.as_ref(),
-        views.gpu.as_ref(),
-    ) else {
+    let (Some(depth), Some(normals)) = (prepass.depth.as_ref(), prepass.normal.as_ref()) else {
         return;
     };
-    let target = &ssao.screen_space_ambient_occlusion_texture.texture;
     let diagnostics = ctx.diagnostic_recorder();
     let diagnostics = diagnostics.as_deref();
-    // The whole row, and inside it obscura's input conversion, the row's own passes and the
-    // copy into Bevy's texture (`render/obscura_ao/{input,row,copy}/elapsed_gpu`).
+    // The whole row, and inside it obscura's input conversion and the row's own passes
+    // (`render/obscura_ao/{input,row}/elapsed_gpu`).
     let span = diagnostics.time_span(ctx.command_encoder(), "obscura_ao");
     let frame = EngineFrame {
         depth: &depth.texture.texture,
@@ -320,17 +321,8 @@ fn encode(
         part.end(ctx.command_encoder());
         ran
     });
-    match (ran, views.copy.as_ref()) {
-        (Ok(()), Some(copy)) if copy.format() == target.format() => {
-            let part = diagnostics.time_span(ctx.command_encoder(), "copy");
-            copy.encode(&gpu.device, ctx.command_encoder(), made.ao.output(), target);
-            part.end(ctx.command_encoder());
-        }
-        (Ok(()), _) => error!(
-            "obscura: Bevy's SSAO texture is {:?}, not the format the copy was made for",
-            target.format()
-        ),
-        (Err(e), _) => error!("obscura: camera {entity}: {e}"),
+    if let Err(e) = ran {
+        error!("obscura: camera {entity}: {e}");
     }
     span.end(ctx.command_encoder());
 }

@@ -11,7 +11,7 @@ use bevy::pbr::ScreenSpaceAmbientOcclusion;
 use bevy::prelude::*;
 use bevy_obscura::ObscuraAo;
 use harness::{mae, Harness, ONE_APP};
-use obscura::settings::{AoSettings, Preset};
+use obscura::settings::{AoSettings, Preset, Resolution};
 use obscura::{Gpu, GpuOptions, Renderer, Technique};
 
 const SIZE: (u32, u32) = (160, 96);
@@ -36,23 +36,30 @@ fn the_ao_bevy_reads_is_obscuras_own_render_of_the_same_camera_and_row() {
     let scene = obscura::scene::load("stairs").unwrap();
     let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
     let near = obscura::view::near_plane(&scene);
-    // A screen-space row, and a hidden-depth row that traces the meshes Bevy was given.
-    for (row, preset) in [
-        ("gtao", Preset::High),
-        ("vao", Preset::Medium),
-        ("rt-vao", Preset::Medium),
+    // Screen-space rows (one at half resolution, whose output is the upsample's), and a
+    // hidden-depth row that traces the meshes Bevy was given.
+    let half = |row: &str, preset| {
+        let mut settings = AoSettings::preset(row.parse().unwrap(), preset);
+        settings.resolution = Resolution::Half;
+        ("gtao, half resolution", settings)
+    };
+    let full = |row: &'static str, preset| (row, AoSettings::preset(row.parse().unwrap(), preset));
+    for (row, settings) in [
+        full("gtao", Preset::High),
+        half("gtao", Preset::Low),
+        full("vao", Preset::Medium),
+        full("rt-vao", Preset::Medium),
     ] {
-        let technique: Technique = row.parse().unwrap();
         let mut h = Harness::new();
         h.spawn_scene(&scene);
-        let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::new(technique, preset));
+        let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(settings));
         h.frames(3);
 
         let report = h.report(cam);
         assert_eq!(report.error, None, "{row}");
         let plugin = h.view_ao(cam);
         assert_eq!((plugin.width, plugin.height), SIZE);
-        let own = own_render(&scene, &camera, &AoSettings::preset(technique, preset));
+        let own = own_render(&scene, &camera, &settings);
         let error = mae(&plugin.values, &own);
         let covered = own.iter().filter(|&&v| v < 0.99).count();
         let over = |t: f32| {

@@ -1,6 +1,8 @@
 //! Taking what an engine has: its hardware depth buffer and projection matrix, and its normals
-//! if any, turned by two compute passes (`shaders/engine_input/`) into the linear depth and
-//! view-space normals every AO pass reads ([`FrameTextures`]).
+//! if any, turned into the linear depth and view-space normals every AO pass reads
+//! ([`FrameTextures`]) by compute passes (`shaders/engine_input/`): one when the engine gives
+//! normals, two when they are reconstructed from the depth (which needs every neighbour's
+//! linear depth first).
 //!
 //! ```text
 //! engine depth (Depth32Float/…, NDC z) ─┐  projection⁻¹   ┌─> linear depth (R32Float)
@@ -108,9 +110,13 @@ pub struct EngineInput {
     view: wgpu::Buffer,
     depth_layout: wgpu::BindGroupLayout,
     depth_pipeline: wgpu::ComputePipeline,
-    normals_layout: wgpu::BindGroupLayout,
-    /// Indexed by [`EngineInput::normals_pipeline_index`]: mode × encoding.
-    normals_pipelines: Vec<wgpu::ComputePipeline>,
+    /// Normals reconstructed from the linear depth (`normals.wgsl`'s `main`).
+    reconstruct_layout: wgpu::BindGroupLayout,
+    reconstruct_pipeline: wgpu::ComputePipeline,
+    /// The engine's normals and depth in one pass (`main_fused`).
+    fused_layout: wgpu::BindGroupLayout,
+    /// Indexed by [`EngineInput::fused_pipeline_index`]: space × encoding.
+    fused_pipelines: Vec<wgpu::ComputePipeline>,
     linear_depth: wgpu::Texture,
     normals: wgpu::Texture,
     /// `EngineDepth` and `EngineNormals` of the WGSL, written by each encode.
@@ -157,56 +163,83 @@ impl EngineInput {
                 storage(3, wgpu::TextureFormat::R32Float),
             ],
         );
-        let normals_layout = bindings::layout(
+        let normal_format = crate::raster::gbuffer::NORMAL_FORMAT;
+        let reconstruct_layout = bindings::layout(
             device,
-            "engine normals",
+            "engine normals reconstructed",
+            &[
+                entry::uniform(1),
+                entry::texture(2),
+                storage(4, normal_format),
+            ],
+        );
+        let fused_layout = bindings::layout(
+            device,
+            "engine depth and normals",
             &[
                 entry::uniform(0),
                 entry::uniform(1),
-                entry::texture(2),
                 entry::texture(3),
-                storage(4, crate::raster::gbuffer::NORMAL_FORMAT),
+                storage(4, normal_format),
+                entry::uniform(5),
+                entry::texture(6),
+                storage(7, wgpu::TextureFormat::R32Float),
             ],
         );
         let pipeline = |label: &str,
                         layout: &wgpu::BindGroupLayout,
                         source: &str,
+                        entry: &str,
                         constants: &[(&str, f64)]| {
             let module = crate::gpu::checked_module(
                 device,
                 label,
-                &crate::shaders::with_common(&[crate::shaders::VIEW], source),
+                &crate::shaders::with_common(
+                    &[crate::shaders::VIEW, crate::shaders::ENGINE_LINEAR_DEPTH],
+                    source,
+                ),
             );
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(label),
                 bind_group_layouts: &[Some(layout)],
                 immediate_size: 0,
             });
-            crate::gpu::pipeline_from_module(
+            crate::gpu::entry_pipeline(
                 device,
                 label,
                 &module,
+                entry,
                 constants,
                 Some(&pipeline_layout),
             )
         };
+        let orthographic = ("ORTHOGRAPHIC", f64::from(u8::from(screen.orthographic)));
         let depth_pipeline = pipeline(
             "engine depth",
             &depth_layout,
             crate::shaders::ENGINE_DEPTH,
+            "main",
             &[],
         );
-        let normals_pipelines = (0..6)
+        let reconstruct_pipeline = pipeline(
+            "engine normals reconstructed",
+            &reconstruct_layout,
+            crate::shaders::ENGINE_NORMALS,
+            "main",
+            &[orthographic],
+        );
+        let fused_pipelines = (0..4)
             .map(|i| {
-                let (mode, biased) = (i / 2, i % 2);
+                let (world, biased) = (i / 2, i % 2);
                 pipeline(
-                    "engine normals",
-                    &normals_layout,
+                    "engine depth and normals",
+                    &fused_layout,
                     crate::shaders::ENGINE_NORMALS,
+                    "main_fused",
                     &[
-                        ("MODE", f64::from(mode)),
+                        ("WORLD", f64::from(world)),
                         ("BIASED", f64::from(biased)),
-                        ("ORTHOGRAPHIC", f64::from(u8::from(screen.orthographic))),
+                        orthographic,
                     ],
                 )
             })
@@ -237,8 +270,10 @@ impl EngineInput {
             view,
             depth_layout,
             depth_pipeline,
-            normals_layout,
-            normals_pipelines,
+            reconstruct_layout,
+            reconstruct_pipeline,
+            fused_layout,
+            fused_pipelines,
             linear_depth: target("engine linear depth", wgpu::TextureFormat::R32Float),
             normals: target("engine normals", crate::raster::gbuffer::NORMAL_FORMAT),
             depth_params: uniform("engine depth params", std::mem::size_of::<DepthParams>()),
@@ -246,16 +281,17 @@ impl EngineInput {
         }
     }
 
-    fn normals_pipeline_index(normals: &EngineNormals) -> usize {
-        let (mode, encoding) = match normals {
-            EngineNormals::Reconstruct => (0, NormalEncoding::Signed),
-            EngineNormals::View { encoding, .. } => (1, *encoding),
-            EngineNormals::World { encoding, .. } => (2, *encoding),
+    /// The fused pipeline for the engine's normals (none for `Reconstruct`).
+    fn fused_pipeline_index(normals: &EngineNormals) -> Option<usize> {
+        let (world, encoding) = match normals {
+            EngineNormals::Reconstruct => return None,
+            EngineNormals::View { encoding, .. } => (0, *encoding),
+            EngineNormals::World { encoding, .. } => (1, *encoding),
         };
-        2 * mode + usize::from(encoding == NormalEncoding::Biased)
+        Some(2 * world + usize::from(encoding == NormalEncoding::Biased))
     }
 
-    /// Record the two passes for `frame`; the returned textures go to
+    /// Record the passes for `frame`; the returned textures go to
     /// [`crate::AmbientOcclusion::encode`] in the same encoder. The frame's matrices are written
     /// to the queue (as `set_camera` does): one `encode` per submission. A texture of the wrong
     /// size, format, sample count or usage, or a projection that does not match the screen
@@ -330,44 +366,63 @@ impl EngineInput {
         let linear = self.linear_depth.create_view(&Default::default());
         let normals_out = self.normals.create_view(&Default::default());
         let normals_in = normals_texture.map(|t| t.create_view(&Default::default()));
-        let depth_group = bindings::group(
-            device,
-            "engine depth",
-            &self.depth_layout,
-            &[
-                (0, self.depth_params.as_entire_binding()),
-                (1, self.view.as_entire_binding()),
-                (2, wgpu::BindingResource::TextureView(&depth_in)),
-                (3, wgpu::BindingResource::TextureView(&linear)),
-            ],
-        );
-        let normals_group = bindings::group(
-            device,
-            "engine normals",
-            &self.normals_layout,
-            &[
-                (0, self.normal_params.as_entire_binding()),
-                (1, self.view.as_entire_binding()),
-                (2, wgpu::BindingResource::TextureView(&linear)),
-                (
-                    3,
-                    wgpu::BindingResource::TextureView(normals_in.as_ref().unwrap_or(&linear)),
-                ),
-                (4, wgpu::BindingResource::TextureView(&normals_out)),
-            ],
-        );
         let groups =
             crate::frame::workgroups_32x8(self.screen.full_width(), self.screen.full_height());
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("engine input"),
             timestamp_writes: None,
         });
-        pass.set_pipeline(&self.depth_pipeline);
-        pass.set_bind_group(0, &depth_group, &[]);
-        pass.dispatch_workgroups(groups.0, groups.1, groups.2);
-        pass.set_pipeline(&self.normals_pipelines[Self::normals_pipeline_index(&frame.normals)]);
-        pass.set_bind_group(0, &normals_group, &[]);
-        pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+        let texture = wgpu::BindingResource::TextureView;
+        match (Self::fused_pipeline_index(&frame.normals), &normals_in) {
+            (Some(index), Some(normals_in)) => {
+                let group = bindings::group(
+                    device,
+                    "engine depth and normals",
+                    &self.fused_layout,
+                    &[
+                        (0, self.normal_params.as_entire_binding()),
+                        (1, self.view.as_entire_binding()),
+                        (3, texture(normals_in)),
+                        (4, texture(&normals_out)),
+                        (5, self.depth_params.as_entire_binding()),
+                        (6, texture(&depth_in)),
+                        (7, texture(&linear)),
+                    ],
+                );
+                pass.set_pipeline(&self.fused_pipelines[index]);
+                pass.set_bind_group(0, &group, &[]);
+                pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+            }
+            _ => {
+                let depth_group = bindings::group(
+                    device,
+                    "engine depth",
+                    &self.depth_layout,
+                    &[
+                        (0, self.depth_params.as_entire_binding()),
+                        (1, self.view.as_entire_binding()),
+                        (2, texture(&depth_in)),
+                        (3, texture(&linear)),
+                    ],
+                );
+                let normals_group = bindings::group(
+                    device,
+                    "engine normals reconstructed",
+                    &self.reconstruct_layout,
+                    &[
+                        (1, self.view.as_entire_binding()),
+                        (2, texture(&linear)),
+                        (4, texture(&normals_out)),
+                    ],
+                );
+                pass.set_pipeline(&self.depth_pipeline);
+                pass.set_bind_group(0, &depth_group, &[]);
+                pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+                pass.set_pipeline(&self.reconstruct_pipeline);
+                pass.set_bind_group(0, &normals_group, &[]);
+                pass.dispatch_workgroups(groups.0, groups.1, groups.2);
+            }
+        }
         drop(pass);
         Ok(FrameTextures {
             depth: &self.linear_depth,

@@ -92,6 +92,7 @@ pub const HALF_DOWNSAMPLE: &str = include_str!("../shaders/filter/half_resolutio
 pub const HALF_UPSAMPLE: &str = include_str!("../shaders/filter/half_resolution/upsample.wgsl");
 pub const RAY_QUERY: &str = include_str!("../shaders/bvh/ray_query.wgsl");
 pub const REFERENCE: &str = include_str!("../shaders/reference/reference.wgsl");
+pub const ENGINE_LINEAR_DEPTH: &str = include_str!("../shaders/engine_input/linear_depth.wgsl");
 pub const ENGINE_DEPTH: &str = include_str!("../shaders/engine_input/depth.wgsl");
 pub const ENGINE_NORMALS: &str = include_str!("../shaders/engine_input/normals.wgsl");
 

@@ -1,13 +1,16 @@
 // View-space normals for the AO passes (src/engine_input.rs), from what the engine has:
-// - MODE 0: none; reconstructed from the linear depth. Per axis, of the two one-sided
-//   differences the one whose two taps extrapolate best to the centre depth is used (J. Turánszki,
-//   "Improved normal reconstruction from depth", 2021), so silhouettes do not bend normals of the
-//   surface they bound (the blocky edges of central differences).
-// - MODE 1: view-space normals; MODE 2: world-space normals, turned into view space.
-// BIASED: stored as n * 0.5 + 0.5 (unorm targets). Every normal is turned towards the camera.
-// Needs common/view.wgsl in front.
+// - `main`: none; reconstructed from the linear depth depth.wgsl wrote. Per axis, of the two
+//   one-sided differences the one whose two taps extrapolate best to the centre depth is used
+//   (J. Turánszki, "Improved normal reconstruction from depth", 2021), so silhouettes do not bend
+//   normals of the surface they bound (the blocky edges of central differences).
+// - `main_fused`: the engine's normals, view-space (WORLD false) or world-space (WORLD true,
+//   turned into view space); BIASED: stored as n * 0.5 + 0.5 (unorm targets). Such a normal
+//   needs no neighbour's depth, so this one dispatch also writes the linear depth (one pass and
+//   one barrier instead of two, and the linear depth is not read back).
+// Every normal is turned towards the camera.
+// Needs common/view.wgsl and engine_input/linear_depth.wgsl in front.
 
-override MODE: u32 = 0u;
+override WORLD: bool = false;
 override BIASED: bool = false;
 
 struct EngineNormals {
@@ -16,11 +19,16 @@ struct EngineNormals {
 
 @group(0) @binding(0) var<uniform> params: EngineNormals;
 @group(0) @binding(1) var<uniform> view: View;
-// Linear view depth (the depth pass's output), 0 = background.
+// Linear view depth (the depth pass's output), 0 = background (`main` only).
 @group(0) @binding(2) var depth: texture_2d<f32>;
-// The engine's normals (unused by MODE 0, which binds the depth here again).
+// The engine's normals (`main_fused` only).
 @group(0) @binding(3) var normals_in: texture_2d<f32>;
 @group(0) @binding(4) var normals_out: texture_storage_2d<rgba16float, write>;
+// `main_fused` only: the engine's depth and its conversion, and where the linear depth goes.
+@group(0) @binding(5) var<uniform> depth_params: EngineDepth;
+// Depth32Float, Depth24Plus, Depth16Unorm or R32Float holding NDC z.
+@group(0) @binding(6) var engine_depth: texture_2d<f32>;
+@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 
 fn depth_at(p: vec2<i32>) -> f32 {
     let size = vec2<i32>(view.full_size);
@@ -66,10 +74,18 @@ fn decoded(c: vec2<i32>) -> vec3<f32> {
     if (BIASED) {
         n = n * 2.0 - 1.0;
     }
-    if (MODE == 2u) {
+    if (WORLD) {
         n = (params.world_to_view * vec4<f32>(n, 0.0)).xyz;
     }
     return n;
+}
+
+// `n` (any length) as a unit normal facing the camera at pixel `c` of depth `zc`; a degenerate
+// one (a lone pixel, a zero texel) faces the camera.
+fn facing_camera(c: vec2<i32>, zc: f32, n: vec3<f32>) -> vec3<f32> {
+    let toward = toward_camera(view, position_at(c, zc));
+    let unit = select(toward, normalize(n), length(n) > 0.0);
+    return select(unit, -unit, dot(unit, toward) < 0.0);
 }
 
 @compute @workgroup_size(32, 8)
@@ -81,11 +97,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let zc = textureLoad(depth, id.xy, 0).r;
     var n = vec3<f32>(0.0);
     if (zc > 0.0) {
-        n = select(decoded(c), reconstructed(c, zc), MODE == 0u);
-        let toward = toward_camera(view, position_at(c, zc));
-        // A degenerate normal (a lone pixel, a zero texel) faces the camera.
-        n = select(toward, normalize(n), length(n) > 0.0);
-        n = select(n, -n, dot(n, toward) < 0.0);
+        n = facing_camera(c, zc, reconstructed(c, zc));
+    }
+    textureStore(normals_out, id.xy, vec4<f32>(n, 0.0));
+}
+
+@compute @workgroup_size(32, 8)
+fn main_fused(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (any(id.xy >= view.full_size)) {
+        return;
+    }
+    let c = vec2<i32>(id.xy);
+    let zc = engine_linear_depth(depth_params, view, id.xy, textureLoad(engine_depth, id.xy, 0).r);
+    textureStore(depth_out, id.xy, vec4<f32>(zc, 0.0, 0.0, 0.0));
+    var n = vec3<f32>(0.0);
+    if (zc > 0.0) {
+        n = facing_camera(c, zc, decoded(c));
     }
     textureStore(normals_out, id.xy, vec4<f32>(n, 0.0));
 }
