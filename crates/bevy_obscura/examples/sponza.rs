@@ -3,7 +3,8 @@
 //! screenshots, as the peer benchmark of BENCHMARKS.md does for Bevy alone.
 //!
 //! ```sh
-//! # a window; Tab / Shift+Tab: next / previous choice, 1–4: preset low … ultra, H: half resolution
+//! # a window; Tab / Shift+Tab: next / previous choice, 1–4: preset low … ultra,
+//! # H: half resolution, B: blur off / on
 //! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb
 //! # headless: each choice for 200 frames after 30 of warm-up, GPU times and screenshots
 //! cargo run --release -p bevy_obscura --example sponza -- --scene sponza.glb --headless \
@@ -37,41 +38,86 @@ use bevy_obscura::{ObscuraAo, ObscuraPlugin};
 use obscura::settings::{AoSettings, Preset, Resolution};
 use std::path::PathBuf;
 
-const FULL: Resolution = Resolution::Full;
-
 /// What lights the frame's ambient term.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Choice {
     /// Bevy's SSAO at one of its quality levels.
     Bevy(ScreenSpaceAmbientOcclusionQualityLevel),
-    /// A row of obscura's table at a preset and resolution.
-    Obscura(&'static str, Preset, Resolution),
+    /// A row of obscura's table.
+    Obscura(Row),
+}
+
+/// A row of obscura's table at a preset and resolution, with or without its blur.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Row {
+    technique: &'static str,
+    preset: Preset,
+    resolution: Resolution,
+    blur: bool,
+}
+
+/// A row at a preset, full resolution, blurred (the presets' own setting).
+const fn row(technique: &'static str, preset: Preset) -> Choice {
+    Choice::Obscura(Row {
+        technique,
+        preset,
+        resolution: Resolution::Full,
+        blur: true,
+    })
+}
+
+/// [`row`] at half resolution.
+const fn half(technique: &'static str, preset: Preset) -> Choice {
+    Choice::Obscura(Row {
+        technique,
+        preset,
+        resolution: Resolution::Half,
+        blur: true,
+    })
+}
+
+/// [`row`] without its blur.
+const fn unblurred(technique: &'static str, preset: Preset, resolution: Resolution) -> Choice {
+    Choice::Obscura(Row {
+        technique,
+        preset,
+        resolution,
+        blur: false,
+    })
 }
 
 impl Choice {
-    /// The choices the issue compares, Bevy's first.
-    const ALL: [Choice; 13] = [
+    /// The choices the issue compares, Bevy's first, then obscura's cheapest first.
+    const ALL: [Choice; 15] = [
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::Medium),
         Choice::Bevy(ScreenSpaceAmbientOcclusionQualityLevel::High),
-        Choice::Obscura("vao", Preset::Low, Resolution::Half),
-        Choice::Obscura("gtao", Preset::Low, Resolution::Half),
-        Choice::Obscura("vao", Preset::Low, FULL),
-        Choice::Obscura("gtao", Preset::Low, FULL),
-        Choice::Obscura("vao", Preset::Medium, FULL),
-        Choice::Obscura("gtao", Preset::Medium, FULL),
-        Choice::Obscura("gtao", Preset::High, FULL),
-        Choice::Obscura("gtao-vb", Preset::Medium, FULL),
-        Choice::Obscura("sd-hbao+", Preset::Medium, FULL),
-        Choice::Obscura("hemisphere", Preset::Medium, FULL),
-        Choice::Obscura("rtao", Preset::Medium, FULL),
+        unblurred("gtao", Preset::Low, Resolution::Half),
+        unblurred("gtao", Preset::Low, Resolution::Full),
+        half("gtao", Preset::Low),
+        half("vao", Preset::Low),
+        row("gtao", Preset::Low),
+        row("vao", Preset::Low),
+        row("vao", Preset::Medium),
+        row("gtao", Preset::Medium),
+        row("gtao", Preset::High),
+        row("gtao-vb", Preset::Medium),
+        row("sd-hbao+", Preset::Medium),
+        row("hemisphere", Preset::Medium),
+        row("rtao", Preset::Medium),
     ];
 
     fn name(self) -> String {
         match self {
             Choice::Bevy(q) => format!("bevy-ssao-{}", format!("{q:?}").to_lowercase()),
-            Choice::Obscura(row, preset, FULL) => format!("{row}-{}", preset.name()),
-            Choice::Obscura(row, preset, resolution) => {
-                format!("{row}-{}-{resolution}", preset.name())
+            Choice::Obscura(r) => {
+                let mut name = format!("{}-{}", r.technique, r.preset.name());
+                if r.resolution != Resolution::Full {
+                    name += &format!("-{}", r.resolution);
+                }
+                if !r.blur {
+                    name += "-unblurred";
+                }
+                name
             }
         }
     }
@@ -88,10 +134,11 @@ impl Choice {
                     ..default()
                 });
             }
-            Choice::Obscura(row, preset, resolution) => {
-                let technique = row.parse().expect("a row of the table");
-                let mut settings = AoSettings::preset(technique, preset);
-                settings.resolution = resolution;
+            Choice::Obscura(r) => {
+                let technique = r.technique.parse().expect("a row of the table");
+                let mut settings = AoSettings::preset(technique, r.preset);
+                settings.resolution = r.resolution;
+                settings.blur.enabled = settings.blur.enabled && r.blur;
                 settings.set_every_radius(radius);
                 camera.insert(ObscuraAo::with_settings(settings));
             }
@@ -347,22 +394,30 @@ fn spawn_builtin(world: &mut World, name: &str, camera: &mut Transform, args: &A
 #[derive(Resource)]
 struct Switcher {
     camera: Entity,
+    /// Where in [`Choice::ALL`] Tab goes on from.
     index: usize,
+    /// What the camera has: `Choice::ALL[index]`, or it changed by the preset, H and B keys.
+    choice: Choice,
     radius: f32,
 }
 
 fn windowed(args: &Args) -> Result<(), String> {
     let mut app = app(args, false);
     let (camera, _) = spawn_world(&mut app, args, None);
-    let first = Choice::ALL[6];
+    let first = row("gtao", Preset::High);
+    let index = Choice::ALL
+        .iter()
+        .position(|c| *c == first)
+        .expect("gtao high is a choice");
     first.apply(&mut app.world_mut().entity_mut(camera), args.radius);
     println!(
-        "{} (Tab: next, Shift+Tab: previous, 1-4: preset)",
+        "{} (Tab: next, Shift+Tab: previous, 1-4: preset, H: half resolution, B: blur)",
         first.name()
     );
     app.insert_resource(Switcher {
         camera,
-        index: 6,
+        index,
+        choice: first,
         radius: args.radius,
     })
     .add_systems(Update, switch);
@@ -371,9 +426,30 @@ fn windowed(args: &Args) -> Result<(), String> {
 }
 
 /// Tab / Shift+Tab cycles the choices, 1–4 sets an obscura row's preset, H switches it between
-/// full and half resolution.
+/// full and half resolution, B turns its blur off and on.
 fn switch(world: &mut World) {
     let keys = world.resource::<ButtonInput<KeyCode>>();
+    let switcher = world.resource::<Switcher>();
+    let Some((index, choice)) = next_choice(keys, switcher.index, switcher.choice) else {
+        return;
+    };
+    let (camera, radius) = (switcher.camera, switcher.radius);
+    let mut switcher = world.resource_mut::<Switcher>();
+    (switcher.index, switcher.choice) = (index, choice);
+    choice.apply(&mut world.entity_mut(camera), radius);
+    println!("{}", choice.name());
+    if let Ok(mut window) = world.query::<&mut Window>().single_mut(world) {
+        window.title = format!("bevy_obscura: {}", choice.name());
+    }
+}
+
+/// The choice the keys pressed this frame lead to from `choice` (at `index` of [`Choice::ALL`]),
+/// with its index; None when they change nothing.
+fn next_choice(
+    keys: &ButtonInput<KeyCode>,
+    index: usize,
+    choice: Choice,
+) -> Option<(usize, Choice)> {
     let shift = keys.pressed(KeyCode::ShiftLeft) || keys.pressed(KeyCode::ShiftRight);
     let step =
         keys.just_pressed(KeyCode::Tab)
@@ -387,27 +463,31 @@ fn switch(world: &mut World) {
     .iter()
     .position(|k| keys.just_pressed(*k))
     .map(|i| Preset::ALL[i]);
-    let half = keys.just_pressed(KeyCode::KeyH);
-    let switcher = world.resource::<Switcher>();
-    let (camera, mut index, radius) = (switcher.camera, switcher.index, switcher.radius);
-    let mut choice = Choice::ALL[index];
+    let toggle_half = keys.just_pressed(KeyCode::KeyH);
+    let toggle_blur = keys.just_pressed(KeyCode::KeyB);
     match (step, preset, choice) {
         (Some(step), _, _) => {
-            index = (index + step) % Choice::ALL.len();
-            choice = Choice::ALL[index];
+            let index = (index + step) % Choice::ALL.len();
+            Some((index, Choice::ALL[index]))
         }
-        (None, Some(p), Choice::Obscura(row, _, r)) => choice = Choice::Obscura(row, p, r),
-        (None, None, Choice::Obscura(row, p, r)) if half => {
-            let other = if r == FULL { Resolution::Half } else { FULL };
-            choice = Choice::Obscura(row, p, other);
+        (None, Some(preset), Choice::Obscura(r)) => {
+            Some((index, Choice::Obscura(Row { preset, ..r })))
         }
-        _ => return,
-    }
-    world.resource_mut::<Switcher>().index = index;
-    choice.apply(&mut world.entity_mut(camera), radius);
-    println!("{}", choice.name());
-    if let Ok(mut window) = world.query::<&mut Window>().single_mut(world) {
-        window.title = format!("bevy_obscura: {}", choice.name());
+        (None, None, Choice::Obscura(r)) if toggle_half || toggle_blur => {
+            let resolution = match (toggle_half, r.resolution) {
+                (true, Resolution::Full) => Resolution::Half,
+                (true, _) => Resolution::Full,
+                (false, same) => same,
+            };
+            let blur = r.blur != toggle_blur;
+            let changed = Row {
+                resolution,
+                blur,
+                ..r
+            };
+            Some((index, Choice::Obscura(changed)))
+        }
+        _ => None,
     }
 }
 
@@ -561,4 +641,131 @@ fn save_screenshots(
         rgba,
         image::ColorType::Rgba8,
     )
+}
+
+/// The window's keys (run by `cargo test`: the example is built with `test = true`).
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The camera after the key presses `presses` (each one frame: pressed, then released), from
+    /// the window's first choice.
+    fn after(
+        presses: &[&[KeyCode]],
+    ) -> (
+        Switcher,
+        Option<ObscuraAo>,
+        Option<ScreenSpaceAmbientOcclusion>,
+    ) {
+        let mut world = World::new();
+        world.init_resource::<ButtonInput<KeyCode>>();
+        let camera = world.spawn_empty().id();
+        let first = row("gtao", Preset::High);
+        first.apply(&mut world.entity_mut(camera), 0.5);
+        let index = Choice::ALL.iter().position(|c| *c == first).unwrap();
+        world.insert_resource(Switcher {
+            camera,
+            index,
+            choice: first,
+            radius: 0.5,
+        });
+        for keys in presses {
+            let mut input = world.resource_mut::<ButtonInput<KeyCode>>();
+            for key in *keys {
+                input.press(*key);
+            }
+            switch(&mut world);
+            let mut input = world.resource_mut::<ButtonInput<KeyCode>>();
+            input.release_all();
+            input.clear();
+        }
+        let switcher = world.remove_resource::<Switcher>().unwrap();
+        let entity = world.entity(camera);
+        (
+            switcher,
+            entity.get::<ObscuraAo>().cloned(),
+            entity.get::<ScreenSpaceAmbientOcclusion>().cloned(),
+        )
+    }
+
+    fn settings(ao: Option<ObscuraAo>) -> AoSettings {
+        ao.expect("an obscura row on the camera").resolved()
+    }
+
+    #[test]
+    fn tab_and_shift_tab_walk_the_choices_and_wrap() {
+        let start = Choice::ALL
+            .iter()
+            .position(|c| *c == row("gtao", Preset::High))
+            .unwrap();
+        let (s, ao, _) = after(&[&[KeyCode::Tab]]);
+        assert_eq!((s.index, s.choice), (start + 1, Choice::ALL[start + 1]));
+        assert_eq!(settings(ao).technique.to_string(), "gtao-vb");
+        // Back past the first choice to the last.
+        let back: Vec<&[KeyCode]> = vec![&[KeyCode::ShiftLeft, KeyCode::Tab]; start + 1];
+        let (s, ao, _) = after(&back);
+        assert_eq!(s.index, Choice::ALL.len() - 1);
+        assert_eq!(settings(ao).technique.to_string(), "rtao");
+        // Forward to Bevy's SSAO: obscura's component goes, Bevy's quality is set.
+        let forward: Vec<&[KeyCode]> = vec![&[KeyCode::Tab]; Choice::ALL.len() - start];
+        let (s, ao, ssao) = after(&forward);
+        assert_eq!(s.index, 0);
+        assert!(ao.is_none(), "Bevy's SSAO alone");
+        assert_eq!(
+            ssao.unwrap().quality_level,
+            ScreenSpaceAmbientOcclusionQualityLevel::Medium
+        );
+    }
+
+    #[test]
+    fn digits_set_the_preset_h_the_resolution_and_b_the_blur() {
+        let (s, ao, _) = after(&[&[KeyCode::Digit1], &[KeyCode::KeyH], &[KeyCode::KeyB]]);
+        let mut expected = AoSettings::preset("gtao".parse().unwrap(), Preset::Low);
+        expected.resolution = Resolution::Half;
+        expected.blur.enabled = false;
+        expected.set_every_radius(0.5);
+        assert_eq!(settings(ao), expected);
+        assert_eq!(s.choice.name(), "gtao-low-half-unblurred");
+        // The changes stay through later presses, and H and B switch back.
+        let (s, ao, _) = after(&[
+            &[KeyCode::KeyH],
+            &[KeyCode::KeyB],
+            &[KeyCode::Digit4],
+            &[KeyCode::KeyH],
+            &[KeyCode::KeyB],
+        ]);
+        assert_eq!(s.choice.name(), "gtao-ultra");
+        let mut expected = AoSettings::preset("gtao".parse().unwrap(), Preset::Ultra);
+        expected.set_every_radius(0.5);
+        assert_eq!(settings(ao), expected);
+    }
+
+    #[test]
+    fn keys_that_do_not_apply_change_nothing() {
+        // On Bevy's SSAO the preset, H and B keys do nothing; a key of no meaning never does.
+        let to_bevy: Vec<&[KeyCode]> = vec![
+            &[KeyCode::ShiftLeft, KeyCode::Tab];
+            Choice::ALL
+                .iter()
+                .position(|c| *c == row("gtao", Preset::High))
+                .unwrap()
+                - 1
+        ];
+        let (s, _, _) = after(&to_bevy);
+        assert!(matches!(s.choice, Choice::Bevy(_)), "{:?}", s.choice);
+        let mut more = to_bevy.clone();
+        more.extend([
+            &[KeyCode::Digit1][..],
+            &[KeyCode::KeyH],
+            &[KeyCode::KeyB],
+            &[KeyCode::KeyQ],
+        ]);
+        let (t, ao, ssao) = after(&more);
+        assert_eq!((t.index, t.choice), (s.index, s.choice));
+        assert!(ao.is_none());
+        assert_eq!(
+            ssao.unwrap().quality_level,
+            ScreenSpaceAmbientOcclusionQualityLevel::High
+        );
+    }
 }

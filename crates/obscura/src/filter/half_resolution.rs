@@ -130,7 +130,8 @@ impl HalfResolution {
                 wgpu::BindingResource::TextureView(&second),
             ],
         );
-        let (x, y, z) = workgroups_32x8(self.screen.full_width(), self.screen.full_height());
+        // One invocation per half-resolution texel (the half frame, guard band included).
+        let (x, y, z) = workgroups_32x8(self.depth.width(), self.depth.height());
         self.dispatch(
             encoder,
             "half_downsample",

@@ -20,8 +20,46 @@
 // are rounding only; on a sphere of radius r two full pixels away they are (2·pixel)²/(2r).
 const PLANE_TOLERANCE: f32 = 0.002;
 
+// The half-resolution texels a workgroup of 32×8 output pixels reads, loaded once into workgroup
+// memory with their view-space positions: 16×4 nearest texels and one more on each side. Each
+// pixel reads 9 of them, so loading them per pixel read each texel about 20 times and made the
+// pass twice as slow as the AO pass it upsamples (H100, BENCHMARKS.md).
+const TILE_WIDTH: u32 = 18u;
+const TILE_HEIGHT: u32 = 6u;
+var<workgroup> tile_position: array<vec3<f32>, 108>;
+// The texel's AO, or −1 where it is background.
+var<workgroup> tile_ao: array<f32, 108>;
+
 @compute @workgroup_size(32, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let half_guard = view.guard_band / 2u;
+    let half_visible = textureDimensions(half_ao);
+    // The guard band is even (HalfResolution::new), so the workgroup's first pixel is even and
+    // its nearest texel is half its position; the tile starts one texel before.
+    let origin = vec2<i32>((group.xy * vec2<u32>(32u, 8u) + view.guard_band) / 2u) - 1;
+    if (local < TILE_WIDTH * TILE_HEIGHT) {
+        let cell = origin + vec2<i32>(i32(local % TILE_WIDTH), i32(local / TILE_WIDTH));
+        // Clamped to the visible half image (the AO has no guard band).
+        let texel = vec2<u32>(clamp(
+            cell,
+            vec2<i32>(vec2<u32>(half_guard)),
+            vec2<i32>(half_guard + half_visible - 1u),
+        ));
+        let zt = textureLoad(half_depth, texel, 0).r;
+        var ao = -1.0;
+        var position = vec3<f32>(0.0);
+        if (!is_background(zt)) {
+            ao = textureLoad(half_ao, texel - half_guard, 0).r;
+            position = pixel_to_view(view, 2.0 * (vec2<f32>(texel) + 0.5), zt);
+        }
+        tile_position[local] = position;
+        tile_ao[local] = ao;
+    }
+    workgroupBarrier();
     if (any(id.xy >= view.visible_size)) {
         return;
     }
@@ -33,34 +71,25 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pos = pixel_to_view(view, vec2<f32>(q) + 0.5, z);
     let normal = textureLoad(full_normals, q, 0).xyz;
-    let half_guard = view.guard_band / 2u;
-    let half_visible = textureDimensions(half_ao);
     // The pixel centre in half-resolution framebuffer pixels, texel centres at i + 0.5, and the
-    // texel nearest to it.
+    // texel nearest to it (q / 2: t is q / 2 − 1/4 for even q, (q − 1) / 2 + 1/4 for odd).
     let t = (vec2<f32>(q) + 0.5) * 0.5 - 0.5;
-    let base = round(t);
+    let base = vec2<i32>(q / 2u);
     var sum = 0.0;
     var weight = 0.0;
     var closest = 1e30;
     var closest_ao = 1.0;
     for (var k = 0u; k < 9u; k++) {
         // Texels base − 1 … base + 1 in each axis, tent weights 1 − d/2 over their distance d.
-        let offset = vec2<f32>(f32(k % 3u), f32(k / 3u)) - 1.0;
-        let tent = max(1.0 - 0.5 * abs(base + offset - t), vec2<f32>(0.0));
-        // Clamped to the visible half image (the AO has no guard band).
-        let cell = clamp(
-            vec2<i32>(base + offset),
-            vec2<i32>(vec2<u32>(half_guard)),
-            vec2<i32>(half_guard + half_visible - 1u),
-        );
-        let texel = vec2<u32>(cell);
-        let zt = textureLoad(half_depth, texel, 0).r;
-        if (is_background(zt)) {
+        let offset = vec2<i32>(i32(k % 3u), i32(k / 3u)) - 1;
+        let tent = max(1.0 - 0.5 * abs(vec2<f32>(base + offset) - t), vec2<f32>(0.0));
+        let cell = base + offset - origin;
+        let i = u32(cell.y) * TILE_WIDTH + u32(cell.x);
+        let ao = tile_ao[i];
+        if (ao < 0.0) {
             continue;
         }
-        let ao = textureLoad(half_ao, texel - half_guard, 0).r;
-        let to_texel = pixel_to_view(view, 2.0 * (vec2<f32>(texel) + 0.5), zt) - pos;
-        let distance = abs(dot(normal, to_texel)) / (PLANE_TOLERANCE * z);
+        let distance = abs(dot(normal, tile_position[i] - pos)) / (PLANE_TOLERANCE * z);
         let w = tent.x * tent.y * exp2(-distance * distance);
         sum += w * ao;
         weight += w;
