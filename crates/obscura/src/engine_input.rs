@@ -84,7 +84,7 @@ pub struct EngineFrame<'a> {
     pub normals: EngineNormals<'a>,
 }
 
-/// The two passes and the textures they write, for one screen geometry.
+/// The passes and the textures they write, for one screen geometry.
 ///
 /// ```no_run
 /// # fn frame(gpu: &obscura::Gpu, depth: &wgpu::Texture, projection: glam::Mat4)
