@@ -47,6 +47,7 @@ use bevy::app::{App, Plugin};
 use bevy::ecs::component::Component;
 use bevy::pbr::ScreenSpaceAmbientOcclusion;
 use bevy::render::extract_component::{ExtractComponent, ExtractComponentPlugin};
+use bevy::render::sync_component::SyncComponent;
 pub use obscura;
 use obscura::settings::{AoSettings, Preset};
 use obscura::Technique;
@@ -79,7 +80,7 @@ impl Plugin for ObscuraPlugin {
 
 /// obscura's AO for this camera, in place of Bevy's SSAO. Changing it at run time rebuilds the
 /// row from the next frame on.
-#[derive(Component, Clone, Debug, PartialEq, ExtractComponent)]
+#[derive(Component, Clone, Debug, PartialEq)]
 #[require(ScreenSpaceAmbientOcclusion)]
 pub struct ObscuraAo {
     /// The row of obscura's technique table (`vao`, `gtao`, `sd-hbao+`, `rtao`, …).
@@ -114,6 +115,33 @@ impl ObscuraAo {
     pub fn resolved(&self) -> AoSettings {
         self.settings
             .unwrap_or_else(|| AoSettings::preset(self.technique, self.preset))
+    }
+}
+
+/// [`ObscuraAo`] as the render world has it: the settings the row runs with. A type of its own
+/// because a component's required components come with it into any world: extracted as
+/// `ObscuraAo`, it would bring a default `ScreenSpaceAmbientOcclusion` into the render world even
+/// where Bevy leaves that out (a camera with MSAA, whose multisampled prepass Bevy's SSAO passes
+/// cannot bind, which stops Bevy's rendering).
+#[derive(Component, Clone, Debug, PartialEq)]
+pub struct ExtractedObscuraAo {
+    /// [`ObscuraAo::resolved`].
+    pub settings: AoSettings,
+}
+
+impl SyncComponent for ObscuraAo {
+    type Target = ExtractedObscuraAo;
+}
+
+impl ExtractComponent for ObscuraAo {
+    type QueryData = &'static ObscuraAo;
+    type QueryFilter = ();
+    type Out = ExtractedObscuraAo;
+
+    fn extract_component(ao: &ObscuraAo) -> Option<ExtractedObscuraAo> {
+        Some(ExtractedObscuraAo {
+            settings: ao.resolved(),
+        })
     }
 }
 

@@ -16,7 +16,7 @@
 
 use crate::convert::mat4;
 use crate::geometry::{reads_geometry, GatheredGeometry, RenderGeometry};
-use crate::ObscuraAo;
+use crate::ExtractedObscuraAo;
 use bevy::app::App;
 use bevy::core_pipeline::prepass::ViewPrepassTextures;
 use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
@@ -31,7 +31,7 @@ use bevy::render::renderer::{
     render_system, RenderAdapter, RenderContext, RenderDevice, RenderQueue, ViewQuery,
 };
 use bevy::render::texture::CachedTexture;
-use bevy::render::view::ExtractedView;
+use bevy::render::view::{ExtractedView, Msaa};
 use bevy::render::{Render, RenderApp, RenderSystems};
 use obscura::settings::AoSettings;
 use obscura::{
@@ -73,7 +73,8 @@ pub(crate) fn finish(app: &mut App) {
 pub struct ObscuraViewReport {
     /// The settings the row was made with.
     pub settings: Option<AoSettings>,
-    /// Why the row could not be made or run (Bevy's SSAO ran instead), if it could not.
+    /// Why the row could not be made or run, if it could not: Bevy's SSAO ran instead, except on
+    /// a camera with MSAA, where neither runs.
     pub error: Option<String>,
 }
 
@@ -113,6 +114,8 @@ struct RowKey {
     settings: AoSettings,
     projection: glam::Mat4,
     size: (u32, u32),
+    /// The camera's MSAA sample count (only 1 can run).
+    samples: u32,
     /// The geometry's (layout, placement), for the rows that read it.
     geometry: Option<(u64, u64)>,
 }
@@ -135,7 +138,13 @@ fn prepare(
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
     gathered: Option<Res<GatheredGeometry>>,
-    cameras: Query<(Entity, &ObscuraAo, &ExtractedView, &ExtractedCamera)>,
+    cameras: Query<(
+        Entity,
+        &ExtractedObscuraAo,
+        &ExtractedView,
+        &ExtractedCamera,
+        Option<&Msaa>,
+    )>,
 ) {
     let views = &mut *views;
     let gpu = views
@@ -145,11 +154,11 @@ fn prepare(
     for row in views.rows.values_mut() {
         row.seen = false;
     }
-    for (entity, ao, view, camera) in &cameras {
+    for (entity, ao, view, camera, msaa) in &cameras {
         let Some(size) = camera.physical_viewport_size else {
             continue;
         };
-        let settings = ao.resolved();
+        let settings = ao.settings;
         let projection = mat4(view.clip_from_view);
         let view_from_world = mat4(view.world_from_view.to_matrix().inverse());
         let needs = settings.technique.needs();
@@ -174,16 +183,28 @@ fn prepare(
             settings,
             projection,
             size: (size.x, size.y),
+            samples: msaa.map_or(1, Msaa::samples),
             geometry,
         };
         let row = views.rows.get(&entity);
         if row.is_none_or(|r| r.key != key) {
             let made = match geometry_error {
+                // As Bevy's own SSAO: its prepass is multisampled otherwise.
+                _ if key.samples != 1 => Err(format!(
+                    "ObscuraAo needs Msaa::Off on its camera, as Bevy's SSAO does (this one has \
+                     {} samples): add Msaa::Off to the camera",
+                    key.samples
+                )),
                 Some(e) => Err(e),
                 None => make(&gpu, &key, &views.geometry),
             };
             if let Err(e) = &made {
-                error!("obscura: camera {entity}: {e}; Bevy's SSAO runs instead");
+                let instead = if key.samples == 1 {
+                    "Bevy's SSAO runs instead"
+                } else {
+                    "no AO runs (Bevy's SSAO needs Msaa::Off too)"
+                };
+                error!("obscura: camera {entity}: {e}; {instead}");
             }
             views.rows.insert(
                 entity,
@@ -260,7 +281,10 @@ fn make(gpu: &Gpu, key: &RowKey, geometry: &RenderGeometry) -> Result<Made, Stri
 /// allocated (Bevy's `prepare_ssao_textures` sets it every frame, before this runs).
 fn hand_over_ao(
     views: Res<Views>,
-    mut cameras: Query<(Entity, &mut ScreenSpaceAmbientOcclusionResources), With<ObscuraAo>>,
+    mut cameras: Query<
+        (Entity, &mut ScreenSpaceAmbientOcclusionResources),
+        With<ExtractedObscuraAo>,
+    >,
 ) {
     for (entity, mut ssao) in &mut cameras {
         if let Some(Ok(made)) = views.rows.get(&entity).map(|r| &r.made) {
@@ -274,7 +298,7 @@ fn hand_over_ao(
 fn skip_bevy_ssao(
     mut commands: Commands,
     views: Res<Views>,
-    cameras: Query<Entity, (With<SsaoBindGroups>, With<ObscuraAo>)>,
+    cameras: Query<Entity, (With<SsaoBindGroups>, With<ExtractedObscuraAo>)>,
 ) {
     for entity in &cameras {
         if views.rows.get(&entity).is_some_and(|r| r.made.is_ok()) {
@@ -285,7 +309,7 @@ fn skip_bevy_ssao(
 
 /// The row's passes, writing the texture Bevy's lighting reads (`hand_over_ao`).
 fn encode(
-    view: ViewQuery<(&ObscuraAo, &ViewPrepassTextures)>,
+    view: ViewQuery<(&ExtractedObscuraAo, &ViewPrepassTextures)>,
     views: Res<Views>,
     mut ctx: RenderContext,
 ) {

@@ -257,3 +257,29 @@ fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
     assert_eq!(report.error, None);
     assert!(mae(&h.view_ao(cam).values, &own) <= 2e-3);
 }
+
+#[test]
+fn a_multisampled_camera_is_reported_and_runs_once_msaa_is_off() {
+    let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
+    let scene = obscura::scene::load("stairs").unwrap();
+    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
+    let near = obscura::view::near_plane(&scene);
+    let mut h = Harness::new();
+    h.spawn_scene(&scene);
+    let settings = AoSettings::preset(Technique::Gtao, Preset::High);
+    let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(settings));
+    // Bevy's default, 4 samples, after the harness's Msaa::Off.
+    h.app.world_mut().entity_mut(cam).insert(Msaa::Sample4);
+    h.frames(2);
+    let error = h.report(cam).error.expect("MSAA is reported");
+    assert!(
+        error.contains("Msaa::Off") && error.contains("4 samples"),
+        "{error}"
+    );
+
+    h.app.world_mut().entity_mut(cam).insert(Msaa::Off);
+    h.frames(2);
+    assert_eq!(h.report(cam).error, None);
+    let own = own_render(&scene, &camera, &settings);
+    assert!(mae(&h.view_ao(cam).values, &own) <= 2e-3);
+}
