@@ -54,7 +54,9 @@ struct TemporalParams {
     clamp: u32,
     // 0: no previous frame (the first, or after a reset): every pixel restarts.
     history_valid: u32,
-    pad0: u32,
+    // The hemisphere rows: each pixel's AO is the mean of this many ray visibilities a frame
+    // (0 for the other estimators, whose pixels are not such means).
+    sample_rays: u32,
     pad1: u32,
     pad2: u32,
 }
@@ -163,7 +165,17 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
             taps += select(0.0, 1.0, fresh);
         }
         let mean = m1 / taps;
-        let sigma = sqrt(max(m2 / taps - mean * mean, 0.0));
+        var sigma = sqrt(max(m2 / taps - mean * mean, 0.0));
+        if (params.sample_rays > 0u) {
+            // A mean of k visibilities in [0, 1] with expectation a varies by at most
+            // a(1 − a)/k: that much spread is sampling noise, not a change of the view. The five
+            // taps' own spread is five such samples: at a = 0.8 and one ray all five agree a
+            // third of the time, which closed the box onto them and reset the history to one
+            // frame's noise (the flicker of issue 58's path measurements). So the box is at
+            // least the noise's width, taken at the history's AO, the better estimate of a.
+            let a = clamp(past, 0.0, 1.0);
+            sigma = max(sigma, sqrt(a * (1.0 - a) / f32(params.sample_rays)));
+        }
         past = clamp(past, mean - GAMMA * sigma, mean + GAMMA * sigma);
     }
     let ao = select(current, mix(past, current, 1.0 / n), history.y > 0.0);

@@ -61,7 +61,8 @@ struct TemporalParams {
     max_frames: f32,
     clamp: u32,
     history_valid: u32,
-    _pad: [u32; 3],
+    sample_rays: u32,
+    _pad: [u32; 2],
 }
 
 /// One compute pass per frame, with two history images it alternates between.
@@ -77,6 +78,8 @@ pub struct TemporalAccumulation {
     frame: SharedCell<u32>,
     /// `hemisphere.ray_budget`: which pixels cast rays this frame, from this history.
     budget: Option<RayBudget>,
+    /// Rays whose visibilities each pixel's AO averages (the hemisphere rows), else 0.
+    sample_rays: u32,
 }
 
 /// A ray budget for [`TemporalAccumulation::new`]: pixels cast `rays` rays when granted, at most
@@ -91,7 +94,9 @@ pub struct BudgetRequest {
 
 impl TemporalAccumulation {
     /// The pass and its history images for a visible `width`×`height` AO image; `view` is the
-    /// frame's `View` uniform; `budget`: the ray budget that reads this history, if any.
+    /// frame's `View` uniform; `budget`: the ray budget that reads this history, if any;
+    /// `sample_rays`: for an estimator whose pixel is the mean of that many ray visibilities
+    /// (the hemisphere rows), which widens the history clip to that sampling noise; else 0.
     pub fn new(
         device: &wgpu::Device,
         settings: &TemporalSettings,
@@ -99,6 +104,7 @@ impl TemporalAccumulation {
         width: u32,
         height: u32,
         budget: Option<BudgetRequest>,
+        sample_rays: u32,
     ) -> Self {
         let source = shaders::with_common(
             &[shaders::VIEW, shaders::VERTEX_NORMAL],
@@ -141,6 +147,7 @@ impl TemporalAccumulation {
             frame: SharedCell::new(0),
             budget: budget
                 .map(|b| RayBudget::new(device, &source, width, height, b.rays, b.budget)),
+            sample_rays,
         }
     }
 
@@ -159,7 +166,8 @@ impl TemporalAccumulation {
             max_frames: self.settings.frames as f32,
             clamp: u32::from(self.settings.clamp),
             history_valid: valid,
-            _pad: [0; 3],
+            sample_rays: self.sample_rays,
+            _pad: [0; 2],
         };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         self.previous.set(Some(*view));

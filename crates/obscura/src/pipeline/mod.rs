@@ -201,6 +201,10 @@ impl AmbientOcclusion {
                         rays: settings.hemisphere.rays,
                         budget: initial_ray_budget(settings, &work),
                     }),
+                    match settings.technique.estimator() {
+                        crate::technique::Estimator::Hemisphere => settings.hemisphere.rays,
+                        _ => 0,
+                    },
                 )),
                 output: ao_texture("ao accumulated"),
             });

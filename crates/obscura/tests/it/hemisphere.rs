@@ -276,31 +276,39 @@ fn the_screen_march_approaches_the_traced_rays_as_its_steps_shrink() {
 #[test]
 fn frames_of_temporal_accumulation_converge_to_the_ground_truth() {
     // A new seed per frame: 16 still frames of 4 rays approach the 256-ray ground truth about
-    // √16 times more closely than one frame does (measured 0.025 → 0.0068). The history is not
-    // clipped: clipping it to this frame's spread around the pixel, which stops view-dependent
-    // occlusion from lagging, also holds it near one frame's noise (2.7× rather than 3.7× here),
-    // and the hemisphere's AO of a still surface does not depend on the view.
+    // √16 times more closely than one frame does (measured 0.025 → 0.0068), with the history
+    // clip on or off. The clip (the history held to this frame's spread around the pixel, which
+    // stops view-dependent occlusion from lagging) is at least as wide as the rays' sampling
+    // noise for these rows: when it took the five taps' spread alone, it held the history near
+    // one frame's noise (2.7× closer after 16 frames rather than 3.7× here).
     let gpu = gpu();
     let scene = room();
-    let mut s = settings(Technique::Rtao, 4, 1.0);
-    s.temporal.enabled = true;
-    s.temporal.frames = 64;
-    s.temporal.clamp = false;
     let (w, h) = (64, 48);
-    let mut r = Renderer::new(&gpu, &scene, &s, w, h, 16).unwrap();
     let eye = camera(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), 50.0);
-    let mut errors = Vec::new();
-    for frame in 1..=16 {
-        r.render(&eye, None).unwrap();
-        if frame == 1 || frame == 16 {
-            let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 256, 1.0);
-            errors.push(mean_abs_difference(&r.read_ao().unwrap(), &truth));
+    let mut runs = Vec::new();
+    for clamp in [false, true] {
+        let mut s = settings(Technique::Rtao, 4, 1.0);
+        s.temporal.enabled = true;
+        s.temporal.frames = 64;
+        s.temporal.clamp = clamp;
+        let mut r = Renderer::new(&gpu, &scene, &s, w, h, 16).unwrap();
+        let mut errors = Vec::new();
+        for frame in 1..=16 {
+            r.render(&eye, None).unwrap();
+            if frame == 1 || frame == 16 {
+                let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 256, 1.0);
+                errors.push(mean_abs_difference(&r.read_ao().unwrap(), &truth));
+            }
         }
+        println!("clamp {clamp}: MAE after 1 and 16 frames {errors:?}");
+        runs.push(errors);
     }
-    assert!(
-        errors[1] < errors[0] / 3.0 && errors[1] < 0.01,
-        "MAE after 1 and 16 frames: {errors:?}"
-    );
+    for errors in &runs {
+        assert!(
+            errors[1] < errors[0] / 3.3 && errors[1] < 0.01,
+            "MAE after 1 and 16 frames: {runs:?}"
+        );
+    }
 }
 
 #[test]
