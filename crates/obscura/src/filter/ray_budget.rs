@@ -29,14 +29,17 @@ pub struct RayBudgetReport {
     pub wanted: u32,
 }
 
-/// The three passes and their buffers.
+/// The four passes and their buffers.
 pub struct RayBudget {
     priority: wgpu::ComputePipeline,
+    block_sums: wgpu::ComputePipeline,
     threshold: wgpu::ComputePipeline,
     grant: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     keys: wgpu::Buffer,
     histogram: wgpu::Buffer,
+    /// Pixels per block of 256 keys.
+    block_counts: wgpu::Buffer,
     result: wgpu::Buffer,
     grant_image: wgpu::Texture,
     rays: u32,
@@ -45,6 +48,8 @@ pub struct RayBudget {
 
 /// Keys of the selection's histogram (16 bits: 10 of priority, 6 of hash).
 const KEY_COUNT: u64 = 1 << 16;
+/// Keys a block of the threshold search holds (`BLOCK` in ray_budget.wgsl).
+const BLOCK: u64 = 256;
 
 impl RayBudget {
     /// The passes for a visible `width`×`height` image whose pixels cast `rays` rays when
@@ -73,13 +78,16 @@ impl RayBudget {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
         let pixels = u64::from(width) * u64::from(height);
         Self {
             priority: pipeline("priority"),
+            block_sums: pipeline("block_sums"),
             threshold: pipeline("threshold"),
             grant: pipeline("grant"),
             params: device.create_buffer(&wgpu::BufferDescriptor {
@@ -89,8 +97,9 @@ impl RayBudget {
                 mapped_at_creation: false,
             }),
             keys: storage("ray budget keys", pixels.max(1) * 4),
-            // Created zeroed; the threshold pass empties it after each frame.
+            // Cleared before each frame's priority pass.
             histogram: storage("ray budget histogram", KEY_COUNT * 4),
+            block_counts: storage("ray budget block counts", KEY_COUNT / BLOCK * 4),
             result: storage("ray budget result", 32),
             grant_image: crate::gpu::texture_2d(
                 device,
@@ -133,9 +142,9 @@ impl RayBudget {
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }
 
-    /// Records the three passes. `temporal` holds temporal accumulation's group-0 resources by
-    /// binding (view 0, params 1, depth 2, normals 3, the history read 5). Timing: `ray_budget`
-    /// (all three).
+    /// Records the histogram's clearing and the four passes. `temporal` holds temporal
+    /// accumulation's group-0 resources by binding (view 0, params 1, depth 2, normals 3, the
+    /// history read 5). Timing: `ray_budget` (the passes).
     pub fn encode(
         &self,
         device: &wgpu::Device,
@@ -151,6 +160,7 @@ impl RayBudget {
             (2, self.histogram.as_entire_binding()),
             (3, self.result.as_entire_binding()),
             (4, wgpu::BindingResource::TextureView(&grant)),
+            (5, self.block_counts.as_entire_binding()),
         ];
         // Each entry point's layout holds only what it uses (layouts made from the shader).
         fn pick<'a>(
@@ -174,10 +184,14 @@ impl RayBudget {
             group(&self.priority, 0, pick(temporal, &[0, 1, 2, 3, 5])),
             group(&self.priority, 1, pick(&own, &[0, 1, 2])),
         ];
-        // The threshold pass reads nothing of group 0: its layout there is empty.
+        // The block and threshold passes read nothing of group 0: their layouts there are empty.
+        let block_sums = [
+            group(&self.block_sums, 0, Vec::new()),
+            group(&self.block_sums, 1, pick(&own, &[2, 5])),
+        ];
         let threshold = [
             group(&self.threshold, 0, Vec::new()),
-            group(&self.threshold, 1, pick(&own, &[0, 2, 3])),
+            group(&self.threshold, 1, pick(&own, &[0, 2, 3, 5])),
         ];
         let grant_groups = [
             group(&self.grant, 0, pick(temporal, &[0])),
@@ -185,6 +199,7 @@ impl RayBudget {
         ];
         let (w, h) = size;
         let tiles = (w.div_ceil(8), h.div_ceil(8), 1);
+        encoder.clear_buffer(&self.histogram, 0, None);
         let timestamp_writes = profiler.map(|p| p.compute_pass("ray_budget"));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ray budget"),
@@ -192,6 +207,7 @@ impl RayBudget {
         });
         for (pipeline, groups, (x, y, z)) in [
             (&self.priority, &priority, tiles),
+            (&self.block_sums, &block_sums, ((KEY_COUNT / BLOCK) as u32, 1, 1)),
             (&self.threshold, &threshold, (1, 1, 1)),
             (&self.grant, &grant_groups, tiles),
         ] {
