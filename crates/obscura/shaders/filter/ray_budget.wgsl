@@ -2,10 +2,12 @@
 // whose accumulated AO is least certain. Three passes before the AO pass, after
 // temporal_accumulation.wgsl (its bindings and `read_history`, so a pixel's history is found by
 // the same reprojection the accumulation then uses):
-// - `priority`: each visible pixel's key, from its reprojected history (AO a, frames n): the
-//   variance of its running mean of n·N rays (common/visibility_variance.wgsl), on a log scale
-//   in the key's high 10 bits; no history sorts first. Its low 6 bits are a hash of the pixel
-//   and frame, so pixels of equal priority are taken in a different order each frame. Every surface pixel's key is counted in a histogram of the 2^16 keys.
+// - `priority`: each visible pixel's priority, from its reprojected history (AO a, frames n):
+//   the variance of its running mean of n·N rays (common/visibility_variance.wgsl), on a log
+//   scale; no history sorts first. A tile of 32×4 pixels takes its neediest pixel's priority in
+//   its key's high 10 bits, and in its low 6 bits a hash of the tile and frame, so tiles of equal
+//   priority are taken in a different order each frame. Every surface pixel's key is counted in
+//   a histogram of the 2^16 keys.
 // - `block_sums` (one workgroup per block of 256 keys): each block's count of pixels.
 // - `threshold` (one workgroup): finds the key T at which N rays for every pixel above would
 //   pass the budget, first the block that holds it (a suffix scan of the block counts), then the
@@ -74,18 +76,24 @@ fn priority_level(a: f32, frames: f32) -> u32 {
     return 1u + u32(clamp(level, 0.0, f32(TOP_LEVEL - 2u)));
 }
 
-@compute @workgroup_size(8, 8)
-fn priority(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if (any(gid.xy >= view.visible_size)) {
-        return;
+// A tile of 32×4 pixels takes one key: the AO pass runs 32×8 workgroups (schedules/
+// single_main.wgsl), so a warp of 32 lanes is one row of a tile, and a tile's pixels are
+// granted rays or not together. With a key per pixel the granted pixels were scattered over
+// nearly every warp, and a warp runs as long as its busiest lane: the AO pass took as long under
+// a quarter of the rays as under all (BENCHMARKS.md). The tile's priority is its neediest pixel's
+// (a pixel with no history puts its tile first).
+const TILE: vec2<u32> = vec2<u32>(32u, 4u);
+var<workgroup> tile_level: atomic<u32>;
+
+// The priority level of visible pixel `id`, 0 on background or outside the image.
+fn pixel_level(id: vec2<u32>) -> u32 {
+    if (any(id >= view.visible_size)) {
+        return 0u;
     }
-    let id = gid.xy;
-    let index = id.y * view.visible_size.x + id.x;
     let full = id + vec2<u32>(view.guard_band);
     let z = textureLoad(depth_tex, full, 0).x;
     if (is_background(z)) {
-        keys[index] = 0u;
-        return;
+        return 0u;
     }
     let p = pixel_to_view(view, vec2<f32>(full) + 0.5, z);
     let n_world = (params.current_to_world * vec4<f32>(textureLoad(normal_tex, full, 0).xyz, 0.0)).xyz;
@@ -97,9 +105,33 @@ fn priority(@builtin(global_invocation_id) gid: vec3<u32>) {
             history = read_history(q, -p_prev.z, n_world);
         }
     }
-    let level = priority_level(history.x, round(history.y));
-    let hash = pcg_hash(pcg_hash(budget.frame ^ 0x68bc21ebu) ^ (id.x + pcg_hash(id.y)));
-    let key = (level << HASH_BITS) | (hash >> (32u - HASH_BITS));
+    return priority_level(history.x, round(history.y));
+}
+
+@compute @workgroup_size(32, 4)
+fn priority(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(workgroup_id) tile: vec3<u32>,
+    @builtin(local_invocation_index) t: u32,
+) {
+    if (t == 0u) {
+        atomicStore(&tile_level, 0u);
+    }
+    workgroupBarrier();
+    let id = gid.xy;
+    let level = pixel_level(id);
+    atomicMax(&tile_level, level);
+    let shared_level = workgroupUniformLoad(&tile_level);
+    if (any(id >= view.visible_size)) {
+        return;
+    }
+    let index = id.y * view.visible_size.x + id.x;
+    if (level == 0u) {
+        keys[index] = 0u;
+        return;
+    }
+    let hash = pcg_hash(pcg_hash(budget.frame ^ 0x68bc21ebu) ^ (tile.x + pcg_hash(tile.y)));
+    let key = (shared_level << HASH_BITS) | (hash >> (32u - HASH_BITS));
     keys[index] = key;
     atomicAdd(&histogram[key], 1u);
 }

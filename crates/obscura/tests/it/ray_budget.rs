@@ -129,7 +129,9 @@ fn the_budget_goes_where_the_variance_is_and_the_image_still_converges() {
     let frames = run(&s, 48);
     let last = frames.last().unwrap();
     // Pixels whose accumulated AO is open (≈ 1) are certain sooner than half-occluded ones (a
-    // mean of n rays of visibility a has variance a(1 − a)/n): they got fewer frames of rays.
+    // mean of n rays of visibility a has variance a(1 − a)/n): they got fewer frames of rays
+    // (measured 9.4 against 19.5; 9.3 against 26.5 when each pixel had its own key rather than
+    // its 32×4 tile's).
     let mean_frames = |keep: &dyn Fn(f32) -> bool| {
         let picked: Vec<f64> = last
             .ao
@@ -149,8 +151,8 @@ fn the_budget_goes_where_the_variance_is_and_the_image_still_converges() {
         "frames of rays: open {open:.1}, half-occluded {partial:.1}"
     );
     // The image converges all the same, and closer than the same rays spread evenly: 12
-    // unbudgeted frames of one ray (measured: 0.0201 budgeted, 0.0237 even, against a 256-ray
-    // ground truth).
+    // unbudgeted frames of one ray (measured: 0.0189 budgeted by tile, 0.0201 by pixel, 0.0237
+    // even, against a 256-ray ground truth).
     let gpu = gpu();
     let scene = room();
     let mut even = budgeted(1, 0);
