@@ -30,6 +30,17 @@ fn own_render(
     renderer.read_ao().expect("obscura's AO")
 }
 
+/// A built-in scene, the camera it opens with at [`SIZE`], its near plane, and a headless app
+/// that has its meshes.
+fn scene_app(name: &str) -> (Harness, obscura::scene::Scene, obscura::scene::Camera, f32) {
+    let scene = obscura::scene::load(name).unwrap();
+    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
+    let near = obscura::view::near_plane(&scene);
+    let mut h = Harness::new();
+    h.spawn_scene(&scene);
+    (h, scene, camera, near)
+}
+
 #[test]
 fn the_ao_bevy_reads_is_obscuras_own_render_of_the_same_camera_and_row() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
@@ -157,11 +168,7 @@ fn a_hidden_depth_row_reads_the_meshes_and_a_moved_mesh_moves_its_occlusion() {
 #[test]
 fn the_lit_frame_differs_from_bevys_ssao_frame_only_where_the_ao_does() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
-    let scene = obscura::scene::load("colonnade").unwrap();
-    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
-    let near = obscura::view::near_plane(&scene);
-    let mut h = Harness::new();
-    h.spawn_scene(&scene);
+    let (mut h, _, camera, near) = scene_app("colonnade");
     let order = |i| Camera {
         order: i,
         ..default()
@@ -222,11 +229,7 @@ fn the_lit_frame_differs_from_bevys_ssao_frame_only_where_the_ao_does() {
 #[test]
 fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
-    let scene = obscura::scene::load("stairs").unwrap();
-    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
-    let near = obscura::view::near_plane(&scene);
-    let mut h = Harness::new();
-    h.spawn_scene(&scene);
+    let (mut h, scene, camera, near) = scene_app("stairs");
     let mut bad = AoSettings::preset(Technique::Gtao, Preset::High);
     bad.gtao.radius = -1.0;
     let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(bad));
@@ -261,11 +264,7 @@ fn a_setting_that_cannot_run_is_reported_and_bevys_ssao_runs_meanwhile() {
 #[test]
 fn a_multisampled_camera_is_reported_and_runs_once_msaa_is_off() {
     let _one = ONE_APP.lock().unwrap_or_else(|e| e.into_inner());
-    let scene = obscura::scene::load("stairs").unwrap();
-    let camera = scene.default_camera(SIZE.0 as f32 / SIZE.1 as f32);
-    let near = obscura::view::near_plane(&scene);
-    let mut h = Harness::new();
-    h.spawn_scene(&scene);
+    let (mut h, scene, camera, near) = scene_app("stairs");
     let settings = AoSettings::preset(Technique::Gtao, Preset::High);
     let (cam, _) = h.spawn_camera(&camera, near, SIZE, ObscuraAo::with_settings(settings));
     // Bevy's default, 4 samples, after the harness's Msaa::Off.

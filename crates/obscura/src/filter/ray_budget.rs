@@ -209,7 +209,11 @@ impl RayBudget {
         let priority_tiles = (w.div_ceil(32), h.div_ceil(4), 1);
         for (pipeline, groups, (x, y, z)) in [
             (&self.priority, &priority, priority_tiles),
-            (&self.block_sums, &block_sums, ((KEY_COUNT / BLOCK) as u32, 1, 1)),
+            (
+                &self.block_sums,
+                &block_sums,
+                ((KEY_COUNT / BLOCK) as u32, 1, 1),
+            ),
             (&self.threshold, &threshold, (1, 1, 1)),
             (&self.grant, &grant_groups, tiles),
         ] {
