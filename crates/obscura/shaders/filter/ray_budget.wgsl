@@ -1,5 +1,5 @@
 // The ray budget (issue 58; ours): at most `budget` hemisphere rays a frame, given to the pixels
-// whose accumulated AO is least certain. Three passes before the AO pass, after
+// whose accumulated AO is least certain. Four passes before the AO pass, after
 // temporal_accumulation.wgsl (its bindings and `read_history`, so a pixel's history is found by
 // the same reprojection the accumulation then uses):
 // - `priority`: each visible pixel's priority, from its reprojected history (AO a, frames n):
@@ -13,13 +13,13 @@
 //   pass the budget, first the block that holds it (a suffix scan of the block counts), then the
 //   key within it (a suffix scan of its 256 keys): pixels above T get N rays, pixels at T share
 //   what is left (the same count each, at most N), pixels below get none, so the rays granted
-//   never exceed the budget. (One workgroup walking all 2^16 keys, 256 a thread, took about
-//   0.5 ms at 1080p on an H100: a thread's keys were 1 KB apart from its neighbours', so no load
-//   was coalesced, and each was waited for in turn.) The histogram is cleared before `priority`
-//   (RayBudget::encode).
+//   never exceed the budget. (Before, one workgroup walked all 2^16 keys, 256 a thread, and the
+//   budget's passes took 0.55–0.65 ms at 1080p on an H100, BENCHMARKS.md; that walk is the
+//   likely cause, not timed alone: a thread's keys were 1 KB apart from its neighbours', so no
+//   load was coalesced, and each was waited for in turn.) The histogram is cleared before
+//   `priority` (RayBudget::encode).
 // - `grant`: each pixel's rays into the grant image the AO pass reads (FRAME_RAY_GRANT).
-// A selection by histogram rather than a sort or an atomic counter: two small passes at any
-// size, and the same grants for the same inputs (a counter would hand out the last rays in the
+// A selection by histogram rather than a sort or an atomic counter: small passes at any size, and the same grants for the same inputs (a counter would hand out the last rays in the
 // order threads happen to run).
 
 struct BudgetParams {
