@@ -19,8 +19,9 @@
 //   load was coalesced, and each was waited for in turn.) The histogram is cleared before
 //   `priority` (RayBudget::encode).
 // - `grant`: each pixel's rays into the grant image the AO pass reads (FRAME_RAY_GRANT).
-// A selection by histogram rather than a sort or an atomic counter: small passes at any size, and the same grants for the same inputs (a counter would hand out the last rays in the
-// order threads happen to run).
+// A selection by histogram rather than a sort or an atomic counter: small passes at any size,
+// and the same grants for the same inputs (a counter would hand out the last rays in the order
+// threads happen to run).
 
 struct BudgetParams {
     // Rays a frame, at most.
