@@ -24,6 +24,8 @@ pub const SOURCE_RAY_CAMERA: &str = include_str!("../shaders/sources/ray_camera.
 pub const SOURCE_SCREEN_RAYS: &str = include_str!("../shaders/sources/screen_rays.wgsl");
 pub const SCREEN_RAYS_FIRST: &str = include_str!("../shaders/sources/screen_rays_first.wgsl");
 pub const SCREEN_RAYS_DUAL: &str = include_str!("../shaders/sources/screen_rays_dual.wgsl");
+pub const SCREEN_RAYS_STOCHASTIC: &str =
+    include_str!("../shaders/sources/screen_rays_stochastic.wgsl");
 pub const SOURCE_BVH_RAYS: &str = include_str!("../shaders/sources/bvh_rays.wgsl");
 pub const SOURCE_COLUMN_TRACE: &str = include_str!("../shaders/sources/column_trace.wgsl");
 pub const SOURCE_COLUMN_RAYS: &str = include_str!("../shaders/sources/column_rays.wgsl");

@@ -109,6 +109,12 @@ techniques!(
     /// `hemisphere-dual`: hemisphere rays marched in screen space over two depth layers (depth
     /// peeling): the second layer bounds the first surface's thickness.
     HemisphereDual,
+    /// `sd-hemisphere`: hemisphere rays marched in screen space over the first layer and every
+    /// depth of the stochastic depth map: each hidden depth is a surface of its own.
+    SdHemisphere,
+    /// `ray-sd-hemisphere`: hemisphere rays marched over the first layer and every depth of the
+    /// stochastic depth map collected by camera rays through the BVH.
+    RaySdHemisphere,
     /// `rtao`: cosine-weighted rays within R, each traced through the BVH: the ground truth's
     /// model and rays, a few per pixel per frame.
     Rtao,
@@ -187,6 +193,13 @@ sources!(
     /// Each hemisphere ray traced through the BVH in world space: nothing is hidden from it.
     /// Reads the hemisphere estimator's rays.
     BvhRays,
+    /// Each hemisphere ray marched in screen space over the first layer and every depth of the
+    /// rasterised stochastic depth map at the pixel; in the map's guard band, over its depths
+    /// alone. Reads the hemisphere estimator's rays.
+    ScreenRaysStochastic,
+    /// Each hemisphere ray marched in screen space over the first layer and every depth of the
+    /// ray-traced stochastic depth map. Reads the hemisphere estimator's rays.
+    ScreenRaysRayStochastic,
 );
 
 /// Which passes run the estimator over the source (`src/schedules/`, `shaders/schedules/`).
@@ -536,6 +549,24 @@ pub const TABLE: &[TechniqueRow] = &[
         schedule: Schedule::Single,
     },
     TechniqueRow {
+        technique: Technique::SdHemisphere,
+        name: "sd-hemisphere",
+        summary: "Hemisphere AO marched over the first layer and every stochastic depth",
+        paper: "the ground truth's model; seed 001 §3.1's map in the march (ours)",
+        estimator: Estimator::Hemisphere,
+        source: Source::ScreenRaysStochastic,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
+        technique: Technique::RaySdHemisphere,
+        name: "ray-sd-hemisphere",
+        summary: "Hemisphere AO marched over the first layer and every ray-traced map depth",
+        paper: "the ground truth's model; seed 002 §3.1's map in the march (ours)",
+        estimator: Estimator::Hemisphere,
+        source: Source::ScreenRaysRayStochastic,
+        schedule: Schedule::Single,
+    },
+    TechniqueRow {
         technique: Technique::Rtao,
         name: "rtao",
         summary: "Ray-traced AO: cosine-weighted rays within R traced through the BVH",
@@ -607,6 +638,37 @@ impl Source {
             second_layer: false,
             stochastic_depth_map: false,
         };
+        // The maps' own caps, shared with the screen marches over them.
+        const STOCHASTIC_DEPTH: SourceCaps = SourceCaps {
+            name: "stochastic depth",
+            section: "stochastic_depth",
+            needs: Needs {
+                triangles: true,
+                stochastic_depth_map: true,
+                ..NONE
+            },
+            maps_hidden_depth: true,
+            costly_resolve: true,
+            only_for: None,
+            serves_levels: false,
+            // One sample at low: every adapter with the map's format rasterises it (WebGPU
+            // guarantees 1× and 4× only). α stays 1.5/S throughout.
+            presets: &[("stochastic_depth.samples", [1.0, 4.0, 4.0, 8.0])],
+        };
+        const RAY_STOCHASTIC_DEPTH: SourceCaps = SourceCaps {
+            name: "ray stochastic depth",
+            section: "ray_sd",
+            needs: Needs {
+                triangles: true,
+                bvh: true,
+                ..NONE
+            },
+            maps_hidden_depth: true,
+            costly_resolve: true,
+            only_for: None,
+            serves_levels: false,
+            presets: &[],
+        };
         match self {
             Source::FirstLayer => &SourceCaps {
                 name: "first layer",
@@ -645,36 +707,8 @@ impl Source {
                 serves_levels: false,
                 presets: &[],
             },
-            Source::StochasticDepth => &SourceCaps {
-                name: "stochastic depth",
-                section: "stochastic_depth",
-                needs: Needs {
-                    triangles: true,
-                    stochastic_depth_map: true,
-                    ..NONE
-                },
-                maps_hidden_depth: true,
-                costly_resolve: true,
-                only_for: None,
-                serves_levels: false,
-                // One sample at low: every adapter with the map's format rasterises it (WebGPU
-                // guarantees 1× and 4× only). α stays 1.5/S throughout.
-                presets: &[("stochastic_depth.samples", [1.0, 4.0, 4.0, 8.0])],
-            },
-            Source::RayStochasticDepth => &SourceCaps {
-                name: "ray stochastic depth",
-                section: "ray_sd",
-                needs: Needs {
-                    triangles: true,
-                    bvh: true,
-                    ..NONE
-                },
-                maps_hidden_depth: true,
-                costly_resolve: true,
-                only_for: None,
-                serves_levels: false,
-                presets: &[],
-            },
+            Source::StochasticDepth => &STOCHASTIC_DEPTH,
+            Source::RayStochasticDepth => &RAY_STOCHASTIC_DEPTH,
             Source::DepthPyramid => &SourceCaps {
                 name: "depth pyramid",
                 section: "pyramid",
@@ -708,6 +742,19 @@ impl Source {
                 serves_levels: false,
                 presets: &[],
             },
+            Source::ScreenRaysStochastic => &SourceCaps {
+                name: "screen rays stochastic depth",
+                // The march decides every ray in its first look.
+                costly_resolve: false,
+                only_for: Some(Estimator::Hemisphere),
+                ..STOCHASTIC_DEPTH
+            },
+            Source::ScreenRaysRayStochastic => &SourceCaps {
+                name: "screen rays ray stochastic depth",
+                costly_resolve: false,
+                only_for: Some(Estimator::Hemisphere),
+                ..RAY_STOCHASTIC_DEPTH
+            },
             Source::BvhRays => &SourceCaps {
                 name: "bvh rays",
                 section: "",
@@ -736,6 +783,27 @@ impl Source {
     /// Whether it is a stochastic depth map ([`SourceCaps::maps_hidden_depth`]).
     pub fn maps_hidden_depth(self) -> bool {
         self.caps().maps_hidden_depth
+    }
+
+    /// Whether it is a screen march that reads depths behind the first layer at every step (the
+    /// second layer, a stochastic depth map): phase 1 of a two-phase schedule binds none of them.
+    pub fn marches_layers(self) -> bool {
+        matches!(
+            self,
+            Source::ScreenRaysDual | Source::ScreenRaysStochastic | Source::ScreenRaysRayStochastic
+        )
+    }
+
+    /// The stochastic depth map it reads, if any: [`Source::StochasticDepth`] (rasterised) or
+    /// [`Source::RayStochasticDepth`] (ray-traced), also for the screen marches over them.
+    pub fn map(self) -> Option<Source> {
+        match self {
+            Source::StochasticDepth | Source::ScreenRaysStochastic => Some(Source::StochasticDepth),
+            Source::RayStochasticDepth | Source::ScreenRaysRayStochastic => {
+                Some(Source::RayStochasticDepth)
+            }
+            _ => None,
+        }
     }
 
     /// Whether resolving a flagged sample is costly ([`SourceCaps::costly_resolve`]).
@@ -812,7 +880,7 @@ impl Schedule {
             Schedule::Interleaved => source == Source::FirstLayer,
             Schedule::Multiview => source == Source::StochasticDepth,
             Schedule::TwoPhase | Schedule::TwoPhaseDense => {
-                !source.caps().serves_levels && source != Source::ScreenRaysDual
+                !source.caps().serves_levels && !source.marches_layers()
             }
             Schedule::Single => true,
         }

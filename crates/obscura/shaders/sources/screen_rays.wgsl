@@ -6,20 +6,14 @@
 // says nothing of what lies farther behind, so a thickness stands in for it). A ray that leaves
 // the frame or passes behind the near plane is free from there on. Reads the hemisphere
 // estimator's rays: a hemisphere-only source (src/technique.rs says so).
-// With a second depth layer ("screen rays dual", `hemisphere-dual`; screen_rays_dual.wgsl in
-// front, screen_rays_first.wgsl without one) the first surface is no thicker than the gap to the
-// second: a thin board before a wall no longer occludes all of `thickness` behind it. Only that:
-// the second layer of a closed object is its back face, with air behind it, and a layer's
-// facing is not stored, so no thickness is assumed behind the second layer.
+// What lies behind the first layer is the variant's, in front of this file:
+// screen_rays_first.wgsl (`hemisphere`: nothing known), screen_rays_dual.wgsl (`hemisphere-dual`:
+// a second layer) and screen_rays_stochastic.wgsl (`sd-hemisphere`, `ray-sd-hemisphere`: every
+// depth of a stochastic depth map). Each defines `screen_rays_inside(q, cell, z)`, whether `q`
+// lies inside a surface at framebuffer pixel `cell` whose first layer is at linear depth `z`,
+// and `screen_rays_band_inside(q, pixel)` for a pixel off the framebuffer: 1 inside, 0 free,
+// −1 where it knows nothing there (the ray is free from there on).
 // The source contract: see first_layer.wgsl.
-
-// Whether `q` lies inside a surface at framebuffer pixel `cell`, whose first layer is at linear
-// depth `z`.
-fn screen_rays_inside(q: vec3<f32>, cell: vec2<u32>, z: f32) -> bool {
-    let z2 = screen_rays_second_depth(cell);
-    let thickness = select(min(params.thickness, z2 - z), params.thickness, is_background(z2));
-    return hemisphere_inside(q, cell, z, thickness);
-}
 
 fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
     var l: DepthLookup;
@@ -36,7 +30,18 @@ fn source_lookup(p: EstimatorPixel, s: EstimatorSample) -> DepthLookup {
         }
         let px = view_to_pixel(view, q);
         if (any(px < vec2<f32>(0.0)) || any(px >= vec2<f32>(view.full_size))) {
-            break;
+            // Clamped first: a point near the camera plane projects arbitrarily far.
+            let pixel = vec2<i32>(floor(clamp(px, vec2<f32>(-1.0e6), vec2<f32>(1.0e6))));
+            let band = screen_rays_band_inside(q, pixel);
+            if (band < 0) {
+                break;
+            }
+            if (band > 0) {
+                l.value = hemisphere_blocked_at(t);
+                l.px = vec2<f32>(pixel) + 0.5;
+                break;
+            }
+            continue;
         }
         let cell = vec2<u32>(px);
         if (all(cell == p.pixel)) {

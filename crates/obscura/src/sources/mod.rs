@@ -71,6 +71,20 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
             shaders::RAY_SD_REQUEST,
         ]
         .join("\n"),
+        Source::ScreenRaysStochastic => [
+            &stochastic_depth::bindings_wgsl(sd_layout, ray_layout.guard),
+            shaders::STOCHASTIC_DEPTH_SAMPLES,
+            shaders::SCREEN_RAYS_STOCHASTIC,
+            shaders::SOURCE_SCREEN_RAYS,
+        ]
+        .join("\n"),
+        Source::ScreenRaysRayStochastic => [
+            &ray_stochastic_depth::bindings_wgsl(sd_layout.samples_per_map, ray_layout),
+            shaders::STOCHASTIC_DEPTH_SAMPLES,
+            shaders::SCREEN_RAYS_STOCHASTIC,
+            shaders::SOURCE_SCREEN_RAYS,
+        ]
+        .join("\n"),
         Source::DepthPyramid => shaders::SOURCE_DEPTH_PYRAMID.to_string(),
     }
 }
@@ -81,8 +95,12 @@ pub(crate) fn resolve_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
         Source::FirstLayer | Source::ScreenRays => Vec::new(),
         Source::DualDepth | Source::ScreenRaysDual => vec![entry::texture(SOURCE_SECOND_DEPTH)],
         Source::ColumnRays | Source::BvhRays => column_rays::layout_entries(),
-        Source::StochasticDepth => stochastic_depth::read_layout_entries(),
-        Source::RayStochasticDepth => ray_stochastic_depth::read_layout_entries(),
+        Source::StochasticDepth | Source::ScreenRaysStochastic => {
+            stochastic_depth::read_layout_entries()
+        }
+        Source::RayStochasticDepth | Source::ScreenRaysRayStochastic => {
+            ray_stochastic_depth::read_layout_entries()
+        }
         Source::DepthPyramid => depth_pyramid::layout_entries(),
     }
 }
@@ -101,6 +119,8 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
         | Source::DepthPyramid
         | Source::ScreenRays
         | Source::ScreenRaysDual
+        | Source::ScreenRaysStochastic
+        | Source::ScreenRaysRayStochastic
         | Source::BvhRays => Vec::new(),
     }
 }
@@ -203,7 +223,7 @@ impl SourcePass {
                     },
                 });
             }
-            Source::StochasticDepth => {
+            Source::StochasticDepth | Source::ScreenRaysStochastic => {
                 let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
                 let map = StochasticDepthMap::new(
                     &gpu.adapter,
@@ -224,7 +244,7 @@ impl SourcePass {
                 ray_layout.guard = map.band();
                 Held::StochasticDepth(Box::new(map))
             }
-            Source::RayStochasticDepth => {
+            Source::RayStochasticDepth | Source::ScreenRaysRayStochastic => {
                 let scene_gpu = scene.scene.ok_or_else(|| missing("triangles", kind))?;
                 let bvh = scene.bvh.ok_or_else(|| missing("BVH", kind))?;
                 let map = RayStochasticDepthMap::new(
@@ -251,6 +271,7 @@ impl SourcePass {
             .then(|| layout_of(request_entries(kind), "source request"))
             .flatten();
         let maps_hidden_depth = kind.maps_hidden_depth();
+        let ray_map_requests = kind == Source::RayStochasticDepth && schedule.two_phase();
         // The raster map's requests are per pixel, the ray-traced map's per texel, each map's
         // own guard band included (what it rasterises or traces).
         let request_cells = match &held {
@@ -271,7 +292,7 @@ impl SourcePass {
                 "sd request",
                 zero_fill_size(request_cells * 4),
             )?;
-            if kind == Source::RayStochasticDepth {
+            if ray_map_requests {
                 let bytes = zero_fill_size(request_cells * 8);
                 crate::gpu::check_storage_size(&limits, "ray sd intervals", bytes)?;
             }
@@ -286,7 +307,7 @@ impl SourcePass {
                 mapped_at_creation: false,
             })
         });
-        let interval = (kind == Source::RayStochasticDepth && schedule.two_phase()).then(|| {
+        let interval = ray_map_requests.then(|| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ray sd intervals"),
                 size: zero_fill_size(request_cells * 8),
@@ -311,7 +332,16 @@ impl SourcePass {
         };
         let sd = &settings.stochastic_depth;
         let mut constants = Vec::new();
-        if maps_hidden_depth {
+        let ray_map = kind.map() == Some(Source::RayStochasticDepth);
+        // The map's layout, for every reader of it (samples.wgsl declares both).
+        if ray_map {
+            constants.push(("SD_COMPACT", 1.0));
+        } else if kind.map().is_some() && sd.selection == crate::settings::SdSelection::Nearest {
+            constants.push(("SD_SORTED", 1.0));
+        }
+        // What the per-sample reader (read.wgsl) adds; the screen marches over a map read it
+        // at every step themselves (screen_rays_stochastic.wgsl).
+        if maps_hidden_depth && !kind.marches_layers() {
             if sd.query == crate::settings::SdQuery::Always {
                 constants.push(("SD_QUERY_ALWAYS", 1.0));
             }
@@ -319,13 +349,8 @@ impl SourcePass {
             if sd.compensation != 1.0 {
                 constants.push(("SD_COMPENSATION", f64::from(sd.compensation)));
             }
-            if kind == Source::RayStochasticDepth {
-                constants.push(("SD_COMPACT", 1.0));
-            } else if sd.selection == crate::settings::SdSelection::Nearest {
-                constants.push(("SD_SORTED", 1.0));
-            }
             let cutoff = settings.ray_sd.radius_cutoff;
-            if kind == Source::RayStochasticDepth && cutoff > 0.0 {
+            if ray_map && cutoff > 0.0 {
                 constants.push(("SD_RADIUS_CUTOFF", f64::from(cutoff)));
             }
             if interval.is_some() && settings.ray_sd.intervals {

@@ -57,6 +57,8 @@ fn unoccluded_plane_is_one_everywhere() {
     for technique in [
         Technique::Hemisphere,
         Technique::HemisphereDual,
+        Technique::SdHemisphere,
+        Technique::RaySdHemisphere,
         Technique::Rtao,
     ] {
         for blur in [false, true] {

@@ -23,6 +23,7 @@ mod gtao_vb;
 mod half_resolution;
 mod hbao_plus;
 mod hemisphere;
+mod hemisphere_maps;
 mod horizon;
 mod interleaved;
 mod misuse;
