@@ -16,10 +16,15 @@
 // the visible one included: the march goes on there over the map's depths alone.
 
 // The linear depth of the nearest stored depth at framebuffer pixel `pixel` at or in front of
-// linear depth `zq`; 0 where none is.
-fn screen_rays_front_depth(pixel: vec2<i32>, zq: f32) -> f32 {
-    // Reversed Z (near / depth): at or in front of zq is at or above vq, nearest to it lowest.
+// linear depth `zq` and behind linear depth `first` (the first layer; 0 in the band); 0 where
+// none is. `first` matters for the ray-traced map at a resolution divisor: a texel's depths lie
+// behind the first layer of the one pixel its ray went through, which may be nearer than this
+// pixel's.
+fn screen_rays_front_depth(pixel: vec2<i32>, first: f32, zq: f32) -> f32 {
+    // Reversed Z (near / depth): at or in front of zq is at or above vq, nearest to it lowest;
+    // behind `first` is below `v_first`.
     let vq = sd_near.x / zq;
+    let v_first = select(3.0e38, sd_near.x / first, first > 0.0);
     var front = 3.0e38;
     for (var m = 0u; m < SD_MAPS; m++) {
         for (var k = 0u; k < SD_SAMPLES; k++) {
@@ -27,7 +32,7 @@ fn screen_rays_front_depth(pixel: vec2<i32>, zq: f32) -> f32 {
             if ((SD_COMPACT || SD_SORTED) && !(v > 0.0)) {
                 break;
             }
-            if (v >= vq && v < front) {
+            if (v >= vq && v < front && v < v_first) {
                 front = v;
             }
         }
@@ -37,7 +42,12 @@ fn screen_rays_front_depth(pixel: vec2<i32>, zq: f32) -> f32 {
 
 fn screen_rays_inside(q: vec3<f32>, cell: vec2<u32>, z: f32) -> bool {
     let zq = -q.z;
-    let front = screen_rays_front_depth(vec2<i32>(cell), zq);
+    // Both maps keep only depths behind the first layer (more than `peel_separation` behind it),
+    // so a point in front of it needs no loads (most of a march's points).
+    var front = 0.0;
+    if (zq > z) {
+        front = screen_rays_front_depth(vec2<i32>(cell), z, zq);
+    }
     if (front > 0.0) {
         return zq - front < params.thickness;
     }
@@ -51,6 +61,6 @@ fn screen_rays_band_inside(q: vec3<f32>, pixel: vec2<i32>) -> i32 {
         return -1;
     }
     let zq = -q.z;
-    let front = screen_rays_front_depth(pixel, zq);
+    let front = screen_rays_front_depth(pixel, 0.0, zq);
     return select(0, 1, front > 0.0 && zq - front < params.thickness);
 }

@@ -104,10 +104,12 @@ impl AoSettings {
     /// docs/SETTINGS.md's preset table: one column per estimator and source that has presets
     /// (their caps literals' tables), the fields each sets, their values per preset.
     pub fn presets_markdown() -> String {
+        // A march over a map takes the map's presets: one column per map.
         let mut sources: Vec<Source> = Vec::new();
         for t in Technique::all() {
-            if !sources.contains(&t.source()) {
-                sources.push(t.source());
+            let source = t.source().map().unwrap_or(t.source());
+            if !sources.contains(&source) {
+                sources.push(source);
             }
         }
         let estimators = Estimator::all()
