@@ -27,7 +27,7 @@ for build in $builds; do
         --techniques $t --temporal --ray-budget $b > "$log" 2>&1
       cat "$log" >> "$out/budget.txt"
       rb=$(awk '$1 == "ray_budget" {print $2}' "$log")
-      ao=$(awk -v t=$t '$1 == t {print $2}' "$log")
+      ao=$(awk -v t=$t '$1 == t && $3 == "ms" {print $2}' "$log")
       total=$(awk '$1 == "total" {print $2}' "$log")
       printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$build" "$t" "$b" "${rb:--}" "${ao:--}" "${total:--}" \
         >> "$out/budget.tsv"
