@@ -1,8 +1,10 @@
 //! The edge-avoiding à-trous denoiser made for AO (`shaders/filter/atrous.wgsl`: Dammertz et al.
 //! 2010 with the edge stops and variance guidance of Schied et al. 2017, §4.4): a moments pass,
-//! then `denoise.iterations` passes of a 5×5 kernel with taps 1, 2, 4, … pixels apart, stopped
-//! at depth, normal and AO edges. Made for the noisy hemisphere rows (one ray a pixel): it reaches
-//! across a surface where the AO is noisy and less where it is already smooth (a long history).
+//! then up to `denoise.iterations` passes of a 5×5 kernel with taps 1, 2, 4, … pixels apart,
+//! stopped at depth, normal and AO edges. Made for the noisy hemisphere rows (one ray a pixel):
+//! each pixel widens until its footprint holds about `denoise.samples` rays (its own history's
+//! included) or reaches a quarter of the AO radius on screen, so a pixel with a long history is
+//! left nearly as it is and the reach means the same at any resolution.
 
 use super::FilterImages;
 use crate::frame::FrameInputs;
@@ -16,7 +18,8 @@ use wgpu::util::DeviceExt;
 struct AtrousParams {
     step: i32,
     sigma: f32,
-    _pad: [f32; 2],
+    radius: f32,
+    samples: f32,
 }
 
 /// The moments pass and the iterations, ping-ponging between two (AO, variance) images.
@@ -34,25 +37,33 @@ pub struct Atrous {
 
 impl Atrous {
     /// The pipelines and images for a visible `width`×`height` AO image; `view` is the frame's
-    /// `View` uniform.
-    /// `history_rays`: behind temporal accumulation of hemisphere rays, the rays a pixel casts a
-    /// frame (its history then bounds its variance); `None` otherwise.
+    /// `View` uniform; `radius` the estimator's world radius R (the filter's reach stays within
+    /// a fraction of it on screen).
+    /// `rays`: for hemisphere rows, the rays a pixel casts a frame (they bound its variance and
+    /// its reach; 0 for the others); `history`: temporal accumulation runs before.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         device: &wgpu::Device,
         settings: &DenoiseSettings,
         view: &wgpu::Buffer,
         width: u32,
         height: u32,
-        history_rays: Option<u32>,
+        radius: f32,
+        rays: u32,
+        history: bool,
     ) -> Self {
         let source = shaders::with_common(
             &[shaders::VIEW, shaders::VISIBILITY_VARIANCE],
             shaders::ATROUS,
         );
         let module = crate::gpu::shader_module(device, "atrous", &source);
-        let rays = [("RAYS", f64::from(history_rays.unwrap_or(0)))];
-        let pipeline =
-            |entry: &str| crate::gpu::entry_pipeline(device, "atrous", &module, entry, &rays, None);
+        let constants = [
+            ("RAYS", f64::from(rays)),
+            ("HISTORY", f64::from(u8::from(history))),
+        ];
+        let pipeline = |entry: &str| {
+            crate::gpu::entry_pipeline(device, "atrous", &module, entry, &constants, None)
+        };
         let params = (0..settings.iterations)
             .map(|i| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -60,7 +71,8 @@ impl Atrous {
                     contents: bytemuck::bytes_of(&AtrousParams {
                         step: 1 << i,
                         sigma: settings.sigma,
-                        _pad: [0.0; 2],
+                        radius,
+                        samples: settings.samples,
                     }),
                     usage: wgpu::BufferUsages::UNIFORM,
                 })
@@ -141,11 +153,9 @@ impl super::AoFilter for Atrous {
                 (4, wgpu::BindingResource::TextureView(read)),
                 (binding, wgpu::BindingResource::TextureView(target)),
             ];
-            // Each entry point's layout (made from what it uses): the moments pass and the last
-            // iteration read the history, the iterations the parameters.
-            if !std::ptr::eq(pipeline, &self.iterate) {
-                entries.push((7, wgpu::BindingResource::TextureView(history)));
-            }
+            // Each entry point's layout (made from what it uses): every pass reads the history,
+            // the iterations the parameters.
+            entries.push((7, wgpu::BindingResource::TextureView(history)));
             if !std::ptr::eq(pipeline, &self.moments) {
                 entries.push((1, params.as_entire_binding()));
             }

@@ -218,10 +218,12 @@ impl AmbientOcclusion {
                     work_view,
                     work.width,
                     work.height,
-                    // Behind temporal accumulation of hemisphere rays: their count a frame.
-                    (settings.temporal.enabled
-                        && row.estimator == crate::technique::Estimator::Hemisphere)
-                        .then_some(settings.hemisphere.rays),
+                    settings.radius(),
+                    match row.estimator {
+                        crate::technique::Estimator::Hemisphere => settings.hemisphere.rays,
+                        _ => 0,
+                    },
+                    settings.temporal.enabled,
                 )),
                 output: ao_texture("ao denoised"),
             });
