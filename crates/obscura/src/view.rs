@@ -243,6 +243,15 @@ pub struct ScreenGeometry {
 }
 
 impl ScreenGeometry {
+    /// The pipeline constants that the shared view helpers (`common/view.wgsl`) read: every
+    /// pass that places pixels in view space sets them, filters included.
+    pub(crate) fn view_constants(&self) -> Vec<(&'static str, f64)> {
+        match self.orthographic {
+            true => vec![("ORTHOGRAPHIC", 1.0)],
+            false => Vec::new(),
+        }
+    }
+
     /// The geometry of an engine's projection matrix (OpenGL/Vulkan/D3D conventions alike: clip
     /// space from a right-handed view space looking down −Z, any depth range, reversed-Z or not,
     /// finite or infinite far plane), perspective or orthographic, for a framebuffer of

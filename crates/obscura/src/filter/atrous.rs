@@ -11,6 +11,7 @@ use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::DenoiseSettings;
 use crate::shaders;
+use crate::view::ScreenGeometry;
 use wgpu::util::DeviceExt;
 
 #[repr(C)]
@@ -36,18 +37,16 @@ pub struct Atrous {
 }
 
 impl Atrous {
-    /// The pipelines and images for a visible `width`×`height` AO image; `view` is the frame's
+    /// The pipelines and images for the AO image of `screen` (its visible size); `view` is its
     /// `View` uniform; `radius` the estimator's world radius R (the filter's reach stays within
     /// a fraction of it on screen).
     /// `rays`: for hemisphere rows, the rays a pixel casts a frame (they bound its variance and
     /// its reach; 0 for the others); `history`: temporal accumulation runs before.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
         device: &wgpu::Device,
         settings: &DenoiseSettings,
         view: &wgpu::Buffer,
-        width: u32,
-        height: u32,
+        screen: &ScreenGeometry,
         radius: f32,
         rays: u32,
         history: bool,
@@ -57,10 +56,10 @@ impl Atrous {
             shaders::ATROUS,
         );
         let module = crate::gpu::shader_module(device, "atrous", &source);
-        let constants = [
-            ("RAYS", f64::from(rays)),
-            ("HISTORY", f64::from(u8::from(history))),
-        ];
+        let (width, height) = (screen.width, screen.height);
+        let mut constants = screen.view_constants();
+        constants.push(("RAYS", f64::from(rays)));
+        constants.push(("HISTORY", f64::from(u8::from(history))));
         let pipeline = |entry: &str| {
             crate::gpu::entry_pipeline(device, "atrous", &module, entry, &constants, None)
         };

@@ -61,7 +61,7 @@ impl HalfResolution {
                 device,
                 label,
                 &shaders::with_common(&[shaders::VIEW], source),
-                &[],
+                &full.view_constants(),
             )
         };
         Ok(Self {

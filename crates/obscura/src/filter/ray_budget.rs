@@ -7,6 +7,7 @@
 
 use crate::gpu::{Gpu, PassProfiler};
 use crate::shaders;
+use crate::view::ScreenGeometry;
 
 /// `BudgetParams` of the shader.
 #[repr(C)]
@@ -52,14 +53,13 @@ const KEY_COUNT: u64 = 1 << 16;
 const BLOCK: u64 = 256;
 
 impl RayBudget {
-    /// The passes for a visible `width`×`height` image whose pixels cast `rays` rays when
+    /// The passes for the visible image of `screen`, whose pixels cast `rays` rays when
     /// granted, at most `budget` a frame. `temporal_source` is temporal accumulation's WGSL
     /// (with its common helpers), whose bindings and history reads the passes share.
     pub fn new(
         device: &wgpu::Device,
         temporal_source: &str,
-        width: u32,
-        height: u32,
+        screen: &ScreenGeometry,
         rays: u32,
         budget: u32,
     ) -> Self {
@@ -71,9 +71,11 @@ impl RayBudget {
         ]
         .join("\n");
         let module = crate::gpu::shader_module(device, "ray budget", &source);
+        let constants = screen.view_constants();
         let pipeline = |entry: &str| {
-            crate::gpu::entry_pipeline(device, "ray budget", &module, entry, &[], None)
+            crate::gpu::entry_pipeline(device, "ray budget", &module, entry, &constants, None)
         };
+        let (width, height) = (screen.width, screen.height);
         let storage = |label, size: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),

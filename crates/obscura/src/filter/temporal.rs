@@ -15,7 +15,7 @@ use crate::frame::FrameInputs;
 use crate::gpu::PassProfiler;
 use crate::settings::TemporalSettings;
 use crate::shaders;
-use crate::view::FrameView;
+use crate::view::{FrameView, ScreenGeometry};
 use glam::Mat4;
 
 /// The 16 entries of the estimators' 4×4 pattern (`common/pattern.wgsl`).
@@ -93,16 +93,15 @@ pub struct BudgetRequest {
 }
 
 impl TemporalAccumulation {
-    /// The pass and its history images for a visible `width`×`height` AO image; `view` is the
-    /// frame's `View` uniform; `budget`: the ray budget that reads this history, if any;
+    /// The pass and its history images for the AO image of `screen` (its visible size); `view`
+    /// is its `View` uniform; `budget`: the ray budget that reads this history, if any;
     /// `sample_rays`: for an estimator whose pixel is the mean of that many ray visibilities
     /// (the hemisphere rows), which widens the history clip to that sampling noise; else 0.
     pub fn new(
         device: &wgpu::Device,
         settings: &TemporalSettings,
         view: &wgpu::Buffer,
-        width: u32,
-        height: u32,
+        screen: &ScreenGeometry,
         budget: Option<BudgetRequest>,
         sample_rays: u32,
     ) -> Self {
@@ -116,8 +115,14 @@ impl TemporalAccumulation {
         // `AmbientOcclusion::encode` checks before binding them; history taps are bounds-tested
         // before each load; the AO and history images are this filter's own, of the visible size.
         let pipeline = unsafe {
-            crate::gpu::compute_pipeline_unchecked(device, "temporal accumulation", &source, &[])
+            crate::gpu::compute_pipeline_unchecked(
+                device,
+                "temporal accumulation",
+                &source,
+                &screen.view_constants(),
+            )
         };
+        let (width, height) = (screen.width, screen.height);
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("temporal params"),
             size: std::mem::size_of::<TemporalParams>() as u64,
@@ -145,8 +150,7 @@ impl TemporalAccumulation {
             settings: *settings,
             previous: SharedCell::new(None),
             frame: SharedCell::new(0),
-            budget: budget
-                .map(|b| RayBudget::new(device, &source, width, height, b.rays, b.budget)),
+            budget: budget.map(|b| RayBudget::new(device, &source, screen, b.rays, b.budget)),
             sample_rays,
         }
     }

@@ -195,8 +195,7 @@ impl AmbientOcclusion {
                     device,
                     &settings.temporal,
                     work_view,
-                    work.width,
-                    work.height,
+                    &work,
                     inputs.ray_budget.then(|| BudgetRequest {
                         rays: settings.hemisphere.rays,
                         budget: initial_ray_budget(settings, &work),
@@ -216,8 +215,7 @@ impl AmbientOcclusion {
                     device,
                     &settings.denoise,
                     work_view,
-                    work.width,
-                    work.height,
+                    &work,
                     settings.radius(),
                     match row.estimator {
                         crate::technique::Estimator::Hemisphere => settings.hemisphere.rays,
