@@ -38,7 +38,7 @@ struct AtrousParams {
 @group(0) @binding(5) var moments_out: texture_storage_2d<rg32float, write>;
 @group(0) @binding(6) var ao_out: texture_storage_2d<r32float, write>;
 // Temporal accumulation's history this frame (temporal_accumulation.wgsl: the frame count n in
-// the low byte of x), read when RAYS > 0.
+// the low byte of x), read when HISTORY is set.
 @group(0) @binding(7) var history: texture_2d<u32>;
 
 // N, the hemisphere rays a pixel casts each frame; 0 for the other estimators (spatial variance
