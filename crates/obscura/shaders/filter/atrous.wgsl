@@ -9,7 +9,7 @@
 //   a(1 − a)/(nN) (common/visibility_variance.wgsl), and the smaller of the two is taken, so the
 //   filter's reach across AO differences falls as the history grows (issue 58: its strength
 //   falls with the history) while flat surfaces stay smoothed;
-// - `main`, then `main_last` for the last iteration: a 5×5 B3-spline kernel with taps
+// - `main`, then `main_last` for the last iteration: a 3×3 binomial kernel with taps
 //   `step` = 1, 2, 4, … pixels apart (as far as each pixel's reach, `within_reach`: set by its
 //   rays and history and by the AO radius on screen, so its strength falls as its history grows),
 //   each tap weighted by
@@ -47,8 +47,12 @@ override RAYS: u32 = 0u;
 // Whether temporal accumulation runs before (`history` holds each pixel's frame count).
 override HISTORY: bool = false;
 
-// B3 spline, 1/16 (1 4 6 4 1).
-const KERNEL = array<f32, 5>(0.0625, 0.25, 0.375, 0.25, 0.0625);
+// The binomial kernel 1/4 (1 2 1), where Dammertz et al. use the 5×5 B3 spline: per tap it cuts
+// the noise more (a 3×3 pass 7× for 9 taps, a B3 pass 13× for 25), and an iteration cost
+// 0.185 ms at 1080p on an H100 with the B3 (BENCHMARKS.md). On Sponza at 960×540 after 16
+// frames of one ray (lavapipe) it ends at 0.0161 MAE against the B3's 0.0149, for about half
+// the taps.
+const KERNEL = array<f32, 3>(0.25, 0.5, 0.25);
 
 struct Surface {
     pos: vec3<f32>,
@@ -122,16 +126,18 @@ fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
 // history grows, issue 58). Two caps, each a pixel count, so the rule holds at any resolution:
 // - the sample count: each iteration widens the kernel's footprint about four times, so
 //   ⌈log4(M / (n N))⌉ iterations average about M samples of visibility for n frames of N rays
-//   (none once a pixel's own history holds M);
-// - the AO radius on screen: the kernel's half-width after this iteration, 2 × step, stays within
+//   (none once a pixel's own history holds M; with the 3×3 kernel the footprint of k
+//   iterations holds about 2(4^k − 1) pixels' worth, so M counts rays generously);
+// - the AO radius on screen: the kernel's half-width after this iteration, `step`, stays within
 //   R_px / 4, so the filter averages over less than the distance across which the AO itself
 //   changes (an occluder's influence reaches R) at any resolution and distance. R/4 rather than
-//   R/2: in tests/it/hemisphere.rs's room at one ray a pixel, R/2 cut the squared error 14× but
-//   its mean error over the box's silhouette band was 0.020 (contact shadows averaged along the
-//   floor), R/4 9× and 0.007; on Sponza (960×540, lavapipe) R/2 and R/4 differ by 0.002 MAE.
+//   R/2: in tests/it/hemisphere.rs's room at one ray a pixel, with the B3 kernel, R/2 cut the
+//   squared error 14× but its mean error over the box's silhouette band was 0.020 (contact
+//   shadows averaged along the floor), R/4 9× and 0.007 (with this kernel R/4: 14× and 0.011);
+//   on Sponza (960×540, lavapipe) R/2 and R/4 differed by 0.002 MAE.
 fn within_reach(p: vec2<i32>, s: Surface) -> bool {
     let r_px = params.radius * pixels_per_unit(view, s.depth).y;
-    if (2.0 * f32(params.step) > 0.25 * r_px) {
+    if (f32(params.step) > 0.25 * r_px) {
         return false;
     }
     if (RAYS == 0u) {
@@ -153,17 +159,17 @@ fn filtered(p: vec2<i32>) -> vec2<f32> {
         return centre;
     }
     let reach = params.sigma * sqrt(centre.y) + 1e-4;
-    var sum = KERNEL[2] * KERNEL[2] * centre.x;
-    var variance = KERNEL[2] * KERNEL[2] * KERNEL[2] * KERNEL[2] * centre.y;
-    var weight = KERNEL[2] * KERNEL[2];
-    for (var k = 0; k < 25; k++) {
-        let offset = vec2<i32>(k % 5 - 2, k / 5 - 2);
+    var sum = KERNEL[1] * KERNEL[1] * centre.x;
+    var variance = KERNEL[1] * KERNEL[1] * KERNEL[1] * KERNEL[1] * centre.y;
+    var weight = KERNEL[1] * KERNEL[1];
+    for (var k = 0; k < 9; k++) {
+        let offset = vec2<i32>(k % 3 - 1, k / 3 - 1);
         let q = p + offset * params.step;
-        if (k == 12 || !inside(q)) {
+        if (k == 4 || !inside(q)) {
             continue;
         }
         let b = textureLoad(ao_in, q, 0).rg;
-        let w = KERNEL[offset.x + 2] * KERNEL[offset.y + 2] * surface_weight(sp, surface_at(q))
+        let w = KERNEL[offset.x + 1] * KERNEL[offset.y + 1] * surface_weight(sp, surface_at(q))
             * exp(-abs(centre.x - b.x) / reach);
         sum += w * b.x;
         variance += w * w * b.y;

@@ -75,12 +75,15 @@ impl Default for DenoiseSettings {
         Self {
             enabled: false,
             // Five iterations, as Schied et al. 2017 (§4.4), as a cap: each pixel stops widening
-            // once its footprint holds `samples` rays or reaches R/2 on screen (atrous.wgsl,
+            // once its footprint holds `samples` rays or reaches R/4 on screen (atrous.wgsl,
             // `within_reach`), so how far it reaches follows its history, the resolution and
             // the AO radius rather than a fixed count. σ = 8: at one ray a pixel the spatial
             // variance is too coarse a guide for SVGF's σ = 4. 256 rays: noise of at most
-            // 0.5/√256 ≈ 0.03 in a pixel's AO (measured on Sponza at 960×540 on lavapipe after
-            // 16 frames of one ray: 64 rays 0.0195 MAE, 256 0.0150, 1024 0.0147).
+            // 0.5/√256 ≈ 0.03 in a pixel's AO. Measured on lavapipe after 16 frames of one ray,
+            // Sponza at 960×540: 256 rays 0.0161 MAE, 512 and 1024 0.0143; but at 512 a pixel
+            // with 256 rays of its own is still filtered, which added error where the image is
+            // small (tests/it/hemisphere.rs, 32 frames of 8 rays at 96×64: stairs 0.0066 →
+            // 0.0086), and at 256 it is left alone.
             iterations: 5,
             sigma: 8.0,
             samples: 256.0,

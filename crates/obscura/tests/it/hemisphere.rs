@@ -411,9 +411,9 @@ fn after_sixteen_frames_of_one_ray_the_denoiser_beats_the_blur() {
     // The denoiser's reach follows each pixel's rays and history (`denoise.samples`, atrous.wgsl's
     // `within_reach`): after 16 still frames of one ray a pixel averages about 256 rays over a
     // few pixels, where the bilateral blur's fixed kernel leaves more of the accumulated noise.
-    // Measured on lavapipe at 192×112, against a 512-ray truth: stairs 0.0323 blurred, 0.0211
-    // denoised; tower 0.0291, 0.0195 (at 320×192 with 1024 rays: stairs 0.0232 → 0.0154, tower
-    // 0.0177 → 0.0132, colonnade 0.0055 → 0.0049; Sponza at 960×540 0.0247 → 0.0149).
+    // Measured on lavapipe at 192×112, against a 512-ray truth: stairs 0.0323 blurred, 0.0193
+    // denoised; tower 0.0291, 0.0186 (at 320×192 with 1024 rays: stairs 0.0232 → 0.0152, tower
+    // 0.0177 → 0.0141, colonnade 0.0055 → 0.0050; Sponza at 960×540 0.0247 → 0.0161).
     let gpu = gpu();
     for name in ["stairs", "tower"] {
         let scene = obscura::scene::builtin(name).unwrap();
