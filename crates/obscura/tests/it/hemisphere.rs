@@ -406,6 +406,26 @@ fn the_denoiser_cuts_one_ray_noise_without_leaking_across_depth_edges() {
     );
 }
 
+/// The MAE against a `spp`-ray truth (R = 0.5) of built-in scene `name`'s first camera after
+/// `frames` still frames with `settings` at `size` (guard band 16).
+fn still_frames_error(
+    gpu: &obscura::Gpu,
+    name: &str,
+    settings: &AoSettings,
+    (w, h): (u32, u32),
+    frames: u32,
+    spp: u32,
+) -> f64 {
+    let scene = obscura::scene::builtin(name).unwrap();
+    let eye = scene.cameras[0].camera;
+    let mut r = Renderer::new(gpu, &scene, settings, w, h, 16).unwrap();
+    for _ in 0..frames {
+        r.render(&eye, None).unwrap();
+    }
+    let truth = hemisphere_truth(gpu, &scene, *r.view().unwrap(), spp, 0.5);
+    mean_abs_difference(&r.read_ao().unwrap(), &truth)
+}
+
 #[test]
 fn after_sixteen_frames_of_one_ray_the_denoiser_beats_the_blur() {
     // The denoiser's reach follows each pixel's rays and history (`denoise.samples`, atrous.wgsl's
@@ -416,21 +436,16 @@ fn after_sixteen_frames_of_one_ray_the_denoiser_beats_the_blur() {
     // 0.0177 → 0.0141, colonnade 0.0055 → 0.0050; Sponza at 960×540 0.0247 → 0.0161).
     let gpu = gpu();
     for name in ["stairs", "tower"] {
-        let scene = obscura::scene::builtin(name).unwrap();
-        let eye = scene.cameras[0].camera;
-        let mut errors = Vec::new();
-        for denoise in [false, true] {
-            let mut s = technique_settings(Technique::Rtao, true);
-            s.hemisphere.rays = 1;
-            s.temporal.enabled = true;
-            s.denoise.enabled = denoise;
-            let mut r = Renderer::new(&gpu, &scene, &s, 192, 112, 16).unwrap();
-            for _ in 0..16 {
-                r.render(&eye, None).unwrap();
-            }
-            let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 512, 0.5);
-            errors.push(mean_abs_difference(&r.read_ao().unwrap(), &truth));
-        }
+        let errors: Vec<f64> = [false, true]
+            .into_iter()
+            .map(|denoise| {
+                let mut s = technique_settings(Technique::Rtao, true);
+                s.hemisphere.rays = 1;
+                s.temporal.enabled = true;
+                s.denoise.enabled = denoise;
+                still_frames_error(&gpu, name, &s, (192, 112), 16, 512)
+            })
+            .collect();
         eprintln!("{name}: MAE after 16 frames of one ray, blurred and denoised: {errors:?}");
         assert!(errors[1] < 0.85 * errors[0], "{name}: {errors:?}");
     }
@@ -448,22 +463,17 @@ fn thirty_two_still_frames_converge_to_the_ground_truth_on_stairs_and_colonnade(
     // fixed two iterations had doubled the error here: 0.0212 against 0.0107 at 4 rays).
     let gpu = gpu();
     for name in ["stairs", "colonnade"] {
-        let scene = obscura::scene::builtin(name).unwrap();
-        let eye = scene.cameras[0].camera;
-        let mut errors = Vec::new();
-        for denoise in [false, true] {
-            let mut s = settings(Technique::Rtao, 8, 0.5);
-            s.temporal.enabled = true;
-            s.temporal.frames = 64;
-            s.temporal.clamp = false;
-            s.denoise.enabled = denoise;
-            let mut r = Renderer::new(&gpu, &scene, &s, 96, 64, 16).unwrap();
-            for _ in 0..32 {
-                r.render(&eye, None).unwrap();
-            }
-            let truth = hemisphere_truth(&gpu, &scene, *r.view().unwrap(), 1024, 0.5);
-            errors.push(mean_abs_difference(&r.read_ao().unwrap(), &truth));
-        }
+        let errors: Vec<f64> = [false, true]
+            .into_iter()
+            .map(|denoise| {
+                let mut s = settings(Technique::Rtao, 8, 0.5);
+                s.temporal.enabled = true;
+                s.temporal.frames = 64;
+                s.temporal.clamp = false;
+                s.denoise.enabled = denoise;
+                still_frames_error(&gpu, name, &s, (96, 64), 32, 1024)
+            })
+            .collect();
         eprintln!("{name}: MAE after 32 frames, accumulated and denoised: {errors:?}");
         assert!(errors[0] <= 0.01 && errors[1] <= 0.01, "{name}: {errors:?}");
         assert!(
