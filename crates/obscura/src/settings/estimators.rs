@@ -112,7 +112,11 @@ impl DenoiseSettings {
             "Denoiser iterations (taps 1, 2, 4, ... px apart).",
             Kind::int(1, 5),
         )
-        .doc("à-trous iterations, taps 1, 2, 4, … pixels apart (2 reach 6 px on each side)")
+        .doc(
+            "à-trous iterations at most, taps 1, 2, 4, … pixels apart (2 reach 6 px on each \
+             side); each pixel stops where its footprint holds `denoise.samples` rays or reaches \
+             a quarter of the AO radius on screen",
+        )
         .widget(Widget::Range),
         Knob::new(
             "denoise.sigma",
