@@ -10,7 +10,6 @@
 set -uo pipefail
 here=$(dirname "$0")
 source "$here/device-env.sh"
-[ -f "$bin" ] || { xz -dkc "$bin.xz" > "$bin" && chmod +x "$bin"; }
 export OBSCURA_CACHE_DIR=$out/cache
 VIEWS="sponza sibenik" TECHNIQUES=hemisphere,rtao OUT=$out/quality \
   VARIANTS="one=;one-denoised=--denoise;still16=--temporal --timing-frames 15;still16-denoised=--temporal --denoise --timing-frames 15" \

@@ -10,6 +10,8 @@ if [ -d /usr/local/nvidia ]; then
 fi
 export OBSCURA_BACKEND=vulkan
 bin=${OBSCURA_BIN:-./.devbin/obscura}
+# The carried binary is compressed (.devbin/obscura.xz): unpacked once, where it is missing.
+[ -f "$bin" ] || { [ -f "$bin.xz" ] && xz -dkc "$bin.xz" > "$bin" && chmod +x "$bin"; }
 # Only where that ICD exists, so that a dry run here keeps lavapipe.
 nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 if [ -f $nvidia_icd ] && { ! $bin info >/dev/null 2>&1 || ! $bin info | grep -qi nvidia; }; then

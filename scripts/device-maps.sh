@@ -11,7 +11,6 @@
 set -uo pipefail
 here=$(dirname "$0")
 source "$here/device-env.sh"
-[ -f "$bin" ] || { xz -dkc "$bin.xz" > "$bin" && chmod +x "$bin"; }
 runs=$out/runs
 mkdir -p "$runs"
 $bin info > "$runs/info.txt" 2>&1
