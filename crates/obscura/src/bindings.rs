@@ -50,6 +50,12 @@ pub const SOURCE_RAY_CAMERA: u32 = 0;
 pub const SOURCE_STACK_OVERFLOWS: u32 = 1;
 /// The six bindings of `shaders/common/bvh.wgsl` start here.
 pub const SOURCE_BVH: u32 = 2;
+/// BVH rays, two-phase phase 1: the drawn triangle each framebuffer pixel shows + 1 (`R32Uint`,
+/// 0 = none; the G-buffer's visibility buffer), for the blocked proof of
+/// `shaders/sources/bvh_rays.wgsl` (a 1×1 stand-in turns it off).
+pub const SOURCE_VISIBLE_TRIANGLES: u32 = 8;
+/// BVH rays, two-phase phase 1: the drawn triangles those indices name.
+pub const SOURCE_DRAWN_TRIANGLES: u32 = 9;
 /// Stochastic depth: the projection's near plane (`vec4`, in `x`), to turn the maps' reversed-Z
 /// values back into linear depth.
 pub const SOURCE_SD_NEAR: u32 = 0;
@@ -105,6 +111,8 @@ const NAMED: &[(&str, u32)] = &[
     ("SOURCE_RAY_CAMERA", SOURCE_RAY_CAMERA),
     ("SOURCE_STACK_OVERFLOWS", SOURCE_STACK_OVERFLOWS),
     ("SOURCE_BVH", SOURCE_BVH),
+    ("SOURCE_VISIBLE_TRIANGLES", SOURCE_VISIBLE_TRIANGLES),
+    ("SOURCE_DRAWN_TRIANGLES", SOURCE_DRAWN_TRIANGLES),
     ("SOURCE_SD_NEAR", SOURCE_SD_NEAR),
     ("SOURCE_SD_REQUEST", SOURCE_SD_REQUEST),
     ("SOURCE_SD_MAPS", SOURCE_SD_MAPS),

@@ -27,6 +27,9 @@ pub const SCREEN_RAYS_DUAL: &str = include_str!("../shaders/sources/screen_rays_
 pub const SCREEN_RAYS_STOCHASTIC: &str =
     include_str!("../shaders/sources/screen_rays_stochastic.wgsl");
 pub const SOURCE_BVH_RAYS: &str = include_str!("../shaders/sources/bvh_rays.wgsl");
+pub const SOURCE_BVH_RAYS_PROOF: &str = include_str!("../shaders/sources/bvh_rays_proof.wgsl");
+pub const SOURCE_BVH_RAYS_NO_PROOF: &str =
+    include_str!("../shaders/sources/bvh_rays_no_proof.wgsl");
 pub const SOURCE_COLUMN_TRACE: &str = include_str!("../shaders/sources/column_trace.wgsl");
 pub const SOURCE_COLUMN_RAYS: &str = include_str!("../shaders/sources/column_rays.wgsl");
 pub const SOURCE_DEPTH_PYRAMID: &str = include_str!("../shaders/sources/depth_pyramid.wgsl");

@@ -1231,6 +1231,13 @@ impl TechniqueRow {
         self.source.needs()
     }
 
+    /// Whether phase 1 may prove rays blocked with the triangle each pixel shows
+    /// (`rtao-two-phase`: shaders/sources/bvh_rays.wgsl), so that [`crate::Renderer`]'s G-buffer
+    /// keeps its visible triangles for it.
+    pub fn proves_rays_blocked(&self) -> bool {
+        self.source == Source::BvhRays && self.schedule.two_phase()
+    }
+
     /// Whether `render --debug-out` has images for it: two-phase schedules show their flagged
     /// samples, the stochastic depth source its map, the other schedules the estimator's debug
     /// image ([`Estimator::debug_image`]).

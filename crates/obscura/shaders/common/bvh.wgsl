@@ -215,11 +215,19 @@ fn bvh_sheared(r: BvhRay, p: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(a[r.k.x] - r.shear.x * a[r.k.z], a[r.k.y] - r.shear.y * a[r.k.z], r.shear.z * a[r.k.z]);
 }
 
-// The watertight test; `hit.t < 0` for a miss.
+// The watertight test of leaf slot `slot`; `hit.t < 0` for a miss.
 fn bvh_intersect(r: BvhRay, slot: u32, t_min: f32, t_max: f32) -> BvhHit {
+    var hit = bvh_intersect_triangle(r, bvh_triangles[slot], t_min, t_max);
+    hit.slot = slot;
+    return hit;
+}
+
+// The watertight test of triangle `tri` (vertex 0, vertex 1, vertex 2, material); `hit.t < 0`
+// for a miss. Also for a triangle known otherwise than by its leaf slot (`hit.slot` unset): the
+// two-phase blocked proof of sources/bvh_rays.wgsl tests the triangle a pixel shows with it.
+fn bvh_intersect_triangle(r: BvhRay, tri: vec4<u32>, t_min: f32, t_max: f32) -> BvhHit {
     var hit: BvhHit;
     hit.t = -1.0;
-    let tri = bvh_triangles[slot];
     let a = bvh_sheared(r, bvh_positions[tri.x].xyz);
     let b = bvh_sheared(r, bvh_positions[tri.y].xyz);
     let c = bvh_sheared(r, bvh_positions[tri.z].xyz);
@@ -238,16 +246,20 @@ fn bvh_intersect(r: BvhRay, slot: u32, t_min: f32, t_max: f32) -> BvhHit {
         return hit;
     }
     hit.t = t;
-    hit.slot = slot;
     hit.u = e1 / det;
     hit.v = e2 / det;
     hit.front_face = det > 0.0;
     return hit;
 }
 
-// The scene's rules (src/bvh/traverse.rs: passes_rules).
+// The scene's rules (src/bvh/traverse.rs: passes_rules) for a hit on leaf slot `hit.slot`.
 fn bvh_passes_rules(hit: BvhHit) -> bool {
-    let tri = bvh_triangles[hit.slot];
+    return bvh_triangle_passes_rules(bvh_triangles[hit.slot], hit);
+}
+
+// The scene's rules for a hit on triangle `tri`: a back face counts only on a double-sided
+// material, an alpha-tested material only where its texel passes.
+fn bvh_triangle_passes_rules(tri: vec4<u32>, hit: BvhHit) -> bool {
     let m = bvh_materials[tri.w];
     if (!hit.front_face && (m.flags & 1u) == 0u) {
         return false;

@@ -23,6 +23,8 @@ struct HemisphereParams {
     thickness: f32,
     falloff: u32,
     steps: u32,
+    // rtao-two-phase's phase 1: the longest ray image it walks (sources/bvh_rays_proof.wgsl).
+    proof_pixels: u32,
 }
 
 @group(GROUP_ESTIMATOR) @binding(ESTIMATOR_PARAMS) var<uniform> params: HemisphereParams;

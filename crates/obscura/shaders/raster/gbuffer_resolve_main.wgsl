@@ -11,6 +11,9 @@ const Z_BUFFER_BINDING: u32 = 9u;
 // The current frame number ([0]) and per triangle t the frame it was last shown ([1 + t]), as
 // triangle_cull.wgsl reads them.
 @group(0) @binding(10) var<storage, read_write> seen_frame: array<u32>;
+// The visible triangle + 1 per pixel (0: none), where the G-buffer keeps it (two-phase BVH rays'
+// blocked proof, sources/bvh_rays.wgsl); a 1×1 texture left alone otherwise.
+@group(0) @binding(11) var triangle_out: texture_storage_2d<r32uint, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -19,6 +22,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let visible = visible_triangle(id.xy, size);
+    if (all(textureDimensions(triangle_out) == size)) {
+        textureStore(triangle_out, id.xy, vec4<u32>(visible));
+    }
     if (visible == 0u) {
         textureStore(depth_out, id.xy, vec4<f32>(0.0));
         textureStore(normal_out, id.xy, vec4<f32>(0.0));

@@ -20,8 +20,12 @@ pub struct HemisphereSettings {
     /// Weight a blocked ray by W(t) = max(0, 1 − t/R) rather than 1 (the ground truth's
     /// `--falloff`).
     pub falloff: bool,
-    /// Screen rays, and phase 1 of two-phase BVH rays: points tested along each ray.
+    /// Screen rays: points tested along each ray.
     pub steps: u32,
+    /// Phase 1 of two-phase BVH rays (`rtao-two-phase`): the longest image on screen, in
+    /// pixels, of a ray phase 1 walks to prove it free or blocked; a longer one goes to the BVH
+    /// unwalked.
+    pub proof_pixels: u32,
     /// Screen rays: the thickness assumed behind every depth sample, world units (a ray point
     /// farther behind the first surface than this passes behind it).
     pub thickness: f32,
@@ -45,6 +49,7 @@ impl Default for HemisphereSettings {
             rays: 1,
             falloff: false,
             steps: 8,
+            proof_pixels: 256,
             // GTAO-VB's and VAO's default thickness, the same physical assumption.
             thickness: 0.25,
             ray_budget: 0,
@@ -85,14 +90,24 @@ impl HemisphereSettings {
         Knob::new(
             "hemisphere.steps",
             "--hemisphere-steps",
-            "Screen rays (and rtao-two-phase's phase 1): points tested along each ray.",
+            "Screen rays: points tested along each ray.",
             Kind::int(1, 64),
         )
-        .doc(
-            "screen rays: points tested along each ray, evenly spaced with a per-pixel jitter; \
-             `rtao-two-phase`: points phase 1 tests to prove a ray free",
-        )
+        .doc("screen rays: points tested along each ray, evenly spaced with a per-pixel jitter")
         .widget(Widget::Range),
+        Knob::new(
+            "hemisphere.proof_pixels",
+            "--proof-pixels",
+            "rtao-two-phase: the longest image on screen (pixels) of a ray phase 1 walks to prove \
+             it free or blocked; longer rays go to the BVH unwalked.",
+            Kind::int(0, 4096),
+        )
+        .units("px")
+        .doc(
+            "`rtao-two-phase`: the longest image on screen of a ray that phase 1 walks, pixel by \
+             pixel, to prove it free or blocked; a longer ray goes to the BVH unwalked (0: every \
+             ray does)",
+        ),
         Knob::new(
             "hemisphere.thickness",
             "--hemisphere-thickness",
@@ -163,6 +178,8 @@ struct HemisphereParams {
     thickness: f32,
     falloff: u32,
     steps: u32,
+    proof_pixels: u32,
+    _pad: [u32; 3],
 }
 
 /// The estimator as the technique table runs it (`EstimatorCaps::module`).
@@ -183,6 +200,8 @@ pub(crate) fn params(s: &HemisphereSettings, ray_budget: bool) -> (Vec<u8>, Vec<
         thickness: s.thickness,
         falloff: u32::from(s.falloff),
         steps: s.steps,
+        proof_pixels: s.proof_pixels,
+        _pad: [0; 3],
     };
     (
         bytemuck::bytes_of(&params).to_vec(),

@@ -34,6 +34,19 @@ use crate::sources::{SceneResources, SourcePass};
 use crate::view::{FrameView, ScreenGeometry};
 use wgpu::util::DeviceExt;
 
+/// What a caller's own rasterisation of the frame leaves beside depth and normals
+/// ([`crate::Renderer`]'s G-buffer; an engine's frame has none of it).
+#[derive(Clone, Copy, Default)]
+pub(crate) struct OwnGBuffer<'a> {
+    /// The depth buffer (reversed-Z `Depth32Float`, the framebuffer's size): the stochastic depth
+    /// map may test its fragments against it instead of writing its own
+    /// (`StochasticDepthMap::render`).
+    pub z: Option<&'a wgpu::Texture>,
+    /// The triangle each framebuffer pixel shows + 1 (`R32Uint`): two-phase BVH rays prove rays
+    /// blocked with it (`shaders/sources/bvh_rays.wgsl`).
+    pub visible_triangles: Option<&'a wgpu::Texture>,
+}
+
 /// The textures of one frame, as the engine has them. All cover the guard-banded framebuffer:
 /// `(width + 2g) × (height + 2g)` of the [`ScreenGeometry`], are single-sampled and have the
 /// `TEXTURE_BINDING` usage. An engine with a hardware depth buffer and a projection matrix gets
@@ -418,18 +431,17 @@ impl AmbientOcclusion {
         textures: FrameTextures,
         profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
-        self.encode_with_gbuffer_z(encoder, textures, None, profiler)
+        self.encode_with_gbuffer(encoder, textures, OwnGBuffer::default(), profiler)
     }
 
-    /// [`Self::encode`] for a frame the caller rasterised with this camera into `gbuffer_z`
-    /// (reversed-Z `Depth32Float`, the framebuffer's size; [`crate::Renderer`]'s G-buffer): the
-    /// stochastic depth map may test its fragments against that depth instead of writing its
-    /// own (`StochasticDepthMap::render`). Not at half resolution, whose frame is another size.
-    pub(crate) fn encode_with_gbuffer_z(
+    /// [`Self::encode`] for a frame the caller rasterised itself with this camera
+    /// ([`crate::Renderer`]'s G-buffer), which may leave more than depth and normals
+    /// ([`OwnGBuffer`]). Not at half resolution, whose frame is another size.
+    pub(crate) fn encode_with_gbuffer(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         textures: FrameTextures,
-        gbuffer_z: Option<&wgpu::Texture>,
+        gbuffer: OwnGBuffer,
         mut profiler: Option<&mut PassProfiler>,
     ) -> Result<(), Error> {
         let device = &self.gpu.device;
@@ -515,7 +527,8 @@ impl AmbientOcclusion {
             ray_grant: &ray_grant,
             estimator: &self.estimator,
             source: &self.source,
-            gbuffer_z: gbuffer_z.filter(|_| self.half.is_none()),
+            gbuffer_z: gbuffer.z.filter(|_| self.half.is_none()),
+            visible_triangles: gbuffer.visible_triangles.filter(|_| self.half.is_none()),
         };
         self.schedule
             .encode(&ctx, encoder, profiler.as_deref_mut())?;

@@ -1,6 +1,6 @@
 //! Our own frame: a loaded scene rasterised into a G-buffer, then [`AmbientOcclusion`].
 
-use super::{AmbientOcclusion, FrameTextures};
+use super::{AmbientOcclusion, FrameTextures, OwnGBuffer};
 use crate::bvh::{gpu::GpuBvh, BvhCache};
 use crate::error::{Error, SettingsError};
 use crate::gpu::{read_texture_f32, read_texture_f32_async, FrameTimings, Gpu, PassProfiler};
@@ -134,8 +134,15 @@ impl Renderer {
         let near = crate::view::near_plane(scene);
         let needs = settings.technique.needs();
         let peel = needs.second_layer.then_some(settings.peel_separation);
-        let gbuffer = GBuffer::new(&gpu.device, fw as u32, fh as u32, peel, &gpu_scene)
-            .map_err(|e| sized(e.into(), gpu, settings, (width, height), guard_band))?;
+        let keep_triangles = settings.technique.row().proves_rays_blocked();
+        let gbuffer = GBuffer::new(
+            &gpu.device,
+            (fw as u32, fh as u32),
+            peel,
+            keep_triangles,
+            &gpu_scene,
+        )
+        .map_err(|e| sized(e.into(), gpu, settings, (width, height), guard_band))?;
         let bvh = needs
             .bvh
             .then(|| GpuBvh::new(&gpu.device, &bvh.get(scene), scene))
@@ -230,10 +237,13 @@ impl Renderer {
             &view,
             profiler.as_deref_mut(),
         );
-        ao.encode_with_gbuffer_z(
+        ao.encode_with_gbuffer(
             &mut encoder,
             self.frame_textures(),
-            Some(self.gbuffer.z_buffer()),
+            OwnGBuffer {
+                z: Some(self.gbuffer.z_buffer()),
+                visible_triangles: self.gbuffer.visible_triangles(),
+            },
             profiler.as_deref_mut(),
         )?;
         if let Some(p) = profiler {

@@ -195,6 +195,7 @@ fn check_stage(
                 divisor: 4,
                 guard: 32,
             },
+            stage.source_group,
         )),
         &stage.parts,
     );

@@ -157,6 +157,10 @@ pub struct GBuffer {
     peel: Option<Peel>,
     /// The triangles each frame's passes draw (the visibility pass, depth peeling, base colour).
     cull: TriangleCull,
+    /// The drawn triangle each pixel shows + 1 (`R32Uint`, 0 = none), written by the resolve
+    /// where kept ([`GBuffer::visible_triangles`]); 1×1 and never written otherwise.
+    triangles: wgpu::Texture,
+    keep_triangles: bool,
 }
 
 impl GBuffer {
@@ -164,12 +168,13 @@ impl GBuffer {
     /// `peel_separation`, a second depth layer is peeled too: the nearest surface more than that
     /// many world units behind the first. `scene`: the scene [`GBuffer::render`] will draw; where
     /// it [has shading normals](GpuScene::shading_normals), the normals target interpolates them
-    /// instead of taking face normals.
+    /// instead of taking face normals. With `keep_triangles`, the resolve also keeps the
+    /// triangle each pixel shows ([`GBuffer::visible_triangles`]).
     pub fn new(
         device: &wgpu::Device,
-        width: u32,
-        height: u32,
+        (width, height): (u32, u32),
         peel_separation: Option<f32>,
+        keep_triangles: bool,
         scene: &GpuScene,
     ) -> Result<Self, crate::gpu::GpuError> {
         // The occlusion culling's pyramid is the one storage buffer here that grows with the
@@ -390,7 +395,29 @@ impl GBuffer {
             }),
             peel,
             cull,
+            triangles: {
+                let (w, h) = if keep_triangles {
+                    (width, height)
+                } else {
+                    (1, 1)
+                };
+                crate::gpu::texture_2d(
+                    device,
+                    "visible triangles",
+                    w,
+                    h,
+                    wgpu::TextureFormat::R32Uint,
+                    wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                )
+            },
+            keep_triangles,
         })
+    }
+
+    /// The drawn triangle (in [`GpuScene::draw_ordered`]'s order) each framebuffer pixel of the
+    /// last frame shows, + 1 (`R32Uint`, 0 = background), where the G-buffer was made to keep it.
+    pub fn visible_triangles(&self) -> Option<&wgpu::Texture> {
+        self.keep_triangles.then_some(&self.triangles)
     }
 
     /// Triangles the last frame's culling was given, and kept by each phase of the visibility
@@ -472,9 +499,11 @@ impl GBuffer {
             self.normals.create_view(&Default::default()),
         );
         let visibility_view;
+        let triangles = self.triangles.create_view(&Default::default());
         let mut outputs = vec![
             (7, wgpu::BindingResource::TextureView(&depth)),
             (8, wgpu::BindingResource::TextureView(&normals)),
+            (11, wgpu::BindingResource::TextureView(&triangles)),
         ];
         match &self.visibility {
             Visibility::Target(texture) => {

@@ -17,14 +17,7 @@ use crate::sources::SourcePass;
 use crate::technique::{Schedule, TechniqueRow};
 use crate::view::ScreenGeometry;
 
-/// Which of the source's two group-2 layouts a pipeline binds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SourceGroup {
-    /// What `source_resolve` reads (single pass, phase 2).
-    Resolve,
-    /// What `source_request` writes (phase 1).
-    Request,
-}
+pub(crate) use crate::sources::SourceGroup;
 
 /// One compute pipeline of a schedule.
 pub(crate) struct Stage {
@@ -106,14 +99,11 @@ pub(crate) fn pipeline(
     layouts.extend(schedule_layout.map(|l| (GROUP_SCHEDULE, l)));
     let mut constants = estimator.constants.clone();
     constants.extend_from_slice(source.constants());
-    if stage.source_group == SourceGroup::Request {
-        constants.extend_from_slice(source.request_constants());
-    }
     constants.extend_from_slice(&stage.constants);
     let wgsl = write_out_sample_loop(
         &compose(
             estimator.wgsl,
-            &stage.source_wgsl(source.wgsl()),
+            &stage.source_wgsl(source.wgsl(stage.source_group)),
             &stage.parts,
         ),
         &constants,
@@ -188,6 +178,9 @@ pub(crate) struct FrameContext<'a> {
     /// The depth buffer `frame`'s first layer was rasterised into, where the caller drew the
     /// frame itself at this size ([`crate::Renderer`]); engines' frames have none.
     pub gbuffer_z: Option<&'a wgpu::Texture>,
+    /// The triangle each pixel of `frame` shows + 1 (`R32Uint`, 0 = none), where the caller drew
+    /// the frame itself at this size ([`crate::raster::gbuffer::GBuffer::visible_triangles`]).
+    pub visible_triangles: Option<&'a wgpu::Texture>,
 }
 
 /// The groups every AO pass of a frame binds: frame, estimator, and the source's.

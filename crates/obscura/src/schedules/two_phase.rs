@@ -223,11 +223,12 @@ impl TwoPhase {
         } = *ctx;
         encoder.clear_buffer(&self.work_list, 0, Some(4));
         source.begin_frame(device, encoder, profiler.as_deref_mut());
+        let request = source.request_group(device, ctx.visible_triangles);
         let mut groups = FrameGroups {
             frame: frame_group,
             estimator: &estimator.group,
             resolve: None,
-            request: source.request_group(),
+            request: request.as_ref(),
         };
         {
             let timestamp_writes = profiler

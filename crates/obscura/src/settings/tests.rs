@@ -309,8 +309,8 @@ fn blur_sigma_is_a_natural_gaussian() {
 #[test]
 fn validation_names_fields_that_exist_and_no_flags() {
     let paths = AoSettings::field_paths();
-    // 88, and the test-only stub estimator's 2 (estimators/stub.rs).
-    assert_eq!(paths.len(), 88 + 2, "{paths:?}");
+    // 89, and the test-only stub estimator's 2 (estimators/stub.rs).
+    assert_eq!(paths.len(), 89 + 2, "{paths:?}");
     let mut broken: Vec<AoSettings> = Vec::new();
     let mut push = |f: &dyn Fn(&mut AoSettings)| {
         let mut s = AoSettings::default();

@@ -30,6 +30,15 @@ use depth_pyramid::DepthPyramid;
 use ray_stochastic_depth::{RayMapLayout, RayStochasticDepthMap};
 use stochastic_depth::{SdLayout, StochasticDepthMap};
 
+/// Which of the source's two group-2 layouts a pipeline binds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SourceGroup {
+    /// What `source_resolve` reads (single pass, phase 2).
+    Resolve,
+    /// What `source_request` writes (phase 1).
+    Request,
+}
+
 /// The scene data the scene-dependent sources need (the technique row's [`crate::technique::Needs`]).
 #[derive(Clone, Copy, Default)]
 pub struct SceneResources<'a> {
@@ -42,8 +51,14 @@ pub struct SceneResources<'a> {
 /// The source's WGSL: its helpers and its contract functions. `sd_layout`: how the stochastic
 /// depth maps are laid out (the ray-traced map: one map of N samples); `ray_layout`: the
 /// ray-traced map's resolution divisor and guard band, and the raster map's own guard band (its
-/// divisor is 1; both ignored by the other sources).
-pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout) -> String {
+/// divisor is 1; both ignored by the other sources); `group`: the layout the pass binds (BVH
+/// rays prove rays in phase 1 only).
+pub(crate) fn wgsl(
+    source: Source,
+    sd_layout: SdLayout,
+    ray_layout: RayMapLayout,
+    group: SourceGroup,
+) -> String {
     match source {
         Source::FirstLayer => shaders::SOURCE_FIRST_LAYER.to_string(),
         Source::DualDepth => shaders::SOURCE_DUAL_DEPTH.to_string(),
@@ -56,7 +71,7 @@ pub(crate) fn wgsl(source: Source, sd_layout: SdLayout, ray_layout: RayMapLayout
         Source::ScreenRaysDual => {
             [shaders::SCREEN_RAYS_DUAL, shaders::SOURCE_SCREEN_RAYS].join("\n")
         }
-        Source::BvhRays => column_rays::bvh_rays_wgsl().join("\n"),
+        Source::BvhRays => column_rays::bvh_rays_wgsl(group == SourceGroup::Request).join("\n"),
         Source::StochasticDepth => [
             &stochastic_depth::bindings_wgsl(sd_layout, ray_layout.guard),
             shaders::STOCHASTIC_DEPTH_SAMPLES,
@@ -113,6 +128,8 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
             entry::storage(SOURCE_SD_REQUEST, false),
             entry::storage(SOURCE_SD_INTERVAL, false),
         ],
+        // Phase 1's proofs (bvh_rays.wgsl).
+        Source::BvhRays => column_rays::proof_layout_entries(),
         Source::FirstLayer
         | Source::DualDepth
         | Source::ColumnRays
@@ -120,8 +137,7 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
         | Source::ScreenRays
         | Source::ScreenRaysDual
         | Source::ScreenRaysStochastic
-        | Source::ScreenRaysRayStochastic
-        | Source::BvhRays => Vec::new(),
+        | Source::ScreenRaysRayStochastic => Vec::new(),
     }
 }
 
@@ -158,8 +174,6 @@ pub(crate) struct SourcePass {
     zero_fill: Option<ZeroFill>,
     /// The source's pipeline constants (the stochastic depth map's query switch).
     constants: Vec<(&'static str, f64)>,
-    /// Constants only phase 1 of a two-phase schedule sets (the request stage).
-    request_constants: Vec<(&'static str, f64)>,
 }
 
 fn missing(what: &str, source: Source) -> Error {
@@ -207,20 +221,16 @@ impl SourcePass {
                     sd_layout,
                     ray_layout,
                     resolve_layout: Some(layout),
-                    request_layout: None,
+                    request_layout: schedule
+                        .two_phase()
+                        .then(|| layout_of(request_entries(kind), "bvh ray proofs"))
+                        .flatten(),
                     request: None,
                     interval: None,
                     request_group: None,
                     request_cells: 0,
                     zero_fill: None,
                     constants: Vec::new(),
-                    // Two-phase BVH rays: phase 1 proves rays free in screen space
-                    // (bvh_rays.wgsl); phase 2 only traces.
-                    request_constants: if kind == Source::BvhRays && schedule.two_phase() {
-                        vec![("SCREEN_PROOF", 1.0)]
-                    } else {
-                        Vec::new()
-                    },
                 });
             }
             Source::StochasticDepth | Source::ScreenRaysStochastic => {
@@ -371,7 +381,6 @@ impl SourcePass {
             request_cells,
             zero_fill,
             constants,
-            request_constants: Vec::new(),
         })
     }
 
@@ -380,13 +389,9 @@ impl SourcePass {
         &self.constants
     }
 
-    /// Pipeline constants phase 1 of a two-phase schedule sets besides [`Self::constants`].
-    pub fn request_constants(&self) -> &[(&'static str, f64)] {
-        &self.request_constants
-    }
-
-    pub fn wgsl(&self) -> String {
-        wgsl(self.kind, self.sd_layout, self.ray_layout)
+    /// Its WGSL for a pass binding `group` ([`wgsl`]).
+    pub fn wgsl(&self, group: SourceGroup) -> String {
+        wgsl(self.kind, self.sd_layout, self.ray_layout, group)
     }
 
     pub fn resolve_layout(&self) -> Option<&wgpu::BindGroupLayout> {
@@ -513,9 +518,21 @@ impl SourcePass {
         }))
     }
 
-    /// Group 2 of phase 1 of a two-phase schedule.
-    pub fn request_group(&self) -> Option<&wgpu::BindGroup> {
-        self.request_group.as_ref()
+    /// Group 2 of phase 1 of a two-phase schedule. `visible_triangles`: the triangle each
+    /// framebuffer pixel shows, where the caller rasterised the frame itself
+    /// ([`crate::raster::gbuffer::GBuffer::visible_triangles`]; BVH rays' blocked proof).
+    pub fn request_group(
+        &self,
+        device: &wgpu::Device,
+        visible_triangles: Option<&wgpu::Texture>,
+    ) -> Option<wgpu::BindGroup> {
+        match (&self.held, &self.request_layout) {
+            (Held::ColumnRays(rays), Some(layout)) => {
+                let view = visible_triangles.map(|t| t.create_view(&Default::default()));
+                Some(rays.proof_group(device, layout, view.as_ref()))
+            }
+            _ => self.request_group.clone(),
+        }
     }
 
     /// Column rays: the counter of last frame's rays whose BVH traversal overflowed its stack.
