@@ -578,7 +578,7 @@ pub const TABLE: &[TechniqueRow] = &[
     TechniqueRow {
         technique: Technique::RtaoTwoPhase,
         name: "rtao-two-phase",
-        summary: "RTAO in two phases: rays the screen proves free are not traced (work list)",
+        summary: "RTAO in two phases: rays the screen proves free or blocked are not traced (work list)",
         paper: "seed 000 §3.8's two phases carried to hemisphere rays (ours)",
         estimator: Estimator::Hemisphere,
         source: Source::BvhRays,
