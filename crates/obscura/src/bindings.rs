@@ -52,7 +52,7 @@ pub const SOURCE_STACK_OVERFLOWS: u32 = 1;
 pub const SOURCE_BVH: u32 = 2;
 /// BVH rays, two-phase phase 1: the drawn triangle each framebuffer pixel shows + 1 (`R32Uint`,
 /// 0 = none; the G-buffer's visibility buffer), for the blocked proof of
-/// `shaders/sources/bvh_rays.wgsl` (a 1×1 stand-in turns it off).
+/// `shaders/sources/bvh_rays_proof.wgsl` (a 1×1 stand-in turns it off).
 pub const SOURCE_VISIBLE_TRIANGLES: u32 = 8;
 /// BVH rays, two-phase phase 1: the drawn triangles those indices name.
 pub const SOURCE_DRAWN_TRIANGLES: u32 = 9;

@@ -578,7 +578,8 @@ pub const TABLE: &[TechniqueRow] = &[
     TechniqueRow {
         technique: Technique::RtaoTwoPhase,
         name: "rtao-two-phase",
-        summary: "RTAO in two phases: rays the screen proves free or blocked are not traced (work list)",
+        summary:
+            "RTAO in two phases: rays the screen proves free or blocked are not traced (work list)",
         paper: "seed 000 §3.8's two phases carried to hemisphere rays (ours)",
         estimator: Estimator::Hemisphere,
         source: Source::BvhRays,
@@ -1232,7 +1233,7 @@ impl TechniqueRow {
     }
 
     /// Whether phase 1 may prove rays blocked with the triangle each pixel shows
-    /// (`rtao-two-phase`: shaders/sources/bvh_rays.wgsl), so that [`crate::Renderer`]'s G-buffer
+    /// (`rtao-two-phase`: shaders/sources/bvh_rays_proof.wgsl), so that [`crate::Renderer`]'s G-buffer
     /// keeps its visible triangles for it.
     pub fn proves_rays_blocked(&self) -> bool {
         self.source == Source::BvhRays && self.schedule.two_phase()

@@ -12,7 +12,7 @@ const Z_BUFFER_BINDING: u32 = 9u;
 // triangle_cull.wgsl reads them.
 @group(0) @binding(10) var<storage, read_write> seen_frame: array<u32>;
 // The visible triangle + 1 per pixel (0: none), where the G-buffer keeps it (two-phase BVH rays'
-// blocked proof, sources/bvh_rays.wgsl); a 1×1 texture left alone otherwise.
+// blocked proof, sources/bvh_rays_proof.wgsl); a 1×1 texture left alone otherwise.
 @group(0) @binding(11) var triangle_out: texture_storage_2d<r32uint, write>;
 
 @compute @workgroup_size(8, 8)

@@ -43,7 +43,7 @@ pub(crate) struct OwnGBuffer<'a> {
     /// (`StochasticDepthMap::render`).
     pub z: Option<&'a wgpu::Texture>,
     /// The triangle each framebuffer pixel shows + 1 (`R32Uint`): two-phase BVH rays prove rays
-    /// blocked with it (`shaders/sources/bvh_rays.wgsl`).
+    /// blocked with it (`shaders/sources/bvh_rays_proof.wgsl`).
     pub visible_triangles: Option<&'a wgpu::Texture>,
 }
 

@@ -61,7 +61,7 @@ pub(crate) fn layout_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     entries
 }
 
-/// Group-2 layout entries of phase 1 of two-phase BVH rays (`shaders/sources/bvh_rays.wgsl`'s
+/// Group-2 layout entries of phase 1 of two-phase BVH rays (`shaders/sources/bvh_rays_proof.wgsl`'s
 /// proofs): the camera; of the BVH's bindings the scene's vertices, attributes, materials and
 /// alpha atlas (phase 1 tests single triangles and never walks the tree, so not the nodes and
 /// leaf triangles: WebGPU's eight storage buffers a stage); then the visible triangles and the

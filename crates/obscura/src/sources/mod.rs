@@ -128,7 +128,7 @@ pub(crate) fn request_entries(source: Source) -> Vec<wgpu::BindGroupLayoutEntry>
             entry::storage(SOURCE_SD_REQUEST, false),
             entry::storage(SOURCE_SD_INTERVAL, false),
         ],
-        // Phase 1's proofs (bvh_rays.wgsl).
+        // Phase 1's proofs (bvh_rays_proof.wgsl).
         Source::BvhRays => column_rays::proof_layout_entries(),
         Source::FirstLayer
         | Source::DualDepth
