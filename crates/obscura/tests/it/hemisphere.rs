@@ -368,7 +368,7 @@ fn two_phase_traces_at_most_half_the_rays_for_nearly_the_same_image() {
             differ.len(),
             single.len()
         );
-        // Measured: 25 %, 20 % and 73 % (37 %, 23 % and 92 % with free proofs alone). Grass is
+        // Measured: 25 %, 20 % and 70 % (37 %, 23 % and 92 % with free proofs alone). Grass is
         // the hard case: rays among blades rarely stay in front of what the frame shows, and
         // many are blocked by blades the frame does not show.
         let most = if name == "grass" { 0.8 } else { 0.5 };
@@ -397,7 +397,7 @@ fn phase_one_proves_rays_blocked_only_where_the_bvh_blocks_them() {
     // finds blocked there (8 (1 − AO), its rays being the same). And the proof must matter:
     // it takes a good share of the blocked rays off the BVH.
     let gpu = gpu();
-    // Measured: 68 %, 78 % and 56 % of them.
+    // Measured: 68 %, 78 % and 64 % of them.
     for (name, least_share) in [("stairs", 0.5), ("colonnade", 0.5), ("grass", 0.4)] {
         let scene = obscura::scene::builtin(name).unwrap();
         let (rtao, _) = render_rays(&gpu, &scene, Technique::Rtao, |_| {});
