@@ -72,6 +72,7 @@ fn screen_proof(p: EstimatorPixel, s: EstimatorSample) -> u32 {
     var u0 = 0.0;
     var free = true;
     var tries = 0u;
+    var r: BvhRay;
     // Every crossed cell but the last adds one edge: |dx| + |dy| + 2 steps cover the image.
     for (var i = 0u; i < params.proof_pixels + 2u; i++) {
         // A ray whose far end leaves the frame is walked to the frame's edge (blocked proof).
@@ -84,7 +85,12 @@ fn screen_proof(p: EstimatorPixel, s: EstimatorSample) -> u32 {
             if (!blocked_on) {
                 return PROOF_NONE;
             }
-            if (shows_blocker(p, s, vec2<u32>(cell))) {
+            // The world-space ray once per ray, at its first failure (not per try).
+            if (tries == 0u) {
+                let w = world_ray(p, s);
+                r = bvh_ray(w.start, w.dir);
+            }
+            if (shows_blocker(r, vec2<u32>(cell))) {
                 return PROOF_BLOCKED;
             }
             tries += 1u;
@@ -107,13 +113,11 @@ fn screen_proof(p: EstimatorPixel, s: EstimatorSample) -> u32 {
     return PROOF_NONE;
 }
 
-// Whether ray `s` hits, within [0, R] and by the scene's rules, the triangle that pixel `cell` or
+// Whether ray `r` (world_ray's, set up for the BVH's test) hits, within [0, R] and by the scene's rules, the triangle that pixel `cell` or
 // one of its side neighbours shows (the neighbours: free_over_pixel also fails on a neighbour's
 // tangent plane, and a ray that passes behind one pixel's surface may meet it over the next).
 // Each distinct triangle is tested once, in the order met.
-fn shows_blocker(p: EstimatorPixel, s: EstimatorSample, cell: vec2<u32>) -> bool {
-    let w = world_ray(p, s);
-    let r = bvh_ray(w.start, w.dir);
+fn shows_blocker(r: BvhRay, cell: vec2<u32>) -> bool {
     var tested = array<u32, 5>(0u, 0u, 0u, 0u, 0u);
     for (var k = 0u; k < 5u; k++) {
         var offset = vec2<i32>(0);
